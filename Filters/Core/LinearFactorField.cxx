@@ -1,0 +1,305 @@
+#include "LinearFactorField.h"
+
+#include "SliceDomain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <deque>
+
+namespace vtkdf
+{
+
+int SiteIndexPlanes(
+  const MeshSites& sites, const Site& site, const SampleGrid& grid, IndexPlane* out, int capacity)
+{
+  const int count = std::min<int>(site.PlaneCount, capacity);
+  for (int p = 0; p < count; ++p)
+  {
+    const HalfSpace& h = sites.Planes[site.PlaneBegin + p];
+    // n . (origin + spacing * index) + d >= 0
+    out[p].A = h.N[0] * grid.Spacing[0];
+    out[p].B = h.N[1] * grid.Spacing[1];
+    out[p].C = h.N[2] * grid.Spacing[2];
+    out[p].D = h.N[0] * grid.Origin[0] + h.N[1] * grid.Origin[1] + h.N[2] * grid.Origin[2] + h.D;
+  }
+  return count;
+}
+
+namespace
+{
+
+/// The distance vector of a site is P (anchor - x) with P a projector: identity for a
+/// vertex, I - t t^T for an edge, n n^T for a face. Along a row it changes by a constant.
+void SiteProjector(const Site& s, double P[3][3])
+{
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (s.Type == VertexSite)
+      {
+        P[r][c] = r == c ? 1.0 : 0.0;
+      }
+      else if (s.Type == EdgeSite)
+      {
+        P[r][c] = (r == c ? 1.0 : 0.0) - s.Axis[r] * s.Axis[c];
+      }
+      else
+      {
+        P[r][c] = s.Axis[r] * s.Axis[c];
+      }
+    }
+  }
+}
+
+/// Scan-converts one site's domain inside its region; returns distance evaluations.
+int64_t ScanSite(const MeshSites& sites, const Site& site, uint32_t siteIndex,
+  const IndexBox& region, const FieldRequest& request, NearestSiteBuffer& nearest)
+{
+  const SampleGrid& grid = request.Grid;
+  const IndexBox& ext = request.Extent;
+  IndexPlane planes[SlicePolygon::MaxPlanes];
+  const int numPlanes = SiteIndexPlanes(sites, site, grid, planes, SlicePolygon::MaxPlanes);
+  double P[3][3];
+  SiteProjector(site, P);
+  const float step[3] = { static_cast<float>(-P[0][0] * grid.Spacing[0]),
+    static_cast<float>(-P[1][0] * grid.Spacing[0]), static_cast<float>(-P[2][0] * grid.Spacing[0]) };
+  const int64_t nx = ext.Size(0), nxy = nx * ext.Size(1);
+  int64_t evaluations = 0;
+  SlicePolygon poly;
+
+  auto scanSlice = [&](int k) -> bool {
+    if (!ClipSlice(planes, numPlanes, k, region.Lo[0], region.Hi[0], region.Lo[1], region.Hi[1],
+          poly))
+    {
+      return false;
+    }
+    double ymin = HUGE_VAL, ymax = -HUGE_VAL;
+    for (int v = 0; v < poly.Count; ++v)
+    {
+      ymin = std::min(ymin, poly.Y[v]);
+      ymax = std::max(ymax, poly.Y[v]);
+    }
+    const int j0 = std::max(region.Lo[1], static_cast<int>(std::ceil(ymin)));
+    const int j1 = std::min(region.Hi[1], static_cast<int>(std::floor(ymax)));
+    const double z = grid.Coordinate(2, k);
+    for (int j = j0; j <= j1; ++j)
+    {
+      double xl, xr;
+      if (!RowSpan(poly, j, xl, xr))
+      {
+        continue;
+      }
+      const int i0 = std::max(region.Lo[0], static_cast<int>(std::ceil(xl)));
+      const int i1 = std::min(region.Hi[0], static_cast<int>(std::floor(xr)));
+      if (i1 < i0)
+      {
+        continue;
+      }
+      const double r[3] = { site.Anchor[0] - grid.Coordinate(0, i0),
+        site.Anchor[1] - grid.Coordinate(1, j), site.Anchor[2] - z };
+      float d[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        d[a] = static_cast<float>(P[a][0] * r[0] + P[a][1] * r[1] + P[a][2] * r[2]);
+      }
+      int64_t at = (i0 - ext.Lo[0]) + nx * (j - ext.Lo[1]) + nxy * (k - ext.Lo[2]);
+      for (int i = i0; i <= i1; ++i, ++at)
+      {
+        const float t = static_cast<float>(i - i0);
+        const float dx = d[0] + t * step[0], dy = d[1] + t * step[1], dz = d[2] + t * step[2];
+        nearest.Offer(at, NearestSiteBuffer::Pack(dx * dx + dy * dy + dz * dz, siteIndex));
+      }
+      evaluations += i1 - i0 + 1;
+    }
+    return true;
+  };
+
+  // The domain contains the anchor, so (when the anchor is in the region's rectangle)
+  // the slices it covers are one run of slices around the anchor's: scan outward from
+  // there and stop at the first empty slice on each side.
+  double anchor[3];
+  bool inRect = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    anchor[a] = (site.Anchor[a] - grid.Origin[a]) / grid.Spacing[a];
+  }
+  for (int a = 0; a < 2; ++a)
+  {
+    inRect = inRect && anchor[a] >= region.Lo[a] && anchor[a] <= region.Hi[a];
+  }
+  if (!inRect)
+  {
+    for (int k = region.Lo[2]; k <= region.Hi[2]; ++k)
+    {
+      scanSlice(k);
+    }
+    return evaluations;
+  }
+  auto clampZ = [&](double z) {
+    return static_cast<int>(std::min<double>(std::max<double>(z, region.Lo[2]), region.Hi[2]));
+  };
+  int start = clampZ(std::round(anchor[2]));
+  bool found = scanSlice(start);
+  if (!found)
+  {
+    for (int k : { clampZ(std::floor(anchor[2])), clampZ(std::ceil(anchor[2])) })
+    {
+      if (k != start && scanSlice(k))
+      {
+        start = k;
+        found = true;
+        break;
+      }
+    }
+  }
+  if (found)
+  {
+    for (int k = start + 1; k <= region.Hi[2] && scanSlice(k); ++k)
+    {
+    }
+    for (int k = start - 1; k >= region.Lo[2] && scanSlice(k); --k)
+    {
+    }
+  }
+  return evaluations;
+}
+
+} // namespace
+
+ScanStatistics ScanSitesCPU(const MeshSites& sites, const RangeCulling& culling,
+  const FieldRequest& request, NearestSiteBuffer& nearest, const ParallelFor& parallelFor,
+  const ProgressCallback& progress)
+{
+  ScanStatistics stats;
+  stats.Samples = request.Extent.Count();
+  const int64_t numSites = static_cast<int64_t>(sites.Sites.size());
+  // Sites come grouped by block (RangeCulling::Order); batches of them report progress.
+  const int64_t batches = std::max<int64_t>(1, std::min<int64_t>(20, numSites / 1024));
+  std::atomic<int64_t> evaluations{ 0 };
+  for (int64_t batch = 0; batch < batches; ++batch)
+  {
+    const int64_t first = numSites * batch / batches;
+    const int64_t last = numSites * (batch + 1) / batches;
+    parallelFor(last - first, 64, [&](int64_t begin, int64_t end) {
+      int64_t local = 0;
+      for (int64_t o = first + begin; o < first + end; ++o)
+      {
+        const int64_t id = culling.Order[o];
+        const IndexBox& region = culling.Regions[id];
+        if (!region.Empty())
+        {
+          local +=
+            ScanSite(sites, sites.Sites[id], static_cast<uint32_t>(id), region, request, nearest);
+        }
+      }
+      evaluations += local;
+    });
+    if (progress && !progress(double(batch + 1) / batches))
+    {
+      stats.Aborted = true;
+      break;
+    }
+  }
+  stats.Evaluations = evaluations.load();
+  return stats;
+}
+
+void Finalize(const MeshSites& sites, const FieldRequest& request,
+  const NearestSiteBuffer& nearest, const FieldArrays& arrays, const ParallelFor& parallelFor)
+{
+  const IndexBox& ext = request.Extent;
+  const SampleGrid& grid = request.Grid;
+  const int64_t nx = ext.Size(0), ny = ext.Size(1), n = ext.Count();
+  const double cap = request.MaximumDistance;
+  const bool banded = std::isfinite(cap);
+  // Inside/outside of every sample (0: unknown, outside the band).
+  std::vector<int8_t> side(arrays.Signed && arrays.Distance ? n : 0, 0);
+  parallelFor(n, 4096, [&](int64_t begin, int64_t end) {
+    for (int64_t at = begin; at < end; ++at)
+    {
+      const int i = ext.Lo[0] + static_cast<int>(at % nx);
+      const int j = ext.Lo[1] + static_cast<int>((at / nx) % ny);
+      const int k = ext.Lo[2] + static_cast<int>(at / (nx * ny));
+      const uint64_t packed = nearest.Get(at);
+      const double x[3] = { grid.Coordinate(0, i), grid.Coordinate(1, j), grid.Coordinate(2, k) };
+      double d[3] = { 0, 0, 0 }, distance = banded ? cap : HUGE_VAL;
+      const Site* site = nullptr;
+      if (packed != NearestSiteBuffer::Empty)
+      {
+        site = &sites.Sites[packed & 0xffffffffu];
+        sites.DistanceVector(*site, x, d);
+        distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (banded && distance > cap)
+        {
+          distance = cap;
+          site = nullptr;
+        }
+      }
+      if (arrays.Distance)
+      {
+        float value = static_cast<float>(distance);
+        if (site && arrays.Signed)
+        {
+          const double s = d[0] * site->Normal[0] + d[1] * site->Normal[1] + d[2] * site->Normal[2];
+          side[at] = s > 0 ? -1 : 1;
+          value = s > 0 ? -value : value;
+        }
+        arrays.Distance[at] = value;
+      }
+      if (arrays.ClosestCellId)
+      {
+        arrays.ClosestCellId[at] = site ? site->CellId : -1;
+      }
+      if (arrays.ClosestFeature)
+      {
+        arrays.ClosestFeature[at] = site ? site->Type : 255;
+      }
+      if (arrays.ClosestPoint)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          arrays.ClosestPoint[3 * at + a] = site ? static_cast<float>(x[a] + d[a]) : NAN;
+        }
+      }
+    }
+  });
+  if (side.empty() || !banded)
+  {
+    return;
+  }
+  // Beyond the band the closest site is unknown, but inside/outside cannot change
+  // without crossing the surface, which lies in the band: flood the known sides.
+  std::deque<int64_t> queue;
+  for (int64_t at = 0; at < n; ++at)
+  {
+    if (side[at] != 0)
+    {
+      queue.push_back(at);
+    }
+  }
+  const int64_t nxy = nx * ny, nz = ext.Size(2);
+  while (!queue.empty())
+  {
+    const int64_t at = queue.front();
+    queue.pop_front();
+    const int64_t i = at % nx, j = (at / nx) % ny, k = at / nxy;
+    const int64_t nbr[6] = { i > 0 ? at - 1 : -1, i + 1 < nx ? at + 1 : -1, j > 0 ? at - nx : -1,
+      j + 1 < ny ? at + nx : -1, k > 0 ? at - nxy : -1, k + 1 < nz ? at + nxy : -1 };
+    for (int64_t b : nbr)
+    {
+      if (b >= 0 && side[b] == 0)
+      {
+        side[b] = side[at];
+        if (side[b] < 0)
+        {
+          arrays.Distance[b] = -static_cast<float>(cap);
+        }
+        queue.push_back(b);
+      }
+    }
+  }
+}
+
+} // namespace vtkdf

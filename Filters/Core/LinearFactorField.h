@@ -1,0 +1,104 @@
+// LinearFactorField: the exact distance field of paper 000, without VTK types.
+//
+// Pipeline: MeshSites (sites + domains) -> RangeCulling (regions) -> a scan pass that
+// writes, per sample, the nearest site found so far (CPU here, GPU in
+// LinearFactorGPU) -> Finalize, which turns the winning site of every sample into the
+// requested arrays, recomputing distance and closest point in double precision.
+#ifndef vtkdf_LinearFactorField_h
+#define vtkdf_LinearFactorField_h
+
+#include "MeshSites.h"
+#include "Parallel.h"
+#include "RangeCulling.h"
+#include "SampleGrid.h"
+
+#include <atomic>
+#include <cstring>
+#include <vector>
+#include <cstdint>
+#include <memory>
+
+namespace vtkdf
+{
+
+/// Per sample: (float bits of the squared distance << 32) | site index. Unsigned order
+/// of the packed value = order of distances, ties to the lower site index, so an atomic
+/// minimum gives the same answer whatever the thread schedule.
+class NearestSiteBuffer
+{
+public:
+  static constexpr uint64_t Empty = ~uint64_t(0);
+  void Reset(int64_t count)
+  {
+    this->Values.reset(new std::atomic<uint64_t>[count]);
+    this->Count = count;
+    for (int64_t i = 0; i < count; ++i)
+    {
+      this->Values[i].store(Empty, std::memory_order_relaxed);
+    }
+  }
+  static uint64_t Pack(float distance2, uint32_t site)
+  {
+    uint32_t bits;
+    static_assert(sizeof(bits) == sizeof(distance2), "float is 32 bits");
+    std::memcpy(&bits, &distance2, sizeof(bits));
+    return (uint64_t(bits) << 32) | site;
+  }
+  void Offer(int64_t at, uint64_t packed)
+  {
+    uint64_t old = this->Values[at].load(std::memory_order_relaxed);
+    while (packed < old &&
+      !this->Values[at].compare_exchange_weak(old, packed, std::memory_order_relaxed))
+    {
+    }
+  }
+  uint64_t Get(int64_t at) const { return this->Values[at].load(std::memory_order_relaxed); }
+  void Set(int64_t at, uint64_t v) { this->Values[at].store(v, std::memory_order_relaxed); }
+  int64_t Size() const { return this->Count; }
+
+private:
+  std::unique_ptr<std::atomic<uint64_t>[]> Values;
+  int64_t Count = 0;
+};
+
+struct FieldRequest
+{
+  SampleGrid Grid;
+  IndexBox Extent; // the samples to compute (a sub-extent of Grid.Whole when streaming)
+  double MaximumDistance = HUGE_VAL;
+};
+
+/// Where Finalize writes; any pointer may be null. Arrays cover Extent, x fastest.
+struct FieldArrays
+{
+  float* Distance = nullptr;
+  bool Signed = false;
+  int64_t* ClosestCellId = nullptr;
+  uint8_t* ClosestFeature = nullptr;
+  float* ClosestPoint = nullptr; // 3 per sample
+};
+
+struct ScanStatistics
+{
+  int64_t Evaluations = 0; // distance evaluations (culling factor = Evaluations / samples)
+  int64_t Samples = 0;
+  bool Aborted = false;
+};
+
+/// Sample-index planes of a site's domain, at most SlicePolygon::MaxPlanes (optional
+/// planes beyond that are dropped, which only enlarges the domain).
+int SiteIndexPlanes(const MeshSites& sites, const Site& site, const SampleGrid& grid,
+  struct IndexPlane* out, int capacity);
+
+/// The CPU scan conversion: every site's domain polygon, slice by slice, row by row.
+ScanStatistics ScanSitesCPU(const MeshSites& sites, const RangeCulling& culling,
+  const FieldRequest& request, NearestSiteBuffer& nearest, const ParallelFor& parallelFor,
+  const ProgressCallback& progress);
+
+/// Writes the arrays from the nearest site of every sample.
+void Finalize(const MeshSites& sites, const FieldRequest& request,
+  const NearestSiteBuffer& nearest, const FieldArrays& arrays, const ParallelFor& parallelFor);
+
+} // namespace vtkdf
+
+#endif

@@ -1,0 +1,572 @@
+#include "MeshSites.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace vtkdf
+{
+namespace
+{
+using Vec = std::array<double, 3>;
+
+Vec Sub(const double* a, const double* b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+double Dot(const Vec& a, const Vec& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec Cross(const Vec& a, const Vec& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+double Norm(const Vec& a)
+{
+  return std::sqrt(Dot(a, a));
+}
+Vec Scale(const Vec& a, double s)
+{
+  return { a[0] * s, a[1] * s, a[2] * s };
+}
+Vec Add(const Vec& a, const Vec& b)
+{
+  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+}
+
+struct EdgeRecord
+{
+  int64_t A, B;  // canonical point ids, A < B
+  int64_t Face;  // non-degenerate face index, or -1
+  int64_t Cell;  // input cell
+};
+
+struct FaceRecord
+{
+  int64_t P[3];
+  int64_t Cell;
+  Vec Normal;
+};
+} // namespace
+
+void MeshSites::DistanceVector(const Site& s, const double x[3], double out[3]) const
+{
+  Vec r = Sub(s.Anchor, x);
+  if (s.Type == EdgeSite)
+  {
+    const Vec t = { s.Axis[0], s.Axis[1], s.Axis[2] };
+    r = Sub(r.data(), Scale(t, Dot(r, t)).data());
+  }
+  else if (s.Type == FaceSite)
+  {
+    const Vec n = { s.Axis[0], s.Axis[1], s.Axis[2] };
+    r = Scale(n, Dot(r, n));
+  }
+  out[0] = r[0];
+  out[1] = r[1];
+  out[2] = r[2];
+}
+
+bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::string& error)
+{
+  this->Sites.clear();
+  this->Planes.clear();
+  this->SitePoints.clear();
+  this->Statistics = DomainStatistics();
+  const int64_t numPoints = static_cast<int64_t>(in.Points.size() / 3);
+  const double* P = in.Points.data();
+
+  // --- Points that cells use, merged when their coordinates are identical, so that
+  // polygon soups and duplicated points still get their topology (and tight domains).
+  std::vector<char> used(numPoints, 0);
+  auto markUsed = [&](const std::vector<int64_t>& ids) -> bool {
+    for (int64_t id : ids)
+    {
+      if (id < 0 || id >= numPoints)
+      {
+        error = "a cell refers to point " + std::to_string(id) + " of " +
+          std::to_string(numPoints);
+        return false;
+      }
+      used[id] = 1;
+    }
+    return true;
+  };
+  if (!markUsed(in.Triangles) || !markUsed(in.Segments) || !markUsed(in.Vertices))
+  {
+    return false;
+  }
+  std::vector<int64_t> order;
+  for (int64_t i = 0; i < numPoints; ++i)
+  {
+    if (used[i])
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        if (!std::isfinite(P[3 * i + a]))
+        {
+          error = "point " + std::to_string(i) + " has a NaN or infinite coordinate";
+          return false;
+        }
+      }
+      order.push_back(i);
+    }
+  }
+  if (order.empty())
+  {
+    return true;
+  }
+  std::sort(order.begin(), order.end(), [P](int64_t a, int64_t b) {
+    return std::lexicographical_compare(P + 3 * a, P + 3 * a + 3, P + 3 * b, P + 3 * b + 3);
+  });
+  std::vector<int64_t> canonical(numPoints, -1);
+  std::vector<int64_t> merged; // canonical index -> input point id
+  for (size_t k = 0; k < order.size(); ++k)
+  {
+    const int64_t id = order[k];
+    if (k > 0 && std::equal(P + 3 * id, P + 3 * id + 3, P + 3 * order[k - 1]))
+    {
+      canonical[id] = canonical[order[k - 1]];
+      ++this->Statistics.MergedPoints;
+    }
+    else
+    {
+      canonical[id] = static_cast<int64_t>(merged.size());
+      merged.push_back(id);
+    }
+  }
+  const int64_t nv = static_cast<int64_t>(merged.size());
+  auto X = [&](int64_t c) { return P + 3 * merged[c]; };
+
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Bounds[2 * a] = X(0)[a];
+    this->Bounds[2 * a + 1] = X(0)[a];
+  }
+  this->SitePoints.resize(3 * nv);
+  for (int64_t c = 0; c < nv; ++c)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      this->SitePoints[3 * c + a] = X(c)[a];
+      this->Bounds[2 * a] = std::min(this->Bounds[2 * a], X(c)[a]);
+      this->Bounds[2 * a + 1] = std::max(this->Bounds[2 * a + 1], X(c)[a]);
+    }
+  }
+  const double diagonal = std::hypot(this->Bounds[1] - this->Bounds[0],
+    std::hypot(this->Bounds[3] - this->Bounds[2], this->Bounds[5] - this->Bounds[4]));
+  // Features below this size carry no direction we can trust; their neighbours cover them.
+  const double degenerate = 1e-10 * (diagonal > 0 ? diagonal : 1.0);
+
+  // --- Faces (non-degenerate triangles) and every edge occurrence.
+  std::vector<FaceRecord> faces;
+  std::vector<EdgeRecord> edges;
+  std::vector<int64_t> vertexCell(nv, INT64_MAX);
+  const int64_t numTriangles = static_cast<int64_t>(in.Triangles.size() / 3);
+  for (int64_t t = 0; t < numTriangles; ++t)
+  {
+    const int64_t cell = in.TriangleCells[t];
+    int64_t c[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      c[k] = canonical[in.Triangles[3 * t + k]];
+      vertexCell[c[k]] = std::min(vertexCell[c[k]], cell);
+    }
+    int64_t face = -1;
+    if (c[0] != c[1] && c[1] != c[2] && c[2] != c[0])
+    {
+      const Vec e1 = Sub(X(c[1]), X(c[0])), e2 = Sub(X(c[2]), X(c[0]));
+      const Vec e3 = Sub(X(c[2]), X(c[1]));
+      const Vec n = Cross(e1, e2);
+      const double area2 = Norm(n);
+      const double longest = std::max(Norm(e1), std::max(Norm(e2), Norm(e3)));
+      if (area2 > degenerate * longest)
+      {
+        face = static_cast<int64_t>(faces.size());
+        faces.push_back({ { c[0], c[1], c[2] }, cell, Scale(n, 1.0 / area2) });
+      }
+    }
+    if (face < 0)
+    {
+      ++this->Statistics.DegenerateFaces;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const int64_t a = c[k], b = c[(k + 1) % 3];
+      if (a != b)
+      {
+        edges.push_back({ std::min(a, b), std::max(a, b), face, cell });
+      }
+    }
+  }
+  const int64_t numSegments = static_cast<int64_t>(in.Segments.size() / 2);
+  for (int64_t s = 0; s < numSegments; ++s)
+  {
+    const int64_t a = canonical[in.Segments[2 * s]], b = canonical[in.Segments[2 * s + 1]];
+    const int64_t cell = in.SegmentCells[s];
+    vertexCell[a] = std::min(vertexCell[a], cell);
+    vertexCell[b] = std::min(vertexCell[b], cell);
+    if (a != b)
+    {
+      edges.push_back({ std::min(a, b), std::max(a, b), -1, cell });
+    }
+  }
+  for (size_t v = 0; v < in.Vertices.size(); ++v)
+  {
+    const int64_t c = canonical[in.Vertices[v]];
+    vertexCell[c] = std::min(vertexCell[c], in.VertexCells[v]);
+  }
+  std::sort(edges.begin(), edges.end(), [](const EdgeRecord& x, const EdgeRecord& y) {
+    return x.A != y.A ? x.A < y.A : (x.B != y.B ? x.B < y.B : x.Face < y.Face);
+  });
+
+  // Orientation: make the sign's pseudonormals point outward for closed meshes.
+  double volume = 0;
+  for (const FaceRecord& f : faces)
+  {
+    const Vec a = Sub(X(f.P[0]), X(0)), b = Sub(X(f.P[1]), X(0)), c = Sub(X(f.P[2]), X(0));
+    volume += Dot(a, Cross(b, c));
+  }
+  const double orientation = volume < 0 ? -1.0 : 1.0;
+
+  // Vertex pseudonormals (angle weighted) and per-vertex edge lists.
+  std::vector<Vec> vertexNormal(nv, Vec{ 0, 0, 0 });
+  for (const FaceRecord& f : faces)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const Vec u = Sub(X(f.P[(k + 1) % 3]), X(f.P[k])), w = Sub(X(f.P[(k + 2) % 3]), X(f.P[k]));
+      const double angle = std::atan2(Norm(Cross(u, w)), Dot(u, w));
+      vertexNormal[f.P[k]] = Add(vertexNormal[f.P[k]], Scale(f.Normal, angle * orientation));
+    }
+  }
+
+  auto addPlane = [&](const Vec& n, const double* through) {
+    this->Planes.push_back({ { n[0], n[1], n[2] }, -Dot(n, Vec{ through[0], through[1], through[2] }) + slack });
+  };
+  auto newSite = [&](uint8_t type, int64_t cell, const double* anchor) -> Site& {
+    Site s{};
+    s.Type = type;
+    s.CellId = cell;
+    s.PlaneBegin = static_cast<uint32_t>(this->Planes.size());
+    for (int a = 0; a < 3; ++a)
+    {
+      s.Anchor[a] = anchor[a];
+      s.BoundsMin[a] = s.BoundsMax[a] = anchor[a];
+    }
+    this->Sites.push_back(s);
+    return this->Sites.back();
+  };
+  auto grow = [](Site& s, const double* x) {
+    for (int a = 0; a < 3; ++a)
+    {
+      s.BoundsMin[a] = std::min(s.BoundsMin[a], x[a]);
+      s.BoundsMax[a] = std::max(s.BoundsMax[a], x[a]);
+    }
+  };
+  auto finish = [&](Site& s) {
+    s.PlaneCount = static_cast<uint16_t>(this->Planes.size() - s.PlaneBegin);
+  };
+
+  // --- Face sites: the triangle prism (three planes through the edges, orthogonal to
+  // the triangle), required for the plane-distance formula to be exact.
+  for (const FaceRecord& f : faces)
+  {
+    Site& s = newSite(FaceSite, f.Cell, X(f.P[0]));
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* a = X(f.P[k]);
+      const Vec e = Sub(X(f.P[(k + 1) % 3]), a);
+      Vec m = Cross(f.Normal, e);
+      m = Scale(m, 1.0 / Norm(m));
+      if (Dot(m, Sub(X(f.P[(k + 2) % 3]), a)) < 0)
+      {
+        m = Scale(m, -1.0);
+      }
+      addPlane(m, a);
+      grow(s, X(f.P[k]));
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      s.Axis[a] = f.Normal[a];
+      s.Normal[a] = f.Normal[a] * orientation;
+    }
+    s.Required = 3;
+    finish(s);
+    ++this->Statistics.Faces;
+  }
+
+  // --- Edge sites: the slab between the end planes (required), then one plane per
+  // incident face: a point on the face side of that plane is closer to the face.
+  std::vector<std::vector<std::pair<int64_t, Vec>>> vertexEdges(nv);
+  std::vector<std::vector<int64_t>> edgeFaces;
+  std::vector<std::array<int64_t, 2>> edgeEnds;
+  for (size_t e0 = 0; e0 < edges.size();)
+  {
+    size_t e1 = e0;
+    int64_t cell = INT64_MAX;
+    std::vector<int64_t> incident;
+    while (e1 < edges.size() && edges[e1].A == edges[e0].A && edges[e1].B == edges[e0].B)
+    {
+      cell = std::min(cell, edges[e1].Cell);
+      if (edges[e1].Face >= 0)
+      {
+        incident.push_back(edges[e1].Face);
+      }
+      ++e1;
+    }
+    const int64_t a = edges[e0].A, b = edges[e0].B;
+    e0 = e1;
+    Vec t = Sub(X(b), X(a));
+    const double length = Norm(t);
+    if (length <= degenerate)
+    {
+      ++this->Statistics.DegenerateEdges;
+      continue;
+    }
+    t = Scale(t, 1.0 / length);
+    vertexEdges[a].push_back({ static_cast<int64_t>(edgeEnds.size()), t });
+    vertexEdges[b].push_back({ static_cast<int64_t>(edgeEnds.size()), Scale(t, -1.0) });
+    edgeFaces.push_back(incident);
+    edgeEnds.push_back({ a, b });
+
+    Site& s = newSite(EdgeSite, cell, X(a));
+    grow(s, X(b));
+    addPlane(t, X(a));
+    addPlane(Scale(t, -1.0), X(b));
+    s.Required = 2;
+    const bool manifoldEdge = incident.size() == 2;
+    const bool wedge = culling == Culling::Auto || (culling == Culling::Manifold && manifoldEdge);
+    Vec pseudo{ 0, 0, 0 };
+    for (int64_t fi : incident)
+    {
+      const FaceRecord& f = faces[fi];
+      pseudo = Add(pseudo, Scale(f.Normal, orientation));
+      if (wedge)
+      {
+        int64_t c = f.P[0];
+        for (int k = 0; k < 3; ++k)
+        {
+          if (f.P[k] != a && f.P[k] != b)
+          {
+            c = f.P[k];
+          }
+        }
+        const Vec ac = Sub(X(c), X(a));
+        Vec m = Sub(ac.data(), Scale(t, Dot(ac, t)).data());
+        m = Scale(m, -1.0 / Norm(m));
+        addPlane(m, X(a));
+      }
+    }
+    if (wedge && !incident.empty())
+    {
+      ++this->Statistics.EdgeWedges;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      s.Axis[k] = t[k];
+      s.Normal[k] = pseudo[k];
+    }
+    finish(s);
+    ++this->Statistics.Edges;
+  }
+
+  // --- Vertex sites.
+  std::vector<std::vector<int64_t>> vertexFaces(nv);
+  if (culling == Culling::Manifold)
+  {
+    for (size_t f = 0; f < faces.size(); ++f)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        vertexFaces[faces[f].P[k]].push_back(static_cast<int64_t>(f));
+      }
+    }
+  }
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    Site& s = newSite(VertexSite, vertexCell[v], X(v));
+    s.Required = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      s.Normal[a] = vertexNormal[v][a];
+    }
+    ++this->Statistics.Vertices;
+    const auto& incident = vertexEdges[v];
+    const double* p = X(v);
+    auto polar = [&]() {
+      // (x - p) . u <= 0 for every edge direction u: otherwise the edge is closer.
+      for (const auto& eu : incident)
+      {
+        addPlane(Scale(eu.second, -1.0), p);
+      }
+      ++this->Statistics.PolarVertices;
+    };
+    if (culling == Culling::Auto)
+    {
+      if (incident.empty())
+      {
+        ++this->Statistics.UnboundedVertices;
+      }
+      else
+      {
+        polar();
+      }
+      finish(s);
+      continue;
+    }
+    if (culling == Culling::NonManifold)
+    {
+      ++this->Statistics.UnboundedVertices;
+      finish(s);
+      continue;
+    }
+
+    // Manifold culling: only where the faces around v form one closed fan.
+    const auto& fan = vertexFaces[v];
+    bool closed = !incident.empty() && fan.size() == incident.size();
+    for (const auto& eu : incident)
+    {
+      closed = closed && edgeFaces[eu.first].size() == 2;
+    }
+    if (closed)
+    {
+      // Walk the fan once around: it must visit every face (a single cycle).
+      size_t steps = 0;
+      int64_t edge = incident[0].first, face = edgeFaces[edge][0];
+      const int64_t startFace = face;
+      do
+      {
+        ++steps;
+        int64_t next = -1;
+        for (const auto& eu : incident)
+        {
+          const auto& ef = edgeFaces[eu.first];
+          if (eu.first != edge && (ef[0] == face || ef[1] == face))
+          {
+            next = eu.first;
+          }
+        }
+        if (next < 0)
+        {
+          closed = false;
+          break;
+        }
+        edge = next;
+        face = edgeFaces[edge][0] == face ? edgeFaces[edge][1] : edgeFaces[edge][0];
+      } while (face != startFace && steps <= fan.size());
+      closed = closed && steps == fan.size();
+    }
+    if (!closed)
+    {
+      ++this->Statistics.UnboundedVertices;
+      finish(s);
+      continue;
+    }
+    // Convex or concave vertex (every incident edge bends the same way): the polytope
+    // spanned by the face normals, i.e. the planes orthogonal to the edges.
+    int convex = 0, concave = 0;
+    for (const auto& eu : incident)
+    {
+      const auto& ef = edgeFaces[eu.first];
+      const FaceRecord& f0 = faces[ef[0]];
+      const FaceRecord& f1 = faces[ef[1]];
+      const int64_t a = edgeEnds[eu.first][0], b = edgeEnds[eu.first][1];
+      int64_t c1 = f1.P[0];
+      for (int k = 0; k < 3; ++k)
+      {
+        if (f1.P[k] != a && f1.P[k] != b)
+        {
+          c1 = f1.P[k];
+        }
+      }
+      const double bend = Dot(Scale(f0.Normal, orientation), Sub(X(c1), X(a)));
+      convex += bend <= 0;
+      concave += bend >= 0;
+    }
+    if (convex == static_cast<int>(incident.size()) || concave == static_cast<int>(incident.size()))
+    {
+      polar();
+      finish(s);
+      continue;
+    }
+    // Hyperbolic vertex (Theorem 1): cone about the mean normal n_a whose half-angle is
+    // the largest angle between n_a and a face normal, circumscribed by a square pyramid.
+    Vec na{ 0, 0, 0 };
+    for (int64_t f : fan)
+    {
+      na = Add(na, faces[f].Normal);
+    }
+    const double nal = Norm(na);
+    double cosTheta = 1;
+    if (nal > 0)
+    {
+      na = Scale(na, 1.0 / nal);
+      for (int64_t f : fan)
+      {
+        cosTheta = std::min(cosTheta, Dot(na, faces[f].Normal));
+      }
+    }
+    bool pyramid = nal > 0 && cosTheta > 1e-6; // theta < pi/2
+    std::vector<Vec> sides;
+    if (pyramid)
+    {
+      const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+      Vec b1 = std::fabs(na[0]) < 0.9 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
+      b1 = Sub(b1.data(), Scale(na, Dot(b1, na)).data());
+      b1 = Scale(b1, 1.0 / Norm(b1));
+      const Vec b2 = Cross(na, b1);
+      // The cone's tangent planes along +-b1, +-b2: a square pyramid containing the cone.
+      const double c = cosTheta, sn = sinTheta;
+      for (const Vec& b : { b1, Scale(b1, -1), b2, Scale(b2, -1) })
+      {
+        sides.push_back(Sub(Scale(na, sn).data(), Scale(b, c).data()));
+      }
+      // Theorem 1 is stated for saddles; check that the exact domain (the cone of
+      // directions y with y.u <= 0 for every edge u) really lies in the pyramid.
+      double rank = 0;
+      for (size_t i = 0; i < incident.size(); ++i)
+      {
+        for (size_t j = i + 1; j < incident.size(); ++j)
+        {
+          const Vec r = Cross(incident[i].second, incident[j].second);
+          for (const auto& eu : incident)
+          {
+            rank = std::max(rank, std::fabs(Dot(r, eu.second)));
+          }
+          for (double sign : { 1.0, -1.0 })
+          {
+            const Vec ray = Scale(r, sign);
+            bool inDomain = Norm(ray) > 1e-12;
+            for (const auto& eu : incident)
+            {
+              inDomain = inDomain && Dot(ray, eu.second) <= 1e-12;
+            }
+            for (const Vec& w : sides)
+            {
+              pyramid = pyramid && (!inDomain || Dot(ray, w) >= -1e-12);
+            }
+          }
+        }
+      }
+      pyramid = pyramid && rank > 1e-9;
+    }
+    if (pyramid)
+    {
+      for (const Vec& w : sides)
+      {
+        addPlane(w, p);
+      }
+      ++this->Statistics.PyramidVertices;
+    }
+    else
+    {
+      ++this->Statistics.UnboundedVertices;
+    }
+    finish(s);
+  }
+  return true;
+}
+
+} // namespace vtkdf

@@ -1,0 +1,98 @@
+// MeshSites: a polygon mesh decomposed into the sites of paper 000 (vertices, edges,
+// triangles), each with the convex domain that bounds its Voronoi region.
+//
+// Every domain is an intersection of half-spaces. On a slice it becomes the convex
+// polygon that the GPU rasterizes and the CPU scan-converts (SliceDomain.h). Inside its
+// domain a site's distance vector is an affine function of the sample position
+// (linear factorization), so interpolating it across the polygon is exact.
+#ifndef vtkdf_MeshSites_h
+#define vtkdf_MeshSites_h
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vtkdf
+{
+
+/// What the caller hands in: points and cells as plain arrays (no VTK types).
+struct MeshInput
+{
+  std::vector<double> Points; // xyz, 3 per point
+  // Triangles (polygons and strips already split into triangles), with the cell they came from.
+  std::vector<int64_t> Triangles; // 3 point ids each
+  std::vector<int64_t> TriangleCells;
+  std::vector<int64_t> Segments; // 2 point ids each (lines, polyline pieces)
+  std::vector<int64_t> SegmentCells;
+  std::vector<int64_t> Vertices; // point ids of vertex cells
+  std::vector<int64_t> VertexCells;
+};
+
+enum class Culling
+{
+  Auto,        // tightest exact domains for every site, whatever the topology
+  NonManifold, // triangle prism, edge slab, whole space for points
+  Manifold     // the paper's manifold domains where the neighbourhood is a closed manifold
+};
+
+enum SiteType : uint8_t
+{
+  VertexSite = 0,
+  EdgeSite = 1,
+  FaceSite = 2
+};
+
+/// n . x + d >= 0 (unit n, world coordinates, slack already added to d).
+struct HalfSpace
+{
+  double N[3];
+  double D;
+};
+
+struct Site
+{
+  uint8_t Type;
+  uint8_t Required; // the first Required planes keep the distance formula valid
+  uint16_t PlaneCount;
+  uint32_t PlaneBegin;
+  int64_t CellId;   // input cell reported as ClosestCellId
+  double Anchor[3]; // a point of the site (vertex, edge start, triangle corner)
+  double Axis[3];   // edge: unit tangent; face: unit normal; vertex: unused
+  double Normal[3]; // pseudonormal for the sign (zero when the site has no faces)
+  double BoundsMin[3], BoundsMax[3];
+};
+
+/// How many sites got which kind of domain (reported, and checked by the tests).
+struct DomainStatistics
+{
+  int64_t Faces = 0, Edges = 0, Vertices = 0;
+  int64_t EdgeWedges = 0;        // edges bounded by incident faces
+  int64_t PolarVertices = 0;     // vertices bounded by planes orthogonal to their edges
+  int64_t PyramidVertices = 0;   // hyperbolic vertices bounded by Theorem 1's pyramid
+  int64_t UnboundedVertices = 0; // vertices whose domain is the whole space
+  int64_t DegenerateFaces = 0, DegenerateEdges = 0, MergedPoints = 0;
+};
+
+class MeshSites
+{
+public:
+  /// Builds sites and domains. `slack` (world units) enlarges every domain so that
+  /// neighbouring domains overlap despite rounding; a site's formula is then evaluated
+  /// at most `slack` outside its exact region, which bounds the error by `slack`.
+  bool Build(const MeshInput& input, Culling culling, double slack, std::string& error);
+
+  std::vector<Site> Sites;
+  std::vector<HalfSpace> Planes;
+  std::vector<double> SitePoints; // xyz of every point a cell uses (merged), for range culling
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  DomainStatistics Statistics;
+
+  /// Distance vector from sample x to site s (closest point = x + vector), exact in
+  /// double inside the site's domain.
+  void DistanceVector(const Site& s, const double x[3], double out[3]) const;
+};
+
+} // namespace vtkdf
+
+#endif

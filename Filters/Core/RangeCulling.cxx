@@ -1,0 +1,413 @@
+#include "RangeCulling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vtkdf
+{
+namespace
+{
+
+/// Uniform hash grid over the mesh points, for nearest-point distances.
+class PointGrid
+{
+public:
+  explicit PointGrid(const std::vector<double>& points)
+    : Points(points)
+  {
+    const int64_t n = static_cast<int64_t>(points.size() / 3);
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Min[a] = HUGE_VAL;
+      double hi = -HUGE_VAL;
+      for (int64_t i = 0; i < n; ++i)
+      {
+        this->Min[a] = std::min(this->Min[a], points[3 * i + a]);
+        hi = std::max(hi, points[3 * i + a]);
+      }
+      this->Extent[a] = hi - this->Min[a];
+    }
+    const double longest = std::max(this->Extent[0], std::max(this->Extent[1], this->Extent[2]));
+    // About two points per cell, at most 128 cells per axis.
+    double volume = 1;
+    int flat = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (this->Extent[a] > 1e-9 * longest)
+      {
+        volume *= this->Extent[a];
+      }
+      else
+      {
+        ++flat;
+      }
+    }
+    double cell = longest > 0 ? std::pow(volume * 2.0 / std::max<int64_t>(n, 1), 1.0 / (3 - flat))
+                              : 1.0;
+    cell = std::max(cell, longest / 128.0);
+    this->Cell = cell > 0 ? cell : 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Dims[a] = static_cast<int>(this->Extent[a] / this->Cell) + 1;
+    }
+    std::vector<int64_t> counts(int64_t(Dims[0]) * Dims[1] * Dims[2] + 1, 0);
+    std::vector<int64_t> cellOf(n);
+    for (int64_t i = 0; i < n; ++i)
+    {
+      int c[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        c[a] = this->CellIndex(a, points[3 * i + a]);
+      }
+      cellOf[i] = c[0] + int64_t(Dims[0]) * (c[1] + int64_t(Dims[1]) * c[2]);
+      ++counts[cellOf[i] + 1];
+    }
+    for (size_t c = 1; c < counts.size(); ++c)
+    {
+      counts[c] += counts[c - 1];
+    }
+    this->Offsets = counts;
+    this->Sorted.resize(n);
+    for (int64_t i = 0; i < n; ++i)
+    {
+      this->Sorted[counts[cellOf[i]]++] = i;
+    }
+  }
+
+  int CellIndex(int a, double x) const
+  {
+    const int c = static_cast<int>(std::floor((x - this->Min[a]) / this->Cell));
+    return std::min(std::max(c, 0), this->Dims[a] - 1);
+  }
+
+  /// Distance from q to the nearest point (ring search over cells).
+  double Nearest(const double q[3]) const
+  {
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      c[a] = this->CellIndex(a, q[a]);
+    }
+    const int maxRing = std::max(Dims[0], std::max(Dims[1], Dims[2]));
+    double best2 = HUGE_VAL;
+    for (int r = 0; r <= maxRing; ++r)
+    {
+      // Points outside the cells of rings < r are at least this far from q.
+      if (r > 0)
+      {
+        double bound = HUGE_VAL;
+        for (int a = 0; a < 3; ++a)
+        {
+          const double lo = this->Min[a] + (c[a] - (r - 1)) * this->Cell;
+          const double hi = this->Min[a] + (c[a] + r) * this->Cell;
+          bound = std::min(bound, std::min(q[a] - lo, hi - q[a]));
+        }
+        if (bound > 0 && bound * bound >= best2)
+        {
+          break;
+        }
+      }
+      for (int k = c[2] - r; k <= c[2] + r; ++k)
+      {
+        if (k < 0 || k >= Dims[2])
+        {
+          continue;
+        }
+        for (int j = c[1] - r; j <= c[1] + r; ++j)
+        {
+          if (j < 0 || j >= Dims[1])
+          {
+            continue;
+          }
+          const bool shell = (k == c[2] - r || k == c[2] + r || j == c[1] - r || j == c[1] + r);
+          for (int i = c[0] - r; i <= c[0] + r; i += (shell ? 1 : 2 * r > 0 ? 2 * r : 1))
+          {
+            if (i < 0 || i >= Dims[0])
+            {
+              continue;
+            }
+            const int64_t cell = i + int64_t(Dims[0]) * (j + int64_t(Dims[1]) * k);
+            for (int64_t s = Offsets[cell]; s < Offsets[cell + 1]; ++s)
+            {
+              const double* p = &Points[3 * Sorted[s]];
+              const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                (p[2] - q[2]) * (p[2] - q[2]);
+              best2 = std::min(best2, d2);
+            }
+          }
+        }
+      }
+    }
+    return std::sqrt(best2);
+  }
+
+private:
+  const std::vector<double>& Points;
+  double Min[3], Extent[3], Cell;
+  int Dims[3];
+  std::vector<int64_t> Offsets, Sorted;
+};
+
+struct Box
+{
+  double Lo[3], Hi[3];
+};
+
+double BoxDistance(const Box& a, const Box& b)
+{
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double gap = std::max(0.0, std::max(a.Lo[k] - b.Hi[k], b.Lo[k] - a.Hi[k]));
+    d2 += gap * gap;
+  }
+  return std::sqrt(d2);
+}
+
+/// Largest distance from a point of `a` to the box `b`.
+double FarthestDistance(const Box& a, const Box& b)
+{
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double gap = std::max(0.0, std::max(b.Lo[k] - a.Lo[k], a.Hi[k] - b.Hi[k]));
+    d2 += gap * gap;
+  }
+  return std::sqrt(d2);
+}
+
+/// Min/max pyramid of the block upper bounds, level 0 = blocks.
+struct BoundPyramid
+{
+  std::vector<std::array<int, 3>> Dims;
+  std::vector<std::vector<float>> Max, Min;
+};
+
+} // namespace
+
+void RangeCulling::Build(const MeshSites& sites, const SampleGrid& grid, const IndexBox& extent,
+  double maximumDistance, const ParallelFor& parallelFor)
+{
+  const int64_t numSites = static_cast<int64_t>(sites.Sites.size());
+  this->Regions.assign(numSites, IndexBox());
+  this->Order.resize(numSites);
+  if (numSites == 0 || extent.Empty())
+  {
+    for (int64_t s = 0; s < numSites; ++s)
+    {
+      this->Order[s] = s;
+    }
+    return;
+  }
+  const int b = BlockSize;
+  std::array<int, 3> nb;
+  for (int a = 0; a < 3; ++a)
+  {
+    nb[a] = (extent.Size(a) + b - 1) / b;
+  }
+  const int64_t numBlocks = int64_t(nb[0]) * nb[1] * nb[2];
+  auto blockBox = [&](int bi, int bj, int bk, int span) {
+    const int ids[3] = { bi, bj, bk };
+    Box box;
+    for (int a = 0; a < 3; ++a)
+    {
+      const int lo = extent.Lo[a] + ids[a] * b;
+      const int hi = std::min(extent.Lo[a] + (ids[a] + span) * b - 1, extent.Hi[a]);
+      box.Lo[a] = grid.Coordinate(a, lo);
+      box.Hi[a] = grid.Coordinate(a, hi);
+    }
+    return box;
+  };
+
+  // Upper bound of the field over each block.
+  PointGrid points(sites.SitePoints);
+  BoundPyramid pyramid;
+  pyramid.Dims.push_back(nb);
+  pyramid.Max.emplace_back(numBlocks);
+  std::vector<float>& level0 = pyramid.Max.back();
+  parallelFor(numBlocks, 64, [&](int64_t begin, int64_t end) {
+    for (int64_t id = begin; id < end; ++id)
+    {
+      const int bi = static_cast<int>(id % nb[0]);
+      const int bj = static_cast<int>((id / nb[0]) % nb[1]);
+      const int bk = static_cast<int>(id / (int64_t(nb[0]) * nb[1]));
+      const Box box = blockBox(bi, bj, bk, 1);
+      double centre[3], half2 = 0;
+      for (int a = 0; a < 3; ++a)
+      {
+        centre[a] = 0.5 * (box.Lo[a] + box.Hi[a]);
+        half2 += 0.25 * (box.Hi[a] - box.Lo[a]) * (box.Hi[a] - box.Lo[a]);
+      }
+      double bound = points.Nearest(centre) + std::sqrt(half2);
+      bound = std::min(bound, maximumDistance);
+      // Round up so that float storage never makes the bound smaller.
+      level0[id] = std::nextafter(static_cast<float>(bound), HUGE_VALF);
+    }
+  });
+  pyramid.Min.push_back(level0);
+  while (pyramid.Dims.back()[0] > 1 || pyramid.Dims.back()[1] > 1 || pyramid.Dims.back()[2] > 1)
+  {
+    const auto d = pyramid.Dims.back();
+    const std::array<int, 3> up = { (d[0] + 1) / 2, (d[1] + 1) / 2, (d[2] + 1) / 2 };
+    std::vector<float> mx(int64_t(up[0]) * up[1] * up[2], -HUGE_VALF);
+    std::vector<float> mn(mx.size(), HUGE_VALF);
+    const auto& cmx = pyramid.Max.back();
+    const auto& cmn = pyramid.Min.back();
+    for (int k = 0; k < d[2]; ++k)
+    {
+      for (int j = 0; j < d[1]; ++j)
+      {
+        for (int i = 0; i < d[0]; ++i)
+        {
+          const int64_t c = i + int64_t(d[0]) * (j + int64_t(d[1]) * k);
+          const int64_t p = i / 2 + int64_t(up[0]) * (j / 2 + int64_t(up[1]) * (k / 2));
+          mx[p] = std::max(mx[p], cmx[c]);
+          mn[p] = std::min(mn[p], cmn[c]);
+        }
+      }
+    }
+    pyramid.Dims.push_back(up);
+    pyramid.Max.push_back(std::move(mx));
+    pyramid.Min.push_back(std::move(mn));
+  }
+  const int top = static_cast<int>(pyramid.Dims.size()) - 1;
+
+  // Group sites by the block of their anchor.
+  std::vector<int64_t> siteBlock(numSites);
+  std::vector<int64_t> offsets(numBlocks + 1, 0);
+  for (int64_t s = 0; s < numSites; ++s)
+  {
+    int64_t id = 0, stride = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = (sites.Sites[s].Anchor[a] - grid.Origin[a]) / grid.Spacing[a];
+      int blk = static_cast<int>(std::floor((x - extent.Lo[a]) / b));
+      blk = std::min(std::max(blk, 0), nb[a] - 1);
+      id += blk * stride;
+      stride *= nb[a];
+    }
+    siteBlock[s] = id;
+    ++offsets[id + 1];
+  }
+  for (int64_t c = 0; c < numBlocks; ++c)
+  {
+    offsets[c + 1] += offsets[c];
+  }
+  {
+    std::vector<int64_t> fill(offsets.begin(), offsets.end() - 1);
+    for (int64_t s = 0; s < numSites; ++s)
+    {
+      this->Order[fill[siteBlock[s]]++] = s;
+    }
+  }
+
+  // Reach of each group, then each site's region.
+  parallelFor(numBlocks, 16, [&](int64_t begin, int64_t end) {
+    for (int64_t cluster = begin; cluster < end; ++cluster)
+    {
+      if (offsets[cluster] == offsets[cluster + 1])
+      {
+        continue;
+      }
+      Box group{ { HUGE_VAL, HUGE_VAL, HUGE_VAL }, { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL } };
+      for (int64_t o = offsets[cluster]; o < offsets[cluster + 1]; ++o)
+      {
+        const Site& s = sites.Sites[this->Order[o]];
+        for (int a = 0; a < 3; ++a)
+        {
+          group.Lo[a] = std::min(group.Lo[a], s.BoundsMin[a]);
+          group.Hi[a] = std::max(group.Hi[a], s.BoundsMax[a]);
+        }
+      }
+      int reachLo[3] = { INT32_MAX, INT32_MAX, INT32_MAX };
+      int reachHi[3] = { -1, -1, -1 };
+      // Depth-first descent; a node already inside the reach adds nothing.
+      struct Node
+      {
+        int Level, I, J, K;
+      };
+      std::vector<Node> stack{ { top, 0, 0, 0 } };
+      while (!stack.empty())
+      {
+        const Node node = stack.back();
+        stack.pop_back();
+        const int span = 1 << node.Level;
+        const int lo[3] = { node.I * span, node.J * span, node.K * span };
+        int hi[3];
+        bool inside = true;
+        for (int a = 0; a < 3; ++a)
+        {
+          hi[a] = std::min(lo[a] + span, nb[a]) - 1;
+          inside = inside && lo[a] >= reachLo[a] && hi[a] <= reachHi[a];
+        }
+        if (inside)
+        {
+          continue;
+        }
+        const auto& d = pyramid.Dims[node.Level];
+        const int64_t at = node.I + int64_t(d[0]) * (node.J + int64_t(d[1]) * node.K);
+        const Box box = blockBox(lo[0], lo[1], lo[2], span);
+        if (BoxDistance(box, group) > pyramid.Max[node.Level][at])
+        {
+          continue;
+        }
+        if (node.Level == 0 || FarthestDistance(box, group) <= pyramid.Min[node.Level][at])
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            reachLo[a] = std::min(reachLo[a], lo[a]);
+            reachHi[a] = std::max(reachHi[a], hi[a]);
+          }
+          continue;
+        }
+        const auto& cd = pyramid.Dims[node.Level - 1];
+        for (int dk = 0; dk < 2; ++dk)
+        {
+          for (int dj = 0; dj < 2; ++dj)
+          {
+            for (int di = 0; di < 2; ++di)
+            {
+              const Node child{ node.Level - 1, 2 * node.I + di, 2 * node.J + dj, 2 * node.K + dk };
+              if (child.I < cd[0] && child.J < cd[1] && child.K < cd[2])
+              {
+                stack.push_back(child);
+              }
+            }
+          }
+        }
+      }
+      if (reachHi[0] < 0)
+      {
+        continue; // no block can have these sites as closest (MaximumDistance band)
+      }
+      IndexBox reach;
+      for (int a = 0; a < 3; ++a)
+      {
+        reach.Lo[a] = extent.Lo[a] + reachLo[a] * b;
+        reach.Hi[a] = std::min(extent.Lo[a] + (reachHi[a] + 1) * b - 1, extent.Hi[a]);
+      }
+      for (int64_t o = offsets[cluster]; o < offsets[cluster + 1]; ++o)
+      {
+        const int64_t id = this->Order[o];
+        const Site& s = sites.Sites[id];
+        IndexBox region = reach;
+        if (std::isfinite(maximumDistance))
+        {
+          IndexBox band;
+          for (int a = 0; a < 3; ++a)
+          {
+            const double lo = (s.BoundsMin[a] - maximumDistance - grid.Origin[a]) / grid.Spacing[a];
+            const double hi = (s.BoundsMax[a] + maximumDistance - grid.Origin[a]) / grid.Spacing[a];
+            band.Lo[a] = static_cast<int>(std::max(std::ceil(lo), -2e9));
+            band.Hi[a] = static_cast<int>(std::min(std::floor(hi), 2e9));
+          }
+          region = region.Intersect(band);
+        }
+        this->Regions[id] = region;
+      }
+    }
+  });
+}
+
+} // namespace vtkdf

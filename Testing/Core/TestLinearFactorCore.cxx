@@ -1,0 +1,249 @@
+// Unit test of the VTK-free core: procedural meshes, every culling mode, the CPU scan
+// against an exact brute-force reference on every sample.
+#include "ExactDistance.h"
+#include "LinearFactorField.h"
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace vtkdf;
+
+namespace
+{
+int Failures = 0;
+
+void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::printf("FAIL: %s\n", what.c_str());
+    ++Failures;
+  }
+}
+
+void ThreadFor(int64_t n, int64_t, const std::function<void(int64_t, int64_t)>& body)
+{
+  const int threads = 2;
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t)
+  {
+    const int64_t b = n * t / threads, e = n * (t + 1) / threads;
+    if (e > b)
+    {
+      pool.emplace_back([=, &body]() { body(b, e); });
+    }
+  }
+  for (auto& th : pool)
+  {
+    th.join();
+  }
+}
+
+double BruteForce(const MeshInput& m, const double x[3])
+{
+  double best = HUGE_VAL, c[3];
+  const double* P = m.Points.data();
+  auto consider = [&]() {
+    best = std::min(best, std::sqrt((c[0] - x[0]) * (c[0] - x[0]) +
+                            (c[1] - x[1]) * (c[1] - x[1]) + (c[2] - x[2]) * (c[2] - x[2])));
+  };
+  for (size_t t = 0; t < m.Triangles.size(); t += 3)
+  {
+    reference::ClosestOnTriangle(x, P + 3 * m.Triangles[t], P + 3 * m.Triangles[t + 1],
+      P + 3 * m.Triangles[t + 2], c);
+    consider();
+  }
+  for (size_t s = 0; s < m.Segments.size(); s += 2)
+  {
+    reference::ClosestOnSegment(x, P + 3 * m.Segments[s], P + 3 * m.Segments[s + 1], c);
+    consider();
+  }
+  for (int64_t v : m.Vertices)
+  {
+    std::copy(P + 3 * v, P + 3 * v + 3, c);
+    consider();
+  }
+  return best;
+}
+
+void RunCase(const std::string& name, const MeshInput& mesh, int resolution)
+{
+  for (Culling culling : { Culling::Auto, Culling::NonManifold, Culling::Manifold })
+  {
+    MeshSites sites;
+    std::string error;
+    FieldRequest request;
+    double bounds[6];
+    const double* P = mesh.Points.data();
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = HUGE_VAL;
+      bounds[2 * a + 1] = -HUGE_VAL;
+    }
+    auto use = [&](const std::vector<int64_t>& ids) {
+      for (int64_t id : ids)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          bounds[2 * a] = std::min(bounds[2 * a], P[3 * id + a]);
+          bounds[2 * a + 1] = std::max(bounds[2 * a + 1], P[3 * id + a]);
+        }
+      }
+    };
+    use(mesh.Triangles);
+    use(mesh.Segments);
+    use(mesh.Vertices);
+    request.Grid = SampleGrid::FromBounds(bounds, resolution, 0.25);
+    request.Extent = request.Grid.Whole;
+    const double h = request.Grid.MinSpacing();
+    Check(sites.Build(mesh, culling, 1e-5 * h, error), name + ": build " + error);
+    RangeCulling range;
+    range.Build(sites, request.Grid, request.Extent, HUGE_VAL, ThreadFor);
+    NearestSiteBuffer nearest;
+    nearest.Reset(request.Extent.Count());
+    const ScanStatistics stats = ScanSitesCPU(sites, range, request, nearest, ThreadFor, nullptr);
+    std::vector<float> distance(request.Extent.Count());
+    FieldArrays arrays;
+    arrays.Distance = distance.data();
+    Finalize(sites, request, nearest, arrays, ThreadFor);
+    double worst = 0;
+    int64_t worstAt = -1;
+    const IndexBox& e = request.Extent;
+    for (int k = e.Lo[2]; k <= e.Hi[2]; ++k)
+    {
+      for (int j = e.Lo[1]; j <= e.Hi[1]; ++j)
+      {
+        for (int i = e.Lo[0]; i <= e.Hi[0]; ++i)
+        {
+          const double x[3] = { request.Grid.Coordinate(0, i), request.Grid.Coordinate(1, j),
+            request.Grid.Coordinate(2, k) };
+          const int64_t at = i + int64_t(e.Size(0)) * (j + int64_t(e.Size(1)) * k);
+          const double err = std::fabs(distance[at] - BruteForce(mesh, x));
+          if (!(err <= worst))
+          {
+            worst = err;
+            worstAt = at;
+          }
+        }
+      }
+    }
+    const char* mode = culling == Culling::Auto ? "auto" : culling == Culling::NonManifold ? "nonmanifold" : "manifold";
+    std::printf("%-14s %-12s max|err| = %.3g h  culling factor %.2f  (sites %zu, pyramids %lld, "
+                "unbounded vertices %lld)\n",
+      name.c_str(), mode, worst / h, double(stats.Evaluations) / stats.Samples, sites.Sites.size(),
+      (long long)sites.Statistics.PyramidVertices, (long long)sites.Statistics.UnboundedVertices);
+    Check(worst <= 1e-3 * h, name + " " + mode + ": error " + std::to_string(worst / h) +
+        " h at sample " + std::to_string(worstAt));
+  }
+}
+
+MeshInput Sphere(int rings, int segments, double jitter, unsigned seed)
+{
+  MeshInput m;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-jitter, jitter);
+  m.Points = { 0, 0, 1 };
+  for (int r = 1; r < rings; ++r)
+  {
+    const double th = M_PI * r / rings;
+    for (int s = 0; s < segments; ++s)
+    {
+      const double ph = 2 * M_PI * s / segments;
+      const double rad = 1 + u(rng);
+      m.Points.insert(m.Points.end(),
+        { rad * std::sin(th) * std::cos(ph), rad * std::sin(th) * std::sin(ph), rad * std::cos(th) });
+    }
+  }
+  m.Points.insert(m.Points.end(), { 0, 0, -1 });
+  const int64_t south = static_cast<int64_t>(m.Points.size() / 3 - 1);
+  auto id = [&](int r, int s) { return int64_t(1 + (r - 1) * segments + (s % segments)); };
+  auto tri = [&](int64_t a, int64_t b, int64_t c) {
+    m.Triangles.insert(m.Triangles.end(), { a, b, c });
+    m.TriangleCells.push_back(static_cast<int64_t>(m.TriangleCells.size()));
+  };
+  for (int s = 0; s < segments; ++s)
+  {
+    tri(0, id(1, s), id(1, s + 1));
+    for (int r = 1; r + 1 < rings; ++r)
+    {
+      tri(id(r, s), id(r + 1, s), id(r + 1, s + 1));
+      tri(id(r, s), id(r + 1, s + 1), id(r, s + 1));
+    }
+    tri(south, id(rings - 1, s + 1), id(rings - 1, s));
+  }
+  return m;
+}
+} // namespace
+
+int main()
+{
+  {
+    MeshInput m;
+    m.Points = { 0, 0, 0, 1, 0.2, 0.1, 0.3, 0.9, -0.2 };
+    m.Triangles = { 0, 1, 2 };
+    m.TriangleCells = { 0 };
+    RunCase("triangle", m, 24);
+  }
+  {
+    MeshInput m;
+    m.Points = { 0, 0, 0, 1, 0.7, 0.3 };
+    m.Segments = { 0, 1 };
+    m.SegmentCells = { 0 };
+    RunCase("segment", m, 24);
+  }
+  {
+    MeshInput m;
+    m.Points = { 0.2, 0.3, 0.4 };
+    m.Vertices = { 0 };
+    m.VertexCells = { 0 };
+    RunCase("point", m, 16);
+  }
+  {
+    // Axis-aligned cube on grid-friendly coordinates: samples on domain boundaries.
+    MeshInput m;
+    m.Points = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1 };
+    m.Triangles = { 0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7,
+      2, 7, 6, 3, 0, 4, 3, 4, 7 };
+    for (int t = 0; t < 12; ++t)
+    {
+      m.TriangleCells.push_back(t);
+    }
+    RunCase("cube", m, 21);
+  }
+  RunCase("bumpy sphere", Sphere(9, 12, 0.15, 7), 24);
+  {
+    // Soup: random triangles (some degenerate), segments and points.
+    MeshInput m;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int t = 0; t < 30; ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        m.Points.insert(m.Points.end(), { u(rng), u(rng), u(rng) });
+      }
+      const int64_t b = 3 * t;
+      if (t % 7 == 3)
+      {
+        // collinear (zero area)
+        for (int a = 0; a < 3; ++a)
+        {
+          m.Points[3 * (b + 2) + a] = 0.5 * (m.Points[3 * b + a] + m.Points[3 * (b + 1) + a]);
+        }
+      }
+      m.Triangles.insert(m.Triangles.end(), { b, b + 1, t % 11 == 5 ? b : b + 2 });
+      m.TriangleCells.push_back(t);
+    }
+    m.Segments = { 0, 4, 7, 9 };
+    m.SegmentCells = { 30, 31 };
+    m.Vertices = { 10, 20 };
+    m.VertexCells = { 32, 33 };
+    RunCase("soup", m, 20);
+  }
+  std::printf("%d failures\n", Failures);
+  return Failures == 0 ? 0 : 1;
+}
