@@ -10,8 +10,11 @@
 namespace vtkdf
 {
 
-int SiteIndexPlanes(
-  const MeshSites& sites, const Site& site, const SampleGrid& grid, IndexPlane* out, int capacity)
+int SiteIndexPlanes(const MeshSites& sites,
+  const Site& site,
+  const SampleGrid& grid,
+  IndexPlane* out,
+  int capacity)
 {
   const int count = std::min<int>(site.PlaneCount, capacity);
   for (int p = 0; p < count; ++p)
@@ -54,8 +57,12 @@ void SiteProjector(const Site& s, double P[3][3])
 }
 
 /// Scan-converts one site's domain inside its region; returns distance evaluations.
-int64_t ScanSite(const MeshSites& sites, const Site& site, uint32_t siteIndex,
-  const IndexBox& region, const FieldRequest& request, NearestSiteBuffer& nearest)
+int64_t ScanSite(const MeshSites& sites,
+  const Site& site,
+  uint32_t siteIndex,
+  const IndexBox& region,
+  const FieldRequest& request,
+  NearestSiteBuffer& nearest)
 {
   const SampleGrid& grid = request.Grid;
   const IndexBox& ext = request.Extent;
@@ -64,14 +71,16 @@ int64_t ScanSite(const MeshSites& sites, const Site& site, uint32_t siteIndex,
   double P[3][3];
   SiteProjector(site, P);
   const float step[3] = { static_cast<float>(-P[0][0] * grid.Spacing[0]),
-    static_cast<float>(-P[1][0] * grid.Spacing[0]), static_cast<float>(-P[2][0] * grid.Spacing[0]) };
+    static_cast<float>(-P[1][0] * grid.Spacing[0]),
+    static_cast<float>(-P[2][0] * grid.Spacing[0]) };
   const int64_t nx = ext.Size(0), nxy = nx * ext.Size(1);
   int64_t evaluations = 0;
   SlicePolygon poly;
 
-  auto scanSlice = [&](int k) -> bool {
-    if (!ClipSlice(planes, numPlanes, k, region.Lo[0], region.Hi[0], region.Lo[1], region.Hi[1],
-          poly))
+  auto scanSlice = [&](int k) -> bool
+  {
+    if (!ClipSlice(
+          planes, numPlanes, k, region.Lo[0], region.Hi[0], region.Lo[1], region.Hi[1], poly))
     {
       return false;
     }
@@ -98,7 +107,8 @@ int64_t ScanSite(const MeshSites& sites, const Site& site, uint32_t siteIndex,
         continue;
       }
       const double r[3] = { site.Anchor[0] - grid.Coordinate(0, i0),
-        site.Anchor[1] - grid.Coordinate(1, j), site.Anchor[2] - z };
+        site.Anchor[1] - grid.Coordinate(1, j),
+        site.Anchor[2] - z };
       float d[3];
       for (int a = 0; a < 3; ++a)
       {
@@ -137,9 +147,8 @@ int64_t ScanSite(const MeshSites& sites, const Site& site, uint32_t siteIndex,
     }
     return evaluations;
   }
-  auto clampZ = [&](double z) {
-    return static_cast<int>(std::min<double>(std::max<double>(z, region.Lo[2]), region.Hi[2]));
-  };
+  auto clampZ = [&](double z)
+  { return static_cast<int>(std::min<double>(std::max<double>(z, region.Lo[2]), region.Hi[2])); };
   int start = clampZ(std::round(anchor[2]));
   bool found = scanSlice(start);
   if (!found)
@@ -168,8 +177,11 @@ int64_t ScanSite(const MeshSites& sites, const Site& site, uint32_t siteIndex,
 
 } // namespace
 
-ScanStatistics ScanSitesCPU(const MeshSites& sites, const RangeCulling& culling,
-  const FieldRequest& request, NearestSiteBuffer& nearest, const ParallelFor& parallelFor,
+ScanStatistics ScanSitesCPU(const MeshSites& sites,
+  const RangeCulling& culling,
+  const FieldRequest& request,
+  NearestSiteBuffer& nearest,
+  const ParallelFor& parallelFor,
   const ProgressCallback& progress)
 {
   ScanStatistics stats;
@@ -182,20 +194,23 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites, const RangeCulling& culling,
   {
     const int64_t first = numSites * batch / batches;
     const int64_t last = numSites * (batch + 1) / batches;
-    parallelFor(last - first, 64, [&](int64_t begin, int64_t end) {
-      int64_t local = 0;
-      for (int64_t o = first + begin; o < first + end; ++o)
+    parallelFor(last - first,
+      64,
+      [&](int64_t begin, int64_t end)
       {
-        const int64_t id = culling.Order[o];
-        const IndexBox& region = culling.Regions[id];
-        if (!region.Empty())
+        int64_t local = 0;
+        for (int64_t o = first + begin; o < first + end; ++o)
         {
-          local +=
-            ScanSite(sites, sites.Sites[id], static_cast<uint32_t>(id), region, request, nearest);
+          const int64_t id = culling.Order[o];
+          const IndexBox& region = culling.Regions[id];
+          if (!region.Empty())
+          {
+            local +=
+              ScanSite(sites, sites.Sites[id], static_cast<uint32_t>(id), region, request, nearest);
+          }
         }
-      }
-      evaluations += local;
-    });
+        evaluations += local;
+      });
     if (progress && !progress(double(batch + 1) / batches))
     {
       stats.Aborted = true;
@@ -206,8 +221,11 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites, const RangeCulling& culling,
   return stats;
 }
 
-void Finalize(const MeshSites& sites, const FieldRequest& request,
-  const NearestSiteBuffer& nearest, const FieldArrays& arrays, const ParallelFor& parallelFor)
+void Finalize(const MeshSites& sites,
+  const FieldRequest& request,
+  const NearestSiteBuffer& nearest,
+  const FieldArrays& arrays,
+  const ParallelFor& parallelFor)
 {
   const IndexBox& ext = request.Extent;
   const SampleGrid& grid = request.Grid;
@@ -216,55 +234,59 @@ void Finalize(const MeshSites& sites, const FieldRequest& request,
   const bool banded = std::isfinite(cap);
   // Inside/outside of every sample (0: unknown, outside the band).
   std::vector<int8_t> side(arrays.Signed && arrays.Distance ? n : 0, 0);
-  parallelFor(n, 4096, [&](int64_t begin, int64_t end) {
-    for (int64_t at = begin; at < end; ++at)
+  parallelFor(n,
+    4096,
+    [&](int64_t begin, int64_t end)
     {
-      const int i = ext.Lo[0] + static_cast<int>(at % nx);
-      const int j = ext.Lo[1] + static_cast<int>((at / nx) % ny);
-      const int k = ext.Lo[2] + static_cast<int>(at / (nx * ny));
-      const uint64_t packed = nearest.Get(at);
-      const double x[3] = { grid.Coordinate(0, i), grid.Coordinate(1, j), grid.Coordinate(2, k) };
-      double d[3] = { 0, 0, 0 }, distance = banded ? cap : HUGE_VAL;
-      const Site* site = nullptr;
-      if (packed != NearestSiteBuffer::Empty)
+      for (int64_t at = begin; at < end; ++at)
       {
-        site = &sites.Sites[packed & 0xffffffffu];
-        sites.DistanceVector(*site, x, d);
-        distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (banded && distance > cap)
+        const int i = ext.Lo[0] + static_cast<int>(at % nx);
+        const int j = ext.Lo[1] + static_cast<int>((at / nx) % ny);
+        const int k = ext.Lo[2] + static_cast<int>(at / (nx * ny));
+        const uint64_t packed = nearest.Get(at);
+        const double x[3] = { grid.Coordinate(0, i), grid.Coordinate(1, j), grid.Coordinate(2, k) };
+        double d[3] = { 0, 0, 0 }, distance = banded ? cap : HUGE_VAL;
+        const Site* site = nullptr;
+        if (packed != NearestSiteBuffer::Empty)
         {
-          distance = cap;
-          site = nullptr;
+          site = &sites.Sites[packed & 0xffffffffu];
+          sites.DistanceVector(*site, x, d);
+          distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+          if (banded && distance > cap)
+          {
+            distance = cap;
+            site = nullptr;
+          }
+        }
+        if (arrays.Distance)
+        {
+          float value = static_cast<float>(distance);
+          if (site && arrays.Signed)
+          {
+            const double s =
+              d[0] * site->Normal[0] + d[1] * site->Normal[1] + d[2] * site->Normal[2];
+            side[at] = s > 0 ? -1 : 1;
+            value = s > 0 ? -value : value;
+          }
+          arrays.Distance[at] = value;
+        }
+        if (arrays.ClosestCellId)
+        {
+          arrays.ClosestCellId[at] = site ? site->CellId : -1;
+        }
+        if (arrays.ClosestFeature)
+        {
+          arrays.ClosestFeature[at] = site ? site->Type : 255;
+        }
+        if (arrays.ClosestPoint)
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            arrays.ClosestPoint[3 * at + a] = site ? static_cast<float>(x[a] + d[a]) : NAN;
+          }
         }
       }
-      if (arrays.Distance)
-      {
-        float value = static_cast<float>(distance);
-        if (site && arrays.Signed)
-        {
-          const double s = d[0] * site->Normal[0] + d[1] * site->Normal[1] + d[2] * site->Normal[2];
-          side[at] = s > 0 ? -1 : 1;
-          value = s > 0 ? -value : value;
-        }
-        arrays.Distance[at] = value;
-      }
-      if (arrays.ClosestCellId)
-      {
-        arrays.ClosestCellId[at] = site ? site->CellId : -1;
-      }
-      if (arrays.ClosestFeature)
-      {
-        arrays.ClosestFeature[at] = site ? site->Type : 255;
-      }
-      if (arrays.ClosestPoint)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          arrays.ClosestPoint[3 * at + a] = site ? static_cast<float>(x[a] + d[a]) : NAN;
-        }
-      }
-    }
-  });
+    });
   if (side.empty() || !banded)
   {
     return;
@@ -285,8 +307,12 @@ void Finalize(const MeshSites& sites, const FieldRequest& request,
     const int64_t at = queue.front();
     queue.pop_front();
     const int64_t i = at % nx, j = (at / nx) % ny, k = at / nxy;
-    const int64_t nbr[6] = { i > 0 ? at - 1 : -1, i + 1 < nx ? at + 1 : -1, j > 0 ? at - nx : -1,
-      j + 1 < ny ? at + nx : -1, k > 0 ? at - nxy : -1, k + 1 < nz ? at + nxy : -1 };
+    const int64_t nbr[6] = { i > 0 ? at - 1 : -1,
+      i + 1 < nx ? at + 1 : -1,
+      j > 0 ? at - nx : -1,
+      j + 1 < ny ? at + nx : -1,
+      k > 0 ? at - nxy : -1,
+      k + 1 < nz ? at + nxy : -1 };
     for (int64_t b : nbr)
     {
       if (b >= 0 && side[b] == 0)

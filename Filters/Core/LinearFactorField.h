@@ -13,10 +13,10 @@
 #include "SampleGrid.h"
 
 #include <atomic>
-#include <cstring>
-#include <vector>
 #include <cstdint>
+#include <cstring>
 #include <memory>
+#include <vector>
 
 namespace vtkdf
 {
@@ -87,17 +87,26 @@ struct ScanStatistics
 
 /// Sample-index planes of a site's domain, at most SlicePolygon::MaxPlanes (optional
 /// planes beyond that are dropped, which only enlarges the domain).
-int SiteIndexPlanes(const MeshSites& sites, const Site& site, const SampleGrid& grid,
-  struct IndexPlane* out, int capacity);
+int SiteIndexPlanes(const MeshSites& sites,
+  const Site& site,
+  const SampleGrid& grid,
+  struct IndexPlane* out,
+  int capacity);
 
 /// The CPU scan conversion: every site's domain polygon, slice by slice, row by row.
-ScanStatistics ScanSitesCPU(const MeshSites& sites, const RangeCulling& culling,
-  const FieldRequest& request, NearestSiteBuffer& nearest, const ParallelFor& parallelFor,
+ScanStatistics ScanSitesCPU(const MeshSites& sites,
+  const RangeCulling& culling,
+  const FieldRequest& request,
+  NearestSiteBuffer& nearest,
+  const ParallelFor& parallelFor,
   const ProgressCallback& progress);
 
 /// Writes the arrays from the nearest site of every sample.
-void Finalize(const MeshSites& sites, const FieldRequest& request,
-  const NearestSiteBuffer& nearest, const FieldArrays& arrays, const ParallelFor& parallelFor);
+void Finalize(const MeshSites& sites,
+  const FieldRequest& request,
+  const NearestSiteBuffer& nearest,
+  const FieldArrays& arrays,
+  const ParallelFor& parallelFor);
 
 } // namespace vtkdf
 

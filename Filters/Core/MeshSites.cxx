@@ -37,9 +37,9 @@ Vec Add(const Vec& a, const Vec& b)
 
 struct EdgeRecord
 {
-  int64_t A, B;  // canonical point ids, A < B
-  int64_t Face;  // non-degenerate face index, or -1
-  int64_t Cell;  // input cell
+  int64_t A, B; // canonical point ids, A < B
+  int64_t Face; // non-degenerate face index, or -1
+  int64_t Cell; // input cell
 };
 
 struct FaceRecord
@@ -80,13 +80,13 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
   // --- Points that cells use, merged when their coordinates are identical, so that
   // polygon soups and duplicated points still get their topology (and tight domains).
   std::vector<char> used(numPoints, 0);
-  auto markUsed = [&](const std::vector<int64_t>& ids) -> bool {
+  auto markUsed = [&](const std::vector<int64_t>& ids) -> bool
+  {
     for (int64_t id : ids)
     {
       if (id < 0 || id >= numPoints)
       {
-        error = "a cell refers to point " + std::to_string(id) + " of " +
-          std::to_string(numPoints);
+        error = "a cell refers to point " + std::to_string(id) + " of " + std::to_string(numPoints);
         return false;
       }
       used[id] = 1;
@@ -117,9 +117,10 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
   {
     return true;
   }
-  std::sort(order.begin(), order.end(), [P](int64_t a, int64_t b) {
-    return std::lexicographical_compare(P + 3 * a, P + 3 * a + 3, P + 3 * b, P + 3 * b + 3);
-  });
+  std::sort(order.begin(),
+    order.end(),
+    [P](int64_t a, int64_t b)
+    { return std::lexicographical_compare(P + 3 * a, P + 3 * a + 3, P + 3 * b, P + 3 * b + 3); });
   std::vector<int64_t> canonical(numPoints, -1);
   std::vector<int64_t> merged; // canonical index -> input point id
   for (size_t k = 0; k < order.size(); ++k)
@@ -217,9 +218,10 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
     const int64_t c = canonical[in.Vertices[v]];
     vertexCell[c] = std::min(vertexCell[c], in.VertexCells[v]);
   }
-  std::sort(edges.begin(), edges.end(), [](const EdgeRecord& x, const EdgeRecord& y) {
-    return x.A != y.A ? x.A < y.A : (x.B != y.B ? x.B < y.B : x.Face < y.Face);
-  });
+  std::sort(edges.begin(),
+    edges.end(),
+    [](const EdgeRecord& x, const EdgeRecord& y)
+    { return x.A != y.A ? x.A < y.A : (x.B != y.B ? x.B < y.B : x.Face < y.Face); });
 
   // Orientation: make the sign's pseudonormals point outward for closed meshes.
   double volume = 0;
@@ -242,10 +244,13 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
     }
   }
 
-  auto addPlane = [&](const Vec& n, const double* through) {
-    this->Planes.push_back({ { n[0], n[1], n[2] }, -Dot(n, Vec{ through[0], through[1], through[2] }) + slack });
+  auto addPlane = [&](const Vec& n, const double* through)
+  {
+    this->Planes.push_back(
+      { { n[0], n[1], n[2] }, -Dot(n, Vec{ through[0], through[1], through[2] }) + slack });
   };
-  auto newSite = [&](uint8_t type, int64_t cell, const double* anchor) -> Site& {
+  auto newSite = [&](uint8_t type, int64_t cell, const double* anchor) -> Site&
+  {
     Site s{};
     s.Type = type;
     s.CellId = cell;
@@ -258,16 +263,16 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
     this->Sites.push_back(s);
     return this->Sites.back();
   };
-  auto grow = [](Site& s, const double* x) {
+  auto grow = [](Site& s, const double* x)
+  {
     for (int a = 0; a < 3; ++a)
     {
       s.BoundsMin[a] = std::min(s.BoundsMin[a], x[a]);
       s.BoundsMax[a] = std::max(s.BoundsMax[a], x[a]);
     }
   };
-  auto finish = [&](Site& s) {
-    s.PlaneCount = static_cast<uint16_t>(this->Planes.size() - s.PlaneBegin);
-  };
+  auto finish = [&](Site& s)
+  { s.PlaneCount = static_cast<uint16_t>(this->Planes.size() - s.PlaneBegin); };
 
   // --- Face sites: the triangle prism (three planes through the edges, orthogonal to
   // the triangle), required for the plane-distance formula to be exact.
@@ -395,7 +400,8 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
     ++this->Statistics.Vertices;
     const auto& incident = vertexEdges[v];
     const double* p = X(v);
-    auto polar = [&]() {
+    auto polar = [&]()
+    {
       // (x - p) . u <= 0 for every edge direction u: otherwise the edge is closer.
       for (const auto& eu : incident)
       {

@@ -43,8 +43,8 @@ public:
         ++flat;
       }
     }
-    double cell = longest > 0 ? std::pow(volume * 2.0 / std::max<int64_t>(n, 1), 1.0 / (3 - flat))
-                              : 1.0;
+    double cell =
+      longest > 0 ? std::pow(volume * 2.0 / std::max<int64_t>(n, 1), 1.0 / (3 - flat)) : 1.0;
     cell = std::max(cell, longest / 128.0);
     this->Cell = cell > 0 ? cell : 1.0;
     for (int a = 0; a < 3; ++a)
@@ -186,8 +186,11 @@ struct BoundPyramid
 
 } // namespace
 
-void RangeCulling::Build(const MeshSites& sites, const SampleGrid& grid, const IndexBox& extent,
-  double maximumDistance, const ParallelFor& parallelFor)
+void RangeCulling::Build(const MeshSites& sites,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  double maximumDistance,
+  const ParallelFor& parallelFor)
 {
   const int64_t numSites = static_cast<int64_t>(sites.Sites.size());
   this->Regions.assign(numSites, IndexBox());
@@ -207,7 +210,8 @@ void RangeCulling::Build(const MeshSites& sites, const SampleGrid& grid, const I
     nb[a] = (extent.Size(a) + b - 1) / b;
   }
   const int64_t numBlocks = int64_t(nb[0]) * nb[1] * nb[2];
-  auto blockBox = [&](int bi, int bj, int bk, int span) {
+  auto blockBox = [&](int bi, int bj, int bk, int span)
+  {
     const int ids[3] = { bi, bj, bk };
     Box box;
     for (int a = 0; a < 3; ++a)
@@ -226,25 +230,28 @@ void RangeCulling::Build(const MeshSites& sites, const SampleGrid& grid, const I
   pyramid.Dims.push_back(nb);
   pyramid.Max.emplace_back(numBlocks);
   std::vector<float>& level0 = pyramid.Max.back();
-  parallelFor(numBlocks, 64, [&](int64_t begin, int64_t end) {
-    for (int64_t id = begin; id < end; ++id)
+  parallelFor(numBlocks,
+    64,
+    [&](int64_t begin, int64_t end)
     {
-      const int bi = static_cast<int>(id % nb[0]);
-      const int bj = static_cast<int>((id / nb[0]) % nb[1]);
-      const int bk = static_cast<int>(id / (int64_t(nb[0]) * nb[1]));
-      const Box box = blockBox(bi, bj, bk, 1);
-      double centre[3], half2 = 0;
-      for (int a = 0; a < 3; ++a)
+      for (int64_t id = begin; id < end; ++id)
       {
-        centre[a] = 0.5 * (box.Lo[a] + box.Hi[a]);
-        half2 += 0.25 * (box.Hi[a] - box.Lo[a]) * (box.Hi[a] - box.Lo[a]);
+        const int bi = static_cast<int>(id % nb[0]);
+        const int bj = static_cast<int>((id / nb[0]) % nb[1]);
+        const int bk = static_cast<int>(id / (int64_t(nb[0]) * nb[1]));
+        const Box box = blockBox(bi, bj, bk, 1);
+        double centre[3], half2 = 0;
+        for (int a = 0; a < 3; ++a)
+        {
+          centre[a] = 0.5 * (box.Lo[a] + box.Hi[a]);
+          half2 += 0.25 * (box.Hi[a] - box.Lo[a]) * (box.Hi[a] - box.Lo[a]);
+        }
+        double bound = points.Nearest(centre) + std::sqrt(half2);
+        bound = std::min(bound, maximumDistance);
+        // Round up so that float storage never makes the bound smaller.
+        level0[id] = std::nextafter(static_cast<float>(bound), HUGE_VALF);
       }
-      double bound = points.Nearest(centre) + std::sqrt(half2);
-      bound = std::min(bound, maximumDistance);
-      // Round up so that float storage never makes the bound smaller.
-      level0[id] = std::nextafter(static_cast<float>(bound), HUGE_VALF);
-    }
-  });
+    });
   pyramid.Min.push_back(level0);
   while (pyramid.Dims.back()[0] > 1 || pyramid.Dims.back()[1] > 1 || pyramid.Dims.back()[2] > 1)
   {
@@ -303,111 +310,118 @@ void RangeCulling::Build(const MeshSites& sites, const SampleGrid& grid, const I
   }
 
   // Reach of each group, then each site's region.
-  parallelFor(numBlocks, 16, [&](int64_t begin, int64_t end) {
-    for (int64_t cluster = begin; cluster < end; ++cluster)
+  parallelFor(numBlocks,
+    16,
+    [&](int64_t begin, int64_t end)
     {
-      if (offsets[cluster] == offsets[cluster + 1])
+      for (int64_t cluster = begin; cluster < end; ++cluster)
       {
-        continue;
-      }
-      Box group{ { HUGE_VAL, HUGE_VAL, HUGE_VAL }, { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL } };
-      for (int64_t o = offsets[cluster]; o < offsets[cluster + 1]; ++o)
-      {
-        const Site& s = sites.Sites[this->Order[o]];
-        for (int a = 0; a < 3; ++a)
-        {
-          group.Lo[a] = std::min(group.Lo[a], s.BoundsMin[a]);
-          group.Hi[a] = std::max(group.Hi[a], s.BoundsMax[a]);
-        }
-      }
-      int reachLo[3] = { INT32_MAX, INT32_MAX, INT32_MAX };
-      int reachHi[3] = { -1, -1, -1 };
-      // Depth-first descent; a node already inside the reach adds nothing.
-      struct Node
-      {
-        int Level, I, J, K;
-      };
-      std::vector<Node> stack{ { top, 0, 0, 0 } };
-      while (!stack.empty())
-      {
-        const Node node = stack.back();
-        stack.pop_back();
-        const int span = 1 << node.Level;
-        const int lo[3] = { node.I * span, node.J * span, node.K * span };
-        int hi[3];
-        bool inside = true;
-        for (int a = 0; a < 3; ++a)
-        {
-          hi[a] = std::min(lo[a] + span, nb[a]) - 1;
-          inside = inside && lo[a] >= reachLo[a] && hi[a] <= reachHi[a];
-        }
-        if (inside)
+        if (offsets[cluster] == offsets[cluster + 1])
         {
           continue;
         }
-        const auto& d = pyramid.Dims[node.Level];
-        const int64_t at = node.I + int64_t(d[0]) * (node.J + int64_t(d[1]) * node.K);
-        const Box box = blockBox(lo[0], lo[1], lo[2], span);
-        if (BoxDistance(box, group) > pyramid.Max[node.Level][at])
+        Box group{ { HUGE_VAL, HUGE_VAL, HUGE_VAL }, { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL } };
+        for (int64_t o = offsets[cluster]; o < offsets[cluster + 1]; ++o)
         {
-          continue;
-        }
-        if (node.Level == 0 || FarthestDistance(box, group) <= pyramid.Min[node.Level][at])
-        {
+          const Site& s = sites.Sites[this->Order[o]];
           for (int a = 0; a < 3; ++a)
           {
-            reachLo[a] = std::min(reachLo[a], lo[a]);
-            reachHi[a] = std::max(reachHi[a], hi[a]);
+            group.Lo[a] = std::min(group.Lo[a], s.BoundsMin[a]);
+            group.Hi[a] = std::max(group.Hi[a], s.BoundsMax[a]);
           }
-          continue;
         }
-        const auto& cd = pyramid.Dims[node.Level - 1];
-        for (int dk = 0; dk < 2; ++dk)
+        int reachLo[3] = { INT32_MAX, INT32_MAX, INT32_MAX };
+        int reachHi[3] = { -1, -1, -1 };
+        // Depth-first descent; a node already inside the reach adds nothing.
+        struct Node
         {
-          for (int dj = 0; dj < 2; ++dj)
+          int Level, I, J, K;
+        };
+        std::vector<Node> stack{ { top, 0, 0, 0 } };
+        while (!stack.empty())
+        {
+          const Node node = stack.back();
+          stack.pop_back();
+          const int span = 1 << node.Level;
+          const int lo[3] = { node.I * span, node.J * span, node.K * span };
+          int hi[3];
+          bool inside = true;
+          for (int a = 0; a < 3; ++a)
           {
-            for (int di = 0; di < 2; ++di)
+            hi[a] = std::min(lo[a] + span, nb[a]) - 1;
+            inside = inside && lo[a] >= reachLo[a] && hi[a] <= reachHi[a];
+          }
+          if (inside)
+          {
+            continue;
+          }
+          const auto& d = pyramid.Dims[node.Level];
+          const int64_t at = node.I + int64_t(d[0]) * (node.J + int64_t(d[1]) * node.K);
+          const Box box = blockBox(lo[0], lo[1], lo[2], span);
+          if (BoxDistance(box, group) > pyramid.Max[node.Level][at])
+          {
+            continue;
+          }
+          if (node.Level == 0 || FarthestDistance(box, group) <= pyramid.Min[node.Level][at])
+          {
+            for (int a = 0; a < 3; ++a)
             {
-              const Node child{ node.Level - 1, 2 * node.I + di, 2 * node.J + dj, 2 * node.K + dk };
-              if (child.I < cd[0] && child.J < cd[1] && child.K < cd[2])
+              reachLo[a] = std::min(reachLo[a], lo[a]);
+              reachHi[a] = std::max(reachHi[a], hi[a]);
+            }
+            continue;
+          }
+          const auto& cd = pyramid.Dims[node.Level - 1];
+          for (int dk = 0; dk < 2; ++dk)
+          {
+            for (int dj = 0; dj < 2; ++dj)
+            {
+              for (int di = 0; di < 2; ++di)
               {
-                stack.push_back(child);
+                const Node child{
+                  node.Level - 1, 2 * node.I + di, 2 * node.J + dj, 2 * node.K + dk
+                };
+                if (child.I < cd[0] && child.J < cd[1] && child.K < cd[2])
+                {
+                  stack.push_back(child);
+                }
               }
             }
           }
         }
-      }
-      if (reachHi[0] < 0)
-      {
-        continue; // no block can have these sites as closest (MaximumDistance band)
-      }
-      IndexBox reach;
-      for (int a = 0; a < 3; ++a)
-      {
-        reach.Lo[a] = extent.Lo[a] + reachLo[a] * b;
-        reach.Hi[a] = std::min(extent.Lo[a] + (reachHi[a] + 1) * b - 1, extent.Hi[a]);
-      }
-      for (int64_t o = offsets[cluster]; o < offsets[cluster + 1]; ++o)
-      {
-        const int64_t id = this->Order[o];
-        const Site& s = sites.Sites[id];
-        IndexBox region = reach;
-        if (std::isfinite(maximumDistance))
+        if (reachHi[0] < 0)
         {
-          IndexBox band;
-          for (int a = 0; a < 3; ++a)
-          {
-            const double lo = (s.BoundsMin[a] - maximumDistance - grid.Origin[a]) / grid.Spacing[a];
-            const double hi = (s.BoundsMax[a] + maximumDistance - grid.Origin[a]) / grid.Spacing[a];
-            band.Lo[a] = static_cast<int>(std::max(std::ceil(lo), -2e9));
-            band.Hi[a] = static_cast<int>(std::min(std::floor(hi), 2e9));
-          }
-          region = region.Intersect(band);
+          continue; // no block can have these sites as closest (MaximumDistance band)
         }
-        this->Regions[id] = region;
+        IndexBox reach;
+        for (int a = 0; a < 3; ++a)
+        {
+          reach.Lo[a] = extent.Lo[a] + reachLo[a] * b;
+          reach.Hi[a] = std::min(extent.Lo[a] + (reachHi[a] + 1) * b - 1, extent.Hi[a]);
+        }
+        for (int64_t o = offsets[cluster]; o < offsets[cluster + 1]; ++o)
+        {
+          const int64_t id = this->Order[o];
+          const Site& s = sites.Sites[id];
+          IndexBox region = reach;
+          if (std::isfinite(maximumDistance))
+          {
+            IndexBox band;
+            for (int a = 0; a < 3; ++a)
+            {
+              const double lo =
+                (s.BoundsMin[a] - maximumDistance - grid.Origin[a]) / grid.Spacing[a];
+              const double hi =
+                (s.BoundsMax[a] + maximumDistance - grid.Origin[a]) / grid.Spacing[a];
+              band.Lo[a] = static_cast<int>(std::max(std::ceil(lo), -2e9));
+              band.Hi[a] = static_cast<int>(std::min(std::floor(hi), 2e9));
+            }
+            region = region.Intersect(band);
+          }
+          this->Regions[id] = region;
+        }
       }
-    }
-  });
+    });
 }
 
 } // namespace vtkdf

@@ -26,8 +26,11 @@ public:
 
   /// Computes Regions (one per site, in sample indices, within `extent`) and Order
   /// (site indices grouped by anchor block, for memory locality).
-  void Build(const MeshSites& sites, const SampleGrid& grid, const IndexBox& extent,
-    double maximumDistance, const ParallelFor& parallelFor);
+  void Build(const MeshSites& sites,
+    const SampleGrid& grid,
+    const IndexBox& extent,
+    double maximumDistance,
+    const ParallelFor& parallelFor);
 
   std::vector<IndexBox> Regions;
   std::vector<int64_t> Order;

@@ -54,10 +54,7 @@ struct SampleGrid
   IndexBox Whole;
 
   double Coordinate(int a, int index) const { return Origin[a] + index * Spacing[a]; }
-  double MinSpacing() const
-  {
-    return std::fmin(Spacing[0], std::fmin(Spacing[1], Spacing[2]));
-  }
+  double MinSpacing() const { return std::fmin(Spacing[0], std::fmin(Spacing[1], Spacing[2])); }
 
   /// The default grid of shared/docs/GRID.md: bounds padded by padding * longest side,
   /// isotropic spacing, `resolution` samples along the longest padded side.

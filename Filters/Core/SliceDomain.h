@@ -26,8 +26,14 @@ struct SlicePolygon
 
 /// Clips the rectangle [x0,x1]x[y0,y1] by the planes restricted to slice k
 /// (Sutherland-Hodgman). Returns false when nothing is left.
-inline bool ClipSlice(const IndexPlane* planes, int count, double k, double x0, double x1,
-  double y0, double y1, SlicePolygon& poly)
+inline bool ClipSlice(const IndexPlane* planes,
+  int count,
+  double k,
+  double x0,
+  double x1,
+  double y0,
+  double y1,
+  SlicePolygon& poly)
 {
   double bx[SlicePolygon::MaxVertices], by[SlicePolygon::MaxVertices];
   double* inX = poly.X;

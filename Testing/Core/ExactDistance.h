@@ -29,10 +29,14 @@ inline void ClosestOnSegment(const double p[3], const double a[3], const double 
 }
 
 /// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
-inline void ClosestOnTriangle(
-  const double p[3], const double a[3], const double b[3], const double c[3], double out[3])
+inline void ClosestOnTriangle(const double p[3],
+  const double a[3],
+  const double b[3],
+  const double c[3],
+  double out[3])
 {
-  auto dot = [](const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  auto dot = [](const double* u, const double* v)
+  { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
   double ab[3], ac[3], ap[3], bp[3], cp[3];
   for (int k = 0; k < 3; ++k)
   {
@@ -44,7 +48,8 @@ inline void ClosestOnTriangle(
   }
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
   auto set = [&](const double* q) { std::copy(q, q + 3, out); };
-  auto lerp = [&](const double* u, const double* w, double t) {
+  auto lerp = [&](const double* u, const double* w, double t)
+  {
     for (int k = 0; k < 3; ++k)
     {
       out[k] = u[k] + t * (w[k] - u[k]);

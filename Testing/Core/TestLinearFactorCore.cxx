@@ -47,14 +47,16 @@ double BruteForce(const MeshInput& m, const double x[3])
 {
   double best = HUGE_VAL, c[3];
   const double* P = m.Points.data();
-  auto consider = [&]() {
-    best = std::min(best, std::sqrt((c[0] - x[0]) * (c[0] - x[0]) +
-                            (c[1] - x[1]) * (c[1] - x[1]) + (c[2] - x[2]) * (c[2] - x[2])));
+  auto consider = [&]()
+  {
+    best = std::min(best,
+      std::sqrt((c[0] - x[0]) * (c[0] - x[0]) + (c[1] - x[1]) * (c[1] - x[1]) +
+        (c[2] - x[2]) * (c[2] - x[2])));
   };
   for (size_t t = 0; t < m.Triangles.size(); t += 3)
   {
-    reference::ClosestOnTriangle(x, P + 3 * m.Triangles[t], P + 3 * m.Triangles[t + 1],
-      P + 3 * m.Triangles[t + 2], c);
+    reference::ClosestOnTriangle(
+      x, P + 3 * m.Triangles[t], P + 3 * m.Triangles[t + 1], P + 3 * m.Triangles[t + 2], c);
     consider();
   }
   for (size_t s = 0; s < m.Segments.size(); s += 2)
@@ -84,7 +86,8 @@ void RunCase(const std::string& name, const MeshInput& mesh, int resolution)
       bounds[2 * a] = HUGE_VAL;
       bounds[2 * a + 1] = -HUGE_VAL;
     }
-    auto use = [&](const std::vector<int64_t>& ids) {
+    auto use = [&](const std::vector<int64_t>& ids)
+    {
       for (int64_t id : ids)
       {
         for (int a = 0; a < 3; ++a)
@@ -119,7 +122,8 @@ void RunCase(const std::string& name, const MeshInput& mesh, int resolution)
       {
         for (int i = e.Lo[0]; i <= e.Hi[0]; ++i)
         {
-          const double x[3] = { request.Grid.Coordinate(0, i), request.Grid.Coordinate(1, j),
+          const double x[3] = { request.Grid.Coordinate(0, i),
+            request.Grid.Coordinate(1, j),
             request.Grid.Coordinate(2, k) };
           const int64_t at = i + int64_t(e.Size(0)) * (j + int64_t(e.Size(1)) * k);
           const double err = std::fabs(distance[at] - BruteForce(mesh, x));
@@ -131,13 +135,21 @@ void RunCase(const std::string& name, const MeshInput& mesh, int resolution)
         }
       }
     }
-    const char* mode = culling == Culling::Auto ? "auto" : culling == Culling::NonManifold ? "nonmanifold" : "manifold";
+    const char* mode = culling == Culling::Auto ? "auto"
+      : culling == Culling::NonManifold         ? "nonmanifold"
+                                                : "manifold";
     std::printf("%-14s %-12s max|err| = %.3g h  culling factor %.2f  (sites %zu, pyramids %lld, "
                 "unbounded vertices %lld)\n",
-      name.c_str(), mode, worst / h, double(stats.Evaluations) / stats.Samples, sites.Sites.size(),
-      (long long)sites.Statistics.PyramidVertices, (long long)sites.Statistics.UnboundedVertices);
-    Check(worst <= 1e-3 * h, name + " " + mode + ": error " + std::to_string(worst / h) +
-        " h at sample " + std::to_string(worstAt));
+      name.c_str(),
+      mode,
+      worst / h,
+      double(stats.Evaluations) / stats.Samples,
+      sites.Sites.size(),
+      (long long)sites.Statistics.PyramidVertices,
+      (long long)sites.Statistics.UnboundedVertices);
+    Check(worst <= 1e-3 * h,
+      name + " " + mode + ": error " + std::to_string(worst / h) + " h at sample " +
+        std::to_string(worstAt));
   }
 }
 
@@ -155,13 +167,16 @@ MeshInput Sphere(int rings, int segments, double jitter, unsigned seed)
       const double ph = 2 * M_PI * s / segments;
       const double rad = 1 + u(rng);
       m.Points.insert(m.Points.end(),
-        { rad * std::sin(th) * std::cos(ph), rad * std::sin(th) * std::sin(ph), rad * std::cos(th) });
+        { rad * std::sin(th) * std::cos(ph),
+          rad * std::sin(th) * std::sin(ph),
+          rad * std::cos(th) });
     }
   }
   m.Points.insert(m.Points.end(), { 0, 0, -1 });
   const int64_t south = static_cast<int64_t>(m.Points.size() / 3 - 1);
   auto id = [&](int r, int s) { return int64_t(1 + (r - 1) * segments + (s % segments)); };
-  auto tri = [&](int64_t a, int64_t b, int64_t c) {
+  auto tri = [&](int64_t a, int64_t b, int64_t c)
+  {
     m.Triangles.insert(m.Triangles.end(), { a, b, c });
     m.TriangleCells.push_back(static_cast<int64_t>(m.TriangleCells.size()));
   };
@@ -206,8 +221,42 @@ int main()
     // Axis-aligned cube on grid-friendly coordinates: samples on domain boundaries.
     MeshInput m;
     m.Points = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1 };
-    m.Triangles = { 0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7,
-      2, 7, 6, 3, 0, 4, 3, 4, 7 };
+    m.Triangles = { 0,
+      2,
+      1,
+      0,
+      3,
+      2,
+      4,
+      5,
+      6,
+      4,
+      6,
+      7,
+      0,
+      1,
+      5,
+      0,
+      5,
+      4,
+      1,
+      2,
+      6,
+      1,
+      6,
+      5,
+      2,
+      3,
+      7,
+      2,
+      7,
+      6,
+      3,
+      0,
+      4,
+      3,
+      4,
+      7 };
     for (int t = 0; t < 12; ++t)
     {
       m.TriangleCells.push_back(t);

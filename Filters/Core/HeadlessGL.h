@@ -1,0 +1,71 @@
+// HeadlessGL: an OpenGL 4.5 core context of our own, without a window or X server.
+// Tried in order: EGL device platform (NVIDIA headless), EGL surfaceless (Mesa),
+// OSMesa. GL entry points come from libepoxy (and from OSMesa itself on that route).
+#ifndef vtkdf_HeadlessGL_h
+#define vtkdf_HeadlessGL_h
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vtkdf
+{
+
+class HeadlessGL
+{
+public:
+  /// The process-wide context, created on first use; nullptr (and `error`) when no
+  /// route gives OpenGL 4.5 core. Set VTKDF_GL_PLATFORM=device|surfaceless|osmesa to
+  /// force one route.
+  static HeadlessGL* Get(std::string& error);
+
+  const std::string& Renderer() const { return this->RendererName; }
+  const std::string& Platform() const { return this->PlatformName; }
+  /// llvmpipe, softpipe, swrast: a rasterizer in software.
+  bool IsSoftware() const;
+
+  /// Makes the context current on this thread for the lifetime of the scope, after
+  /// saving and releasing whatever GLX or EGL context was current (VTK's render window,
+  /// a ParaView view), which it restores on exit.
+  class Scope
+  {
+  public:
+    explicit Scope(HeadlessGL& gl);
+    ~Scope();
+    bool Ok() const { return this->Current; }
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+
+  private:
+    HeadlessGL& GL;
+    bool Current = false;
+    struct Saved;
+    std::unique_ptr<Saved> Previous;
+  };
+
+  /// Compiles and links (stage enum, source) pairs; 0 and the logs on failure.
+  static unsigned BuildProgram(const std::vector<std::pair<unsigned, const char*>>& stages,
+    std::string& log);
+
+  ~HeadlessGL();
+
+private:
+  HeadlessGL() = default;
+  bool TryEGLDevice(std::string& why);
+  bool TryEGLSurfaceless(std::string& why);
+  bool TryOSMesa(std::string& why);
+  bool CreateEGLContext(void* display, std::string& why);
+  bool MakeCurrent();
+  void Release();
+
+  std::string RendererName, PlatformName;
+  void* Display = nullptr; // EGLDisplay
+  void* Context = nullptr; // EGLContext or OSMesaContext
+  bool UsesOSMesa = false;
+  std::vector<unsigned char> OSMesaBuffer;
+};
+
+} // namespace vtkdf
+
+#endif

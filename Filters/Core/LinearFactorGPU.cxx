@@ -1,0 +1,314 @@
+#include "LinearFactorGPU.h"
+
+#include "LinearFactorDomain_frag.h"
+#include "LinearFactorDomain_geom.h"
+#include "LinearFactorDomain_vert.h"
+#include "SliceDomain.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace vtkdf
+{
+namespace
+{
+constexpr int GpuMaxPlanes = 28; // Shaders/LinearFactorDomain.geom.glsl
+constexpr int SlicesPerPoint = 32;
+
+struct GpuSite
+{
+  float Anchor[4];
+  float Axis[4];
+  int32_t Lo[4];
+  int32_t Hi[4];
+};
+
+/// Deletes the GL objects of one run, whatever way it ends.
+struct GLObjects
+{
+  GLuint Program = 0, Buffers[3] = { 0, 0, 0 }, VAO = 0, FBO = 0, Textures[3] = { 0, 0, 0 };
+  ~GLObjects()
+  {
+    glDeleteTextures(3, Textures);
+    glDeleteFramebuffers(1, &FBO);
+    glDeleteVertexArrays(1, &VAO);
+    glDeleteBuffers(3, Buffers);
+    glDeleteProgram(Program);
+  }
+};
+} // namespace
+
+bool ScanSitesGPU(HeadlessGL& gl,
+  const MeshSites& sites,
+  const RangeCulling& culling,
+  const FieldRequest& request,
+  NearestSiteBuffer& nearest,
+  const ProgressCallback& progress,
+  ScanStatistics& stats,
+  std::string& error)
+{
+  HeadlessGL::Scope scope(gl);
+  if (!scope.Ok())
+  {
+    error = "could not make the " + gl.Platform() + " context current";
+    return false;
+  }
+  stats = ScanStatistics();
+  stats.Samples = request.Extent.Count();
+  stats.Evaluations = -1;
+  const IndexBox& ext = request.Extent;
+  const SampleGrid& grid = request.Grid;
+  const int nx = ext.Size(0), ny = ext.Size(1), nz = ext.Size(2);
+  GLint maxSize = 0, maxLayers = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  if (nx > maxSize || ny > maxSize)
+  {
+    error = "the slice (" + std::to_string(nx) + " x " + std::to_string(ny) +
+      ") exceeds GL_MAX_TEXTURE_SIZE " + std::to_string(maxSize);
+    return false;
+  }
+
+  GLObjects gpu;
+  std::string log;
+  gpu.Program = HeadlessGL::BuildProgram({ { GL_VERTEX_SHADER, LinearFactorDomain_vert },
+                                           { GL_GEOMETRY_SHADER, LinearFactorDomain_geom },
+                                           { GL_FRAGMENT_SHADER, LinearFactorDomain_frag } },
+    log);
+  if (!gpu.Program)
+  {
+    error = log;
+    return false;
+  }
+
+  // Sites and their planes, relative to the extent's first sample (small numbers keep
+  // float precision), planes in sample-index units relative to the site's anchor.
+  const size_t numSites = sites.Sites.size();
+  std::vector<GpuSite> gpuSites(numSites);
+  std::vector<float> planes;
+  planes.reserve(4 * sites.Planes.size());
+  double base[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    base[a] = grid.Coordinate(a, ext.Lo[a]);
+  }
+  IndexPlane indexPlanes[SlicePolygon::MaxPlanes];
+  for (size_t s = 0; s < numSites; ++s)
+  {
+    const Site& site = sites.Sites[s];
+    GpuSite& g = gpuSites[s];
+    const IndexBox& r = culling.Regions[s];
+    int count = SiteIndexPlanes(sites, site, grid, indexPlanes, GpuMaxPlanes);
+    double anchorIndex[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      g.Anchor[a] = static_cast<float>(site.Anchor[a] - base[a]);
+      g.Axis[a] = static_cast<float>(site.Axis[a]);
+      g.Lo[a] = r.Lo[a] - ext.Lo[a];
+      g.Hi[a] = r.Hi[a] - ext.Lo[a];
+      anchorIndex[a] = (site.Anchor[a] - grid.Origin[a]) / grid.Spacing[a];
+    }
+    g.Anchor[3] = site.Type;
+    g.Axis[3] = site.Required;
+    g.Lo[3] = static_cast<int32_t>(planes.size() / 4);
+    g.Hi[3] = count;
+    for (int p = 0; p < count; ++p)
+    {
+      const IndexPlane& q = indexPlanes[p];
+      planes.push_back(static_cast<float>(q.A));
+      planes.push_back(static_cast<float>(q.B));
+      planes.push_back(static_cast<float>(q.C));
+      planes.push_back(static_cast<float>(
+        q.A * anchorIndex[0] + q.B * anchorIndex[1] + q.C * anchorIndex[2] + q.D));
+    }
+  }
+  if (planes.empty())
+  {
+    planes.assign(4, 0.f);
+  }
+  glGenBuffers(3, gpu.Buffers);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.Buffers[0]);
+  glBufferData(GL_SHADER_STORAGE_BUFFER,
+    std::max<size_t>(1, numSites) * sizeof(GpuSite),
+    gpuSites.data(),
+    GL_STATIC_DRAW);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu.Buffers[1]);
+  glBufferData(
+    GL_SHADER_STORAGE_BUFFER, planes.size() * sizeof(float), planes.data(), GL_STATIC_DRAW);
+  glGenVertexArrays(1, &gpu.VAO);
+  glBindVertexArray(gpu.VAO);
+
+  // Layers per batch: what the array textures and a memory budget allow.
+  const int64_t bytesPerLayer = int64_t(nx) * ny * 12;
+  const int64_t budget = int64_t(1) << 30;
+  const int layers = static_cast<int>(std::max<int64_t>(1,
+    std::min<int64_t>(
+      { int64_t(nz), int64_t(maxLayers), budget / std::max<int64_t>(1, bytesPerLayer) })));
+  glGenTextures(3, gpu.Textures);
+  const GLenum formats[3] = { GL_R32F, GL_R32I, GL_DEPTH_COMPONENT32F };
+  for (int t = 0; t < 3; ++t)
+  {
+    glBindTexture(GL_TEXTURE_2D_ARRAY, gpu.Textures[t]);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, formats[t], nx, ny, layers);
+  }
+  glGenFramebuffers(1, &gpu.FBO);
+  glBindFramebuffer(GL_FRAMEBUFFER, gpu.FBO);
+  glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, gpu.Textures[0], 0);
+  glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, gpu.Textures[1], 0);
+  glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, gpu.Textures[2], 0);
+  const GLenum drawBuffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
+  glDrawBuffers(2, drawBuffers);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+  {
+    error = "layered framebuffer incomplete";
+    return false;
+  }
+
+  glUseProgram(gpu.Program);
+  glUniform2i(glGetUniformLocation(gpu.Program, "viewportSize"), nx, ny);
+  glUniform3f(glGetUniformLocation(gpu.Program, "spacing"),
+    static_cast<float>(grid.Spacing[0]),
+    static_cast<float>(grid.Spacing[1]),
+    static_cast<float>(grid.Spacing[2]));
+  glUniform1f(glGetUniformLocation(gpu.Program, "margin"), 0.02f);
+  double diagonal = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    diagonal += std::pow(ext.Size(a) * grid.Spacing[a], 2);
+  }
+  double reach = 2 * std::sqrt(diagonal) + 1e-30;
+  for (const Site& s : sites.Sites)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      reach = std::max(reach, 2 * std::fabs(s.Anchor[a] - base[a]) + std::sqrt(diagonal));
+    }
+  }
+  glUniform1f(glGetUniformLocation(gpu.Program, "depthScale"), static_cast<float>(1.0 / reach));
+  const GLint layerBaseAt = glGetUniformLocation(gpu.Program, "layerBase");
+  glUniform1i(glGetUniformLocation(gpu.Program, "layerCount"), layers);
+  glViewport(0, 0, nx, ny);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+
+  GLuint query = 0;
+  const bool counting = epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query");
+  if (counting)
+  {
+    glGenQueries(1, &query);
+    stats.Evaluations = 0;
+  }
+  std::vector<int32_t> points;
+  std::vector<float> distances(size_t(nx) * ny * layers);
+  std::vector<int32_t> ids(distances.size());
+  const int batches = (nz + layers - 1) / layers;
+  for (int batch = 0; batch < batches; ++batch)
+  {
+    const int k0 = batch * layers, k1 = std::min(nz, k0 + layers) - 1;
+    points.clear();
+    for (size_t s = 0; s < numSites; ++s)
+    {
+      const GpuSite& g = gpuSites[s];
+      if (culling.Regions[s].Empty())
+      {
+        continue;
+      }
+      const int lo = std::max(g.Lo[2], k0), hi = std::min(g.Hi[2], k1);
+      for (int k = lo; k <= hi; k += SlicesPerPoint)
+      {
+        points.push_back(static_cast<int32_t>(s));
+        points.push_back(k);
+      }
+    }
+    const float farDepth = 1.0f, noDistance = -1.0f;
+    const GLint noSite = -1;
+    glClearBufferfv(GL_DEPTH, 0, &farDepth);
+    glClearBufferfv(GL_COLOR, 0, &noDistance);
+    glClearBufferiv(GL_COLOR, 1, &noSite);
+    glUniform1i(layerBaseAt, k0);
+    glBindBuffer(GL_ARRAY_BUFFER, gpu.Buffers[2]);
+    glBufferData(GL_ARRAY_BUFFER,
+      std::max<size_t>(1, points.size()) * sizeof(int32_t),
+      points.data(),
+      GL_STREAM_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribIPointer(0, 2, GL_INT, 0, nullptr);
+    if (counting)
+    {
+      glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query);
+    }
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(points.size() / 2));
+    if (counting)
+    {
+      glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+      GLuint64 fragments = 0;
+      glGetQueryObjectui64v(query, GL_QUERY_RESULT, &fragments);
+      stats.Evaluations += static_cast<int64_t>(fragments);
+    }
+    // Read back this batch's layers.
+    const int count = k1 - k0 + 1;
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureSubImage(gpu.Textures[0],
+      0,
+      0,
+      0,
+      0,
+      nx,
+      ny,
+      count,
+      GL_RED,
+      GL_FLOAT,
+      static_cast<GLsizei>(size_t(nx) * ny * count * sizeof(float)),
+      distances.data());
+    glGetTextureSubImage(gpu.Textures[1],
+      0,
+      0,
+      0,
+      0,
+      nx,
+      ny,
+      count,
+      GL_RED_INTEGER,
+      GL_INT,
+      static_cast<GLsizei>(size_t(nx) * ny * count * sizeof(int32_t)),
+      ids.data());
+    const int64_t offset = int64_t(k0) * nx * ny;
+    const int64_t n = int64_t(count) * nx * ny;
+    for (int64_t at = 0; at < n; ++at)
+    {
+      const int32_t id = ids[at];
+      nearest.Set(offset + at,
+        id < 0 ? NearestSiteBuffer::Empty
+               : NearestSiteBuffer::Pack(distances[at] * distances[at], static_cast<uint32_t>(id)));
+    }
+    const GLenum status = glGetError();
+    if (status != GL_NO_ERROR)
+    {
+      char text[64];
+      std::snprintf(text, sizeof(text), "OpenGL error 0x%x", status);
+      error = text;
+      if (query)
+      {
+        glDeleteQueries(1, &query);
+      }
+      return false;
+    }
+    if (progress && !progress(double(batch + 1) / batches))
+    {
+      stats.Aborted = true;
+      break;
+    }
+  }
+  if (query)
+  {
+    glDeleteQueries(1, &query);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return true;
+}
+
+} // namespace vtkdf

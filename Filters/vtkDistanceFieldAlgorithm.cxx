@@ -1,0 +1,199 @@
+#include "vtkDistanceFieldAlgorithm.h"
+
+#include "vtkAlgorithmOutput.h"
+#include "vtkCellArray.h"
+#include "vtkDataSet.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include "HeadlessGL.h"
+#include "SampleGrid.h"
+
+#include <vtksys/SystemInformation.hxx>
+
+#include <cmath>
+
+vtkDistanceFieldAlgorithm::vtkDistanceFieldAlgorithm()
+{
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(1);
+}
+
+int vtkDistanceFieldAlgorithm::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+void vtkDistanceFieldAlgorithm::ComputeDefaultGrid(const double bounds[6],
+  int resolution,
+  double padding,
+  double origin[3],
+  double spacing[3],
+  int dimensions[3])
+{
+  const vtkdf::SampleGrid grid = vtkdf::SampleGrid::FromBounds(bounds, resolution, padding);
+  for (int a = 0; a < 3; ++a)
+  {
+    origin[a] = grid.Origin[a];
+    spacing[a] = grid.Spacing[a];
+    dimensions[a] = grid.Whole.Hi[a] + 1;
+  }
+}
+
+bool vtkDistanceFieldAlgorithm::CellBounds(vtkDataSet* input, double bounds[6])
+{
+  vtkPolyData* mesh = vtkPolyData::SafeDownCast(input);
+  if (!mesh || !mesh->GetPoints())
+  {
+    return false;
+  }
+  bool any = false;
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = VTK_DOUBLE_MAX;
+    bounds[2 * a + 1] = -VTK_DOUBLE_MAX;
+  }
+  for (vtkCellArray* cells :
+    { mesh->GetVerts(), mesh->GetLines(), mesh->GetPolys(), mesh->GetStrips() })
+  {
+    if (!cells)
+    {
+      continue;
+    }
+    vtkIdType count;
+    const vtkIdType* ids;
+    for (cells->InitTraversal(); cells->GetNextCell(count, ids);)
+    {
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        double x[3];
+        mesh->GetPoint(ids[i], x);
+        for (int a = 0; a < 3; ++a)
+        {
+          bounds[2 * a] = std::min(bounds[2 * a], x[a]);
+          bounds[2 * a + 1] = std::max(bounds[2 * a + 1], x[a]);
+        }
+        any = true;
+      }
+    }
+  }
+  return any;
+}
+
+int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
+  int dims[3] = { 0, 0, 0 };
+  if (this->ExplicitGrid)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      origin[a] = this->GridOrigin[a];
+      spacing[a] = this->GridSpacing[a];
+      dims[a] = this->GridDimensions[a];
+      if (!(spacing[a] > 0) || dims[a] < 1)
+      {
+        vtkErrorMacro("Explicit grid needs positive spacing and dimensions, got spacing "
+          << spacing[a] << " and dimension " << dims[a] << " on axis " << a);
+        return 0;
+      }
+    }
+  }
+  else
+  {
+    // The default grid depends on the input's bounds, which are known only once the
+    // input has executed: bring it up to date now (as the grid must be known here for
+    // streaming requests to make sense).
+    if (vtkAlgorithm* upstream = this->GetInputAlgorithm(0, 0))
+    {
+      upstream->Update(this->GetInputConnection(0, 0)->GetIndex());
+    }
+    vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
+    double bounds[6];
+    if (input && CellBounds(input, bounds) &&
+      std::isfinite(bounds[0] + bounds[1] + bounds[2] + bounds[3] + bounds[4] + bounds[5]))
+    {
+      ComputeDefaultGrid(bounds, this->Resolution, this->Padding, origin, spacing, dims);
+    }
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  return 1;
+}
+
+int vtkDistanceFieldAlgorithm::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  // Every sample may depend on every cell: ask for the whole mesh.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  return 1;
+}
+
+bool vtkDistanceFieldAlgorithm::ChooseBackend(bool& useGPU, std::string& error)
+{
+  useGPU = false;
+  if (this->Backend == BACKEND_CPU)
+  {
+    return true;
+  }
+  std::string why;
+  vtkdf::HeadlessGL* gl = vtkdf::HeadlessGL::Get(why);
+  if (this->Backend == BACKEND_GPU)
+  {
+    if (!gl)
+    {
+      error = "Backend is GPU but " + why;
+      return false;
+    }
+    useGPU = true;
+    return true;
+  }
+  useGPU = gl && !gl->IsSoftware();
+  return true;
+}
+
+double vtkDistanceFieldAlgorithm::EffectiveMemoryLimit() const
+{
+  if (this->MemoryLimit > 0)
+  {
+    return this->MemoryLimit;
+  }
+  vtksys::SystemInformation info;
+  info.RunMemoryCheck();
+  return 0.5 * static_cast<double>(info.GetTotalPhysicalMemory()) * 1024.0 * 1024.0;
+}
+
+void vtkDistanceFieldAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const char* backends[] = { "Auto", "GPU", "CPU" };
+  os << indent << "Backend: " << backends[this->Backend] << "\n";
+  os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "Padding: " << this->Padding << "\n";
+  os << indent << "ExplicitGrid: " << (this->ExplicitGrid ? "On" : "Off") << "\n";
+  os << indent << "GridOrigin: " << this->GridOrigin[0] << " " << this->GridOrigin[1] << " "
+     << this->GridOrigin[2] << "\n";
+  os << indent << "GridSpacing: " << this->GridSpacing[0] << " " << this->GridSpacing[1] << " "
+     << this->GridSpacing[2] << "\n";
+  os << indent << "GridDimensions: " << this->GridDimensions[0] << " " << this->GridDimensions[1]
+     << " " << this->GridDimensions[2] << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit
+     << (this->MemoryLimit > 0 ? "" : " (half of physical memory)") << "\n";
+  os << indent << "LastBackend: " << this->LastBackend << "\n";
+  os << indent << "LastRenderer: " << this->LastRenderer << "\n";
+  os << indent << "LastTime: " << this->LastTime << "\n";
+}

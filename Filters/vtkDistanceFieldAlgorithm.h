@@ -1,0 +1,119 @@
+/**
+ * @class   vtkDistanceFieldAlgorithm
+ * @brief   Base of the filters that sample a field of a vtkPolyData on a vtkImageData.
+ *
+ * Holds what every such filter shares: the output grid (the default grid of
+ * shared/docs/GRID.md from Resolution and Padding, or an explicit origin, spacing and
+ * dimensions), the Backend (Auto, GPU, CPU), the memory limit checked before
+ * allocating, and what the last run used (backend, GL renderer, time).
+ *
+ * The output honours UPDATE_EXTENT: a requested sub-extent is computed alone.
+ */
+#ifndef vtkDistanceFieldAlgorithm_h
+#define vtkDistanceFieldAlgorithm_h
+
+#include "vtkDistanceFieldsModule.h" // For export macro
+#include "vtkImageAlgorithm.h"
+
+#include <string> // For the renderer string
+
+class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldAlgorithm : public vtkImageAlgorithm
+{
+public:
+  vtkTypeMacro(vtkDistanceFieldAlgorithm, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum BackendType
+  {
+    BACKEND_AUTO = 0, ///< the GPU when a hardware-accelerated context exists, else the CPU
+    BACKEND_GPU = 1,  ///< the GPU, even a software rasterizer; an error when there is none
+    BACKEND_CPU = 2   ///< vtkSMPTools on the CPU
+  };
+  vtkSetClampMacro(Backend, int, BACKEND_AUTO, BACKEND_CPU);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAuto() { this->SetBackend(BACKEND_AUTO); }
+  void SetBackendToGPU() { this->SetBackend(BACKEND_GPU); }
+  void SetBackendToCPU() { this->SetBackend(BACKEND_CPU); }
+
+  ///@{
+  /// Default grid: Resolution samples along the longest side of the input's bounds
+  /// padded by Padding times that side on every side (defaults 64 and 0.1).
+  vtkSetClampMacro(Resolution, int, 2, VTK_INT_MAX);
+  vtkGetMacro(Resolution, int);
+  vtkSetClampMacro(Padding, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Padding, double);
+  ///@}
+
+  ///@{
+  /// Explicit grid, used when ExplicitGrid is on (spacing may differ per axis).
+  vtkSetMacro(ExplicitGrid, bool);
+  vtkGetMacro(ExplicitGrid, bool);
+  vtkBooleanMacro(ExplicitGrid, bool);
+  vtkSetVector3Macro(GridOrigin, double);
+  vtkGetVector3Macro(GridOrigin, double);
+  vtkSetVector3Macro(GridSpacing, double);
+  vtkGetVector3Macro(GridSpacing, double);
+  vtkSetVector3Macro(GridDimensions, int);
+  vtkGetVector3Macro(GridDimensions, int);
+  ///@}
+
+  ///@{
+  /// Largest number of bytes the output arrays and work buffers may take; 0 (the
+  /// default) means half of the physical memory. Larger grids fail before allocating.
+  vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MemoryLimit, double);
+  ///@}
+
+  /// What the last run used: "gpu" or "cpu".
+  const char* GetLastBackend() const { return this->LastBackend.c_str(); }
+  /// GL_RENDERER of the last GPU run, or "cpu".
+  const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
+  /// Seconds the last run spent computing (input conversion and arrays included, no I/O).
+  vtkGetMacro(LastTime, double);
+
+  /// The default grid for these bounds (xmin, xmax, ...), as origin, spacing, dimensions.
+  static void ComputeDefaultGrid(const double bounds[6],
+    int resolution,
+    double padding,
+    double origin[3],
+    double spacing[3],
+    int dimensions[3]);
+
+protected:
+  vtkDistanceFieldAlgorithm();
+  ~vtkDistanceFieldAlgorithm() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// Bounds of the points that the cells use (GRID.md ignores unused points); false
+  /// when no cell uses any point.
+  static bool CellBounds(vtkDataSet* input, double bounds[6]);
+
+  /// Whether the GPU should run; when it should and cannot, false and `error` says why.
+  /// `useGPU` is the decision for Auto.
+  bool ChooseBackend(bool& useGPU, std::string& error);
+
+  /// The memory limit in bytes (resolving 0 to half the physical memory).
+  double EffectiveMemoryLimit() const;
+
+  int Backend = BACKEND_AUTO;
+  int Resolution = 64;
+  double Padding = 0.1;
+  bool ExplicitGrid = false;
+  double GridOrigin[3] = { 0, 0, 0 };
+  double GridSpacing[3] = { 1, 1, 1 };
+  int GridDimensions[3] = { 64, 64, 64 };
+  double MemoryLimit = 0;
+
+  std::string LastBackend = "none";
+  std::string LastRenderer = "none";
+  double LastTime = 0;
+
+private:
+  vtkDistanceFieldAlgorithm(const vtkDistanceFieldAlgorithm&) = delete;
+  void operator=(const vtkDistanceFieldAlgorithm&) = delete;
+};
+
+#endif

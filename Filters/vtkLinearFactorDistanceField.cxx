@@ -1,0 +1,361 @@
+#include "vtkLinearFactorDistanceField.h"
+
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolygon.h"
+#include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "HeadlessGL.h"
+#include "LinearFactorField.h"
+#include "LinearFactorGPU.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+vtkStandardNewMacro(vtkLinearFactorDistanceField);
+
+namespace
+{
+/// vtkSMPTools behind the cores' ParallelFor hook.
+void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body)
+{
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(n),
+    static_cast<vtkIdType>(grain),
+    [&body](vtkIdType begin, vtkIdType end) { body(begin, end); });
+}
+
+/// Copies the mesh into the core's plain arrays; counts cells it cannot use.
+struct MeshConversion
+{
+  vtkdf::MeshInput Mesh;
+  vtkIdType ShortPolygons = 0, ShortLines = 0, ShortStrips = 0, EmptyVertices = 0;
+
+  void Run(vtkPolyData* input)
+  {
+    vtkPoints* points = input->GetPoints();
+    const vtkIdType numPoints = points ? points->GetNumberOfPoints() : 0;
+    this->Mesh.Points.resize(3 * numPoints);
+    for (vtkIdType i = 0; i < numPoints; ++i)
+    {
+      points->GetPoint(i, &this->Mesh.Points[3 * i]);
+    }
+    vtkIdType cellId = 0;
+    vtkIdType count;
+    const vtkIdType* ids;
+    vtkCellArray* verts = input->GetVerts();
+    for (verts->InitTraversal(); verts->GetNextCell(count, ids); ++cellId)
+    {
+      this->EmptyVertices += count == 0;
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        this->Mesh.Vertices.push_back(ids[i]);
+        this->Mesh.VertexCells.push_back(cellId);
+      }
+    }
+    vtkCellArray* lines = input->GetLines();
+    for (lines->InitTraversal(); lines->GetNextCell(count, ids); ++cellId)
+    {
+      this->ShortLines += count < 2;
+      for (vtkIdType i = 0; i + 1 < count; ++i)
+      {
+        this->Mesh.Segments.insert(this->Mesh.Segments.end(), { ids[i], ids[i + 1] });
+        this->Mesh.SegmentCells.push_back(cellId);
+      }
+    }
+    vtkNew<vtkPolygon> polygon;
+    vtkNew<vtkIdList> triangles;
+    vtkCellArray* polys = input->GetPolys();
+    for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cellId)
+    {
+      if (count < 3)
+      {
+        ++this->ShortPolygons;
+        continue;
+      }
+      if (count == 3)
+      {
+        this->AddTriangle(ids[0], ids[1], ids[2], cellId);
+        continue;
+      }
+      // Concave polygons need an ear-cut; a fan covers what the ear-cut rejects.
+      polygon->GetPointIds()->SetNumberOfIds(count);
+      polygon->GetPoints()->SetNumberOfPoints(count);
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        polygon->GetPointIds()->SetId(i, i);
+        polygon->GetPoints()->SetPoint(i, &this->Mesh.Points[3 * ids[i]]);
+      }
+      if (polygon->Triangulate(triangles) && triangles->GetNumberOfIds() == 3 * (count - 2))
+      {
+        for (vtkIdType t = 0; t < triangles->GetNumberOfIds(); t += 3)
+        {
+          this->AddTriangle(ids[triangles->GetId(t)],
+            ids[triangles->GetId(t + 1)],
+            ids[triangles->GetId(t + 2)],
+            cellId);
+        }
+      }
+      else
+      {
+        for (vtkIdType i = 1; i + 1 < count; ++i)
+        {
+          this->AddTriangle(ids[0], ids[i], ids[i + 1], cellId);
+        }
+      }
+    }
+    vtkCellArray* strips = input->GetStrips();
+    for (strips->InitTraversal(); strips->GetNextCell(count, ids); ++cellId)
+    {
+      this->ShortStrips += count < 3;
+      for (vtkIdType i = 0; i + 2 < count; ++i)
+      {
+        if (i % 2 == 0)
+        {
+          this->AddTriangle(ids[i], ids[i + 1], ids[i + 2], cellId);
+        }
+        else
+        {
+          this->AddTriangle(ids[i + 1], ids[i], ids[i + 2], cellId);
+        }
+      }
+    }
+  }
+
+  void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell)
+  {
+    this->Mesh.Triangles.insert(this->Mesh.Triangles.end(), { a, b, c });
+    this->Mesh.TriangleCells.push_back(cell);
+  }
+};
+} // namespace
+
+vtkLinearFactorDistanceField::vtkLinearFactorDistanceField() = default;
+
+int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  output->Initialize();
+  this->LastEvaluations = 0;
+  this->LastCullingFactor = 0;
+
+  if (!input || input->GetNumberOfCells() == 0 || input->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro("The input mesh is empty: the output is an empty image.");
+    return 1;
+  }
+
+  // The grid (RequestInformation) and the part of it requested (streaming).
+  vtkdf::FieldRequest request;
+  int whole[6], extent[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
+  double origin[3], spacing[3];
+  outInfo->Get(vtkDataObject::ORIGIN(), origin);
+  outInfo->Get(vtkDataObject::SPACING(), spacing);
+  for (int a = 0; a < 3; ++a)
+  {
+    request.Grid.Origin[a] = origin[a];
+    request.Grid.Spacing[a] = spacing[a];
+    request.Grid.Whole.Lo[a] = whole[2 * a];
+    request.Grid.Whole.Hi[a] = whole[2 * a + 1];
+    request.Extent.Lo[a] = extent[2 * a];
+    request.Extent.Hi[a] = extent[2 * a + 1];
+  }
+  request.Extent = request.Extent.Intersect(request.Grid.Whole);
+  if (request.Extent.Empty())
+  {
+    vtkWarningMacro("The input mesh uses no point, or the requested extent is empty: the output is "
+                    "an empty image.");
+    return 1;
+  }
+
+  // Refuse grids that overflow indices or memory before allocating anything.
+  const double samples =
+    double(request.Extent.Size(0)) * request.Extent.Size(1) * request.Extent.Size(2);
+  const double bytesPerSample = 8.0 /* nearest-site buffer */ + (this->ComputeDistance ? 4 : 0) +
+    (this->ComputeClosestCellId ? sizeof(vtkIdType) : 0) + (this->ComputeClosestFeature ? 1 : 0) +
+    (this->ComputeClosestPoint ? 12 : 0);
+  if (samples > static_cast<double>(VTK_ID_MAX) || samples > 4.0e18)
+  {
+    vtkErrorMacro("The grid has " << samples << " samples, more than vtkIdType can index.");
+    return 0;
+  }
+  const double limit = this->EffectiveMemoryLimit();
+  if (samples * bytesPerSample > limit)
+  {
+    vtkErrorMacro("The grid (" << request.Extent.Size(0) << " x " << request.Extent.Size(1) << " x "
+                               << request.Extent.Size(2) << ") needs "
+                               << samples * bytesPerSample / 1048576.0
+                               << " MiB, above MemoryLimit (" << limit / 1048576.0 << " MiB).");
+    return 0;
+  }
+
+  MeshConversion conversion;
+  conversion.Run(input);
+  if (conversion.ShortPolygons || conversion.ShortLines || conversion.ShortStrips ||
+    conversion.EmptyVertices)
+  {
+    vtkWarningMacro("Ignored cells it cannot use: "
+      << conversion.ShortPolygons << " polygons with fewer than 3 points, " << conversion.ShortLines
+      << " lines with fewer than 2 points, " << conversion.ShortStrips
+      << " triangle strips with fewer than 3 points, " << conversion.EmptyVertices
+      << " vertex cells without points. The other cells are used.");
+  }
+
+  const double h = request.Grid.MinSpacing();
+  if (this->MaximumDistance > 0)
+  {
+    request.MaximumDistance = this->MaximumDistance;
+  }
+  const vtkdf::Culling culling = this->Culling == CULLING_NON_MANIFOLD
+    ? vtkdf::Culling::NonManifold
+    : (this->Culling == CULLING_MANIFOLD ? vtkdf::Culling::Manifold : vtkdf::Culling::Auto);
+  vtkdf::MeshSites sites;
+  std::string error;
+  if (!sites.Build(conversion.Mesh, culling, 1e-4 * h, error))
+  {
+    vtkErrorMacro("Invalid input mesh: " << error << ".");
+    return 0;
+  }
+  if (sites.Sites.empty())
+  {
+    vtkWarningMacro("The input has no usable cell: the output is an empty image.");
+    return 1;
+  }
+  if (sites.Sites.size() >= 0xffffffffu)
+  {
+    vtkErrorMacro("The mesh has " << sites.Sites.size() << " sites, more than 2^32 - 1.");
+    return 0;
+  }
+
+  bool useGPU = false;
+  if (!this->ChooseBackend(useGPU, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+
+  this->UpdateProgress(0.0);
+  vtkdf::RangeCulling range;
+  range.Build(sites, request.Grid, request.Extent, request.MaximumDistance, SMPFor);
+  this->UpdateProgress(0.1);
+
+  vtkdf::NearestSiteBuffer nearest;
+  nearest.Reset(request.Extent.Count());
+  auto progress = [this](double fraction)
+  {
+    this->UpdateProgress(0.1 + 0.8 * fraction);
+    return !this->GetAbortExecute();
+  };
+  vtkdf::ScanStatistics stats;
+  if (useGPU)
+  {
+    vtkdf::HeadlessGL* gl = vtkdf::HeadlessGL::Get(error);
+    if (!vtkdf::ScanSitesGPU(*gl, sites, range, request, nearest, progress, stats, error))
+    {
+      vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error);
+      return 0;
+    }
+    this->LastBackend = "gpu";
+    this->LastRenderer = gl->Renderer();
+  }
+  else
+  {
+    stats = vtkdf::ScanSitesCPU(sites, range, request, nearest, SMPFor, progress);
+    this->LastBackend = "cpu";
+    this->LastRenderer = "cpu";
+  }
+  if (stats.Aborted)
+  {
+    output->Initialize();
+    return 1;
+  }
+  this->LastEvaluations = stats.Evaluations;
+  this->LastCullingFactor = stats.Evaluations >= 0 ? double(stats.Evaluations) / samples : -1.0;
+
+  // Arrays on the requested extent.
+  output->SetExtent(request.Extent.Lo[0],
+    request.Extent.Hi[0],
+    request.Extent.Lo[1],
+    request.Extent.Hi[1],
+    request.Extent.Lo[2],
+    request.Extent.Hi[2]);
+  output->SetOrigin(origin);
+  output->SetSpacing(spacing);
+  const vtkIdType n = static_cast<vtkIdType>(request.Extent.Count());
+  vtkdf::FieldArrays arrays;
+  vtkPointData* pd = output->GetPointData();
+  if (this->ComputeDistance)
+  {
+    vtkNew<vtkFloatArray> a;
+    a->SetName("Distance");
+    a->SetNumberOfTuples(n);
+    arrays.Distance = a->GetPointer(0);
+    arrays.Signed = this->SignMode == PSEUDO_NORMAL;
+    pd->SetScalars(a);
+  }
+  if (this->ComputeClosestCellId)
+  {
+    vtkNew<vtkIdTypeArray> a;
+    a->SetName("ClosestCellId");
+    a->SetNumberOfTuples(n);
+    static_assert(sizeof(vtkIdType) == sizeof(int64_t), "vtkIdType is 64 bits");
+    arrays.ClosestCellId = reinterpret_cast<int64_t*>(a->GetPointer(0));
+    pd->AddArray(a);
+  }
+  if (this->ComputeClosestFeature)
+  {
+    vtkNew<vtkUnsignedCharArray> a;
+    a->SetName("ClosestFeature");
+    a->SetNumberOfTuples(n);
+    arrays.ClosestFeature = a->GetPointer(0);
+    pd->AddArray(a);
+  }
+  if (this->ComputeClosestPoint)
+  {
+    vtkNew<vtkFloatArray> a;
+    a->SetName("ClosestPoint");
+    a->SetNumberOfComponents(3);
+    a->SetNumberOfTuples(n);
+    arrays.ClosestPoint = a->GetPointer(0);
+    pd->AddArray(a);
+  }
+  vtkdf::Finalize(sites, request, nearest, arrays, SMPFor);
+  this->UpdateProgress(1.0);
+  this->LastTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return 1;
+}
+
+void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const char* cullings[] = { "Auto", "NonManifold", "Manifold" };
+  os << indent << "SignMode: " << (this->SignMode == PSEUDO_NORMAL ? "PseudoNormal" : "Unsigned")
+     << "\n";
+  os << indent << "Culling: " << cullings[this->Culling] << "\n";
+  os << indent << "MaximumDistance: " << this->MaximumDistance << "\n";
+  os << indent << "ComputeDistance: " << this->ComputeDistance << "\n";
+  os << indent << "ComputeClosestCellId: " << this->ComputeClosestCellId << "\n";
+  os << indent << "ComputeClosestFeature: " << this->ComputeClosestFeature << "\n";
+  os << indent << "ComputeClosestPoint: " << this->ComputeClosestPoint << "\n";
+  os << indent << "LastEvaluations: " << this->LastEvaluations << "\n";
+  os << indent << "LastCullingFactor: " << this->LastCullingFactor << "\n";
+}

@@ -1,0 +1,41 @@
+#version 450 core
+// Length of the interpolated distance vector; the depth test keeps the nearest site.
+struct GpuSite
+{
+  vec4 anchor;
+  vec4 axis;
+  ivec4 lo;
+  ivec4 hi;
+};
+layout(std430, binding = 0) readonly buffer Sites { GpuSite sites[]; };
+layout(std430, binding = 1) readonly buffer Planes { vec4 planes[]; };
+
+uniform vec3 spacing;
+uniform int layerBase;
+uniform float depthScale;
+
+in vec3 distanceVector;
+flat in int siteIndex;
+layout(location = 0) out float outDistance;
+layout(location = 1) out int outSite;
+
+void main()
+{
+  GpuSite s = sites[siteIndex];
+  // The formula of a triangle (edge) is exact only inside its prism (slab): test those
+  // planes exactly here, since the polygon was widened against sub-pixel snapping.
+  int required = int(s.axis.w);
+  vec3 rel = vec3(gl_FragCoord.xy - 0.5, float(gl_Layer + layerBase)) - s.anchor.xyz / spacing;
+  for (int p = 0; p < required; ++p)
+  {
+    vec4 pl = planes[s.lo.w + p];
+    if (dot(pl.xyz, rel) + pl.w < 0.0)
+    {
+      discard;
+    }
+  }
+  float d = length(distanceVector);
+  gl_FragDepth = clamp(d * depthScale, 0.0, 1.0);
+  outDistance = d;
+  outSite = siteIndex;
+}

@@ -1,0 +1,112 @@
+#version 450 core
+// Builds a site's domain polygon on one slice (the same clipping as SliceDomain.h) and
+// emits it into that slice's layer, with the site's distance vector at every corner:
+// the rasterizer interpolates it exactly (linear factorization, paper 000 section 3).
+layout(points, invocations = 32) in;
+layout(triangle_strip, max_vertices = 32) out;
+
+const int MaxPlanes = 28;
+
+struct GpuSite
+{
+  vec4 anchor;  // xyz: anchor relative to the extent's first sample (world units); w: type
+  vec4 axis;    // edge tangent or face normal
+  ivec4 lo;     // region, sample indices relative to the extent; w: first plane
+  ivec4 hi;     // w: number of planes (w of anchor packs nothing else)
+};
+layout(std430, binding = 0) readonly buffer Sites { GpuSite sites[]; };
+layout(std430, binding = 1) readonly buffer Planes { vec4 planes[]; }; // index space, relative to the anchor
+
+uniform ivec2 viewportSize;
+uniform vec3 spacing;
+uniform int layerBase;
+uniform int layerCount;
+uniform float margin; // extra widening (sample units) against sub-pixel snapping
+
+flat in ivec2 vSiteAndSlice[];
+out vec3 distanceVector;
+flat out int siteIndex;
+
+vec3 distanceVectorAt(GpuSite s, vec3 indexPos)
+{
+  vec3 r = s.anchor.xyz - indexPos * spacing;
+  int type = int(s.anchor.w);
+  if (type == 1)
+  {
+    return r - dot(r, s.axis.xyz) * s.axis.xyz;
+  }
+  if (type == 2)
+  {
+    return dot(r, s.axis.xyz) * s.axis.xyz;
+  }
+  return r;
+}
+
+void main()
+{
+  int id = vSiteAndSlice[0].x;
+  int k = vSiteAndSlice[0].y + gl_InvocationID;
+  GpuSite s = sites[id];
+  if (k < s.lo.z || k > s.hi.z || k < layerBase || k >= layerBase + layerCount)
+  {
+    return;
+  }
+  vec2 bufA[32];
+  vec2 bufB[32];
+  int n = 4;
+  vec2 lo = vec2(s.lo.xy) - 0.25;
+  vec2 hi = vec2(s.hi.xy) + 0.25;
+  bufA[0] = lo;
+  bufA[1] = vec2(hi.x, lo.y);
+  bufA[2] = hi;
+  bufA[3] = vec2(lo.x, hi.y);
+  vec3 anchorIndex = s.anchor.xyz / spacing;
+  int count = min(s.hi.w, MaxPlanes);
+  for (int p = 0; p < count && n > 0; ++p)
+  {
+    vec4 pl = planes[s.lo.w + p];
+    float c = pl.z * (float(k) - anchorIndex.z) + pl.w + margin * length(pl.xyz);
+    int m = 0;
+    for (int v = 0; v < n; ++v)
+    {
+      vec2 a = (p % 2 == 0) ? bufA[v] : bufB[v];
+      vec2 b = (p % 2 == 0) ? bufA[(v + 1) % n] : bufB[(v + 1) % n];
+      float fa = dot(pl.xy, a - anchorIndex.xy) + c;
+      float fb = dot(pl.xy, b - anchorIndex.xy) + c;
+      if (fa >= 0.0 && m < 32)
+      {
+        if (p % 2 == 0) bufB[m] = a; else bufA[m] = a;
+        ++m;
+      }
+      if ((fa >= 0.0) != (fb >= 0.0) && m < 32)
+      {
+        vec2 x = a + (fa / (fa - fb)) * (b - a);
+        if (p % 2 == 0) bufB[m] = x; else bufA[m] = x;
+        ++m;
+      }
+    }
+    n = m;
+  }
+  if (n < 3)
+  {
+    return;
+  }
+  bool inB = (count % 2) == 1;
+  // Convex polygon as a strip: v0, v1, v(n-1), v2, v(n-2), ...
+  int left = 1, right = n - 1;
+  for (int e = 0; e < n; ++e)
+  {
+    int v;
+    if (e == 0) v = 0;
+    else if (e % 2 == 1) v = left++;
+    else v = right--;
+    vec2 q = inB ? bufB[v] : bufA[v];
+    vec2 window = q + 0.5;
+    gl_Position = vec4(window / vec2(viewportSize) * 2.0 - 1.0, 0.0, 1.0);
+    gl_Layer = k - layerBase;
+    distanceVector = distanceVectorAt(s, vec3(q, float(k)));
+    siteIndex = id;
+    EmitVertex();
+  }
+  EndPrimitive();
+}

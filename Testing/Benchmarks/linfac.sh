@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Benchmark (not a test): vtkdf linfac on the large shared meshes, both backends.
+# usage: Testing/Benchmarks/linfac.sh [BUILD_DIR] [MESH_DIR] [SIZES] [BACKENDS]
+set -euo pipefail
+build=${1:-build}
+meshes=${2:-../shared/meshes}
+sizes=${3:-"64 128 256"}
+backends=${4:-"cpu gpu"}
+out=$(mktemp -d)
+printf "%-14s %5s %-12s %-7s %9s %12s %8s  %s\n" mesh N dims backend time_s "samples/s" culling renderer
+for mesh in bunny_75k armadillo_52k dragon_871k; do
+  for n in $sizes; do
+    for backend in $backends; do
+      line=$("$build/bin/vtkdf" linfac "$meshes/$mesh.vtp" -o "$out/f.vti" --resolution "$n" \
+        --arrays distance --backend "$backend" --timing | grep '^vtkdf:') || { echo "$mesh $n $backend: failed"; continue; }
+      dims=$(sed -E 's/.*dims=([0-9x]+).*/\1/' <<<"$line")
+      t=$(sed -E 's/.*time_s=([0-9.]+).*/\1/' <<<"$line")
+      cf=$(sed -E 's/.*culling_factor=([-0-9.]+).*/\1/' <<<"$line")
+      r=$(sed -E 's/.*renderer="([^"]*)".*/\1/' <<<"$line")
+      samples=$(awk -F x '{print $1*$2*$3}' <<<"$dims")
+      printf "%-14s %5s %-12s %-7s %9.3f %12.3g %8s  %s\n" "$mesh" "$n" "$dims" "$backend" "$t" \
+        "$(awk -v s="$samples" -v t="$t" 'BEGIN{print s/t}')" "$cf" "$r"
+    done
+  done
+done
+rm -rf "$out"

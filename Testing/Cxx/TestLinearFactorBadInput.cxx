@@ -1,0 +1,130 @@
+// Each bad input gives the documented message, no crash, and no (or an empty) field.
+// usage: TestLinearFactorBadInput empty|nan|memory|overflow|cells|nogpu
+#include "vtkLinearFactorDistanceField.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
+#include "vtkExecutive.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+namespace
+{
+std::string Errors, Warnings;
+
+void Record(vtkObject*, unsigned long event, void*, void* callData)
+{
+  (event == vtkCommand::ErrorEvent ? Errors : Warnings) += static_cast<const char*>(callData);
+}
+
+vtkNew<vtkPolyData> Triangle(double z = 0)
+{
+  vtkNew<vtkPolyData> mesh;
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(0, 0, z);
+  pts->InsertNextPoint(1, 0, 0);
+  pts->InsertNextPoint(0, 1, 0);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType t[3] = { 0, 1, 2 };
+  polys->InsertNextCell(3, t);
+  mesh->SetPoints(pts);
+  mesh->SetPolys(polys);
+  return mesh;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "nogpu")
+  {
+    setenv("VTKDF_GL_PLATFORM", "none", 1); // no route: as on a machine without any GL
+  }
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetCallback(Record);
+  vtkNew<vtkLinearFactorDistanceField> filter;
+  filter->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->SetResolution(16);
+  filter->SetBackendToCPU();
+  std::string expectError, expectWarning;
+  bool expectField = false;
+  if (mode == "empty")
+  {
+    vtkNew<vtkPolyData> empty;
+    filter->SetInputData(empty);
+    expectWarning = "empty";
+  }
+  else if (mode == "nan")
+  {
+    filter->SetInputData(Triangle(std::nan("")));
+    filter->ExplicitGridOn(); // the default grid cannot be made from NaN bounds
+    expectError = "NaN";
+  }
+  else if (mode == "memory")
+  {
+    filter->SetInputData(Triangle());
+    filter->SetMemoryLimit(1000);
+    expectError = "above MemoryLimit";
+  }
+  else if (mode == "overflow")
+  {
+    filter->SetInputData(Triangle());
+    filter->ExplicitGridOn();
+    filter->SetGridDimensions(2100000, 2100000, 2100000);
+    expectError = "more than vtkIdType can index";
+  }
+  else if (mode == "cells")
+  {
+    vtkNew<vtkPolyData> mesh;
+    mesh->DeepCopy(Triangle());
+    const vtkIdType two[2] = { 0, 1 };
+    mesh->GetPolys()->InsertNextCell(2, two);
+    filter->SetInputData(mesh);
+    expectWarning = "1 polygons with fewer than 3 points";
+    expectField = true;
+  }
+  else if (mode == "nogpu")
+  {
+    filter->SetInputData(Triangle());
+    filter->SetBackendToGPU();
+    expectError = "Backend is GPU but no OpenGL 4.5 core context could be created";
+  }
+  else
+  {
+    std::printf("unknown mode '%s'\n", mode.c_str());
+    return 2;
+  }
+  filter->Update();
+  const vtkIdType n = filter->GetOutput()->GetNumberOfPoints();
+  std::printf("mode %s: %lld samples\n  errors: %s\n  warnings: %s\n",
+    mode.c_str(),
+    (long long)n,
+    Errors.c_str(),
+    Warnings.c_str());
+  bool ok = true;
+  if (!expectError.empty() && Errors.find(expectError) == std::string::npos)
+  {
+    std::printf("FAIL: expected an error containing '%s'\n", expectError.c_str());
+    ok = false;
+  }
+  if (!expectWarning.empty() && Warnings.find(expectWarning) == std::string::npos)
+  {
+    std::printf("FAIL: expected a warning containing '%s'\n", expectWarning.c_str());
+    ok = false;
+  }
+  if (expectField != (n > 0))
+  {
+    std::printf("FAIL: expected %s output\n", expectField ? "a field as" : "an empty");
+    ok = false;
+  }
+  return ok ? 0 : 1;
+}

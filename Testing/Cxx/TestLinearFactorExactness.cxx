@@ -1,0 +1,482 @@
+// vtkLinearFactorDistanceField against an exact double-precision brute force over the
+// input's cells, on every sample: distance, ClosestCellId, ClosestPoint, sign; every
+// culling mode, anisotropic and explicit grids, streaming, GPU vs CPU.
+//
+// usage: TestLinearFactorExactness DATA_DIR cpu|gpu
+#include "vtkLinearFactorDistanceField.h"
+
+#include "ExactDistance.h"
+
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace
+{
+int Failures = 0;
+#define CHECK(cond, ...)                                                                           \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(cond))                                                                                   \
+    {                                                                                              \
+      std::printf("FAIL: " __VA_ARGS__);                                                           \
+      std::printf("\n");                                                                           \
+      ++Failures;                                                                                  \
+    }                                                                                              \
+  } while (0)
+
+/// Per cell: its primitives (triangles by fan, segments, points) in input coordinates.
+struct Reference
+{
+  struct Primitive
+  {
+    int Kind; // 0 point, 1 segment, 2 triangle
+    double P[3][3];
+    vtkIdType Cell;
+  };
+  std::vector<Primitive> Primitives;
+  vtkIdType NumCells = 0;
+
+  explicit Reference(vtkPolyData* mesh)
+  {
+    vtkIdType cell = 0, n;
+    const vtkIdType* ids;
+    auto add = [&](int kind, std::initializer_list<vtkIdType> pts)
+    {
+      Primitive p{ kind, {}, cell };
+      int k = 0;
+      for (vtkIdType id : pts)
+      {
+        mesh->GetPoint(id, p.P[k++]);
+      }
+      this->Primitives.push_back(p);
+    };
+    for (mesh->GetVerts()->InitTraversal(); mesh->GetVerts()->GetNextCell(n, ids); ++cell)
+    {
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        add(0, { ids[i] });
+      }
+    }
+    for (mesh->GetLines()->InitTraversal(); mesh->GetLines()->GetNextCell(n, ids); ++cell)
+    {
+      for (vtkIdType i = 0; i + 1 < n; ++i)
+      {
+        add(1, { ids[i], ids[i + 1] });
+      }
+    }
+    for (mesh->GetPolys()->InitTraversal(); mesh->GetPolys()->GetNextCell(n, ids); ++cell)
+    {
+      for (vtkIdType i = 1; i + 1 < n; ++i)
+      {
+        add(2, { ids[0], ids[i], ids[i + 1] });
+      }
+    }
+    for (mesh->GetStrips()->InitTraversal(); mesh->GetStrips()->GetNextCell(n, ids); ++cell)
+    {
+      for (vtkIdType i = 0; i + 2 < n; ++i)
+      {
+        add(2, { ids[i], ids[i + 1], ids[i + 2] });
+      }
+    }
+    this->NumCells = cell;
+  }
+
+  /// Nearest distance and point, its cell, and the nearest distance of any other cell.
+  void Query(const double x[3],
+    double& best,
+    double closest[3],
+    vtkIdType& cell,
+    double& secondBest) const
+  {
+    std::vector<double> perCell(this->NumCells, HUGE_VAL);
+    best = HUGE_VAL;
+    for (const Primitive& p : this->Primitives)
+    {
+      double c[3];
+      if (p.Kind == 0)
+      {
+        std::copy(p.P[0], p.P[0] + 3, c);
+      }
+      else if (p.Kind == 1)
+      {
+        vtkdf::reference::ClosestOnSegment(x, p.P[0], p.P[1], c);
+      }
+      else
+      {
+        vtkdf::reference::ClosestOnTriangle(x, p.P[0], p.P[1], p.P[2], c);
+      }
+      const double d = std::sqrt((c[0] - x[0]) * (c[0] - x[0]) + (c[1] - x[1]) * (c[1] - x[1]) +
+        (c[2] - x[2]) * (c[2] - x[2]));
+      perCell[p.Cell] = std::min(perCell[p.Cell], d);
+      if (d < best)
+      {
+        best = d;
+        std::copy(c, c + 3, closest);
+        cell = p.Cell;
+      }
+    }
+    secondBest = HUGE_VAL;
+    for (vtkIdType c = 0; c < this->NumCells; ++c)
+    {
+      if (c != cell)
+      {
+        secondBest = std::min(secondBest, perCell[c]);
+      }
+    }
+  }
+
+  /// Generalized winding number (sum of signed solid angles / 4 pi): exactly +-1 or 0
+  /// away from the surface of a closed mesh.
+  double Winding(const double x[3]) const
+  {
+    double total = 0;
+    for (const Primitive& p : this->Primitives)
+    {
+      if (p.Kind != 2)
+      {
+        continue;
+      }
+      double a[3], b[3], c[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        a[k] = p.P[0][k] - x[k];
+        b[k] = p.P[1][k] - x[k];
+        c[k] = p.P[2][k] - x[k];
+      }
+      const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+      const double lb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+      const double lc = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+      const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+        a[2] * (b[0] * c[1] - b[1] * c[0]);
+      const double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+      const double bc = b[0] * c[0] + b[1] * c[1] + b[2] * c[2];
+      const double ca = c[0] * a[0] + c[1] * a[1] + c[2] * a[2];
+      total += 2 * std::atan2(det, la * lb * lc + ab * lc + bc * la + ca * lb);
+    }
+    return total / (4 * M_PI);
+  }
+};
+
+vtkSmartPointer<vtkPolyData> Load(const std::string& path)
+{
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> Procedural(const std::string& name)
+{
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> verts, lines, polys;
+  auto add = [&](double x, double y, double z) { return pts->InsertNextPoint(x, y, z); };
+  if (name == "triangle")
+  {
+    const vtkIdType t[3] = { add(0, 0, 0), add(1, 0.2, 0.1), add(0.3, 0.9, -0.2) };
+    polys->InsertNextCell(3, t);
+  }
+  else if (name == "segment")
+  {
+    const vtkIdType s[2] = { add(0, 0, 0), add(1, 0.7, 0.3) };
+    lines->InsertNextCell(2, s);
+  }
+  else if (name == "point")
+  {
+    const vtkIdType v = add(0.2, 0.3, 0.4);
+    verts->InsertNextCell(1, &v);
+  }
+  else if (name == "cube")
+  {
+    for (int k = 0; k < 8; ++k)
+    {
+      add(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+    }
+    const vtkIdType quads[6][4] = {
+      { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 }
+    };
+    for (const auto& q : quads)
+    {
+      polys->InsertNextCell(4, q);
+    }
+  }
+  else // "mixed": points, a polyline and a triangle strip and a quad
+  {
+    const vtkIdType v[2] = { add(0.9, 0.9, 0.9), add(0.1, 0.8, 0.2) };
+    verts->InsertNextCell(2, v);
+    const vtkIdType l[3] = { add(0, 0, 1), add(0.5, 0.2, 0.8), add(1, 0, 0.6) };
+    lines->InsertNextCell(3, l);
+    const vtkIdType q[4] = { add(0, 0, 0), add(1, 0, 0.1), add(1, 1, 0), add(0, 1, 0.2) };
+    polys->InsertNextCell(4, q);
+    vtkNew<vtkCellArray> strips;
+    const vtkIdType s[5] = { add(0, 0.5, 0.5),
+      add(0.2, 0.6, 0.4),
+      add(0.1, 0.6, 0.7),
+      add(0.3, 0.7, 0.6),
+      add(0.2, 0.8, 0.9) };
+    strips->InsertNextCell(5, s);
+    mesh->SetStrips(strips);
+  }
+  mesh->SetPoints(pts);
+  mesh->SetVerts(verts);
+  mesh->SetLines(lines);
+  mesh->SetPolys(polys);
+  return mesh;
+}
+
+struct Options
+{
+  std::string Backend;
+  int Culling = vtkLinearFactorDistanceField::CULLING_AUTO;
+  bool Signed = false;
+  int Resolution = 20;
+  bool Explicit = false;
+  double Origin[3], Spacing[3];
+  int Dims[3];
+};
+
+vtkSmartPointer<vtkImageData> Run(vtkPolyData* mesh, const Options& o, const int* extent = nullptr)
+{
+  vtkNew<vtkLinearFactorDistanceField> f;
+  f->SetInputData(mesh);
+  if (o.Backend == "gpu")
+  {
+    f->SetBackendToGPU();
+  }
+  else
+  {
+    f->SetBackendToCPU();
+  }
+  f->SetCulling(o.Culling);
+  f->SetSignMode(o.Signed ? vtkLinearFactorDistanceField::PSEUDO_NORMAL
+                          : vtkLinearFactorDistanceField::UNSIGNED);
+  f->SetResolution(o.Resolution);
+  if (o.Explicit)
+  {
+    f->ExplicitGridOn();
+    f->SetGridOrigin(const_cast<double*>(o.Origin));
+    f->SetGridSpacing(const_cast<double*>(o.Spacing));
+    f->SetGridDimensions(const_cast<int*>(o.Dims));
+  }
+  f->ComputeClosestPointOn();
+  f->ComputeClosestFeatureOn();
+  if (extent)
+  {
+    f->UpdateInformation();
+    f->UpdateExtent(extent);
+  }
+  else
+  {
+    f->Update();
+  }
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->DeepCopy(f->GetOutput());
+  return out;
+}
+
+/// Compares a field with the brute force on every sample; returns the max error / h.
+double Compare(const std::string& label, vtkImageData* field, const Reference& ref, bool checkSign)
+{
+  auto* distance = vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("Distance"));
+  auto* cells = vtkIdTypeArray::SafeDownCast(field->GetPointData()->GetArray("ClosestCellId"));
+  auto* points = vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("ClosestPoint"));
+  CHECK(distance && cells && points, "%s: missing arrays", label.c_str());
+  if (!distance || !cells || !points || field->GetNumberOfPoints() == 0)
+  {
+    return HUGE_VAL;
+  }
+  double spacing[3];
+  field->GetSpacing(spacing);
+  const double h = std::min(spacing[0], std::min(spacing[1], spacing[2]));
+  const double tol = 1e-3 * h;
+  double worst = 0, worstPoint = 0;
+  vtkIdType wrongCells = 0, wrongSigns = 0, signChecked = 0;
+  for (vtkIdType i = 0; i < field->GetNumberOfPoints(); ++i)
+  {
+    double x[3], best, closest[3], second;
+    vtkIdType cell = -1;
+    field->GetPoint(i, x);
+    ref.Query(x, best, closest, cell, second);
+    const double value = distance->GetValue(i);
+    worst = std::max(worst, std::fabs(std::fabs(value) - best));
+    // The closest point may be any of several at the same distance: check that it is
+    // at the right distance from x and lies on the mesh.
+    double cp[3], onMesh, unused[3], unusedSecond;
+    vtkIdType unusedCell;
+    for (int a = 0; a < 3; ++a)
+    {
+      cp[a] = points->GetComponent(i, a);
+    }
+    ref.Query(cp, onMesh, unused, unusedCell, unusedSecond);
+    const double pointError =
+      std::max(onMesh, std::fabs(std::sqrt(vtkMath::Distance2BetweenPoints(cp, x)) - best));
+    if (second - best > tol)
+    {
+      wrongCells += cells->GetValue(i) != cell;
+      worstPoint = std::max(worstPoint, pointError);
+    }
+    if (checkSign && best > tol)
+    {
+      const bool inside = std::fabs(ref.Winding(x)) > 0.5;
+      wrongSigns += inside != (value < 0);
+      ++signChecked;
+    }
+  }
+  std::printf("%-44s max|err| %.2e h, closest point %.2e h, wrong cell ids %lld%s\n",
+    label.c_str(),
+    worst / h,
+    worstPoint / h,
+    (long long)wrongCells,
+    checkSign
+      ? (", wrong signs " + std::to_string(wrongSigns) + "/" + std::to_string(signChecked)).c_str()
+      : "");
+  CHECK(worst <= tol, "%s: distance error %g h", label.c_str(), worst / h);
+  CHECK(worstPoint <= tol, "%s: closest point error %g h", label.c_str(), worstPoint / h);
+  CHECK(wrongCells == 0, "%s: %lld wrong ClosestCellId", label.c_str(), (long long)wrongCells);
+  CHECK(wrongSigns == 0, "%s: %lld wrong signs", label.c_str(), (long long)wrongSigns);
+  return worst / h;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (argc < 3)
+  {
+    std::printf("usage: %s DATA_DIR cpu|gpu\n", argv[0]);
+    return 2;
+  }
+  const std::string data = argv[1];
+  Options base;
+  base.Backend = argv[2];
+  struct Case
+  {
+    std::string Name;
+    vtkSmartPointer<vtkPolyData> Mesh;
+    bool Closed;
+  };
+  std::vector<Case> cases;
+  for (const char* name :
+    { "bunny_small", "teapot", "scad_back_to_back", "boeing_soup", "scad_zero_area" })
+  {
+    cases.push_back({ name,
+      Load(data + "/" + name + ".vtp"),
+      std::string(name) == "bunny_small" || std::string(name) == "scad_zero_area" });
+  }
+  for (const char* name : { "triangle", "segment", "point", "cube", "mixed" })
+  {
+    cases.push_back({ name, Procedural(name), std::string(name) == "cube" });
+  }
+  const char* cullingNames[] = { "auto", "nonmanifold", "manifold" };
+  for (const Case& c : cases)
+  {
+    CHECK(c.Mesh && c.Mesh->GetNumberOfCells() > 0, "%s: could not load", c.Name.c_str());
+    const Reference ref(c.Mesh);
+    for (int culling = 0; culling < 3; ++culling)
+    {
+      Options o = base;
+      o.Culling = culling;
+      o.Signed = c.Closed;
+      Compare(
+        c.Name + " " + base.Backend + " " + cullingNames[culling], Run(c.Mesh, o), ref, c.Closed);
+    }
+  }
+
+  // Anisotropic explicit grid that does not contain the whole mesh.
+  {
+    const Case& c = cases[0];
+    Options o = base;
+    o.Explicit = true;
+    const double origin[3] = { -6, -1, -3 }, spacing[3] = { 0.61, 0.47, 0.83 };
+    const int dims[3] = { 17, 19, 9 };
+    std::copy(origin, origin + 3, o.Origin);
+    std::copy(spacing, spacing + 3, o.Spacing);
+    std::copy(dims, dims + 3, o.Dims);
+    o.Signed = true;
+    Compare("bunny_small anisotropic explicit grid", Run(c.Mesh, o), Reference(c.Mesh), true);
+  }
+
+  // Streaming: three sub-extents computed alone equal the whole.
+  {
+    const Case& c = cases[1];
+    Options o = base;
+    auto whole = Run(c.Mesh, o);
+    int w[6];
+    whole->GetExtent(w);
+    const int cuts[4] = { w[4], w[5] / 3, 2 * w[5] / 3, w[5] };
+    vtkIdType mismatches = 0;
+    for (int part = 0; part < 3; ++part)
+    {
+      int e[6] = { w[0] + part,
+        w[1] - 1,
+        w[2],
+        w[3] - part,
+        part == 0 ? cuts[0] : cuts[part] + 1,
+        cuts[part + 1] };
+      auto piece = Run(c.Mesh, o, e);
+      int got[6];
+      piece->GetExtent(got);
+      CHECK(std::equal(e, e + 6, got), "streaming piece %d has the wrong extent", part);
+      for (int k = got[4]; k <= got[5]; ++k)
+      {
+        for (int j = got[2]; j <= got[3]; ++j)
+        {
+          for (int i = got[0]; i <= got[1]; ++i)
+          {
+            const float a = piece->GetScalarComponentAsFloat(i, j, k, 0);
+            const float b = whole->GetScalarComponentAsFloat(i, j, k, 0);
+            // The CPU is deterministic (ties go to the lower site); on the GPU a near-tie
+            // may pick another site of equal distance (to float precision).
+            const double tol = base.Backend == "cpu" ? 0.0 : 1e-3 * whole->GetSpacing()[0];
+            mismatches += std::fabs(a - b) > tol;
+          }
+        }
+      }
+    }
+    std::printf("streaming (teapot, 3 sub-extents): %lld samples differ from the whole\n",
+      (long long)mismatches);
+    CHECK(mismatches == 0, "streaming: %lld samples differ", (long long)mismatches);
+  }
+
+  // GPU and CPU agree (run only from the GPU test, which has both).
+  if (base.Backend == "gpu")
+  {
+    for (const Case& c : cases)
+    {
+      Options g = base, cpu = base;
+      cpu.Backend = "cpu";
+      g.Resolution = cpu.Resolution = 28;
+      auto a = Run(c.Mesh, g);
+      auto b = Run(c.Mesh, cpu);
+      auto* da = vtkFloatArray::SafeDownCast(a->GetPointData()->GetArray("Distance"));
+      auto* db = vtkFloatArray::SafeDownCast(b->GetPointData()->GetArray("Distance"));
+      double worst = 0, spacing[3];
+      a->GetSpacing(spacing);
+      for (vtkIdType i = 0; i < da->GetNumberOfTuples(); ++i)
+      {
+        worst = std::max(worst, double(std::fabs(da->GetValue(i) - db->GetValue(i))));
+      }
+      std::printf("%-20s GPU vs CPU: max difference %.2e h\n", c.Name.c_str(), worst / spacing[0]);
+      CHECK(worst <= 1e-3 * spacing[0],
+        "%s: GPU and CPU differ by %g h",
+        c.Name.c_str(),
+        worst / spacing[0]);
+    }
+  }
+  std::printf("%d failures\n", Failures);
+  return Failures ? 1 : 0;
+}

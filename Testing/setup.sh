@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs what the project needs on Debian 12 (as root) and builds it into ./build.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+packages="cmake g++ make pkg-config libvtk9-dev python3-vtk9 python3-numpy libegl-dev
+  libegl1-mesa-dev libgl1-mesa-dri libgles-dev libosmesa6-dev libepoxy-dev libglm-dev xvfb xauth"
+missing=""
+for p in $packages; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  echo "installing:$missing"
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing >/dev/null
+fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+cmake --build build -j "$(nproc)"

@@ -1,0 +1,13 @@
+# The module's sources (included from the generated module directory, see CMakeLists.txt).
+set(df_root "${CMAKE_SOURCE_DIR}")
+set(classes
+  "${df_root}/Filters/vtkDistanceFieldAlgorithm"
+  "${df_root}/Filters/vtkLinearFactorDistanceField")
+# The VTK-free cores (Filters/Core) are compiled once, as objects, into the module.
+vtk_module_add_module(DistanceFields::vtkDistanceFields
+  CLASSES ${classes}
+  SOURCES $<TARGET_OBJECTS:vtkdf_core>)
+vtk_module_include(DistanceFields::vtkDistanceFields
+  PUBLIC "$<BUILD_INTERFACE:${df_root}/Filters>"
+  PRIVATE "${df_root}/Filters/Core" "${CMAKE_BINARY_DIR}/Filters/Core")
+vtk_module_link(DistanceFields::vtkDistanceFields PRIVATE PkgConfig::EPOXY ${CMAKE_DL_LIBS})
