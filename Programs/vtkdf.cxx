@@ -167,9 +167,23 @@ bool WriteSlicePNG(vtkImageData* field, const std::string& path)
       {
         line = line || static_cast<int>(std::floor(value[size_t(y + 1) * w + x] / step)) != band;
       }
+      // The surface (zero crossing) in dark blue, the other isolines in black.
+      bool surface = false;
+      for (int dy = -1; dy <= 1; ++dy)
+      {
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+          const int xx = std::min(std::max(x + dx, 0), w - 1),
+                    yy = std::min(std::max(y + dy, 0), h - 1);
+          surface = surface || ((value[size_t(yy) * w + xx] < 0) != (v < 0));
+        }
+      }
+      const unsigned char surfaceColour[3] = { 20, 20, 160 };
       for (int ch = 0; ch < 3; ++ch)
       {
-        rgb[3 * (size_t(y) * w + x) + ch] = line ? 0 : static_cast<unsigned char>(255 * c[ch]);
+        rgb[3 * (size_t(y) * w + x) + ch] = surface ? surfaceColour[ch]
+          : line                                    ? 0
+                                                    : static_cast<unsigned char>(255 * c[ch]);
       }
     }
   }

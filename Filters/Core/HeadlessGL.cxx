@@ -325,6 +325,21 @@ bool HeadlessGL::TryOSMesa(std::string& why)
   auto getString = reinterpret_cast<GetStringFn>(OSMesa.GetProcAddress("glGetString"));
   const unsigned char* renderer = getString ? getString(GL_RENDERER) : nullptr;
   this->RendererName = renderer ? reinterpret_cast<const char*>(renderer) : "unknown";
+  // libepoxy resolves core GL 1.x functions from libGL (GLVND), which does not see an
+  // OSMesa context: check that GL calls made through it really reach this context.
+  GLint maxTexture = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  if (maxTexture <= 0)
+  {
+    why = "context created (" + this->RendererName +
+      "), but GL calls through libepoxy do not reach it (libepoxy dispatches core GL 1.x "
+      "functions to libGL, not to libOSMesa)";
+    this->Release();
+    OSMesa.DestroyContext(ctx);
+    this->Context = nullptr;
+    this->UsesOSMesa = false;
+    return false;
+  }
   this->PlatformName = "OSMesa";
   this->Release();
   return true;
