@@ -22,7 +22,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <sstream>
 
 vtkStandardNewMacro(vtkLinearFactorDistanceField);
 

@@ -12,15 +12,6 @@ namespace vtkdf
 using ParallelFor =
   std::function<void(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body)>;
 
-/// Serial fallback (tests of the cores, single-threaded hosts).
-inline void SerialFor(int64_t n, int64_t, const std::function<void(int64_t, int64_t)>& body)
-{
-  if (n > 0)
-  {
-    body(0, n);
-  }
-}
-
 /// Receives the fraction done; returns false to abort.
 using ProgressCallback = std::function<bool(double)>;
 } // namespace vtkdf

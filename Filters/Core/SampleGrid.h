@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <string>
 
 namespace vtkdf
 {
@@ -32,17 +31,6 @@ struct IndexBox
       r.Hi[a] = Hi[a] < o.Hi[a] ? Hi[a] : o.Hi[a];
     }
     return r;
-  }
-  bool Contains(const IndexBox& o) const
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      if (o.Lo[a] < Lo[a] || o.Hi[a] > Hi[a])
-      {
-        return false;
-      }
-    }
-    return true;
   }
 };
 
