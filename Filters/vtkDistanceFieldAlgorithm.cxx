@@ -196,4 +196,5 @@ void vtkDistanceFieldAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastBackend: " << this->LastBackend << "\n";
   os << indent << "LastRenderer: " << this->LastRenderer << "\n";
   os << indent << "LastTime: " << this->LastTime << "\n";
+  os << indent << "LastStageTimes: " << this->LastStageTimes << "\n";
 }

@@ -70,6 +70,9 @@ public:
   const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
   /// Seconds the last run spent computing (input conversion and arrays included, no I/O).
   vtkGetMacro(LastTime, double);
+  /// Seconds per stage of the last run, as "name:seconds,name:seconds,..." (the stages
+  /// are the filter's own, e.g. sites, culling, scan, finalize).
+  const char* GetLastStageTimes() const { return this->LastStageTimes.c_str(); }
 
   /// The default grid for these bounds (xmin, xmax, ...), as origin, spacing, dimensions.
   static void ComputeDefaultGrid(const double bounds[6],
@@ -110,6 +113,7 @@ protected:
   std::string LastBackend = "none";
   std::string LastRenderer = "none";
   double LastTime = 0;
+  std::string LastStageTimes;
 
 private:
   vtkDistanceFieldAlgorithm(const vtkDistanceFieldAlgorithm&) = delete;

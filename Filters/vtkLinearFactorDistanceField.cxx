@@ -22,6 +22,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 vtkStandardNewMacro(vtkLinearFactorDistanceField);
 
@@ -154,6 +155,17 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   output->Initialize();
   this->LastEvaluations = 0;
   this->LastCullingFactor = 0;
+  this->LastStageTimes.clear();
+  auto lap = start;
+  auto stage = [this, &lap](const char* name)
+  {
+    const auto now = std::chrono::steady_clock::now();
+    std::ostringstream text;
+    text << (this->LastStageTimes.empty() ? "" : ",") << name << ":"
+         << std::chrono::duration<double>(now - lap).count();
+    this->LastStageTimes += text.str();
+    lap = now;
+  };
 
   if (!input || input->GetNumberOfCells() == 0 || input->GetNumberOfPoints() == 0)
   {
@@ -209,6 +221,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
 
   MeshConversion conversion;
   conversion.Run(input);
+  stage("convert");
   if (conversion.ShortPolygons || conversion.ShortLines || conversion.ShortStrips ||
     conversion.EmptyVertices)
   {
@@ -245,6 +258,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     return 0;
   }
 
+  stage("sites");
   bool useGPU = false;
   if (!this->ChooseBackend(useGPU, error))
   {
@@ -255,6 +269,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   this->UpdateProgress(0.0);
   vtkdf::RangeCulling range;
   range.Build(sites, request.Grid, request.Extent, request.MaximumDistance, SMPFor);
+  stage("culling");
   this->UpdateProgress(0.1);
 
   vtkdf::NearestSiteBuffer nearest;
@@ -287,6 +302,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     output->Initialize();
     return 1;
   }
+  stage("scan");
   this->LastEvaluations = stats.Evaluations;
   this->LastCullingFactor = stats.Evaluations >= 0 ? double(stats.Evaluations) / samples : -1.0;
 
@@ -338,6 +354,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     pd->AddArray(a);
   }
   vtkdf::Finalize(sites, request, nearest, arrays, SMPFor);
+  stage("finalize");
   this->UpdateProgress(1.0);
   this->LastTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return 1;

@@ -359,14 +359,15 @@ int main(int argc, char* argv[])
   if (timing)
   {
     std::printf("vtkdf: linfac dims=%dx%dx%d backend=%s renderer=\"%s\" time_s=%.6f "
-                "culling_factor=%.3f\n",
+                "culling_factor=%.3f stages=%s\n",
       dims[0],
       dims[1],
       dims[2],
       filter->GetLastBackend(),
       filter->GetLastRenderer(),
       filter->GetLastTime(),
-      filter->GetLastCullingFactor());
+      filter->GetLastCullingFactor(),
+      filter->GetLastStageTimes());
   }
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetFileName(output.c_str());

@@ -56,6 +56,32 @@ void SiteProjector(const Site& s, double P[3][3])
   }
 }
 
+/// The sample axes in the order the scan walks them: Slice (outer), Row, Inner
+/// (innermost, along which the distance vector changes by a constant step). A domain
+/// of a smooth surface is a thin column along the surface normal, so the scan runs the
+/// inner loop along the normal's largest component and slices across its smallest:
+/// few slices with long rows, instead of many slices holding a sample or two each.
+struct ScanAxes
+{
+  int Inner = 0, Row = 1, Slice = 2;
+};
+
+ScanAxes ChooseScanAxes(const Site& site)
+{
+  const double* n = site.Type == FaceSite ? site.Axis : site.Normal;
+  const double m[3] = { std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2]) };
+  ScanAxes axes;
+  if (!(m[0] + m[1] + m[2] > 0))
+  {
+    return axes;
+  }
+  axes.Inner = m[0] >= m[1] ? (m[0] >= m[2] ? 0 : 2) : (m[1] >= m[2] ? 1 : 2);
+  const int o1 = (axes.Inner + 1) % 3, o2 = (axes.Inner + 2) % 3;
+  axes.Slice = m[o1] <= m[o2] ? o1 : o2;
+  axes.Row = 3 - axes.Inner - axes.Slice;
+  return axes;
+}
+
 /// Scan-converts one site's domain inside its region; returns distance evaluations.
 int64_t ScanSite(const MeshSites& sites,
   const Site& site,
@@ -66,33 +92,45 @@ int64_t ScanSite(const MeshSites& sites,
 {
   const SampleGrid& grid = request.Grid;
   const IndexBox& ext = request.Extent;
+  const ScanAxes axes = ChooseScanAxes(site);
+  const int u = axes.Inner, v = axes.Row, w = axes.Slice;
+
+  // Planes with their coefficients in (inner, row, slice) order.
   IndexPlane planes[SlicePolygon::MaxPlanes];
   const int numPlanes = SiteIndexPlanes(sites, site, grid, planes, SlicePolygon::MaxPlanes);
+  for (int p = 0; p < numPlanes; ++p)
+  {
+    const double c[3] = { planes[p].A, planes[p].B, planes[p].C };
+    planes[p].A = c[u], planes[p].B = c[v], planes[p].C = c[w];
+  }
   double P[3][3];
   SiteProjector(site, P);
-  const float step[3] = { static_cast<float>(-P[0][0] * grid.Spacing[0]),
-    static_cast<float>(-P[1][0] * grid.Spacing[0]),
-    static_cast<float>(-P[2][0] * grid.Spacing[0]) };
-  const int64_t nx = ext.Size(0), nxy = nx * ext.Size(1);
+  const float step[3] = { static_cast<float>(-P[0][u] * grid.Spacing[u]),
+    static_cast<float>(-P[1][u] * grid.Spacing[u]),
+    static_cast<float>(-P[2][u] * grid.Spacing[u]) };
+  int64_t stride[3];
+  stride[0] = 1;
+  stride[1] = ext.Size(0);
+  stride[2] = stride[1] * ext.Size(1);
+  const int64_t base = -(ext.Lo[0] * stride[0] + ext.Lo[1] * stride[1] + ext.Lo[2] * stride[2]);
   int64_t evaluations = 0;
   SlicePolygon poly;
 
   auto scanSlice = [&](int k) -> bool
   {
     if (!ClipSlice(
-          planes, numPlanes, k, region.Lo[0], region.Hi[0], region.Lo[1], region.Hi[1], poly))
+          planes, numPlanes, k, region.Lo[u], region.Hi[u], region.Lo[v], region.Hi[v], poly))
     {
       return false;
     }
     double ymin = HUGE_VAL, ymax = -HUGE_VAL;
-    for (int v = 0; v < poly.Count; ++v)
+    for (int c = 0; c < poly.Count; ++c)
     {
-      ymin = std::min(ymin, poly.Y[v]);
-      ymax = std::max(ymax, poly.Y[v]);
+      ymin = std::min(ymin, poly.Y[c]);
+      ymax = std::max(ymax, poly.Y[c]);
     }
-    const int j0 = std::max(region.Lo[1], static_cast<int>(std::ceil(ymin)));
-    const int j1 = std::min(region.Hi[1], static_cast<int>(std::floor(ymax)));
-    const double z = grid.Coordinate(2, k);
+    const int j0 = std::max(region.Lo[v], static_cast<int>(std::ceil(ymin)));
+    const int j1 = std::min(region.Hi[v], static_cast<int>(std::floor(ymax)));
     for (int j = j0; j <= j1; ++j)
     {
       double xl, xr;
@@ -100,22 +138,25 @@ int64_t ScanSite(const MeshSites& sites,
       {
         continue;
       }
-      const int i0 = std::max(region.Lo[0], static_cast<int>(std::ceil(xl)));
-      const int i1 = std::min(region.Hi[0], static_cast<int>(std::floor(xr)));
+      const int i0 = std::max(region.Lo[u], static_cast<int>(std::ceil(xl)));
+      const int i1 = std::min(region.Hi[u], static_cast<int>(std::floor(xr)));
       if (i1 < i0)
       {
         continue;
       }
-      const double r[3] = { site.Anchor[0] - grid.Coordinate(0, i0),
-        site.Anchor[1] - grid.Coordinate(1, j),
-        site.Anchor[2] - z };
+      int index[3];
+      index[u] = i0, index[v] = j, index[w] = k;
+      const double r[3] = { site.Anchor[0] - grid.Coordinate(0, index[0]),
+        site.Anchor[1] - grid.Coordinate(1, index[1]),
+        site.Anchor[2] - grid.Coordinate(2, index[2]) };
       float d[3];
       for (int a = 0; a < 3; ++a)
       {
         d[a] = static_cast<float>(P[a][0] * r[0] + P[a][1] * r[1] + P[a][2] * r[2]);
       }
-      int64_t at = (i0 - ext.Lo[0]) + nx * (j - ext.Lo[1]) + nxy * (k - ext.Lo[2]);
-      for (int i = i0; i <= i1; ++i, ++at)
+      int64_t at = base + index[0] * stride[0] + index[1] * stride[1] + index[2] * stride[2];
+      const int64_t inner = stride[u];
+      for (int i = i0; i <= i1; ++i, at += inner)
       {
         const float t = static_cast<float>(i - i0);
         const float dx = d[0] + t * step[0], dy = d[1] + t * step[1], dz = d[2] + t * step[2];
@@ -130,30 +171,27 @@ int64_t ScanSite(const MeshSites& sites,
   // the slices it covers are one run of slices around the anchor's: scan outward from
   // there and stop at the first empty slice on each side.
   double anchor[3];
-  bool inRect = true;
   for (int a = 0; a < 3; ++a)
   {
     anchor[a] = (site.Anchor[a] - grid.Origin[a]) / grid.Spacing[a];
   }
-  for (int a = 0; a < 2; ++a)
-  {
-    inRect = inRect && anchor[a] >= region.Lo[a] && anchor[a] <= region.Hi[a];
-  }
+  const bool inRect = anchor[u] >= region.Lo[u] && anchor[u] <= region.Hi[u] &&
+    anchor[v] >= region.Lo[v] && anchor[v] <= region.Hi[v];
   if (!inRect)
   {
-    for (int k = region.Lo[2]; k <= region.Hi[2]; ++k)
+    for (int k = region.Lo[w]; k <= region.Hi[w]; ++k)
     {
       scanSlice(k);
     }
     return evaluations;
   }
-  auto clampZ = [&](double z)
-  { return static_cast<int>(std::min<double>(std::max<double>(z, region.Lo[2]), region.Hi[2])); };
-  int start = clampZ(std::round(anchor[2]));
+  auto clampSlice = [&](double z)
+  { return static_cast<int>(std::min<double>(std::max<double>(z, region.Lo[w]), region.Hi[w])); };
+  int start = clampSlice(std::round(anchor[w]));
   bool found = scanSlice(start);
   if (!found)
   {
-    for (int k : { clampZ(std::floor(anchor[2])), clampZ(std::ceil(anchor[2])) })
+    for (int k : { clampSlice(std::floor(anchor[w])), clampSlice(std::ceil(anchor[w])) })
     {
       if (k != start && scanSlice(k))
       {
@@ -165,10 +203,10 @@ int64_t ScanSite(const MeshSites& sites,
   }
   if (found)
   {
-    for (int k = start + 1; k <= region.Hi[2] && scanSlice(k); ++k)
+    for (int k = start + 1; k <= region.Hi[w] && scanSlice(k); ++k)
     {
     }
-    for (int k = start - 1; k >= region.Lo[2] && scanSlice(k); --k)
+    for (int k = start - 1; k >= region.Lo[w] && scanSlice(k); --k)
     {
     }
   }

@@ -42,6 +42,19 @@ struct EdgeRecord
   int64_t Cell; // input cell
 };
 
+/// The edges at a vertex: (edge index, unit direction away from the vertex).
+using VertexEdge = std::pair<int64_t, std::array<double, 3>>;
+struct VertexEdgeSpan
+{
+  const VertexEdge* First = nullptr;
+  size_t Count = 0;
+  const VertexEdge* begin() const { return First; }
+  const VertexEdge* end() const { return First + Count; }
+  size_t size() const { return Count; }
+  bool empty() const { return Count == 0; }
+  const VertexEdge& operator[](size_t i) const { return First[i]; }
+};
+
 struct FaceRecord
 {
   int64_t P[3];
@@ -117,10 +130,48 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
   {
     return true;
   }
+  // Sort the points along a Morton curve (identical points stay adjacent, so they
+  // merge below): sites, planes and every later pass then walk memory in space order,
+  // which matters for large polygon soups whose input order is arbitrary.
+  std::vector<uint64_t> code(numPoints, 0);
+  {
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = hi[a] = P[3 * order[0] + a];
+    }
+    for (int64_t id : order)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], P[3 * id + a]);
+        hi[a] = std::max(hi[a], P[3 * id + a]);
+      }
+    }
+    const double side = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
+    const double scale = side > 0 ? 2097151.0 / side : 0.0; // 21 bits per axis
+    for (int64_t id : order)
+    {
+      uint64_t c = 0;
+      for (int a = 0; a < 3; ++a)
+      {
+        const uint64_t q = static_cast<uint64_t>((P[3 * id + a] - lo[a]) * scale);
+        for (int bit = 0; bit < 21; ++bit)
+        {
+          c |= ((q >> bit) & 1u) << (3 * bit + a);
+        }
+      }
+      code[id] = c;
+    }
+  }
   std::sort(order.begin(),
     order.end(),
-    [P](int64_t a, int64_t b)
-    { return std::lexicographical_compare(P + 3 * a, P + 3 * a + 3, P + 3 * b, P + 3 * b + 3); });
+    [P, &code](int64_t a, int64_t b)
+    {
+      return code[a] != code[b]
+        ? code[a] < code[b]
+        : std::lexicographical_compare(P + 3 * a, P + 3 * a + 3, P + 3 * b, P + 3 * b + 3);
+    });
   std::vector<int64_t> canonical(numPoints, -1);
   std::vector<int64_t> merged; // canonical index -> input point id
   for (size_t k = 0; k < order.size(); ++k)
@@ -165,7 +216,31 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
   std::vector<EdgeRecord> edges;
   std::vector<int64_t> vertexCell(nv, INT64_MAX);
   const int64_t numTriangles = static_cast<int64_t>(in.Triangles.size() / 3);
-  for (int64_t t = 0; t < numTriangles; ++t)
+  faces.reserve(numTriangles);
+  edges.reserve(3 * numTriangles + in.Segments.size() / 2);
+  // Triangles in the order of their first corner on the curve (a counting sort).
+  std::vector<int64_t> triangleOrder(numTriangles);
+  {
+    std::vector<int64_t> start(nv + 1, 0);
+    auto key = [&](int64_t t)
+    {
+      return std::min(canonical[in.Triangles[3 * t]],
+        std::min(canonical[in.Triangles[3 * t + 1]], canonical[in.Triangles[3 * t + 2]]));
+    };
+    for (int64_t t = 0; t < numTriangles; ++t)
+    {
+      ++start[key(t) + 1];
+    }
+    for (int64_t v = 0; v < nv; ++v)
+    {
+      start[v + 1] += start[v];
+    }
+    for (int64_t t = 0; t < numTriangles; ++t)
+    {
+      triangleOrder[start[key(t)]++] = t;
+    }
+  }
+  for (const int64_t t : triangleOrder)
   {
     const int64_t cell = in.TriangleCells[t];
     int64_t c[3];
@@ -274,6 +349,10 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
   auto finish = [&](Site& s)
   { s.PlaneCount = static_cast<uint16_t>(this->Planes.size() - s.PlaneBegin); };
 
+  // Sites: faces, at most one per edge record, vertices. Planes: 3 per face, 2 + one
+  // per incident face per edge, one per edge end for polar vertices.
+  this->Sites.reserve(faces.size() + edges.size() + nv);
+  this->Planes.reserve(3 * faces.size() + 4 * edges.size() + 6 * faces.size());
   // --- Face sites: the triangle prism (three planes through the edges, orthogonal to
   // the triangle), required for the plane-distance formula to be exact.
   for (const FaceRecord& f : faces)
@@ -304,14 +383,16 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
 
   // --- Edge sites: the slab between the end planes (required), then one plane per
   // incident face: a point on the face side of that plane is closer to the face.
-  std::vector<std::vector<std::pair<int64_t, Vec>>> vertexEdges(nv);
   std::vector<std::vector<int64_t>> edgeFaces;
   std::vector<std::array<int64_t, 2>> edgeEnds;
+  std::vector<Vec> edgeTangents;
+  std::vector<int64_t> vertexEdgeOffsets(nv + 1, 0);
+  std::vector<int64_t> incident;
   for (size_t e0 = 0; e0 < edges.size();)
   {
     size_t e1 = e0;
     int64_t cell = INT64_MAX;
-    std::vector<int64_t> incident;
+    incident.clear();
     while (e1 < edges.size() && edges[e1].A == edges[e0].A && edges[e1].B == edges[e0].B)
     {
       cell = std::min(cell, edges[e1].Cell);
@@ -331,9 +412,13 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
       continue;
     }
     t = Scale(t, 1.0 / length);
-    vertexEdges[a].push_back({ static_cast<int64_t>(edgeEnds.size()), t });
-    vertexEdges[b].push_back({ static_cast<int64_t>(edgeEnds.size()), Scale(t, -1.0) });
-    edgeFaces.push_back(incident);
+    ++vertexEdgeOffsets[a + 1];
+    ++vertexEdgeOffsets[b + 1];
+    edgeTangents.push_back(t);
+    if (culling == Culling::Manifold)
+    {
+      edgeFaces.push_back(incident); // the fan walk needs them
+    }
     edgeEnds.push_back({ a, b });
 
     Site& s = newSite(EdgeSite, cell, X(a));
@@ -377,6 +462,22 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
     ++this->Statistics.Edges;
   }
 
+  // The edges of every vertex, contiguous per vertex.
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    vertexEdgeOffsets[v + 1] += vertexEdgeOffsets[v];
+  }
+  std::vector<VertexEdge> vertexEdges(vertexEdgeOffsets[nv]);
+  {
+    std::vector<int64_t> fill(vertexEdgeOffsets.begin(), vertexEdgeOffsets.end() - 1);
+    for (size_t e = 0; e < edgeEnds.size(); ++e)
+    {
+      const Vec& t = edgeTangents[e];
+      vertexEdges[fill[edgeEnds[e][0]]++] = { static_cast<int64_t>(e), t };
+      vertexEdges[fill[edgeEnds[e][1]]++] = { static_cast<int64_t>(e), Scale(t, -1.0) };
+    }
+  }
+
   // --- Vertex sites.
   std::vector<std::vector<int64_t>> vertexFaces(nv);
   if (culling == Culling::Manifold)
@@ -398,7 +499,8 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
       s.Normal[a] = vertexNormal[v][a];
     }
     ++this->Statistics.Vertices;
-    const auto& incident = vertexEdges[v];
+    const VertexEdgeSpan incident{ vertexEdges.data() + vertexEdgeOffsets[v],
+      static_cast<size_t>(vertexEdgeOffsets[v + 1] - vertexEdgeOffsets[v]) };
     const double* p = X(v);
     auto polar = [&]()
     {

@@ -9,146 +9,6 @@ namespace vtkdf
 namespace
 {
 
-/// Uniform hash grid over the mesh points, for nearest-point distances.
-class PointGrid
-{
-public:
-  explicit PointGrid(const std::vector<double>& points)
-    : Points(points)
-  {
-    const int64_t n = static_cast<int64_t>(points.size() / 3);
-    for (int a = 0; a < 3; ++a)
-    {
-      this->Min[a] = HUGE_VAL;
-      double hi = -HUGE_VAL;
-      for (int64_t i = 0; i < n; ++i)
-      {
-        this->Min[a] = std::min(this->Min[a], points[3 * i + a]);
-        hi = std::max(hi, points[3 * i + a]);
-      }
-      this->Extent[a] = hi - this->Min[a];
-    }
-    const double longest = std::max(this->Extent[0], std::max(this->Extent[1], this->Extent[2]));
-    // About two points per cell, at most 128 cells per axis.
-    double volume = 1;
-    int flat = 0;
-    for (int a = 0; a < 3; ++a)
-    {
-      if (this->Extent[a] > 1e-9 * longest)
-      {
-        volume *= this->Extent[a];
-      }
-      else
-      {
-        ++flat;
-      }
-    }
-    double cell =
-      longest > 0 ? std::pow(volume * 2.0 / std::max<int64_t>(n, 1), 1.0 / (3 - flat)) : 1.0;
-    cell = std::max(cell, longest / 128.0);
-    this->Cell = cell > 0 ? cell : 1.0;
-    for (int a = 0; a < 3; ++a)
-    {
-      this->Dims[a] = static_cast<int>(this->Extent[a] / this->Cell) + 1;
-    }
-    std::vector<int64_t> counts(int64_t(Dims[0]) * Dims[1] * Dims[2] + 1, 0);
-    std::vector<int64_t> cellOf(n);
-    for (int64_t i = 0; i < n; ++i)
-    {
-      int c[3];
-      for (int a = 0; a < 3; ++a)
-      {
-        c[a] = this->CellIndex(a, points[3 * i + a]);
-      }
-      cellOf[i] = c[0] + int64_t(Dims[0]) * (c[1] + int64_t(Dims[1]) * c[2]);
-      ++counts[cellOf[i] + 1];
-    }
-    for (size_t c = 1; c < counts.size(); ++c)
-    {
-      counts[c] += counts[c - 1];
-    }
-    this->Offsets = counts;
-    this->Sorted.resize(n);
-    for (int64_t i = 0; i < n; ++i)
-    {
-      this->Sorted[counts[cellOf[i]]++] = i;
-    }
-  }
-
-  int CellIndex(int a, double x) const
-  {
-    const int c = static_cast<int>(std::floor((x - this->Min[a]) / this->Cell));
-    return std::min(std::max(c, 0), this->Dims[a] - 1);
-  }
-
-  /// Distance from q to the nearest point (ring search over cells).
-  double Nearest(const double q[3]) const
-  {
-    int c[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      c[a] = this->CellIndex(a, q[a]);
-    }
-    const int maxRing = std::max(Dims[0], std::max(Dims[1], Dims[2]));
-    double best2 = HUGE_VAL;
-    for (int r = 0; r <= maxRing; ++r)
-    {
-      // Points outside the cells of rings < r are at least this far from q.
-      if (r > 0)
-      {
-        double bound = HUGE_VAL;
-        for (int a = 0; a < 3; ++a)
-        {
-          const double lo = this->Min[a] + (c[a] - (r - 1)) * this->Cell;
-          const double hi = this->Min[a] + (c[a] + r) * this->Cell;
-          bound = std::min(bound, std::min(q[a] - lo, hi - q[a]));
-        }
-        if (bound > 0 && bound * bound >= best2)
-        {
-          break;
-        }
-      }
-      for (int k = c[2] - r; k <= c[2] + r; ++k)
-      {
-        if (k < 0 || k >= Dims[2])
-        {
-          continue;
-        }
-        for (int j = c[1] - r; j <= c[1] + r; ++j)
-        {
-          if (j < 0 || j >= Dims[1])
-          {
-            continue;
-          }
-          const bool shell = (k == c[2] - r || k == c[2] + r || j == c[1] - r || j == c[1] + r);
-          for (int i = c[0] - r; i <= c[0] + r; i += (shell ? 1 : 2 * r > 0 ? 2 * r : 1))
-          {
-            if (i < 0 || i >= Dims[0])
-            {
-              continue;
-            }
-            const int64_t cell = i + int64_t(Dims[0]) * (j + int64_t(Dims[1]) * k);
-            for (int64_t s = Offsets[cell]; s < Offsets[cell + 1]; ++s)
-            {
-              const double* p = &Points[3 * Sorted[s]];
-              const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                (p[2] - q[2]) * (p[2] - q[2]);
-              best2 = std::min(best2, d2);
-            }
-          }
-        }
-      }
-    }
-    return std::sqrt(best2);
-  }
-
-private:
-  const std::vector<double>& Points;
-  double Min[3], Extent[3], Cell;
-  int Dims[3];
-  std::vector<int64_t> Offsets, Sorted;
-};
-
 struct Box
 {
   double Lo[3], Hi[3];
@@ -224,34 +84,106 @@ void RangeCulling::Build(const MeshSites& sites,
     return box;
   };
 
-  // Upper bound of the field over each block.
-  PointGrid points(sites.SitePoints);
+  // Upper bound of the field over each block: the distance from its centre to a mesh
+  // point, plus its half diagonal. Each block starts with the nearest of the points
+  // that fall in it (points outside the extent count for the nearest block), then two
+  // sweeps pass every block's point on to its 26 neighbours when it is nearer to their
+  // centres (a vector distance transform). The point found is not always the nearest
+  // one, but the bound only has to hold, and it does for any mesh point.
+  std::vector<std::array<double, 3>> centres(numBlocks);
+  std::vector<double> halfDiagonal(numBlocks);
+  for (int64_t id = 0; id < numBlocks; ++id)
+  {
+    const Box box = blockBox(static_cast<int>(id % nb[0]),
+      static_cast<int>((id / nb[0]) % nb[1]),
+      static_cast<int>(id / (int64_t(nb[0]) * nb[1])),
+      1);
+    double half2 = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      centres[id][a] = 0.5 * (box.Lo[a] + box.Hi[a]);
+      half2 += 0.25 * (box.Hi[a] - box.Lo[a]) * (box.Hi[a] - box.Lo[a]);
+    }
+    halfDiagonal[id] = std::sqrt(half2);
+  }
+  const std::vector<double>& points = sites.SitePoints;
+  auto distance2 = [&](int64_t point, int64_t block)
+  {
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double e = points[3 * point + a] - centres[block][a];
+      d2 += e * e;
+    }
+    return d2;
+  };
+  std::vector<int64_t> nearestPoint(numBlocks, -1);
+  std::vector<double> nearest2(numBlocks, HUGE_VAL);
+  const int64_t numPoints = static_cast<int64_t>(points.size() / 3);
+  for (int64_t p = 0; p < numPoints; ++p)
+  {
+    int64_t id = 0, stride = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = (points[3 * p + a] - grid.Origin[a]) / grid.Spacing[a] - extent.Lo[a];
+      const int blk = static_cast<int>(std::min<double>(std::max<double>(x / b, 0.0), nb[a] - 1));
+      id += blk * stride;
+      stride *= nb[a];
+    }
+    const double d2 = distance2(p, id);
+    if (d2 < nearest2[id])
+    {
+      nearest2[id] = d2;
+      nearestPoint[id] = p;
+    }
+  }
+  auto sweep = [&](int direction)
+  {
+    const int64_t first = direction > 0 ? 0 : numBlocks - 1;
+    for (int64_t n = 0, id = first; n < numBlocks; ++n, id += direction)
+    {
+      const int ids[3] = { static_cast<int>(id % nb[0]),
+        static_cast<int>((id / nb[0]) % nb[1]),
+        static_cast<int>(id / (int64_t(nb[0]) * nb[1])) };
+      for (int dk = -1; dk <= 1; ++dk)
+      {
+        for (int dj = -1; dj <= 1; ++dj)
+        {
+          for (int di = -1; di <= 1; ++di)
+          {
+            const int o[3] = { ids[0] + di, ids[1] + dj, ids[2] + dk };
+            if (o[0] < 0 || o[1] < 0 || o[2] < 0 || o[0] >= nb[0] || o[1] >= nb[1] || o[2] >= nb[2])
+            {
+              continue;
+            }
+            const int64_t other = o[0] + int64_t(nb[0]) * (o[1] + int64_t(nb[1]) * o[2]);
+            const int64_t p = nearestPoint[other];
+            if (p >= 0 && p != nearestPoint[id])
+            {
+              const double d2 = distance2(p, id);
+              if (d2 < nearest2[id])
+              {
+                nearest2[id] = d2;
+                nearestPoint[id] = p;
+              }
+            }
+          }
+        }
+      }
+    }
+  };
+  sweep(+1);
+  sweep(-1);
   BoundPyramid pyramid;
   pyramid.Dims.push_back(nb);
   pyramid.Max.emplace_back(numBlocks);
   std::vector<float>& level0 = pyramid.Max.back();
-  parallelFor(numBlocks,
-    64,
-    [&](int64_t begin, int64_t end)
-    {
-      for (int64_t id = begin; id < end; ++id)
-      {
-        const int bi = static_cast<int>(id % nb[0]);
-        const int bj = static_cast<int>((id / nb[0]) % nb[1]);
-        const int bk = static_cast<int>(id / (int64_t(nb[0]) * nb[1]));
-        const Box box = blockBox(bi, bj, bk, 1);
-        double centre[3], half2 = 0;
-        for (int a = 0; a < 3; ++a)
-        {
-          centre[a] = 0.5 * (box.Lo[a] + box.Hi[a]);
-          half2 += 0.25 * (box.Hi[a] - box.Lo[a]) * (box.Hi[a] - box.Lo[a]);
-        }
-        double bound = points.Nearest(centre) + std::sqrt(half2);
-        bound = std::min(bound, maximumDistance);
-        // Round up so that float storage never makes the bound smaller.
-        level0[id] = std::nextafter(static_cast<float>(bound), HUGE_VALF);
-      }
-    });
+  for (int64_t id = 0; id < numBlocks; ++id)
+  {
+    const double bound = std::min(std::sqrt(nearest2[id]) + halfDiagonal[id], maximumDistance);
+    // Round up so that float storage never makes the bound smaller.
+    level0[id] = std::nextafter(static_cast<float>(bound), HUGE_VALF);
+  }
   pyramid.Min.push_back(level0);
   while (pyramid.Dims.back()[0] > 1 || pyramid.Dims.back()[1] > 1 || pyramid.Dims.back()[2] > 1)
   {
