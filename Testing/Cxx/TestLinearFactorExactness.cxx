@@ -248,6 +248,7 @@ struct Options
   bool Explicit = false;
   double Origin[3], Spacing[3];
   int Dims[3];
+  double MaximumDistance = 0;
 };
 
 vtkSmartPointer<vtkImageData> Run(vtkPolyData* mesh, const Options& o, const int* extent = nullptr)
@@ -273,6 +274,7 @@ vtkSmartPointer<vtkImageData> Run(vtkPolyData* mesh, const Options& o, const int
     f->SetGridSpacing(const_cast<double*>(o.Spacing));
     f->SetGridDimensions(const_cast<int*>(o.Dims));
   }
+  f->SetMaximumDistance(o.MaximumDistance);
   f->ComputeClosestPointOn();
   f->ComputeClosestFeatureOn();
   if (extent)
@@ -351,6 +353,64 @@ double Compare(const std::string& label, vtkImageData* field, const Reference& r
   CHECK(wrongSigns == 0, "%s: %lld wrong signs", label.c_str(), (long long)wrongSigns);
   return worst / h;
 }
+/// A narrow band (MaximumDistance = cap): within the band the exact field; beyond it
+/// exactly cap (-cap inside a closed mesh) and no closest cell.
+void CompareBanded(const std::string& label,
+  vtkImageData* field,
+  const Reference& ref,
+  double cap,
+  bool checkSign)
+{
+  auto* distance = vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("Distance"));
+  auto* cells = vtkIdTypeArray::SafeDownCast(field->GetPointData()->GetArray("ClosestCellId"));
+  CHECK(distance && cells && field->GetNumberOfPoints() > 0, "%s: missing arrays", label.c_str());
+  if (!distance || !cells)
+  {
+    return;
+  }
+  const double h = field->GetSpacing()[0];
+  const double tol = 1e-3 * h;
+  double worst = 0;
+  vtkIdType beyond = 0, wrongCap = 0, wrongSigns = 0, wrongCells = 0;
+  for (vtkIdType i = 0; i < field->GetNumberOfPoints(); ++i)
+  {
+    double x[3], best, closest[3], second;
+    vtkIdType cell = -1;
+    field->GetPoint(i, x);
+    ref.Query(x, best, closest, cell, second);
+    const float value = distance->GetValue(i);
+    worst = std::max(worst, std::fabs(std::fabs(value) - std::min(best, cap)));
+    if (best > cap + tol)
+    {
+      ++beyond;
+      wrongCap += std::fabs(value) != static_cast<float>(cap);
+      wrongCells += cells->GetValue(i) != -1;
+    }
+    if (checkSign && best > tol)
+    {
+      wrongSigns += (std::fabs(ref.Winding(x)) > 0.5) != (value < 0);
+    }
+  }
+  std::printf("%-44s max|err| %.2e h, %lld samples beyond the band, %lld not at the cap, "
+              "%lld with a cell, %lld wrong signs\n",
+    label.c_str(),
+    worst / h,
+    (long long)beyond,
+    (long long)wrongCap,
+    (long long)wrongCells,
+    (long long)wrongSigns);
+  CHECK(worst <= tol, "%s: distance error %g h", label.c_str(), worst / h);
+  CHECK(beyond > 0, "%s: the band covers the whole grid, the test proves nothing", label.c_str());
+  CHECK(wrongCap == 0,
+    "%s: %lld samples beyond the band differ from the cap",
+    label.c_str(),
+    (long long)wrongCap);
+  CHECK(wrongCells == 0,
+    "%s: %lld samples beyond the band have a cell",
+    label.c_str(),
+    (long long)wrongCells);
+  CHECK(wrongSigns == 0, "%s: %lld wrong signs", label.c_str(), (long long)wrongSigns);
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -408,6 +468,25 @@ int main(int argc, char* argv[])
     std::copy(dims, dims + 3, o.Dims);
     o.Signed = true;
     Compare("bunny_small anisotropic explicit grid", Run(c.Mesh, o), Reference(c.Mesh), true);
+  }
+
+  // Narrow band: signed on a closed mesh (the sign beyond the band comes from the flood
+  // fill), unsigned on an open one.
+  for (int index : { 0, 1 })
+  {
+    const Case& c = cases[index];
+    double b[6];
+    c.Mesh->GetBounds(b);
+    Options o = base;
+    o.Signed = c.Closed;
+    o.MaximumDistance = 0.08 *
+      std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+        (b[5] - b[4]) * (b[5] - b[4]));
+    CompareBanded(c.Name + " " + base.Backend + " MaximumDistance",
+      Run(c.Mesh, o),
+      Reference(c.Mesh),
+      o.MaximumDistance,
+      c.Closed);
   }
 
   // Streaming: three sub-extents computed alone equal the whole.
