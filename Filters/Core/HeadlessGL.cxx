@@ -31,14 +31,6 @@ struct OSMesaApi
 };
 OSMesaApi OSMesa;
 
-// libepoxy cannot find GL entry points under OSMesa by itself: ask OSMesa.
-epoxy_resolver_stub_t ResolveWithOSMesa(const char* name)
-{
-  return OSMesa.GetProcAddress
-    ? reinterpret_cast<epoxy_resolver_stub_t>(OSMesa.GetProcAddress(name))
-    : nullptr;
-}
-
 bool Loaded(const char* soname)
 {
   void* handle = dlopen(soname, RTLD_LAZY | RTLD_NOLOAD);
@@ -217,7 +209,8 @@ bool HeadlessGL::CreateEGLContext(void* display, std::string& why)
     this->Display = this->Context = nullptr;
     return false;
   }
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  this->Functions.LoadFromEpoxy();
+  const char* renderer = reinterpret_cast<const char*>(this->Functions.GetString(GL_RENDERER));
   this->RendererName = renderer ? renderer : "unknown";
   this->Release();
   return true;
@@ -312,7 +305,6 @@ bool HeadlessGL::TryOSMesa(std::string& why)
     why = "OSMesaCreateContextAttribs(4.5 core) failed";
     return false;
   }
-  epoxy_set_resolver_failure_handler(ResolveWithOSMesa);
   this->Context = ctx;
   this->UsesOSMesa = true;
   this->OSMesaBuffer.assign(4, 0);
@@ -321,25 +313,19 @@ bool HeadlessGL::TryOSMesa(std::string& why)
     why = "OSMesaMakeCurrent failed";
     return false;
   }
-  using GetStringFn = const unsigned char* (*)(unsigned);
-  auto getString = reinterpret_cast<GetStringFn>(OSMesa.GetProcAddress("glGetString"));
-  const unsigned char* renderer = getString ? getString(GL_RENDERER) : nullptr;
-  this->RendererName = renderer ? reinterpret_cast<const char*>(renderer) : "unknown";
-  // libepoxy resolves core GL 1.x functions from libGL (GLVND), which does not see an
-  // OSMesa context: check that GL calls made through it really reach this context.
-  GLint maxTexture = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
-  if (maxTexture <= 0)
+  // Every entry point from OSMesa itself (see GLFunctions.h).
+  std::string missing;
+  if (!this->Functions.Load([](const char* name) { return OSMesa.GetProcAddress(name); }, missing))
   {
-    why = "context created (" + this->RendererName +
-      "), but GL calls through libepoxy do not reach it (libepoxy dispatches core GL 1.x "
-      "functions to libGL, not to libOSMesa)";
+    why = "OSMesaGetProcAddress does not know " + missing;
     this->Release();
     OSMesa.DestroyContext(ctx);
     this->Context = nullptr;
     this->UsesOSMesa = false;
     return false;
   }
+  const GLubyte* renderer = this->Functions.GetString(GL_RENDERER);
+  this->RendererName = renderer ? reinterpret_cast<const char*>(renderer) : "unknown";
   this->PlatformName = "OSMesa";
   this->Release();
   return true;
@@ -379,48 +365,49 @@ HeadlessGL::~HeadlessGL()
 }
 
 unsigned HeadlessGL::BuildProgram(const std::vector<std::pair<unsigned, const char*>>& stages,
-  std::string& log)
+  std::string& log) const
 {
-  const GLuint program = glCreateProgram();
+  const GLFunctions& gl = this->Functions;
+  const GLuint program = gl.CreateProgram();
   std::vector<GLuint> shaders;
   bool ok = true;
   for (const auto& stage : stages)
   {
-    const GLuint shader = glCreateShader(stage.first);
-    glShaderSource(shader, 1, &stage.second, nullptr);
-    glCompileShader(shader);
+    const GLuint shader = gl.CreateShader(stage.first);
+    gl.ShaderSource(shader, 1, &stage.second, nullptr);
+    gl.CompileShader(shader);
     GLint status = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &status);
+    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &status);
     if (!status)
     {
       char text[4096];
-      glGetShaderInfoLog(shader, sizeof(text), nullptr, text);
+      gl.GetShaderInfoLog(shader, sizeof(text), nullptr, text);
       log += std::string("shader compilation failed:\n") + text;
       ok = false;
     }
-    glAttachShader(program, shader);
+    gl.AttachShader(program, shader);
     shaders.push_back(shader);
   }
   if (ok)
   {
-    glLinkProgram(program);
+    gl.LinkProgram(program);
     GLint status = 0;
-    glGetProgramiv(program, GL_LINK_STATUS, &status);
+    gl.GetProgramiv(program, GL_LINK_STATUS, &status);
     if (!status)
     {
       char text[4096];
-      glGetProgramInfoLog(program, sizeof(text), nullptr, text);
+      gl.GetProgramInfoLog(program, sizeof(text), nullptr, text);
       log += std::string("program link failed:\n") + text;
       ok = false;
     }
   }
   for (GLuint shader : shaders)
   {
-    glDeleteShader(shader);
+    gl.DeleteShader(shader);
   }
   if (!ok)
   {
-    glDeleteProgram(program);
+    gl.DeleteProgram(program);
     return 0;
   }
   return program;

@@ -1,8 +1,11 @@
 // HeadlessGL: an OpenGL 4.5 core context of our own, without a window or X server.
 // Tried in order: EGL device platform (NVIDIA headless), EGL surfaceless (Mesa),
-// OSMesa. GL entry points come from libepoxy (and from OSMesa itself on that route).
+// OSMesa. GL entry points come from libepoxy on the EGL routes and from OSMesa itself on
+// the last one (GLFunctions.h).
 #ifndef vtkdf_HeadlessGL_h
 #define vtkdf_HeadlessGL_h
+
+#include "GLFunctions.h"
 
 #include <memory>
 #include <string>
@@ -44,9 +47,12 @@ public:
     std::unique_ptr<Saved> Previous;
   };
 
+  /// The GL entry points of this context (call them while a Scope is alive).
+  const GLFunctions& GL() const { return this->Functions; }
+
   /// Compiles and links (stage enum, source) pairs; 0 and the logs on failure.
-  static unsigned BuildProgram(const std::vector<std::pair<unsigned, const char*>>& stages,
-    std::string& log);
+  unsigned BuildProgram(const std::vector<std::pair<unsigned, const char*>>& stages,
+    std::string& log) const;
 
   ~HeadlessGL();
 
@@ -63,6 +69,7 @@ private:
   void* Display = nullptr; // EGLDisplay
   void* Context = nullptr; // EGLContext or OSMesaContext
   bool UsesOSMesa = false;
+  GLFunctions Functions;
   std::vector<unsigned char> OSMesaBuffer;
 };
 

@@ -5,7 +5,7 @@
 #include "LinearFactorDomain_vert.h"
 #include "SliceDomain.h"
 
-#include <epoxy/gl.h>
+#include "GLFunctions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,19 +29,20 @@ struct GpuSite
 /// Deletes the GL objects of one run, whatever way it ends.
 struct GLObjects
 {
+  const GLFunctions& gl;
   GLuint Program = 0, Buffers[3] = { 0, 0, 0 }, VAO = 0, FBO = 0, Textures[3] = { 0, 0, 0 };
   ~GLObjects()
   {
-    glDeleteTextures(3, Textures);
-    glDeleteFramebuffers(1, &FBO);
-    glDeleteVertexArrays(1, &VAO);
-    glDeleteBuffers(3, Buffers);
-    glDeleteProgram(Program);
+    gl.DeleteTextures(3, Textures);
+    gl.DeleteFramebuffers(1, &FBO);
+    gl.DeleteVertexArrays(1, &VAO);
+    gl.DeleteBuffers(3, Buffers);
+    gl.DeleteProgram(Program);
   }
 };
 } // namespace
 
-bool ScanSitesGPU(HeadlessGL& gl,
+bool ScanSitesGPU(HeadlessGL& context,
   const MeshSites& sites,
   const RangeCulling& culling,
   const FieldRequest& request,
@@ -50,10 +51,11 @@ bool ScanSitesGPU(HeadlessGL& gl,
   ScanStatistics& stats,
   std::string& error)
 {
-  HeadlessGL::Scope scope(gl);
+  HeadlessGL::Scope scope(context);
+  const GLFunctions& gl = context.GL();
   if (!scope.Ok())
   {
-    error = "could not make the " + gl.Platform() + " context current";
+    error = "could not make the " + context.Platform() + " context current";
     return false;
   }
   stats = ScanStatistics();
@@ -63,8 +65,8 @@ bool ScanSitesGPU(HeadlessGL& gl,
   const SampleGrid& grid = request.Grid;
   const int nx = ext.Size(0), ny = ext.Size(1), nz = ext.Size(2);
   GLint maxSize = 0, maxLayers = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  gl.GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
   if (nx > maxSize || ny > maxSize)
   {
     error = "the slice (" + std::to_string(nx) + " x " + std::to_string(ny) +
@@ -72,11 +74,11 @@ bool ScanSitesGPU(HeadlessGL& gl,
     return false;
   }
 
-  GLObjects gpu;
+  GLObjects gpu{ gl };
   std::string log;
-  gpu.Program = HeadlessGL::BuildProgram({ { GL_VERTEX_SHADER, LinearFactorDomain_vert },
-                                           { GL_GEOMETRY_SHADER, LinearFactorDomain_geom },
-                                           { GL_FRAGMENT_SHADER, LinearFactorDomain_frag } },
+  gpu.Program = context.BuildProgram({ { GL_VERTEX_SHADER, LinearFactorDomain_vert },
+                                       { GL_GEOMETRY_SHADER, LinearFactorDomain_geom },
+                                       { GL_FRAGMENT_SHADER, LinearFactorDomain_frag } },
     log);
   if (!gpu.Program)
   {
@@ -129,17 +131,17 @@ bool ScanSitesGPU(HeadlessGL& gl,
   {
     planes.assign(4, 0.f);
   }
-  glGenBuffers(3, gpu.Buffers);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.Buffers[0]);
-  glBufferData(GL_SHADER_STORAGE_BUFFER,
+  gl.GenBuffers(3, gpu.Buffers);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.Buffers[0]);
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER,
     std::max<size_t>(1, numSites) * sizeof(GpuSite),
     gpuSites.data(),
     GL_STATIC_DRAW);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu.Buffers[1]);
-  glBufferData(
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu.Buffers[1]);
+  gl.BufferData(
     GL_SHADER_STORAGE_BUFFER, planes.size() * sizeof(float), planes.data(), GL_STATIC_DRAW);
-  glGenVertexArrays(1, &gpu.VAO);
-  glBindVertexArray(gpu.VAO);
+  gl.GenVertexArrays(1, &gpu.VAO);
+  gl.BindVertexArray(gpu.VAO);
 
   // Layers per batch: what the array textures and a memory budget allow.
   const int64_t bytesPerLayer = int64_t(nx) * ny * 12;
@@ -147,33 +149,33 @@ bool ScanSitesGPU(HeadlessGL& gl,
   const int layers = static_cast<int>(std::max<int64_t>(1,
     std::min<int64_t>(
       { int64_t(nz), int64_t(maxLayers), budget / std::max<int64_t>(1, bytesPerLayer) })));
-  glGenTextures(3, gpu.Textures);
+  gl.GenTextures(3, gpu.Textures);
   const GLenum formats[3] = { GL_R32F, GL_R32I, GL_DEPTH_COMPONENT32F };
   for (int t = 0; t < 3; ++t)
   {
-    glBindTexture(GL_TEXTURE_2D_ARRAY, gpu.Textures[t]);
-    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, formats[t], nx, ny, layers);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, gpu.Textures[t]);
+    gl.TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, formats[t], nx, ny, layers);
   }
-  glGenFramebuffers(1, &gpu.FBO);
-  glBindFramebuffer(GL_FRAMEBUFFER, gpu.FBO);
-  glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, gpu.Textures[0], 0);
-  glFramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, gpu.Textures[1], 0);
-  glFramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, gpu.Textures[2], 0);
+  gl.GenFramebuffers(1, &gpu.FBO);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, gpu.FBO);
+  gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, gpu.Textures[0], 0);
+  gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, gpu.Textures[1], 0);
+  gl.FramebufferTexture(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, gpu.Textures[2], 0);
   const GLenum drawBuffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
-  glDrawBuffers(2, drawBuffers);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+  gl.DrawBuffers(2, drawBuffers);
+  if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
   {
     error = "layered framebuffer incomplete";
     return false;
   }
 
-  glUseProgram(gpu.Program);
-  glUniform2i(glGetUniformLocation(gpu.Program, "viewportSize"), nx, ny);
-  glUniform3f(glGetUniformLocation(gpu.Program, "spacing"),
+  gl.UseProgram(gpu.Program);
+  gl.Uniform2i(gl.GetUniformLocation(gpu.Program, "viewportSize"), nx, ny);
+  gl.Uniform3f(gl.GetUniformLocation(gpu.Program, "spacing"),
     static_cast<float>(grid.Spacing[0]),
     static_cast<float>(grid.Spacing[1]),
     static_cast<float>(grid.Spacing[2]));
-  glUniform1f(glGetUniformLocation(gpu.Program, "margin"), 0.02f);
+  gl.Uniform1f(gl.GetUniformLocation(gpu.Program, "margin"), 0.02f);
   double diagonal = 0;
   for (int a = 0; a < 3; ++a)
   {
@@ -187,19 +189,19 @@ bool ScanSitesGPU(HeadlessGL& gl,
       reach = std::max(reach, 2 * std::fabs(s.Anchor[a] - base[a]) + std::sqrt(diagonal));
     }
   }
-  glUniform1f(glGetUniformLocation(gpu.Program, "depthScale"), static_cast<float>(1.0 / reach));
-  const GLint layerBaseAt = glGetUniformLocation(gpu.Program, "layerBase");
-  glUniform1i(glGetUniformLocation(gpu.Program, "layerCount"), layers);
-  glViewport(0, 0, nx, ny);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDisable(GL_CULL_FACE);
+  gl.Uniform1f(gl.GetUniformLocation(gpu.Program, "depthScale"), static_cast<float>(1.0 / reach));
+  const GLint layerBaseAt = gl.GetUniformLocation(gpu.Program, "layerBase");
+  gl.Uniform1i(gl.GetUniformLocation(gpu.Program, "layerCount"), layers);
+  gl.Viewport(0, 0, nx, ny);
+  gl.Enable(GL_DEPTH_TEST);
+  gl.DepthFunc(GL_LESS);
+  gl.Disable(GL_CULL_FACE);
 
   GLuint query = 0;
-  const bool counting = epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query");
+  const bool counting = gl.HasExtension("GL_ARB_pipeline_statistics_query");
   if (counting)
   {
-    glGenQueries(1, &query);
+    gl.GenQueries(1, &query);
     stats.Evaluations = 0;
   }
   std::vector<int32_t> points;
@@ -226,33 +228,33 @@ bool ScanSitesGPU(HeadlessGL& gl,
     }
     const float farDepth = 1.0f, noDistance = -1.0f;
     const GLint noSite = -1;
-    glClearBufferfv(GL_DEPTH, 0, &farDepth);
-    glClearBufferfv(GL_COLOR, 0, &noDistance);
-    glClearBufferiv(GL_COLOR, 1, &noSite);
-    glUniform1i(layerBaseAt, k0);
-    glBindBuffer(GL_ARRAY_BUFFER, gpu.Buffers[2]);
-    glBufferData(GL_ARRAY_BUFFER,
+    gl.ClearBufferfv(GL_DEPTH, 0, &farDepth);
+    gl.ClearBufferfv(GL_COLOR, 0, &noDistance);
+    gl.ClearBufferiv(GL_COLOR, 1, &noSite);
+    gl.Uniform1i(layerBaseAt, k0);
+    gl.BindBuffer(GL_ARRAY_BUFFER, gpu.Buffers[2]);
+    gl.BufferData(GL_ARRAY_BUFFER,
       std::max<size_t>(1, points.size()) * sizeof(int32_t),
       points.data(),
       GL_STREAM_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribIPointer(0, 2, GL_INT, 0, nullptr);
+    gl.EnableVertexAttribArray(0);
+    gl.VertexAttribIPointer(0, 2, GL_INT, 0, nullptr);
     if (counting)
     {
-      glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query);
+      gl.BeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query);
     }
-    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(points.size() / 2));
+    gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(points.size() / 2));
     if (counting)
     {
-      glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+      gl.EndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
       GLuint64 fragments = 0;
-      glGetQueryObjectui64v(query, GL_QUERY_RESULT, &fragments);
+      gl.GetQueryObjectui64v(query, GL_QUERY_RESULT, &fragments);
       stats.Evaluations += static_cast<int64_t>(fragments);
     }
     // Read back this batch's layers.
     const int count = k1 - k0 + 1;
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureSubImage(gpu.Textures[0],
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.GetTextureSubImage(gpu.Textures[0],
       0,
       0,
       0,
@@ -264,7 +266,7 @@ bool ScanSitesGPU(HeadlessGL& gl,
       GL_FLOAT,
       static_cast<GLsizei>(size_t(nx) * ny * count * sizeof(float)),
       distances.data());
-    glGetTextureSubImage(gpu.Textures[1],
+    gl.GetTextureSubImage(gpu.Textures[1],
       0,
       0,
       0,
@@ -285,7 +287,7 @@ bool ScanSitesGPU(HeadlessGL& gl,
         id < 0 ? NearestSiteBuffer::Empty
                : NearestSiteBuffer::Pack(distances[at] * distances[at], static_cast<uint32_t>(id)));
     }
-    const GLenum status = glGetError();
+    const GLenum status = gl.GetError();
     if (status != GL_NO_ERROR)
     {
       char text[64];
@@ -293,7 +295,7 @@ bool ScanSitesGPU(HeadlessGL& gl,
       error = text;
       if (query)
       {
-        glDeleteQueries(1, &query);
+        gl.DeleteQueries(1, &query);
       }
       return false;
     }
@@ -305,9 +307,9 @@ bool ScanSitesGPU(HeadlessGL& gl,
   }
   if (query)
   {
-    glDeleteQueries(1, &query);
+    gl.DeleteQueries(1, &query);
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
   return true;
 }
 

@@ -1,0 +1,123 @@
+// GLFunctions: the OpenGL entry points the GPU backends call, as a table of function
+// pointers filled once per context. On the EGL routes they come from libepoxy; under
+// OSMesa they come from OSMesaGetProcAddress, because libepoxy sends core GL 1.x calls
+// to libGL, which never sees an OSMesa context.
+#ifndef vtkdf_GLFunctions_h
+#define vtkdf_GLFunctions_h
+
+#include <epoxy/gl.h>
+
+#include <string>
+
+namespace vtkdf
+{
+
+// X(pointer type, name without the gl prefix), one per function used.
+#define VTKDF_GL_FUNCTIONS(X)                                                                      \
+  X(PFNGLATTACHSHADERPROC, AttachShader)                                                           \
+  X(PFNGLBEGINQUERYPROC, BeginQuery)                                                               \
+  X(PFNGLBINDBUFFERPROC, BindBuffer)                                                               \
+  X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                                       \
+  X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                                                     \
+  X(PFNGLBINDTEXTUREPROC, BindTexture)                                                             \
+  X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                                                     \
+  X(PFNGLBUFFERDATAPROC, BufferData)                                                               \
+  X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                                       \
+  X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                                                         \
+  X(PFNGLCLEARBUFFERIVPROC, ClearBufferiv)                                                         \
+  X(PFNGLCOMPILESHADERPROC, CompileShader)                                                         \
+  X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                                         \
+  X(PFNGLCREATESHADERPROC, CreateShader)                                                           \
+  X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                                         \
+  X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                                               \
+  X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                                         \
+  X(PFNGLDELETEQUERIESPROC, DeleteQueries)                                                         \
+  X(PFNGLDELETESHADERPROC, DeleteShader)                                                           \
+  X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                                       \
+  X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                                               \
+  X(PFNGLDEPTHFUNCPROC, DepthFunc)                                                                 \
+  X(PFNGLDISABLEPROC, Disable)                                                                     \
+  X(PFNGLDRAWARRAYSPROC, DrawArrays)                                                               \
+  X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                                                             \
+  X(PFNGLENABLEPROC, Enable)                                                                       \
+  X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)                                     \
+  X(PFNGLENDQUERYPROC, EndQuery)                                                                   \
+  X(PFNGLFRAMEBUFFERTEXTUREPROC, FramebufferTexture)                                               \
+  X(PFNGLGENBUFFERSPROC, GenBuffers)                                                               \
+  X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                                                     \
+  X(PFNGLGENQUERIESPROC, GenQueries)                                                               \
+  X(PFNGLGENTEXTURESPROC, GenTextures)                                                             \
+  X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                                                     \
+  X(PFNGLGETERRORPROC, GetError)                                                                   \
+  X(PFNGLGETINTEGERVPROC, GetIntegerv)                                                             \
+  X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                                                 \
+  X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                                           \
+  X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                                             \
+  X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                                                   \
+  X(PFNGLGETSHADERIVPROC, GetShaderiv)                                                             \
+  X(PFNGLGETSTRINGPROC, GetString)                                                                 \
+  X(PFNGLGETSTRINGIPROC, GetStringi)                                                               \
+  X(PFNGLGETTEXTURESUBIMAGEPROC, GetTextureSubImage)                                               \
+  X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                                               \
+  X(PFNGLLINKPROGRAMPROC, LinkProgram)                                                             \
+  X(PFNGLPIXELSTOREIPROC, PixelStorei)                                                             \
+  X(PFNGLSHADERSOURCEPROC, ShaderSource)                                                           \
+  X(PFNGLTEXSTORAGE3DPROC, TexStorage3D)                                                           \
+  X(PFNGLUNIFORM1FPROC, Uniform1f)                                                                 \
+  X(PFNGLUNIFORM1IPROC, Uniform1i)                                                                 \
+  X(PFNGLUNIFORM2IPROC, Uniform2i)                                                                 \
+  X(PFNGLUNIFORM3FPROC, Uniform3f)                                                                 \
+  X(PFNGLUSEPROGRAMPROC, UseProgram)                                                               \
+  X(PFNGLVERTEXATTRIBIPOINTERPROC, VertexAttribIPointer)                                           \
+  X(PFNGLVIEWPORTPROC, Viewport)
+
+struct GLFunctions
+{
+#define VTKDF_GL_MEMBER(type, name) type name = nullptr;
+  VTKDF_GL_FUNCTIONS(VTKDF_GL_MEMBER)
+#undef VTKDF_GL_MEMBER
+
+  /// Whether the current context lists the extension.
+  bool HasExtension(const char* name) const
+  {
+    GLint count = 0;
+    this->GetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i)
+    {
+      const GLubyte* extension = this->GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i));
+      if (extension && std::string(reinterpret_cast<const char*>(extension)) == name)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// The libepoxy dispatch pointers (each resolves itself on first call).
+  void LoadFromEpoxy()
+  {
+#define VTKDF_GL_EPOXY(type, name) this->name = gl##name;
+    VTKDF_GL_FUNCTIONS(VTKDF_GL_EPOXY)
+#undef VTKDF_GL_EPOXY
+  }
+
+  /// Asks `resolve` for every function; false and the first missing name otherwise.
+  template<typename Resolver>
+  bool Load(Resolver resolve, std::string& missing)
+  {
+#define VTKDF_GL_RESOLVE(type, name)                                                               \
+  this->name = reinterpret_cast<type>(resolve("gl" #name));                                        \
+  if (!this->name)                                                                                 \
+  {                                                                                                \
+    missing = "gl" #name;                                                                          \
+    return false;                                                                                  \
+  }
+    VTKDF_GL_FUNCTIONS(VTKDF_GL_RESOLVE)
+#undef VTKDF_GL_RESOLVE
+    return true;
+  }
+};
+
+} // namespace vtkdf
+
+#endif
