@@ -86,10 +86,11 @@ ScanAxes ChooseScanAxes(const Site& site)
 int64_t ScanSite(const MeshSites& sites,
   const Site& site,
   uint32_t siteIndex,
-  const IndexBox& region,
+  const RangeCulling& culling,
   const FieldRequest& request,
   NearestSiteBuffer& nearest)
 {
+  const IndexBox& region = culling.Regions[siteIndex];
   const SampleGrid& grid = request.Grid;
   const IndexBox& ext = request.Extent;
   const ScanAxes axes = ChooseScanAxes(site);
@@ -116,6 +117,17 @@ int64_t ScanSite(const MeshSites& sites,
   int64_t evaluations = 0;
   SlicePolygon poly;
 
+  // Whether the site may be the nearest one in a block's cell (RangeCulling's bound).
+  auto mayWin = [&](int bu, int bv, int bw)
+  {
+    int block[3];
+    block[u] = bu, block[v] = bv, block[w] = bw;
+    return culling.MayWin(block, site.BoundsMin, site.BoundsMax, grid);
+  };
+
+  // A slice is alive when its domain polygon meets a cell where the site may win. The
+  // site's Voronoi region is star-shaped about the site, so the slices that hold a
+  // part of it form one run around the anchor's: the scan stops at the first dead one.
   auto scanSlice = [&](int k) -> bool
   {
     if (!ClipSlice(
@@ -123,11 +135,28 @@ int64_t ScanSite(const MeshSites& sites,
     {
       return false;
     }
-    double ymin = HUGE_VAL, ymax = -HUGE_VAL;
+    double xmin = HUGE_VAL, xmax = -HUGE_VAL, ymin = HUGE_VAL, ymax = -HUGE_VAL;
     for (int c = 0; c < poly.Count; ++c)
     {
+      xmin = std::min(xmin, poly.X[c]);
+      xmax = std::max(xmax, poly.X[c]);
       ymin = std::min(ymin, poly.Y[c]);
       ymax = std::max(ymax, poly.Y[c]);
+    }
+    const int bw = culling.BlockOf(w, k);
+    const int bu0 = culling.BlockOf(u, xmin), bu1 = culling.BlockOf(u, xmax);
+    const int bv0 = culling.BlockOf(v, ymin), bv1 = culling.BlockOf(v, ymax);
+    bool alive = false;
+    for (int bv = bv0; bv <= bv1 && !alive; ++bv)
+    {
+      for (int bu = bu0; bu <= bu1 && !alive; ++bu)
+      {
+        alive = mayWin(bu, bv, bw);
+      }
+    }
+    if (!alive)
+    {
+      return false;
     }
     const int j0 = std::max(region.Lo[v], static_cast<int>(std::ceil(ymin)));
     const int j1 = std::min(region.Hi[v], static_cast<int>(std::floor(ymax)));
@@ -154,15 +183,30 @@ int64_t ScanSite(const MeshSites& sites,
       {
         d[a] = static_cast<float>(P[a][0] * r[0] + P[a][1] * r[1] + P[a][2] * r[2]);
       }
-      int64_t at = base + index[0] * stride[0] + index[1] * stride[1] + index[2] * stride[2];
+      const int64_t rowStart =
+        base + index[0] * stride[0] + index[1] * stride[1] + index[2] * stride[2];
       const int64_t inner = stride[u];
-      for (int i = i0; i <= i1; ++i, at += inner)
+      // The row, one block at a time, skipping the blocks where the site cannot win.
+      const int bv = culling.BlockOf(v, j);
+      const int ib0 = culling.BlockOf(u, i0), ib1 = culling.BlockOf(u, i1);
+      const int firstOfBlock0 = culling.BlockExtent.Lo[u];
+      for (int bu = ib0; bu <= ib1; ++bu)
       {
-        const float t = static_cast<float>(i - i0);
-        const float dx = d[0] + t * step[0], dy = d[1] + t * step[1], dz = d[2] + t * step[2];
-        nearest.Offer(at, NearestSiteBuffer::Pack(dx * dx + dy * dy + dz * dz, siteIndex));
+        const int lo = std::max(i0, firstOfBlock0 + bu * RangeCulling::BlockSize);
+        const int hi = std::min(i1, firstOfBlock0 + (bu + 1) * RangeCulling::BlockSize - 1);
+        if (hi < lo || !mayWin(bu, bv, bw))
+        {
+          continue;
+        }
+        int64_t at = rowStart + (lo - i0) * inner;
+        for (int i = lo; i <= hi; ++i, at += inner)
+        {
+          const float t = static_cast<float>(i - i0);
+          const float dx = d[0] + t * step[0], dy = d[1] + t * step[1], dz = d[2] + t * step[2];
+          nearest.Offer(at, NearestSiteBuffer::Pack(dx * dx + dy * dy + dz * dz, siteIndex));
+        }
+        evaluations += hi - lo + 1;
       }
-      evaluations += i1 - i0 + 1;
     }
     return true;
   };
@@ -243,8 +287,8 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites,
           const IndexBox& region = culling.Regions[id];
           if (!region.Empty())
           {
-            local +=
-              ScanSite(sites, sites.Sites[id], static_cast<uint32_t>(id), region, request, nearest);
+            local += ScanSite(
+              sites, sites.Sites[id], static_cast<uint32_t>(id), culling, request, nearest);
           }
         }
         evaluations += local;

@@ -90,21 +90,26 @@ void RangeCulling::Build(const MeshSites& sites,
   // sweeps pass every block's point on to its 26 neighbours when it is nearer to their
   // centres (a vector distance transform). The point found is not always the nearest
   // one, but the bound only has to hold, and it does for any mesh point.
+  // The bound holds over the block's cell: its samples' box widened by half a spacing,
+  // so that cells tile space (the CPU scan tests continuous slices against them).
   std::vector<std::array<double, 3>> centres(numBlocks);
   std::vector<double> halfDiagonal(numBlocks);
   for (int64_t id = 0; id < numBlocks; ++id)
   {
-    const Box box = blockBox(static_cast<int>(id % nb[0]),
+    const int ids[3] = { static_cast<int>(id % nb[0]),
       static_cast<int>((id / nb[0]) % nb[1]),
-      static_cast<int>(id / (int64_t(nb[0]) * nb[1])),
-      1);
-    double half2 = 0;
+      static_cast<int>(id / (int64_t(nb[0]) * nb[1])) };
+    const Box box = blockBox(ids[0], ids[1], ids[2], 1);
+    double far2 = 0;
     for (int a = 0; a < 3; ++a)
     {
       centres[id][a] = 0.5 * (box.Lo[a] + box.Hi[a]);
-      half2 += 0.25 * (box.Hi[a] - box.Lo[a]) * (box.Hi[a] - box.Lo[a]);
+      const double cellLo = grid.Coordinate(a, extent.Lo[a] + ids[a] * b) - 0.5 * grid.Spacing[a];
+      const double cellHi = cellLo + b * grid.Spacing[a];
+      const double reach = std::max(centres[id][a] - cellLo, cellHi - centres[id][a]);
+      far2 += reach * reach;
     }
-    halfDiagonal[id] = std::sqrt(half2);
+    halfDiagonal[id] = std::sqrt(far2);
   }
   const std::vector<double>& points = sites.SitePoints;
   auto distance2 = [&](int64_t point, int64_t block)
@@ -185,6 +190,9 @@ void RangeCulling::Build(const MeshSites& sites,
     level0[id] = std::nextafter(static_cast<float>(bound), HUGE_VALF);
   }
   pyramid.Min.push_back(level0);
+  this->BlockBound = level0;
+  this->BlockCounts = nb;
+  this->BlockExtent = extent;
   while (pyramid.Dims.back()[0] > 1 || pyramid.Dims.back()[1] > 1 || pyramid.Dims.back()[2] > 1)
   {
     const auto d = pyramid.Dims.back();

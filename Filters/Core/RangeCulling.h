@@ -14,6 +14,8 @@
 #include "Parallel.h"
 #include "SampleGrid.h"
 
+#include <array>
+#include <cmath>
 #include <vector>
 
 namespace vtkdf
@@ -34,6 +36,43 @@ public:
 
   std::vector<IndexBox> Regions;
   std::vector<int64_t> Order;
+
+  /// Whether a site within the world box [lo, hi] may be the nearest one somewhere in
+  /// the cell of block `block` (block indices within the extent; the cell is the
+  /// block's samples widened by half a spacing, so cells tile space).
+  bool MayWin(const int block[3],
+    const double lo[3],
+    const double hi[3],
+    const SampleGrid& grid) const
+  {
+    const int64_t id = block[0] +
+      int64_t(this->BlockCounts[0]) * (block[1] + int64_t(this->BlockCounts[1]) * block[2]);
+    const double bound = this->BlockBound[id];
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double cellLo =
+        grid.Coordinate(a, this->BlockExtent.Lo[a] + block[a] * BlockSize) - 0.5 * grid.Spacing[a];
+      const double cellHi = cellLo + BlockSize * grid.Spacing[a];
+      const double gap = lo[a] > cellHi ? lo[a] - cellHi : (cellLo > hi[a] ? cellLo - hi[a] : 0.0);
+      d2 += gap * gap;
+    }
+    return d2 <= bound * bound;
+  }
+
+  /// The block of sample index `index` along axis `a` (of the cell holding the
+  /// continuous index coordinate `index`).
+  int BlockOf(int a, double index) const
+  {
+    const int blk =
+      static_cast<int>(std::floor((index - this->BlockExtent.Lo[a] + 0.5) / BlockSize));
+    return blk < 0 ? 0 : (blk >= this->BlockCounts[a] ? this->BlockCounts[a] - 1 : blk);
+  }
+
+  /// Upper bounds of the field per block (x fastest), BlockCounts blocks over BlockExtent.
+  std::vector<float> BlockBound;
+  std::array<int, 3> BlockCounts{ { 0, 0, 0 } };
+  IndexBox BlockExtent;
 };
 
 } // namespace vtkdf
