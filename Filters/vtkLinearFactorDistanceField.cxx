@@ -242,7 +242,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     : (this->Culling == CULLING_MANIFOLD ? vtkdf::Culling::Manifold : vtkdf::Culling::Auto);
   vtkdf::MeshSites sites;
   std::string error;
-  if (!sites.Build(conversion.Mesh, culling, 1e-4 * h, error))
+  if (!sites.Build(conversion.Mesh, culling, 1e-4 * h, error, SMPFor))
   {
     vtkErrorMacro("Invalid input mesh: " << error << ".");
     return 0;
@@ -273,7 +273,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   this->UpdateProgress(0.1);
 
   vtkdf::NearestSiteBuffer nearest;
-  nearest.Reset(request.Extent.Count());
+  nearest.Reset(request.Extent.Count(), SMPFor);
   auto progress = [this](double fraction)
   {
     this->UpdateProgress(0.1 + 0.8 * fraction);

@@ -7,6 +7,7 @@
 #ifndef vtkdf_LinearFactorField_h
 #define vtkdf_LinearFactorField_h
 
+#include "LargeVector.h"
 #include "MeshSites.h"
 #include "Parallel.h"
 #include "RangeCulling.h"
@@ -28,13 +29,25 @@ class NearestSiteBuffer
 {
 public:
   static constexpr uint64_t Empty = ~uint64_t(0);
-  void Reset(int64_t count)
+  /// `count` empty entries; `parallelFor` (optional) fills them in parallel.
+  void Reset(int64_t count, const ParallelFor& parallelFor = ParallelFor())
   {
-    this->Values.reset(new std::atomic<uint64_t>[count]);
+    this->Values.reset(HugePageAllocator<std::atomic<uint64_t>>().allocate(count));
     this->Count = count;
-    for (int64_t i = 0; i < count; ++i)
+    auto fill = [this](int64_t begin, int64_t end)
     {
-      this->Values[i].store(Empty, std::memory_order_relaxed);
+      for (int64_t i = begin; i < end; ++i)
+      {
+        new (&this->Values[i]) std::atomic<uint64_t>(Empty);
+      }
+    };
+    if (parallelFor)
+    {
+      parallelFor(count, 1 << 16, fill);
+    }
+    else
+    {
+      fill(0, count);
     }
   }
   static uint64_t Pack(float distance2, uint32_t site)
@@ -57,7 +70,14 @@ public:
   int64_t Size() const { return this->Count; }
 
 private:
-  std::unique_ptr<std::atomic<uint64_t>[]> Values;
+  struct Free
+  {
+    void operator()(std::atomic<uint64_t>* p) const
+    {
+      HugePageAllocator<std::atomic<uint64_t>>().deallocate(p, 0);
+    }
+  };
+  std::unique_ptr<std::atomic<uint64_t>[], Free> Values;
   int64_t Count = 0;
 };
 

@@ -55,6 +55,26 @@ struct VertexEdgeSpan
   const VertexEdge& operator[](size_t i) const { return First[i]; }
 };
 
+/// parallelFor when the caller gave one, else a plain loop.
+void Run(const ParallelFor& parallelFor,
+  int64_t n,
+  int64_t grain,
+  const std::function<void(int64_t, int64_t)>& body)
+{
+  if (n <= 0)
+  {
+    return;
+  }
+  if (parallelFor)
+  {
+    parallelFor(n, grain, body);
+  }
+  else
+  {
+    body(0, n);
+  }
+}
+
 struct FaceRecord
 {
   int64_t P[3];
@@ -81,7 +101,11 @@ void MeshSites::DistanceVector(const Site& s, const double x[3], double out[3]) 
   out[2] = r[2];
 }
 
-bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::string& error)
+bool MeshSites::Build(const MeshInput& in,
+  Culling culling,
+  double slack,
+  std::string& error,
+  const ParallelFor& parallelFor)
 {
   this->Sites.clear();
   this->Planes.clear();
@@ -189,19 +213,23 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
     }
   }
   const int64_t nv = static_cast<int64_t>(merged.size());
-  auto X = [&](int64_t c) { return P + 3 * merged[c]; };
-
+  // The merged points, contiguous in curve order: every later pass reads them there.
+  this->SitePoints.resize(3 * nv);
+  for (int64_t c = 0; c < nv; ++c)
+  {
+    std::copy(P + 3 * merged[c], P + 3 * merged[c] + 3, &this->SitePoints[3 * c]);
+  }
+  const double* points = this->SitePoints.data();
+  auto X = [points](int64_t c) { return points + 3 * c; };
   for (int a = 0; a < 3; ++a)
   {
     this->Bounds[2 * a] = X(0)[a];
     this->Bounds[2 * a + 1] = X(0)[a];
   }
-  this->SitePoints.resize(3 * nv);
   for (int64_t c = 0; c < nv; ++c)
   {
     for (int a = 0; a < 3; ++a)
     {
-      this->SitePoints[3 * c + a] = X(c)[a];
       this->Bounds[2 * a] = std::min(this->Bounds[2 * a], X(c)[a]);
       this->Bounds[2 * a + 1] = std::max(this->Bounds[2 * a + 1], X(c)[a]);
     }
@@ -319,150 +347,49 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
     }
   }
 
-  auto addPlane = [&](const Vec& n, const double* through)
+  // --- Edges: one per group of equal records, unless degenerate.
+  struct EdgeGroup
   {
-    this->Planes.push_back(
-      { { n[0], n[1], n[2] }, -Dot(n, Vec{ through[0], through[1], through[2] }) + slack });
+    int64_t First, Last; // records [First, Last)
+    int64_t Cell;        // smallest input cell
+    int Faces;           // incident non-degenerate faces
+    Vec Tangent;         // unit, from edgeEnds[0] to edgeEnds[1]
   };
-  auto newSite = [&](uint8_t type, int64_t cell, const double* anchor) -> Site&
-  {
-    Site s{};
-    s.Type = type;
-    s.CellId = cell;
-    s.PlaneBegin = static_cast<uint32_t>(this->Planes.size());
-    for (int a = 0; a < 3; ++a)
-    {
-      s.Anchor[a] = anchor[a];
-      s.BoundsMin[a] = s.BoundsMax[a] = anchor[a];
-    }
-    this->Sites.push_back(s);
-    return this->Sites.back();
-  };
-  auto grow = [](Site& s, const double* x)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      s.BoundsMin[a] = std::min(s.BoundsMin[a], x[a]);
-      s.BoundsMax[a] = std::max(s.BoundsMax[a], x[a]);
-    }
-  };
-  auto finish = [&](Site& s)
-  { s.PlaneCount = static_cast<uint16_t>(this->Planes.size() - s.PlaneBegin); };
-
-  // Sites: faces, at most one per edge record, vertices. Planes: 3 per face, 2 + one
-  // per incident face per edge, one per edge end for polar vertices.
-  this->Sites.reserve(faces.size() + edges.size() + nv);
-  this->Planes.reserve(3 * faces.size() + 4 * edges.size() + 6 * faces.size());
-  // --- Face sites: the triangle prism (three planes through the edges, orthogonal to
-  // the triangle), required for the plane-distance formula to be exact.
-  for (const FaceRecord& f : faces)
-  {
-    Site& s = newSite(FaceSite, f.Cell, X(f.P[0]));
-    for (int k = 0; k < 3; ++k)
-    {
-      const double* a = X(f.P[k]);
-      const Vec e = Sub(X(f.P[(k + 1) % 3]), a);
-      Vec m = Cross(f.Normal, e);
-      m = Scale(m, 1.0 / Norm(m));
-      if (Dot(m, Sub(X(f.P[(k + 2) % 3]), a)) < 0)
-      {
-        m = Scale(m, -1.0);
-      }
-      addPlane(m, a);
-      grow(s, X(f.P[k]));
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      s.Axis[a] = f.Normal[a];
-      s.Normal[a] = f.Normal[a] * orientation;
-    }
-    s.Required = 3;
-    finish(s);
-    ++this->Statistics.Faces;
-  }
-
-  // --- Edge sites: the slab between the end planes (required), then one plane per
-  // incident face: a point on the face side of that plane is closer to the face.
-  std::vector<std::vector<int64_t>> edgeFaces;
+  std::vector<EdgeGroup> edgeGroups;
   std::vector<std::array<int64_t, 2>> edgeEnds;
-  std::vector<Vec> edgeTangents;
   std::vector<int64_t> vertexEdgeOffsets(nv + 1, 0);
-  std::vector<int64_t> incident;
   for (size_t e0 = 0; e0 < edges.size();)
   {
     size_t e1 = e0;
-    int64_t cell = INT64_MAX;
-    incident.clear();
+    EdgeGroup group{ static_cast<int64_t>(e0), 0, INT64_MAX, 0, Vec{ 0, 0, 0 } };
     while (e1 < edges.size() && edges[e1].A == edges[e0].A && edges[e1].B == edges[e0].B)
     {
-      cell = std::min(cell, edges[e1].Cell);
-      if (edges[e1].Face >= 0)
-      {
-        incident.push_back(edges[e1].Face);
-      }
+      group.Cell = std::min(group.Cell, edges[e1].Cell);
+      group.Faces += edges[e1].Face >= 0;
       ++e1;
     }
+    group.Last = static_cast<int64_t>(e1);
     const int64_t a = edges[e0].A, b = edges[e0].B;
     e0 = e1;
-    Vec t = Sub(X(b), X(a));
+    const Vec t = Sub(X(b), X(a));
     const double length = Norm(t);
     if (length <= degenerate)
     {
       ++this->Statistics.DegenerateEdges;
       continue;
     }
-    t = Scale(t, 1.0 / length);
+    group.Tangent = Scale(t, 1.0 / length);
+    edgeGroups.push_back(group);
+    edgeEnds.push_back({ a, b });
     ++vertexEdgeOffsets[a + 1];
     ++vertexEdgeOffsets[b + 1];
-    edgeTangents.push_back(t);
-    if (culling == Culling::Manifold)
-    {
-      edgeFaces.push_back(incident); // the fan walk needs them
-    }
-    edgeEnds.push_back({ a, b });
-
-    Site& s = newSite(EdgeSite, cell, X(a));
-    grow(s, X(b));
-    addPlane(t, X(a));
-    addPlane(Scale(t, -1.0), X(b));
-    s.Required = 2;
-    const bool manifoldEdge = incident.size() == 2;
-    const bool wedge = culling == Culling::Auto || (culling == Culling::Manifold && manifoldEdge);
-    Vec pseudo{ 0, 0, 0 };
-    for (int64_t fi : incident)
-    {
-      const FaceRecord& f = faces[fi];
-      pseudo = Add(pseudo, Scale(f.Normal, orientation));
-      if (wedge)
-      {
-        int64_t c = f.P[0];
-        for (int k = 0; k < 3; ++k)
-        {
-          if (f.P[k] != a && f.P[k] != b)
-          {
-            c = f.P[k];
-          }
-        }
-        const Vec ac = Sub(X(c), X(a));
-        Vec m = Sub(ac.data(), Scale(t, Dot(ac, t)).data());
-        m = Scale(m, -1.0 / Norm(m));
-        addPlane(m, X(a));
-      }
-    }
-    if (wedge && !incident.empty())
-    {
-      ++this->Statistics.EdgeWedges;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      s.Axis[k] = t[k];
-      s.Normal[k] = pseudo[k];
-    }
-    finish(s);
-    ++this->Statistics.Edges;
   }
+  const int64_t numEdges = static_cast<int64_t>(edgeGroups.size());
+  // The faces of an edge (records with a face come last in a group: sorted by Face).
+  auto edgeFace = [&](int64_t e, int which) -> int64_t
+  { return edges[edgeGroups[e].Last - edgeGroups[e].Faces + which].Face; };
 
-  // The edges of every vertex, contiguous per vertex.
+  // The edges of every vertex, contiguous per vertex: (edge, direction away from it).
   for (int64_t v = 0; v < nv; ++v)
   {
     vertexEdgeOffsets[v + 1] += vertexEdgeOffsets[v];
@@ -470,16 +397,19 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
   std::vector<VertexEdge> vertexEdges(vertexEdgeOffsets[nv]);
   {
     std::vector<int64_t> fill(vertexEdgeOffsets.begin(), vertexEdgeOffsets.end() - 1);
-    for (size_t e = 0; e < edgeEnds.size(); ++e)
+    for (int64_t e = 0; e < numEdges; ++e)
     {
-      const Vec& t = edgeTangents[e];
-      vertexEdges[fill[edgeEnds[e][0]]++] = { static_cast<int64_t>(e), t };
-      vertexEdges[fill[edgeEnds[e][1]]++] = { static_cast<int64_t>(e), Scale(t, -1.0) };
+      const Vec& t = edgeGroups[e].Tangent;
+      vertexEdges[fill[edgeEnds[e][0]]++] = { e, t };
+      vertexEdges[fill[edgeEnds[e][1]]++] = { e, Scale(t, -1.0) };
     }
   }
-
-  // --- Vertex sites.
-  std::vector<std::vector<int64_t>> vertexFaces(nv);
+  auto incidentEdges = [&](int64_t v)
+  {
+    return VertexEdgeSpan{ vertexEdges.data() + vertexEdgeOffsets[v],
+      static_cast<size_t>(vertexEdgeOffsets[v + 1] - vertexEdgeOffsets[v]) };
+  };
+  std::vector<std::vector<int64_t>> vertexFaces(culling == Culling::Manifold ? nv : 0);
   if (culling == Culling::Manifold)
   {
     for (size_t f = 0; f < faces.size(); ++f)
@@ -490,59 +420,35 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
       }
     }
   }
-  for (int64_t v = 0; v < nv; ++v)
-  {
-    Site& s = newSite(VertexSite, vertexCell[v], X(v));
-    s.Required = 0;
-    for (int a = 0; a < 3; ++a)
-    {
-      s.Normal[a] = vertexNormal[v][a];
-    }
-    ++this->Statistics.Vertices;
-    const VertexEdgeSpan incident{ vertexEdges.data() + vertexEdgeOffsets[v],
-      static_cast<size_t>(vertexEdgeOffsets[v + 1] - vertexEdgeOffsets[v]) };
-    const double* p = X(v);
-    auto polar = [&]()
-    {
-      // (x - p) . u <= 0 for every edge direction u: otherwise the edge is closer.
-      for (const auto& eu : incident)
-      {
-        addPlane(Scale(eu.second, -1.0), p);
-      }
-      ++this->Statistics.PolarVertices;
-    };
-    if (culling == Culling::Auto)
-    {
-      if (incident.empty())
-      {
-        ++this->Statistics.UnboundedVertices;
-      }
-      else
-      {
-        polar();
-      }
-      finish(s);
-      continue;
-    }
-    if (culling == Culling::NonManifold)
-    {
-      ++this->Statistics.UnboundedVertices;
-      finish(s);
-      continue;
-    }
 
+  // --- What bounds each vertex's domain (Manifold needs the neighbourhood's shape).
+  enum VertexDomain : uint8_t
+  {
+    Unbounded,
+    Polar,  // (x - p) . u <= 0 for every edge direction u: otherwise the edge is closer
+    Pyramid // Theorem 1's square pyramid (hyperbolic vertex)
+  };
+  std::vector<uint8_t> vertexDomain(nv, Unbounded);
+  std::vector<std::array<Vec, 4>> pyramidSides(culling == Culling::Manifold ? nv : 0);
+  auto classify = [&](int64_t v) -> uint8_t
+  {
+    const VertexEdgeSpan incident = incidentEdges(v);
+    if (culling != Culling::Manifold)
+    {
+      return culling == Culling::Auto && !incident.empty() ? Polar : Unbounded;
+    }
     // Manifold culling: only where the faces around v form one closed fan.
     const auto& fan = vertexFaces[v];
     bool closed = !incident.empty() && fan.size() == incident.size();
     for (const auto& eu : incident)
     {
-      closed = closed && edgeFaces[eu.first].size() == 2;
+      closed = closed && edgeGroups[eu.first].Faces == 2;
     }
     if (closed)
     {
       // Walk the fan once around: it must visit every face (a single cycle).
       size_t steps = 0;
-      int64_t edge = incident[0].first, face = edgeFaces[edge][0];
+      int64_t edge = incident[0].first, face = edgeFace(edge, 0);
       const int64_t startFace = face;
       do
       {
@@ -550,8 +456,7 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
         int64_t next = -1;
         for (const auto& eu : incident)
         {
-          const auto& ef = edgeFaces[eu.first];
-          if (eu.first != edge && (ef[0] == face || ef[1] == face))
+          if (eu.first != edge && (edgeFace(eu.first, 0) == face || edgeFace(eu.first, 1) == face))
           {
             next = eu.first;
           }
@@ -562,24 +467,21 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
           break;
         }
         edge = next;
-        face = edgeFaces[edge][0] == face ? edgeFaces[edge][1] : edgeFaces[edge][0];
+        face = edgeFace(edge, 0) == face ? edgeFace(edge, 1) : edgeFace(edge, 0);
       } while (face != startFace && steps <= fan.size());
       closed = closed && steps == fan.size();
     }
     if (!closed)
     {
-      ++this->Statistics.UnboundedVertices;
-      finish(s);
-      continue;
+      return Unbounded;
     }
     // Convex or concave vertex (every incident edge bends the same way): the polytope
     // spanned by the face normals, i.e. the planes orthogonal to the edges.
     int convex = 0, concave = 0;
     for (const auto& eu : incident)
     {
-      const auto& ef = edgeFaces[eu.first];
-      const FaceRecord& f0 = faces[ef[0]];
-      const FaceRecord& f1 = faces[ef[1]];
+      const FaceRecord& f0 = faces[edgeFace(eu.first, 0)];
+      const FaceRecord& f1 = faces[edgeFace(eu.first, 1)];
       const int64_t a = edgeEnds[eu.first][0], b = edgeEnds[eu.first][1];
       int64_t c1 = f1.P[0];
       for (int k = 0; k < 3; ++k)
@@ -595,9 +497,7 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
     }
     if (convex == static_cast<int>(incident.size()) || concave == static_cast<int>(incident.size()))
     {
-      polar();
-      finish(s);
-      continue;
+      return Polar;
     }
     // Hyperbolic vertex (Theorem 1): cone about the mean normal n_a whose half-angle is
     // the largest angle between n_a and a face normal, circumscribed by a square pyramid.
@@ -616,63 +516,248 @@ bool MeshSites::Build(const MeshInput& in, Culling culling, double slack, std::s
         cosTheta = std::min(cosTheta, Dot(na, faces[f].Normal));
       }
     }
-    bool pyramid = nal > 0 && cosTheta > 1e-6; // theta < pi/2
-    std::vector<Vec> sides;
-    if (pyramid)
+    if (!(nal > 0 && cosTheta > 1e-6)) // theta >= pi/2: no pyramid
     {
-      const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
-      Vec b1 = std::fabs(na[0]) < 0.9 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
-      b1 = Sub(b1.data(), Scale(na, Dot(b1, na)).data());
-      b1 = Scale(b1, 1.0 / Norm(b1));
-      const Vec b2 = Cross(na, b1);
-      // The cone's tangent planes along +-b1, +-b2: a square pyramid containing the cone.
-      const double c = cosTheta, sn = sinTheta;
-      for (const Vec& b : { b1, Scale(b1, -1), b2, Scale(b2, -1) })
+      return Unbounded;
+    }
+    const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+    Vec b1 = std::fabs(na[0]) < 0.9 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
+    b1 = Sub(b1.data(), Scale(na, Dot(b1, na)).data());
+    b1 = Scale(b1, 1.0 / Norm(b1));
+    const Vec b2 = Cross(na, b1);
+    // The cone's tangent planes along +-b1, +-b2: a square pyramid containing the cone.
+    std::array<Vec, 4>& sides = pyramidSides[v];
+    const Vec directions[4] = { b1, Scale(b1, -1), b2, Scale(b2, -1) };
+    for (int i = 0; i < 4; ++i)
+    {
+      sides[i] = Sub(Scale(na, sinTheta).data(), Scale(directions[i], cosTheta).data());
+    }
+    // Theorem 1 is stated for saddles; check that the exact domain (the cone of
+    // directions y with y.u <= 0 for every edge u) really lies in the pyramid.
+    bool pyramid = true;
+    double rank = 0;
+    for (size_t i = 0; i < incident.size(); ++i)
+    {
+      for (size_t j = i + 1; j < incident.size(); ++j)
       {
-        sides.push_back(Sub(Scale(na, sn).data(), Scale(b, c).data()));
-      }
-      // Theorem 1 is stated for saddles; check that the exact domain (the cone of
-      // directions y with y.u <= 0 for every edge u) really lies in the pyramid.
-      double rank = 0;
-      for (size_t i = 0; i < incident.size(); ++i)
-      {
-        for (size_t j = i + 1; j < incident.size(); ++j)
+        const Vec r = Cross(incident[i].second, incident[j].second);
+        for (const auto& eu : incident)
         {
-          const Vec r = Cross(incident[i].second, incident[j].second);
+          rank = std::max(rank, std::fabs(Dot(r, eu.second)));
+        }
+        for (double sign : { 1.0, -1.0 })
+        {
+          const Vec ray = Scale(r, sign);
+          bool inDomain = Norm(ray) > 1e-12;
           for (const auto& eu : incident)
           {
-            rank = std::max(rank, std::fabs(Dot(r, eu.second)));
+            inDomain = inDomain && Dot(ray, eu.second) <= 1e-12;
           }
-          for (double sign : { 1.0, -1.0 })
+          for (const Vec& w : sides)
           {
-            const Vec ray = Scale(r, sign);
-            bool inDomain = Norm(ray) > 1e-12;
-            for (const auto& eu : incident)
-            {
-              inDomain = inDomain && Dot(ray, eu.second) <= 1e-12;
-            }
-            for (const Vec& w : sides)
-            {
-              pyramid = pyramid && (!inDomain || Dot(ray, w) >= -1e-12);
-            }
+            pyramid = pyramid && (!inDomain || Dot(ray, w) >= -1e-12);
           }
         }
       }
-      pyramid = pyramid && rank > 1e-9;
     }
-    if (pyramid)
+    return pyramid && rank > 1e-9 ? Pyramid : Unbounded;
+  };
+  Run(parallelFor,
+    nv,
+    1024,
+    [&](int64_t begin, int64_t end)
     {
-      for (const Vec& w : sides)
+      for (int64_t v = begin; v < end; ++v)
       {
-        addPlane(w, p);
+        vertexDomain[v] = classify(v);
       }
-      ++this->Statistics.PyramidVertices;
-    }
-    else
+    });
+
+  // --- Plane counts, then every site and its planes written in place, in parallel.
+  const int64_t numFaces = static_cast<int64_t>(faces.size());
+  auto edgePlanes = [&](int64_t e)
+  {
+    const bool wedge =
+      culling == Culling::Auto || (culling == Culling::Manifold && edgeGroups[e].Faces == 2);
+    return 2 + (wedge ? edgeGroups[e].Faces : 0);
+  };
+  auto vertexPlanes = [&](int64_t v) -> int
+  {
+    return vertexDomain[v] == Polar
+      ? static_cast<int>(vertexEdgeOffsets[v + 1] - vertexEdgeOffsets[v])
+      : (vertexDomain[v] == Pyramid ? 4 : 0);
+  };
+  const int64_t numSites = numFaces + numEdges + nv;
+  std::vector<uint32_t> planeBegin(numSites + 1, 0);
+  for (int64_t i = 0; i < numSites; ++i)
+  {
+    const int64_t count = i < numFaces ? 3
+      : i < numFaces + numEdges        ? edgePlanes(i - numFaces)
+                                       : vertexPlanes(i - numFaces - numEdges);
+    const uint64_t next = uint64_t(planeBegin[i]) + count;
+    if (next > UINT32_MAX)
     {
-      ++this->Statistics.UnboundedVertices;
+      error = "the mesh needs more than 2^32 domain planes";
+      return false;
     }
-    finish(s);
+    planeBegin[i + 1] = static_cast<uint32_t>(next);
+  }
+  this->Sites.resize(numSites);
+  this->Planes.resize(planeBegin[numSites]);
+  auto setPlane = [&](uint32_t at, const Vec& n, const double* through)
+  {
+    this->Planes[at] = { { n[0], n[1], n[2] },
+      -Dot(n, Vec{ through[0], through[1], through[2] }) + slack };
+  };
+  auto initSite = [&](int64_t index, uint8_t type, int64_t cell, const double* anchor) -> Site&
+  {
+    Site& s = this->Sites[index];
+    s = Site{};
+    s.Type = type;
+    s.CellId = cell;
+    s.PlaneBegin = planeBegin[index];
+    s.PlaneCount = static_cast<uint16_t>(planeBegin[index + 1] - planeBegin[index]);
+    for (int a = 0; a < 3; ++a)
+    {
+      s.Anchor[a] = anchor[a];
+      s.BoundsMin[a] = s.BoundsMax[a] = anchor[a];
+    }
+    return s;
+  };
+  auto grow = [](Site& s, const double* x)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      s.BoundsMin[a] = std::min(s.BoundsMin[a], x[a]);
+      s.BoundsMax[a] = std::max(s.BoundsMax[a], x[a]);
+    }
+  };
+
+  // Face sites: the triangle prism (three planes through the edges, orthogonal to the
+  // triangle), required for the plane-distance formula to be exact.
+  Run(parallelFor,
+    numFaces,
+    1024,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t fi = begin; fi < end; ++fi)
+      {
+        const FaceRecord& f = faces[fi];
+        Site& s = initSite(fi, FaceSite, f.Cell, X(f.P[0]));
+        for (int k = 0; k < 3; ++k)
+        {
+          const double* a = X(f.P[k]);
+          const Vec e = Sub(X(f.P[(k + 1) % 3]), a);
+          Vec m = Cross(f.Normal, e);
+          m = Scale(m, 1.0 / Norm(m));
+          if (Dot(m, Sub(X(f.P[(k + 2) % 3]), a)) < 0)
+          {
+            m = Scale(m, -1.0);
+          }
+          setPlane(s.PlaneBegin + k, m, a);
+          grow(s, X(f.P[k]));
+        }
+        for (int a = 0; a < 3; ++a)
+        {
+          s.Axis[a] = f.Normal[a];
+          s.Normal[a] = f.Normal[a] * orientation;
+        }
+        s.Required = 3;
+      }
+    });
+
+  // Edge sites: the slab between the end planes (required), then one plane per incident
+  // face: a point on the face side of that plane is closer to the face.
+  Run(parallelFor,
+    numEdges,
+    1024,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t e = begin; e < end; ++e)
+      {
+        const int64_t a = edgeEnds[e][0], b = edgeEnds[e][1];
+        const Vec& t = edgeGroups[e].Tangent;
+        Site& s = initSite(numFaces + e, EdgeSite, edgeGroups[e].Cell, X(a));
+        grow(s, X(b));
+        uint32_t at = s.PlaneBegin;
+        setPlane(at++, t, X(a));
+        setPlane(at++, Scale(t, -1.0), X(b));
+        s.Required = 2;
+        const bool wedge = s.PlaneCount > 2;
+        Vec pseudo{ 0, 0, 0 };
+        for (int i = 0; i < edgeGroups[e].Faces; ++i)
+        {
+          const FaceRecord& f = faces[edgeFace(e, i)];
+          pseudo = Add(pseudo, Scale(f.Normal, orientation));
+          if (wedge)
+          {
+            int64_t c = f.P[0];
+            for (int k = 0; k < 3; ++k)
+            {
+              if (f.P[k] != a && f.P[k] != b)
+              {
+                c = f.P[k];
+              }
+            }
+            const Vec ac = Sub(X(c), X(a));
+            Vec m = Sub(ac.data(), Scale(t, Dot(ac, t)).data());
+            m = Scale(m, -1.0 / Norm(m));
+            setPlane(at++, m, X(a));
+          }
+        }
+        for (int k = 0; k < 3; ++k)
+        {
+          s.Axis[k] = t[k];
+          s.Normal[k] = pseudo[k];
+        }
+      }
+    });
+
+  // Vertex sites.
+  Run(parallelFor,
+    nv,
+    1024,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t v = begin; v < end; ++v)
+      {
+        Site& s = initSite(numFaces + numEdges + v, VertexSite, vertexCell[v], X(v));
+        s.Required = 0;
+        for (int a = 0; a < 3; ++a)
+        {
+          s.Normal[a] = vertexNormal[v][a];
+        }
+        uint32_t at = s.PlaneBegin;
+        if (vertexDomain[v] == Polar)
+        {
+          for (const auto& eu : incidentEdges(v))
+          {
+            setPlane(at++, Scale(eu.second, -1.0), X(v));
+          }
+        }
+        else if (vertexDomain[v] == Pyramid)
+        {
+          for (const Vec& w : pyramidSides[v])
+          {
+            setPlane(at++, w, X(v));
+          }
+        }
+      }
+    });
+
+  // Statistics.
+  this->Statistics.Faces = numFaces;
+  this->Statistics.Edges = numEdges;
+  this->Statistics.Vertices = nv;
+  for (int64_t e = 0; e < numEdges; ++e)
+  {
+    this->Statistics.EdgeWedges += edgePlanes(e) > 2;
+  }
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    this->Statistics.PolarVertices += vertexDomain[v] == Polar;
+    this->Statistics.PyramidVertices += vertexDomain[v] == Pyramid;
+    this->Statistics.UnboundedVertices += vertexDomain[v] == Unbounded;
   }
   return true;
 }

@@ -8,6 +8,9 @@
 #ifndef vtkdf_MeshSites_h
 #define vtkdf_MeshSites_h
 
+#include "LargeVector.h"
+#include "Parallel.h"
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -80,10 +83,16 @@ public:
   /// Builds sites and domains. `slack` (world units) enlarges every domain so that
   /// neighbouring domains overlap despite rounding; a site's formula is then evaluated
   /// at most `slack` outside its exact region, which bounds the error by `slack`.
-  bool Build(const MeshInput& input, Culling culling, double slack, std::string& error);
+  /// `parallelFor` (optional) runs the per-site passes in parallel; the result is the
+  /// same either way.
+  bool Build(const MeshInput& input,
+    Culling culling,
+    double slack,
+    std::string& error,
+    const ParallelFor& parallelFor = ParallelFor());
 
-  std::vector<Site> Sites;
-  std::vector<HalfSpace> Planes;
+  LargeVector<Site> Sites;
+  LargeVector<HalfSpace> Planes;
   std::vector<double> SitePoints; // xyz of every point a cell uses (merged), for range culling
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
   DomainStatistics Statistics;
