@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <string>
 #include <thread>
@@ -104,6 +105,17 @@ void RunCase(const std::string& name, const MeshInput& mesh, int resolution)
     request.Extent = request.Grid.Whole;
     const double h = request.Grid.MinSpacing();
     Check(sites.Build(mesh, culling, 1e-5 * h, error), name + ": build " + error);
+    // The parallel build writes the same sites and planes.
+    MeshSites parallel;
+    Check(parallel.Build(mesh, culling, 1e-5 * h, error, ThreadFor), name + ": build " + error);
+    Check(parallel.Sites.size() == sites.Sites.size() &&
+        parallel.Planes.size() == sites.Planes.size() &&
+        std::memcmp(parallel.Sites.data(), sites.Sites.data(), sites.Sites.size() * sizeof(Site)) ==
+          0 &&
+        std::memcmp(parallel.Planes.data(),
+          sites.Planes.data(),
+          sites.Planes.size() * sizeof(HalfSpace)) == 0,
+      name + ": the parallel build differs from the serial one");
     RangeCulling range;
     range.Build(sites, request.Grid, request.Extent, HUGE_VAL, ThreadFor);
     NearestSiteBuffer nearest;
