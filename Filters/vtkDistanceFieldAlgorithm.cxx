@@ -3,6 +3,7 @@
 #include "vtkAlgorithmOutput.h"
 #include "vtkCellArray.h"
 #include "vtkDataSet.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
@@ -164,6 +165,65 @@ bool vtkDistanceFieldAlgorithm::ChooseBackend(bool& useGPU, std::string& error)
   }
   useGPU = gl && !gl->IsSoftware();
   return true;
+}
+
+bool vtkDistanceFieldAlgorithm::CheckMemory(double bytes, const vtkdf::IndexBox& grid)
+{
+  const double samples = double(grid.Size(0)) * grid.Size(1) * grid.Size(2);
+  if (samples > static_cast<double>(VTK_ID_MAX) || samples > 4.0e18)
+  {
+    vtkErrorMacro("The grid has " << samples << " samples, more than vtkIdType can index.");
+    return false;
+  }
+  const double limit = this->EffectiveMemoryLimit();
+  if (bytes > limit)
+  {
+    vtkErrorMacro("The grid (" << grid.Size(0) << " x " << grid.Size(1) << " x " << grid.Size(2)
+                               << ") needs " << bytes / 1048576.0 << " MiB, above MemoryLimit ("
+                               << limit / 1048576.0 << " MiB).");
+    return false;
+  }
+  return true;
+}
+
+bool vtkDistanceFieldAlgorithm::GetOutputGrid(vtkInformation* outInfo,
+  vtkdf::SampleGrid& grid,
+  vtkdf::IndexBox& extent)
+{
+  int whole[6], update[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), update);
+  }
+  else
+  {
+    std::copy(whole, whole + 6, update);
+  }
+  double origin[3], spacing[3];
+  outInfo->Get(vtkDataObject::ORIGIN(), origin);
+  outInfo->Get(vtkDataObject::SPACING(), spacing);
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.Origin[a] = origin[a];
+    grid.Spacing[a] = spacing[a];
+    grid.Whole.Lo[a] = whole[2 * a];
+    grid.Whole.Hi[a] = whole[2 * a + 1];
+    extent.Lo[a] = update[2 * a];
+    extent.Hi[a] = update[2 * a + 1];
+  }
+  extent = extent.Intersect(grid.Whole);
+  return !extent.Empty() && !grid.Whole.Empty();
+}
+
+void vtkDistanceFieldAlgorithm::SetOutputExtent(vtkImageData* output,
+  const vtkdf::SampleGrid& grid,
+  const vtkdf::IndexBox& extent)
+{
+  output->SetExtent(
+    extent.Lo[0], extent.Hi[0], extent.Lo[1], extent.Hi[1], extent.Lo[2], extent.Hi[2]);
+  output->SetOrigin(grid.Origin.data());
+  output->SetSpacing(grid.Spacing.data());
 }
 
 double vtkDistanceFieldAlgorithm::EffectiveMemoryLimit() const

@@ -17,6 +17,15 @@
 
 #include <string> // For the renderer string
 
+class vtkImageData;
+#ifndef __VTK_WRAP__
+namespace vtkdf
+{
+struct IndexBox;
+struct SampleGrid;
+}
+#endif
+
 class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldAlgorithm : public vtkImageAlgorithm
 {
 public:
@@ -100,6 +109,23 @@ protected:
 
   /// The memory limit in bytes (resolving 0 to half the physical memory).
   double EffectiveMemoryLimit() const;
+
+#ifndef __VTK_WRAP__
+  /// Whether `bytes` fit in the memory limit and the grid's samples in vtkIdType; if
+  /// not, reports the error (before anything is allocated) and returns false.
+  bool CheckMemory(double bytes, const vtkdf::IndexBox& grid);
+
+  /// The output grid of RequestInformation and the extent requested of it (false when
+  /// that extent is empty).
+  static bool GetOutputGrid(vtkInformation* outInfo,
+    vtkdf::SampleGrid& grid,
+    vtkdf::IndexBox& extent);
+
+  /// Gives `output` that extent, origin and spacing.
+  static void SetOutputExtent(vtkImageData* output,
+    const vtkdf::SampleGrid& grid,
+    const vtkdf::IndexBox& extent);
+#endif
 
   int Backend = BACKEND_AUTO;
   int Resolution = 64;

@@ -19,128 +19,13 @@
 #include "HeadlessGL.h"
 #include "LinearFactorField.h"
 #include "LinearFactorGPU.h"
+#include "vtkDistanceFieldMesh.h"
 
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
 vtkStandardNewMacro(vtkLinearFactorDistanceField);
-
-namespace
-{
-/// vtkSMPTools behind the cores' ParallelFor hook.
-void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body)
-{
-  vtkSMPTools::For(0,
-    static_cast<vtkIdType>(n),
-    static_cast<vtkIdType>(grain),
-    [&body](vtkIdType begin, vtkIdType end) { body(begin, end); });
-}
-
-/// Copies the mesh into the core's plain arrays; counts cells it cannot use.
-struct MeshConversion
-{
-  vtkdf::MeshInput Mesh;
-  vtkIdType ShortPolygons = 0, ShortLines = 0, ShortStrips = 0, EmptyVertices = 0;
-
-  void Run(vtkPolyData* input)
-  {
-    vtkPoints* points = input->GetPoints();
-    const vtkIdType numPoints = points ? points->GetNumberOfPoints() : 0;
-    this->Mesh.Points.resize(3 * numPoints);
-    for (vtkIdType i = 0; i < numPoints; ++i)
-    {
-      points->GetPoint(i, &this->Mesh.Points[3 * i]);
-    }
-    vtkIdType cellId = 0;
-    vtkIdType count;
-    const vtkIdType* ids;
-    vtkCellArray* verts = input->GetVerts();
-    for (verts->InitTraversal(); verts->GetNextCell(count, ids); ++cellId)
-    {
-      this->EmptyVertices += count == 0;
-      for (vtkIdType i = 0; i < count; ++i)
-      {
-        this->Mesh.Vertices.push_back(ids[i]);
-        this->Mesh.VertexCells.push_back(cellId);
-      }
-    }
-    vtkCellArray* lines = input->GetLines();
-    for (lines->InitTraversal(); lines->GetNextCell(count, ids); ++cellId)
-    {
-      this->ShortLines += count < 2;
-      for (vtkIdType i = 0; i + 1 < count; ++i)
-      {
-        this->Mesh.Segments.insert(this->Mesh.Segments.end(), { ids[i], ids[i + 1] });
-        this->Mesh.SegmentCells.push_back(cellId);
-      }
-    }
-    vtkNew<vtkPolygon> polygon;
-    vtkNew<vtkIdList> triangles;
-    vtkCellArray* polys = input->GetPolys();
-    for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cellId)
-    {
-      if (count < 3)
-      {
-        ++this->ShortPolygons;
-        continue;
-      }
-      if (count == 3)
-      {
-        this->AddTriangle(ids[0], ids[1], ids[2], cellId);
-        continue;
-      }
-      // Concave polygons need an ear-cut; a fan covers what the ear-cut rejects.
-      polygon->GetPointIds()->SetNumberOfIds(count);
-      polygon->GetPoints()->SetNumberOfPoints(count);
-      for (vtkIdType i = 0; i < count; ++i)
-      {
-        polygon->GetPointIds()->SetId(i, i);
-        polygon->GetPoints()->SetPoint(i, &this->Mesh.Points[3 * ids[i]]);
-      }
-      if (polygon->Triangulate(triangles) && triangles->GetNumberOfIds() == 3 * (count - 2))
-      {
-        for (vtkIdType t = 0; t < triangles->GetNumberOfIds(); t += 3)
-        {
-          this->AddTriangle(ids[triangles->GetId(t)],
-            ids[triangles->GetId(t + 1)],
-            ids[triangles->GetId(t + 2)],
-            cellId);
-        }
-      }
-      else
-      {
-        for (vtkIdType i = 1; i + 1 < count; ++i)
-        {
-          this->AddTriangle(ids[0], ids[i], ids[i + 1], cellId);
-        }
-      }
-    }
-    vtkCellArray* strips = input->GetStrips();
-    for (strips->InitTraversal(); strips->GetNextCell(count, ids); ++cellId)
-    {
-      this->ShortStrips += count < 3;
-      for (vtkIdType i = 0; i + 2 < count; ++i)
-      {
-        if (i % 2 == 0)
-        {
-          this->AddTriangle(ids[i], ids[i + 1], ids[i + 2], cellId);
-        }
-        else
-        {
-          this->AddTriangle(ids[i + 1], ids[i], ids[i + 2], cellId);
-        }
-      }
-    }
-  }
-
-  void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell)
-  {
-    this->Mesh.Triangles.insert(this->Mesh.Triangles.end(), { a, b, c });
-    this->Mesh.TriangleCells.push_back(cell);
-  }
-};
-} // namespace
 
 vtkLinearFactorDistanceField::vtkLinearFactorDistanceField() = default;
 
@@ -219,17 +104,13 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     return 0;
   }
 
-  MeshConversion conversion;
+  vtkdf::MeshConversion conversion;
   conversion.Run(input);
   stage("convert");
-  if (conversion.ShortPolygons || conversion.ShortLines || conversion.ShortStrips ||
-    conversion.EmptyVertices)
+  const std::string ignored = conversion.IgnoredCells();
+  if (!ignored.empty())
   {
-    vtkWarningMacro("Ignored cells it cannot use: "
-      << conversion.ShortPolygons << " polygons with fewer than 3 points, " << conversion.ShortLines
-      << " lines with fewer than 2 points, " << conversion.ShortStrips
-      << " triangle strips with fewer than 3 points, " << conversion.EmptyVertices
-      << " vertex cells without points. The other cells are used.");
+    vtkWarningMacro(<< ignored);
   }
 
   const double h = request.Grid.MinSpacing();
@@ -242,7 +123,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     : (this->Culling == CULLING_MANIFOLD ? vtkdf::Culling::Manifold : vtkdf::Culling::Auto);
   vtkdf::MeshSites sites;
   std::string error;
-  if (!sites.Build(conversion.Mesh, culling, 1e-4 * h, error, SMPFor))
+  if (!sites.Build(conversion.Mesh, culling, 1e-4 * h, error, vtkdf::SMPFor))
   {
     vtkErrorMacro("Invalid input mesh: " << error << ".");
     return 0;
@@ -268,12 +149,12 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
 
   this->UpdateProgress(0.0);
   vtkdf::RangeCulling range;
-  range.Build(sites, request.Grid, request.Extent, request.MaximumDistance, SMPFor);
+  range.Build(sites, request.Grid, request.Extent, request.MaximumDistance, vtkdf::SMPFor);
   stage("culling");
   this->UpdateProgress(0.1);
 
   vtkdf::NearestSiteBuffer nearest;
-  nearest.Reset(request.Extent.Count(), SMPFor);
+  nearest.Reset(request.Extent.Count(), vtkdf::SMPFor);
   auto progress = [this](double fraction)
   {
     this->UpdateProgress(0.1 + 0.8 * fraction);
@@ -293,7 +174,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   }
   else
   {
-    stats = vtkdf::ScanSitesCPU(sites, range, request, nearest, SMPFor, progress);
+    stats = vtkdf::ScanSitesCPU(sites, range, request, nearest, vtkdf::SMPFor, progress);
     this->LastBackend = "cpu";
     this->LastRenderer = "cpu";
   }
@@ -353,7 +234,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     arrays.ClosestPoint = a->GetPointer(0);
     pd->AddArray(a);
   }
-  vtkdf::Finalize(sites, request, nearest, arrays, SMPFor);
+  vtkdf::Finalize(sites, request, nearest, arrays, vtkdf::SMPFor);
   stage("finalize");
   this->UpdateProgress(1.0);
   this->LastTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

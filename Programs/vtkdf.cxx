@@ -1,14 +1,21 @@
 // vtkdf: the command-line front end of VTK Distance Fields.
 //
-//   vtkdf linfac INPUT -o OUT.vti [--resolution N] [--padding F]
-//         [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ] [--signed]
-//         [--backend auto|gpu|cpu] [--culling auto|nonmanifold|manifold]
-//         [--arrays distance,cellid,feature,point] [--max-distance D]
-//         [--png SLICE.png] [--timing]
+//   vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--backend auto|gpu|cpu]
+//         [--culling auto|nonmanifold|manifold] [--arrays distance,cellid,feature,point]
+//         [--max-distance D] [--png SLICE.png] [--timing]
+//   vtkdf voxelize MESH -o OUT.vti [--mode boundary|solid|both] [grid] [--backend ...]
+//         [--timing]
+//   vtkdf chamfer INPUT -o OUT.vti [--metric manhattan|chessboard18|chessboard26]
+//         [--layers M] [--signed] [grid] [--backend ...] [--timing]
 //
-// INPUT: .vtp .vtk .ply .stl .obj. --timing prints one line that scripts can read:
-//   vtkdf: linfac dims=NXxNYxNZ backend=cpu renderer="cpu" time_s=0.123
+// grid: [--resolution N] [--padding F] [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ]
+// MESH: .vtp .vtk .ply .stl .obj; chamfer's INPUT may also be a .vti with a Boundary mask
+// (and optionally Solid), e.g. the output of vtkdf voxelize. --timing prints one line
+// that scripts can read:
+//   vtkdf: linfac dims=NXxNYxNZ backend=cpu renderer="cpu" time_s=0.123 ...
+#include "vtkChamferVoxelDistance.h"
 #include "vtkLinearFactorDistanceField.h"
+#include "vtkPolyDataVoxelizer.h"
 
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -22,6 +29,7 @@
 #include "vtkSTLReader.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataReader.h"
 
@@ -30,6 +38,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,12 +51,17 @@ int Usage(const char* message = nullptr)
     std::fprintf(stderr, "vtkdf: %s\n", message);
   }
   std::fprintf(stderr,
-    "usage: vtkdf linfac INPUT -o OUT.vti [--resolution N] [--padding F]\n"
-    "             [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ] [--signed]\n"
-    "             [--backend auto|gpu|cpu] [--culling auto|nonmanifold|manifold]\n"
+    "usage: vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--backend auto|gpu|cpu]\n"
+    "             [--culling auto|nonmanifold|manifold]\n"
     "             [--arrays distance,cellid,feature,point] [--max-distance D]\n"
     "             [--png SLICE.png] [--timing]\n"
-    "INPUT: .vtp .vtk .ply .stl .obj\n");
+    "       vtkdf voxelize MESH -o OUT.vti [--mode boundary|solid|both] [grid]\n"
+    "             [--backend auto|gpu|cpu] [--timing]\n"
+    "       vtkdf chamfer INPUT -o OUT.vti [--metric manhattan|chessboard18|chessboard26]\n"
+    "             [--layers M] [--signed] [grid] [--backend auto|gpu|cpu] [--timing]\n"
+    "grid:  [--resolution N] [--padding F]\n"
+    "       [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ]\n"
+    "MESH:  .vtp .vtk .ply .stl .obj; chamfer's INPUT may also be a .vti with a Boundary mask\n");
   return 2;
 }
 
@@ -192,143 +206,205 @@ bool WriteSlicePNG(vtkImageData* field, const std::string& path)
   writer->Write();
   return writer->GetErrorCode() == 0;
 }
-} // namespace
-
-int main(int argc, char* argv[])
+/// The options every subcommand shares: output, grid, backend, timing.
+struct CommonOptions
 {
-  if (argc < 3 || std::string(argv[1]) != "linfac")
-  {
-    return Usage(argc >= 2 && std::string(argv[1]) != "linfac" ? "unknown subcommand" : nullptr);
-  }
-  const std::string input = argv[2];
-  std::string output, png, arrays = "distance,cellid", backend = "auto", culling = "auto";
-  int resolution = 64;
-  double padding = 0.1, maxDistance = 0;
-  double origin[3], spacing[3];
-  int dims[3];
-  bool explicitOrigin = false, explicitSpacing = false, explicitDims = false;
-  bool signedField = false, timing = false;
+  std::string Output, Backend = "auto";
+  int Resolution = 64;
+  double Padding = 0.1;
+  double Origin[3], Spacing[3];
+  int Dims[3];
+  bool ExplicitOrigin = false, ExplicitSpacing = false, ExplicitDims = false;
+  bool Timing = false;
+};
+
+/// Parses the options of argv[3...]: the shared ones here, the others by `own`
+/// (which returns false for an option it does not know). Exits on a usage error.
+void ParseOptions(int argc,
+  char* argv[],
+  CommonOptions& common,
+  const std::function<bool(const std::string&, const std::function<const char*()>&)>& own)
+{
   for (int a = 3; a < argc; ++a)
   {
     const std::string arg = argv[a];
-    auto need = [&](int count)
+    auto next = [&]() -> const char*
     {
-      if (a + count >= argc)
+      if (a + 1 >= argc)
       {
-        std::exit(Usage((arg + " needs " + std::to_string(count) + " value(s)").c_str()));
+        std::exit(Usage((arg + " needs a value").c_str()));
       }
+      return argv[++a];
     };
     if (arg == "-o" || arg == "--output")
     {
-      need(1);
-      output = argv[++a];
+      common.Output = next();
     }
     else if (arg == "--resolution")
     {
-      need(1);
-      resolution = std::atoi(argv[++a]);
+      common.Resolution = std::atoi(next());
     }
     else if (arg == "--padding")
     {
-      need(1);
-      padding = std::atof(argv[++a]);
+      common.Padding = std::atof(next());
     }
     else if (arg == "--origin" || arg == "--spacing")
     {
-      need(3);
-      double* v = arg == "--origin" ? origin : spacing;
+      double* v = arg == "--origin" ? common.Origin : common.Spacing;
       for (int k = 0; k < 3; ++k)
       {
-        v[k] = std::atof(argv[++a]);
+        v[k] = std::atof(next());
       }
-      (arg == "--origin" ? explicitOrigin : explicitSpacing) = true;
+      (arg == "--origin" ? common.ExplicitOrigin : common.ExplicitSpacing) = true;
     }
     else if (arg == "--dims")
     {
-      need(3);
       for (int k = 0; k < 3; ++k)
       {
-        dims[k] = std::atoi(argv[++a]);
+        common.Dims[k] = std::atoi(next());
       }
-      explicitDims = true;
-    }
-    else if (arg == "--signed")
-    {
-      signedField = true;
+      common.ExplicitDims = true;
     }
     else if (arg == "--backend")
     {
-      need(1);
-      backend = argv[++a];
-    }
-    else if (arg == "--culling")
-    {
-      need(1);
-      culling = argv[++a];
-    }
-    else if (arg == "--arrays")
-    {
-      need(1);
-      arrays = argv[++a];
-    }
-    else if (arg == "--max-distance")
-    {
-      need(1);
-      maxDistance = std::atof(argv[++a]);
-    }
-    else if (arg == "--png")
-    {
-      need(1);
-      png = argv[++a];
+      common.Backend = next();
     }
     else if (arg == "--timing")
     {
-      timing = true;
+      common.Timing = true;
     }
-    else
+    else if (!own(arg, next))
     {
-      return Usage(("unknown option " + arg).c_str());
+      std::exit(Usage(("unknown option " + arg).c_str()));
     }
   }
-  if (output.empty())
+  if (common.Output.empty())
   {
-    return Usage("-o OUT.vti is required");
+    std::exit(Usage("-o OUT.vti is required"));
   }
-  if ((explicitOrigin || explicitSpacing || explicitDims) &&
-    !(explicitOrigin && explicitSpacing && explicitDims))
+  const bool any = common.ExplicitOrigin || common.ExplicitSpacing || common.ExplicitDims;
+  const bool all = common.ExplicitOrigin && common.ExplicitSpacing && common.ExplicitDims;
+  if (any && !all)
   {
-    return Usage("an explicit grid needs --origin, --spacing and --dims together");
+    std::exit(Usage("an explicit grid needs --origin, --spacing and --dims together"));
   }
+}
 
-  vtkSmartPointer<vtkPolyData> mesh = ReadMesh(input);
-  if (!mesh)
-  {
-    return Usage(("cannot read " + input + " (expected .vtp .vtk .ply .stl .obj)").c_str());
-  }
-
-  vtkNew<vtkLinearFactorDistanceField> filter;
-  filter->SetInputData(mesh);
-  filter->SetResolution(resolution);
-  filter->SetPadding(padding);
-  if (explicitDims)
+/// Grid and backend options onto a filter.
+void Configure(vtkDistanceFieldAlgorithm* filter, CommonOptions& common)
+{
+  filter->SetResolution(common.Resolution);
+  filter->SetPadding(common.Padding);
+  if (common.ExplicitDims)
   {
     filter->ExplicitGridOn();
-    filter->SetGridOrigin(origin);
-    filter->SetGridSpacing(spacing);
-    filter->SetGridDimensions(dims);
+    filter->SetGridOrigin(common.Origin);
+    filter->SetGridSpacing(common.Spacing);
+    filter->SetGridDimensions(common.Dims);
   }
-  if (backend == "gpu")
+  if (common.Backend == "gpu")
   {
     filter->SetBackendToGPU();
   }
-  else if (backend == "cpu")
+  else if (common.Backend == "cpu")
   {
     filter->SetBackendToCPU();
   }
-  else if (backend != "auto")
+  else if (common.Backend != "auto")
   {
-    return Usage("--backend takes auto, gpu or cpu");
+    std::exit(Usage("--backend takes auto, gpu or cpu"));
   }
+}
+
+/// Runs the filter; prints the timing line; writes the output. Returns the exit code.
+int Finish(const char* subcommand,
+  vtkDistanceFieldAlgorithm* filter,
+  const CommonOptions& common,
+  const std::string& extra)
+{
+  filter->Update();
+  vtkImageData* field = filter->GetOutput();
+  if (filter->GetErrorCode() || field->GetNumberOfPoints() == 0)
+  {
+    std::fprintf(stderr, "vtkdf: no output was computed\n");
+    return 1;
+  }
+  int dims[3];
+  field->GetDimensions(dims);
+  if (common.Timing)
+  {
+    std::printf("vtkdf: %s dims=%dx%dx%d backend=%s renderer=\"%s\" time_s=%.6f%s stages=%s\n",
+      subcommand,
+      dims[0],
+      dims[1],
+      dims[2],
+      filter->GetLastBackend(),
+      filter->GetLastRenderer(),
+      filter->GetLastTime(),
+      extra.c_str(),
+      filter->GetLastStageTimes());
+  }
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName(common.Output.c_str());
+  writer->SetInputData(field);
+  if (!writer->Write())
+  {
+    std::fprintf(stderr, "vtkdf: cannot write %s\n", common.Output.c_str());
+    return 1;
+  }
+  return 0;
+}
+
+vtkSmartPointer<vtkPolyData> ReadMeshOrExit(const std::string& input)
+{
+  vtkSmartPointer<vtkPolyData> mesh = ReadMesh(input);
+  if (!mesh)
+  {
+    std::exit(Usage(("cannot read " + input + " (expected .vtp .vtk .ply .stl .obj)").c_str()));
+  }
+  return mesh;
+}
+
+int Linfac(int argc, char* argv[])
+{
+  CommonOptions common;
+  std::string png, arrays = "distance,cellid", culling = "auto";
+  double maxDistance = 0;
+  bool signedField = false;
+  ParseOptions(argc,
+    argv,
+    common,
+    [&](const std::string& arg, const std::function<const char*()>& next)
+    {
+      if (arg == "--signed")
+      {
+        signedField = true;
+      }
+      else if (arg == "--culling")
+      {
+        culling = next();
+      }
+      else if (arg == "--arrays")
+      {
+        arrays = next();
+      }
+      else if (arg == "--max-distance")
+      {
+        maxDistance = std::atof(next());
+      }
+      else if (arg == "--png")
+      {
+        png = next();
+      }
+      else
+      {
+        return false;
+      }
+      return true;
+    });
+  vtkNew<vtkLinearFactorDistanceField> filter;
+  filter->SetInputData(ReadMeshOrExit(argv[2]));
+  Configure(filter, common);
   if (culling == "nonmanifold")
   {
     filter->SetCullingToNonManifold();
@@ -349,38 +425,141 @@ int main(int argc, char* argv[])
   filter->SetComputeClosestFeature(arrays.find("feature") != std::string::npos);
   filter->SetComputeClosestPoint(arrays.find("point") != std::string::npos);
   filter->Update();
-  vtkImageData* field = filter->GetOutput();
-  if (filter->GetErrorCode() || field->GetNumberOfPoints() == 0)
-  {
-    std::fprintf(stderr, "vtkdf: no field was computed\n");
-    return 1;
-  }
-  field->GetDimensions(dims);
-  if (timing)
-  {
-    std::printf("vtkdf: linfac dims=%dx%dx%d backend=%s renderer=\"%s\" time_s=%.6f "
-                "culling_factor=%.3f stages=%s\n",
-      dims[0],
-      dims[1],
-      dims[2],
-      filter->GetLastBackend(),
-      filter->GetLastRenderer(),
-      filter->GetLastTime(),
-      filter->GetLastCullingFactor(),
-      filter->GetLastStageTimes());
-  }
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetFileName(output.c_str());
-  writer->SetInputData(field);
-  if (!writer->Write())
-  {
-    std::fprintf(stderr, "vtkdf: cannot write %s\n", output.c_str());
-    return 1;
-  }
-  if (!png.empty() && !WriteSlicePNG(field, png))
+  char extra[64];
+  std::snprintf(extra, sizeof(extra), " culling_factor=%.3f", filter->GetLastCullingFactor());
+  const int code = Finish("linfac", filter, common, extra);
+  if (code == 0 && !png.empty() && !WriteSlicePNG(filter->GetOutput(), png))
   {
     std::fprintf(stderr, "vtkdf: cannot write %s (it needs the distance array)\n", png.c_str());
     return 1;
   }
-  return 0;
+  return code;
+}
+
+int Voxelize(int argc, char* argv[])
+{
+  CommonOptions common;
+  std::string mode = "both";
+  ParseOptions(argc,
+    argv,
+    common,
+    [&](const std::string& arg, const std::function<const char*()>& next)
+    {
+      if (arg != "--mode")
+      {
+        return false;
+      }
+      mode = next();
+      return true;
+    });
+  vtkNew<vtkPolyDataVoxelizer> filter;
+  filter->SetInputData(ReadMeshOrExit(argv[2]));
+  Configure(filter, common);
+  if (mode == "boundary")
+  {
+    filter->SetModeToBoundary();
+  }
+  else if (mode == "solid")
+  {
+    filter->SetModeToSolid();
+  }
+  else if (mode != "both")
+  {
+    return Usage("--mode takes boundary, solid or both");
+  }
+  return Finish("voxelize", filter, common, "");
+}
+
+int Chamfer(int argc, char* argv[])
+{
+  CommonOptions common;
+  std::string metric = "chessboard18";
+  int layers = 0;
+  bool signedField = false;
+  ParseOptions(argc,
+    argv,
+    common,
+    [&](const std::string& arg, const std::function<const char*()>& next)
+    {
+      if (arg == "--metric")
+      {
+        metric = next();
+      }
+      else if (arg == "--layers")
+      {
+        layers = std::atoi(next());
+      }
+      else if (arg == "--signed")
+      {
+        signedField = true;
+      }
+      else
+      {
+        return false;
+      }
+      return true;
+    });
+  vtkNew<vtkChamferVoxelDistance> filter;
+  const std::string input = argv[2];
+  if (EndsWith(input, ".vti"))
+  {
+    vtkNew<vtkXMLImageDataReader> reader;
+    reader->SetFileName(input.c_str());
+    reader->Update();
+    if (reader->GetErrorCode() || !reader->GetOutput())
+    {
+      return Usage(("cannot read " + input).c_str());
+    }
+    filter->SetInputData(reader->GetOutput());
+  }
+  else
+  {
+    filter->SetInputData(ReadMeshOrExit(input));
+  }
+  Configure(filter, common);
+  if (metric == "manhattan")
+  {
+    filter->SetMetricToManhattan();
+  }
+  else if (metric == "chessboard26")
+  {
+    filter->SetMetricToChessboard26();
+  }
+  else if (metric != "chessboard18")
+  {
+    return Usage("--metric takes manhattan, chessboard18 or chessboard26");
+  }
+  if (layers < 0)
+  {
+    return Usage("--layers takes a count >= 0");
+  }
+  filter->SetMaximumLayers(layers);
+  filter->SetSigned(signedField);
+  filter->OutputMasksOn();
+  filter->Update();
+  const std::string extra = " layers=" + std::to_string(filter->GetLastLayers());
+  return Finish("chamfer", filter, common, extra);
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (argc < 3)
+  {
+    return Usage();
+  }
+  const std::string subcommand = argv[1];
+  if (subcommand == "linfac")
+  {
+    return Linfac(argc, argv);
+  }
+  if (subcommand == "voxelize")
+  {
+    return Voxelize(argc, argv);
+  }
+  if (subcommand == "chamfer")
+  {
+    return Chamfer(argc, argv);
+  }
+  return Usage(("unknown subcommand " + subcommand).c_str());
 }

@@ -2,11 +2,14 @@
 set(df_root "${CMAKE_SOURCE_DIR}")
 set(classes
   "${df_root}/Filters/vtkDistanceFieldAlgorithm"
-  "${df_root}/Filters/vtkLinearFactorDistanceField")
+  "${df_root}/Filters/vtkLinearFactorDistanceField"
+  "${df_root}/Filters/vtkPolyDataVoxelizer"
+  "${df_root}/Filters/vtkChamferVoxelDistance")
 # The VTK-free cores (Filters/Core) are compiled once, as objects, into the module.
 vtk_module_add_module(DistanceFields::vtkDistanceFields
   CLASSES ${classes}
-  SOURCES $<TARGET_OBJECTS:vtkdf_core>)
+  SOURCES "${df_root}/Filters/vtkDistanceFieldMesh.cxx" $<TARGET_OBJECTS:vtkdf_core>
+  PRIVATE_HEADERS "${df_root}/Filters/vtkDistanceFieldMesh.h")
 vtk_module_include(DistanceFields::vtkDistanceFields
   PUBLIC "$<BUILD_INTERFACE:${df_root}/Filters>"
   PRIVATE "${df_root}/Filters/Core" "${CMAKE_BINARY_DIR}/Filters/Core")

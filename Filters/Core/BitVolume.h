@@ -1,0 +1,82 @@
+// BitVolume: a binary voxel grid stored as voxel lanes (paper 001 §3): the voxels of
+// column (x, y) along z are the bits of one lane, 64 per word, ceil(nz / 64) words per
+// lane. Lanes are stored x fastest, then y. Bits past nz in a lane's last word are zero.
+#ifndef vtkdf_BitVolume_h
+#define vtkdf_BitVolume_h
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace vtkdf
+{
+
+class BitVolume
+{
+public:
+  BitVolume() = default;
+  BitVolume(int nx, int ny, int nz) { this->Resize(nx, ny, nz); }
+
+  void Resize(int nx, int ny, int nz)
+  {
+    this->Dims = { { nx, ny, nz } };
+    this->Words = (nz + 63) / 64;
+    this->Bits.assign(static_cast<size_t>(nx) * ny * this->Words, 0);
+  }
+
+  int Size(int a) const { return this->Dims[a]; }
+  int WordsPerLane() const { return this->Words; }
+  int64_t NumberOfLanes() const { return int64_t(this->Dims[0]) * this->Dims[1]; }
+
+  uint64_t* Lane(int x, int y)
+  {
+    return this->Bits.data() + (static_cast<size_t>(y) * this->Dims[0] + x) * this->Words;
+  }
+  const uint64_t* Lane(int x, int y) const
+  {
+    return this->Bits.data() + (static_cast<size_t>(y) * this->Dims[0] + x) * this->Words;
+  }
+  bool Get(int x, int y, int z) const { return (this->Lane(x, y)[z >> 6] >> (z & 63)) & 1u; }
+  void Set(int x, int y, int z) { this->Lane(x, y)[z >> 6] |= uint64_t(1) << (z & 63); }
+
+  /// The valid bits of a lane's last word.
+  uint64_t LastWordMask() const
+  {
+    const int used = this->Dims[2] - 64 * (this->Words - 1);
+    return used >= 64 ? ~uint64_t(0) : ((uint64_t(1) << used) - 1);
+  }
+
+  bool Any() const
+  {
+    for (uint64_t w : this->Bits)
+    {
+      if (w)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+  int64_t Count() const
+  {
+    int64_t n = 0;
+    for (uint64_t w : this->Bits)
+    {
+      n += __builtin_popcountll(w);
+    }
+    return n;
+  }
+
+  std::vector<uint64_t>& Data() { return this->Bits; }
+  const std::vector<uint64_t>& Data() const { return this->Bits; }
+
+private:
+  std::array<int, 3> Dims{ { 0, 0, 0 } };
+  int Words = 0;
+  std::vector<uint64_t> Bits;
+};
+
+} // namespace vtkdf
+
+#endif

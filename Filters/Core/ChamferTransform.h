@@ -1,0 +1,48 @@
+// ChamferTransform: the wavefront chamfer distance transform of paper 001 §5 on voxel
+// lanes. Layer 0 is the zero set; layer n+1 holds the voxels that are not in any earlier
+// layer (the accumulation grid A) and have a neighbour in layer n:
+//   Manhattan:     n(w(x,y)) | w(x+-1,y) | w(x,y+-1)
+//   Chessboard18:  n(w(x,y)) | n'(w(x+-1,y)) | n'(w(x,y+-1)) | w(x+-1,y+-1)
+//   Chessboard26:  n(w(x,y)) | n'(w) of all 8 neighbouring lanes
+// with n(w) = (w << 1) | (w >> 1) across words and n'(w) = n(w) | w. A whole lane is
+// one word operation per 64 voxels, and only the lanes within one voxel of the last
+// layer's bounding box are visited.
+#ifndef vtkdf_ChamferTransform_h
+#define vtkdf_ChamferTransform_h
+
+#include "BitVolume.h"
+#include "Parallel.h"
+
+#include <cstdint>
+
+namespace vtkdf
+{
+
+enum class ChamferMetric
+{
+  Manhattan,    // 6 face neighbours at distance 1
+  Chessboard18, // the paper's "chessboard": face and edge neighbours at 1
+  Chessboard26  // all 26 neighbours at 1 (L-infinity)
+};
+
+struct ChamferResult
+{
+  int Layers = 0;      // the largest layer index written
+  int64_t Reached = 0; // voxels with a layer index (the zero set included)
+  bool Aborted = false;
+};
+
+/// Writes into `distance` (nx * ny * nz, x fastest) the layer index of every voxel
+/// reached, and `unreached` elsewhere. `maximumLayers` > 0 stops after that layer.
+/// `progress` (optional) is called once per layer with the fraction of voxels reached.
+ChamferResult ChamferPropagate(const BitVolume& zero,
+  ChamferMetric metric,
+  int maximumLayers,
+  int32_t unreached,
+  int32_t* distance,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress);
+
+} // namespace vtkdf
+
+#endif

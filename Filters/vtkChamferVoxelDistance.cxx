@@ -1,0 +1,346 @@
+#include "vtkChamferVoxelDistance.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkDataArrayRange.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "ChamferTransform.h"
+#include "vtkDistanceFieldMesh.h"
+
+#include <chrono>
+#include <limits>
+
+vtkStandardNewMacro(vtkChamferVoxelDistance);
+
+namespace
+{
+/// Non-zero values of a one-component array (x fastest over dims) into voxel lanes.
+struct MaskToBits
+{
+  template<typename ArrayT>
+  void operator()(ArrayT* array, vtkdf::BitVolume& bits) const
+  {
+    const auto values = vtk::DataArrayValueRange<1>(array);
+    const int nx = bits.Size(0), ny = bits.Size(1), nz = bits.Size(2);
+    const int64_t slice = int64_t(nx) * ny;
+    vtkdf::SMPFor(slice,
+      256,
+      [&](int64_t begin, int64_t end)
+      {
+        for (int64_t lane = begin; lane < end; ++lane)
+        {
+          uint64_t* words = bits.Lane(static_cast<int>(lane % nx), static_cast<int>(lane / nx));
+          for (int z = 0; z < nz; ++z)
+          {
+            if (values[lane + z * slice] != 0)
+            {
+              words[z >> 6] |= uint64_t(1) << (z & 63);
+            }
+          }
+        }
+      });
+  }
+};
+
+/// The named mask of `image` as lanes; false with `error` when it is unusable.
+bool ReadMask(vtkImageData* image,
+  const char* name,
+  bool required,
+  vtkdf::BitVolume& bits,
+  bool& found,
+  std::string& error)
+{
+  found = false;
+  vtkAbstractArray* abstract = image->GetPointData()->GetAbstractArray(name);
+  if (!abstract)
+  {
+    if (required)
+    {
+      error = std::string("The input image has no point-data array named ") + name + ".";
+    }
+    return !required;
+  }
+  vtkDataArray* array = vtkDataArray::SafeDownCast(abstract);
+  if (!array)
+  {
+    error = std::string("The ") + name + " array is a " + abstract->GetClassName() +
+      ", not a numeric array.";
+    return false;
+  }
+  if (array->GetNumberOfComponents() != 1)
+  {
+    error = std::string("The ") + name + " array has " +
+      std::to_string(array->GetNumberOfComponents()) + " components; a mask has one.";
+    return false;
+  }
+  if (array->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    error = std::string("The ") + name + " array has " +
+      std::to_string(array->GetNumberOfTuples()) + " values for " +
+      std::to_string(image->GetNumberOfPoints()) + " samples.";
+    return false;
+  }
+  MaskToBits worker;
+  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, bits))
+  {
+    worker(array, bits); // vtkDataArray fallback
+  }
+  found = true;
+  return true;
+}
+} // namespace
+
+vtkChamferVoxelDistance::vtkChamferVoxelDistance() = default;
+
+int vtkChamferVoxelDistance::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkChamferVoxelDistance::RequestInformation(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    // A mask image: the output has its grid.
+    int whole[6];
+    double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    if (inInfo->Has(vtkDataObject::ORIGIN()))
+    {
+      inInfo->Get(vtkDataObject::ORIGIN(), origin);
+    }
+    if (inInfo->Has(vtkDataObject::SPACING()))
+    {
+      inInfo->Get(vtkDataObject::SPACING(), spacing);
+    }
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+    outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+    outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  }
+  else if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  // Every voxel depends on the whole zero set: the output is always the whole grid.
+  outInfo->Remove(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT());
+  return 1;
+}
+
+int vtkChamferVoxelDistance::RequestUpdateExtent(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    int whole[6];
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+    return 1;
+  }
+  return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
+}
+
+int vtkChamferVoxelDistance::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
+  vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  output->Initialize();
+  this->LastLayers = 0;
+  this->LastStageTimes.clear();
+  if (this->Backend == BACKEND_GPU)
+  {
+    vtkErrorMacro("Backend is GPU, but this filter has no GPU pass yet: use Auto or CPU.");
+    return 0;
+  }
+
+  // The grid.
+  vtkdf::SampleGrid grid;
+  vtkdf::IndexBox unused;
+  if (image)
+  {
+    int extent[6];
+    image->GetExtent(extent);
+    for (int a = 0; a < 3; ++a)
+    {
+      grid.Origin[a] = image->GetOrigin()[a];
+      grid.Spacing[a] = image->GetSpacing()[a];
+      grid.Whole.Lo[a] = extent[2 * a];
+      grid.Whole.Hi[a] = extent[2 * a + 1];
+    }
+    if (grid.Whole.Empty())
+    {
+      vtkWarningMacro("The input image is empty: the output is an empty image.");
+      return 1;
+    }
+  }
+  else if (!mesh || mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0 ||
+    !GetOutputGrid(outInfo, grid, unused))
+  {
+    vtkWarningMacro("The input mesh is empty: the output is an empty image.");
+    return 1;
+  }
+  const int nx = grid.Whole.Size(0), ny = grid.Whole.Size(1), nz = grid.Whole.Size(2);
+  const double voxels = double(grid.Whole.Count());
+  // Three views of lanes (voxelizing), three lane grids (propagating), the int32 field.
+  const double bytes = voxels * (6 / 8.0 + 3 / 8.0 + 4 + (this->OutputMasks ? 2 : 0));
+  if (!this->CheckMemory(bytes, grid.Whole))
+  {
+    return 0;
+  }
+
+  // The zero set, and the solid when a sign is wanted.
+  vtkdf::BitVolume boundary(nx, ny, nz), solid;
+  bool haveSolid = false;
+  std::string error, warning;
+  if (image)
+  {
+    bool found = false;
+    solid.Resize(nx, ny, nz);
+    if (!ReadMask(image, "Boundary", true, boundary, found, error) ||
+      !ReadMask(image, "Solid", false, solid, haveSolid, error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+  }
+  else
+  {
+    haveSolid = this->Signed;
+    if (!vtkdf::VoxelizeMesh(mesh, grid, &boundary, haveSolid ? &solid : nullptr, error, warning))
+    {
+      vtkErrorMacro("Invalid input mesh: " << error << ".");
+      return 0;
+    }
+    if (!warning.empty())
+    {
+      vtkWarningMacro(<< warning);
+    }
+  }
+  if (this->Signed && !haveSolid)
+  {
+    vtkWarningMacro("Signed is on but the input image has no Solid array: the distances are "
+                    "unsigned.");
+  }
+  if (!boundary.Any())
+  {
+    vtkErrorMacro("The zero set is empty: no Boundary voxel is set, so no distance can be "
+                  "propagated.");
+    return 0;
+  }
+  const auto voxelized = std::chrono::steady_clock::now();
+
+  // Propagation.
+  vtkNew<vtkIntArray> distance;
+  distance->SetName("ChamferDistance");
+  distance->SetNumberOfTuples(grid.Whole.Count());
+  const int32_t unreached =
+    this->MaximumLayers > 0 ? this->MaximumLayers + 1 : std::numeric_limits<int32_t>::max();
+  const vtkdf::ChamferMetric metric = this->Metric == MANHATTAN
+    ? vtkdf::ChamferMetric::Manhattan
+    : (this->Metric == CHESSBOARD26 ? vtkdf::ChamferMetric::Chessboard26
+                                    : vtkdf::ChamferMetric::Chessboard18);
+  auto progress = [this](double fraction)
+  {
+    this->UpdateProgress(0.1 + 0.85 * fraction);
+    return !this->GetAbortExecute();
+  };
+  const vtkdf::ChamferResult result = vtkdf::ChamferPropagate(boundary,
+    metric,
+    this->MaximumLayers,
+    unreached,
+    distance->GetPointer(0),
+    vtkdf::SMPFor,
+    progress);
+  if (result.Aborted)
+  {
+    return 1;
+  }
+  const auto propagated = std::chrono::steady_clock::now();
+  if (this->Signed && haveSolid)
+  {
+    int32_t* d = distance->GetPointer(0);
+    vtkdf::SMPFor(int64_t(nx) * ny,
+      256,
+      [&](int64_t begin, int64_t end)
+      {
+        for (int64_t lane = begin; lane < end; ++lane)
+        {
+          const uint64_t* words =
+            solid.Lane(static_cast<int>(lane % nx), static_cast<int>(lane / nx));
+          for (int z = 0; z < nz; ++z)
+          {
+            if ((words[z >> 6] >> (z & 63)) & 1u)
+            {
+              d[lane + z * int64_t(nx) * ny] = -d[lane + z * int64_t(nx) * ny];
+            }
+          }
+        }
+      });
+  }
+
+  SetOutputExtent(output, grid, grid.Whole);
+  output->GetPointData()->SetScalars(distance);
+  vtkNew<vtkIntArray> unreachedValue;
+  unreachedValue->SetName("UnreachedValue");
+  unreachedValue->InsertNextValue(unreached);
+  output->GetFieldData()->AddArray(unreachedValue);
+  if (this->OutputMasks)
+  {
+    for (int m = 0; m < 2; ++m)
+    {
+      if (m == 1 && !haveSolid)
+      {
+        continue;
+      }
+      vtkNew<vtkUnsignedCharArray> mask;
+      mask->SetName(m == 0 ? "Boundary" : "Solid");
+      mask->SetNumberOfTuples(grid.Whole.Count());
+      vtkdf::BitsToMask(m == 0 ? boundary : solid, grid, grid.Whole, mask->GetPointer(0));
+      output->GetPointData()->AddArray(mask);
+    }
+  }
+  this->LastLayers = result.Layers;
+  this->LastBackend = "cpu";
+  this->LastRenderer = "cpu";
+  const auto end = std::chrono::steady_clock::now();
+  this->LastTime = std::chrono::duration<double>(end - start).count();
+  this->LastStageTimes = std::string(image ? "masks:" : "voxelize:") +
+    std::to_string(std::chrono::duration<double>(voxelized - start).count()) +
+    ",propagate:" + std::to_string(std::chrono::duration<double>(propagated - voxelized).count()) +
+    ",arrays:" + std::to_string(std::chrono::duration<double>(end - propagated).count());
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkChamferVoxelDistance::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const char* metrics[] = { "Manhattan", "Chessboard18", "Chessboard26" };
+  os << indent << "Metric: " << metrics[this->Metric] << "\n";
+  os << indent << "MaximumLayers: " << this->MaximumLayers << "\n";
+  os << indent << "Signed: " << this->Signed << "\n";
+  os << indent << "OutputMasks: " << this->OutputMasks << "\n";
+  os << indent << "LastLayers: " << this->LastLayers << "\n";
+}

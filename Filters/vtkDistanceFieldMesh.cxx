@@ -1,0 +1,189 @@
+#include "vtkDistanceFieldMesh.h"
+
+#include "vtkCellArray.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolygon.h"
+#include "vtkSMPTools.h"
+
+#include "Voxelizer.h"
+
+#include <sstream>
+
+namespace vtkdf
+{
+
+void MeshConversion::Run(vtkPolyData* input)
+{
+  vtkPoints* points = input->GetPoints();
+  const vtkIdType numPoints = points ? points->GetNumberOfPoints() : 0;
+  this->Mesh.Points.resize(3 * numPoints);
+  for (vtkIdType i = 0; i < numPoints; ++i)
+  {
+    points->GetPoint(i, &this->Mesh.Points[3 * i]);
+  }
+  vtkIdType cellId = 0;
+  vtkIdType count;
+  const vtkIdType* ids;
+  vtkCellArray* verts = input->GetVerts();
+  for (verts->InitTraversal(); verts->GetNextCell(count, ids); ++cellId)
+  {
+    this->EmptyVertices += count == 0;
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      this->Mesh.Vertices.push_back(ids[i]);
+      this->Mesh.VertexCells.push_back(cellId);
+    }
+  }
+  vtkCellArray* lines = input->GetLines();
+  for (lines->InitTraversal(); lines->GetNextCell(count, ids); ++cellId)
+  {
+    this->ShortLines += count < 2;
+    for (vtkIdType i = 0; i + 1 < count; ++i)
+    {
+      this->Mesh.Segments.insert(this->Mesh.Segments.end(), { ids[i], ids[i + 1] });
+      this->Mesh.SegmentCells.push_back(cellId);
+    }
+  }
+  vtkNew<vtkPolygon> polygon;
+  vtkNew<vtkIdList> triangles;
+  vtkCellArray* polys = input->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cellId)
+  {
+    if (count < 3)
+    {
+      ++this->ShortPolygons;
+      continue;
+    }
+    if (count == 3)
+    {
+      this->AddTriangle(ids[0], ids[1], ids[2], cellId);
+      continue;
+    }
+    // Concave polygons need an ear-cut; a fan covers what the ear-cut rejects.
+    polygon->GetPointIds()->SetNumberOfIds(count);
+    polygon->GetPoints()->SetNumberOfPoints(count);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      polygon->GetPointIds()->SetId(i, i);
+      polygon->GetPoints()->SetPoint(i, &this->Mesh.Points[3 * ids[i]]);
+    }
+    if (polygon->Triangulate(triangles) && triangles->GetNumberOfIds() == 3 * (count - 2))
+    {
+      for (vtkIdType t = 0; t < triangles->GetNumberOfIds(); t += 3)
+      {
+        this->AddTriangle(ids[triangles->GetId(t)],
+          ids[triangles->GetId(t + 1)],
+          ids[triangles->GetId(t + 2)],
+          cellId);
+      }
+    }
+    else
+    {
+      for (vtkIdType i = 1; i + 1 < count; ++i)
+      {
+        this->AddTriangle(ids[0], ids[i], ids[i + 1], cellId);
+      }
+    }
+  }
+  vtkCellArray* strips = input->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(count, ids); ++cellId)
+  {
+    this->ShortStrips += count < 3;
+    for (vtkIdType i = 0; i + 2 < count; ++i)
+    {
+      if (i % 2 == 0)
+      {
+        this->AddTriangle(ids[i], ids[i + 1], ids[i + 2], cellId);
+      }
+      else
+      {
+        this->AddTriangle(ids[i + 1], ids[i], ids[i + 2], cellId);
+      }
+    }
+  }
+}
+
+void MeshConversion::AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell)
+{
+  this->Mesh.Triangles.insert(this->Mesh.Triangles.end(), { a, b, c });
+  this->Mesh.TriangleCells.push_back(cell);
+}
+
+std::string MeshConversion::IgnoredCells() const
+{
+  if (!this->ShortPolygons && !this->ShortLines && !this->ShortStrips && !this->EmptyVertices)
+  {
+    return std::string();
+  }
+  std::ostringstream text;
+  text << "Ignored cells it cannot use: " << this->ShortPolygons
+       << " polygons with fewer than 3 points, " << this->ShortLines
+       << " lines with fewer than 2 points, " << this->ShortStrips
+       << " triangle strips with fewer than 3 points, " << this->EmptyVertices
+       << " vertex cells without points. The other cells are used.";
+  return text.str();
+}
+
+bool VoxelizeMesh(vtkPolyData* input,
+  const SampleGrid& grid,
+  BitVolume* boundary,
+  BitVolume* solid,
+  std::string& error,
+  std::string& warning)
+{
+  MeshConversion conversion;
+  conversion.Run(input);
+  warning = conversion.IgnoredCells();
+  const size_t flat = conversion.Mesh.Segments.size() / 2 + conversion.Mesh.Vertices.size();
+  if (flat > 0)
+  {
+    warning += (warning.empty() ? "" : " ") +
+      std::string("Vertex and line cells have no area to ") + "voxelize: " + std::to_string(flat) +
+      " points and segments ignored.";
+  }
+  VoxelizeStatistics statistics;
+  if (!VoxelizeCPU(conversion.Mesh, grid, boundary, solid, SMPFor, statistics, error))
+  {
+    return false;
+  }
+  if (statistics.FarTriangles > 0)
+  {
+    warning += (warning.empty() ? "" : " ") + std::to_string(statistics.FarTriangles) +
+      " triangles with a vertex more than 2^22 cells from the grid were ignored.";
+  }
+  return true;
+}
+
+void BitsToMask(const BitVolume& bits, const SampleGrid& grid, const IndexBox& extent, uint8_t* out)
+{
+  const int64_t nx = extent.Size(0), ny = extent.Size(1);
+  SMPFor(ny * extent.Size(2),
+    64,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t row = begin; row < end; ++row)
+      {
+        const int j = extent.Lo[1] + static_cast<int>(row % ny);
+        const int k = extent.Lo[2] + static_cast<int>(row / ny);
+        uint8_t* line = out + row * nx;
+        for (int i = extent.Lo[0]; i <= extent.Hi[0]; ++i)
+        {
+          line[i - extent.Lo[0]] =
+            bits.Get(i - grid.Whole.Lo[0], j - grid.Whole.Lo[1], k - grid.Whole.Lo[2]) ? 1 : 0;
+        }
+      }
+    });
+}
+
+void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body)
+{
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(n),
+    static_cast<vtkIdType>(grain),
+    [&body](vtkIdType begin, vtkIdType end) { body(begin, end); });
+}
+
+} // namespace vtkdf

@@ -1,0 +1,58 @@
+// vtkDistanceFieldMesh: what the filters of this module share on the VTK side: the
+// copy of a vtkPolyData into the cores' plain arrays, and the vtkSMPTools loop behind
+// the cores' ParallelFor hook. Private to the module (not wrapped).
+#ifndef vtkDistanceFieldMesh_h
+#define vtkDistanceFieldMesh_h
+
+#include "BitVolume.h"
+#include "MeshSites.h"
+#include "SampleGrid.h"
+
+#include "vtkType.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+class vtkPolyData;
+
+namespace vtkdf
+{
+
+/// Copies the mesh into the core's plain arrays (polygons ear-cut into triangles,
+/// strips split, polylines into segments); counts the cells it cannot use.
+struct MeshConversion
+{
+  MeshInput Mesh;
+  vtkIdType ShortPolygons = 0, ShortLines = 0, ShortStrips = 0, EmptyVertices = 0;
+
+  void Run(vtkPolyData* input);
+
+  /// A sentence naming the cells that were ignored, or "" when none was.
+  std::string IgnoredCells() const;
+
+private:
+  void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell);
+};
+
+/// Voxelizes the triangles of `input` on `grid` (either output may be null). Returns
+/// false with `error` on invalid input; `warning` names what was ignored, if anything.
+bool VoxelizeMesh(vtkPolyData* input,
+  const SampleGrid& grid,
+  BitVolume* boundary,
+  BitVolume* solid,
+  std::string& error,
+  std::string& warning);
+
+/// Writes the bits of `bits` over `extent` (a sub-extent of `grid.Whole`) as uint8 0/1.
+void BitsToMask(const BitVolume& bits,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* out);
+
+/// vtkSMPTools::For behind the cores' ParallelFor hook.
+void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body);
+
+} // namespace vtkdf
+
+#endif

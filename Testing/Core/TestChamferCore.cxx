@@ -1,0 +1,235 @@
+// The VTK-free chamfer transform against a breadth-first search with the same
+// neighbourhood, on hand-made voxel sets: one voxel, a plane, the grid's corners and
+// faces, random sparse sets; nz = 1, 64, 65, 129, 300; every metric, with and without
+// a maximum number of layers.
+#include "ChamferTransform.h"
+
+#include <cstdio>
+#include <deque>
+#include <functional>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace vtkdf;
+
+namespace
+{
+int Failures = 0;
+
+void ThreadFor(int64_t n, int64_t, const std::function<void(int64_t, int64_t)>& body)
+{
+  const int64_t half = n / 2;
+  std::thread other([&] { body(half, n); });
+  if (half > 0)
+  {
+    body(0, half);
+  }
+  other.join();
+}
+
+/// Layer index of every voxel by breadth-first search from the set voxels.
+std::vector<int32_t> Reference(const BitVolume& zero,
+  ChamferMetric metric,
+  int maxLayers,
+  int32_t unreached)
+{
+  const int nx = zero.Size(0), ny = zero.Size(1), nz = zero.Size(2);
+  std::vector<int32_t> d(size_t(nx) * ny * nz, -1);
+  std::deque<int64_t> queue;
+  for (int z = 0; z < nz; ++z)
+  {
+    for (int y = 0; y < ny; ++y)
+    {
+      for (int x = 0; x < nx; ++x)
+      {
+        if (zero.Get(x, y, z))
+        {
+          const int64_t at = x + int64_t(nx) * (y + int64_t(ny) * z);
+          d[at] = 0;
+          queue.push_back(at);
+        }
+      }
+    }
+  }
+  while (!queue.empty())
+  {
+    const int64_t at = queue.front();
+    queue.pop_front();
+    const int x = static_cast<int>(at % nx), y = static_cast<int>((at / nx) % ny);
+    const int z = static_cast<int>(at / (int64_t(nx) * ny));
+    if (maxLayers > 0 && d[at] >= maxLayers)
+    {
+      continue;
+    }
+    for (int dz = -1; dz <= 1; ++dz)
+    {
+      for (int dy = -1; dy <= 1; ++dy)
+      {
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+          const int order = (dx != 0) + (dy != 0) + (dz != 0);
+          const bool neighbour = metric == ChamferMetric::Manhattan ? order == 1
+            : metric == ChamferMetric::Chessboard18                 ? (order == 1 || order == 2)
+                                                                    : order >= 1;
+          const int ox = x + dx, oy = y + dy, oz = z + dz;
+          if (!neighbour || ox < 0 || oy < 0 || oz < 0 || ox >= nx || oy >= ny || oz >= nz)
+          {
+            continue;
+          }
+          const int64_t o = ox + int64_t(nx) * (oy + int64_t(ny) * oz);
+          if (d[o] < 0)
+          {
+            d[o] = d[at] + 1;
+            queue.push_back(o);
+          }
+        }
+      }
+    }
+  }
+  for (int32_t& v : d)
+  {
+    v = v < 0 ? unreached : v;
+  }
+  return d;
+}
+
+void Check(const std::string& name, const BitVolume& zero)
+{
+  const char* metrics[] = { "manhattan", "chessboard18", "chessboard26" };
+  for (int m = 0; m < 3; ++m)
+  {
+    for (int maxLayers : { 0, 3 })
+    {
+      const ChamferMetric metric = static_cast<ChamferMetric>(m);
+      const int32_t unreached = maxLayers > 0 ? maxLayers + 1 : INT32_MAX;
+      const auto expected = Reference(zero, metric, maxLayers, unreached);
+      std::vector<int32_t> got(expected.size());
+      const ChamferResult r =
+        ChamferPropagate(zero, metric, maxLayers, unreached, got.data(), ThreadFor, nullptr);
+      int64_t wrong = 0, first = -1;
+      for (size_t i = 0; i < got.size(); ++i)
+      {
+        if (got[i] != expected[i])
+        {
+          first = first < 0 ? int64_t(i) : first;
+          ++wrong;
+        }
+      }
+      int32_t layers = 0;
+      for (int32_t v : expected)
+      {
+        layers = v != unreached ? std::max(layers, v) : layers;
+      }
+      if (wrong || r.Layers != layers)
+      {
+        std::printf("FAIL: %s %s M=%d: %lld voxels differ (first at %lld: %d, expected %d), "
+                    "layers %d, expected %d\n",
+          name.c_str(),
+          metrics[m],
+          maxLayers,
+          (long long)wrong,
+          (long long)first,
+          first >= 0 ? got[first] : 0,
+          first >= 0 ? expected[first] : 0,
+          r.Layers,
+          layers);
+        ++Failures;
+      }
+    }
+  }
+  std::printf("%-34s %dx%dx%d  %lld zero voxels: ok\n",
+    name.c_str(),
+    zero.Size(0),
+    zero.Size(1),
+    zero.Size(2),
+    (long long)zero.Count());
+}
+} // namespace
+
+int main()
+{
+  std::mt19937 random(7);
+  struct Dims
+  {
+    int X, Y, Z;
+  };
+  for (const Dims d : { Dims{ 9, 7, 1 },
+         Dims{ 6, 5, 64 },
+         Dims{ 5, 6, 65 },
+         Dims{ 4, 5, 129 },
+         Dims{ 3, 4, 300 },
+         Dims{ 13, 11, 17 } })
+  {
+    const std::string size =
+      std::to_string(d.X) + "x" + std::to_string(d.Y) + "x" + std::to_string(d.Z);
+    {
+      BitVolume v(d.X, d.Y, d.Z);
+      v.Set(d.X / 2, d.Y / 2, d.Z / 2);
+      Check("single voxel " + size, v);
+    }
+    {
+      BitVolume v(d.X, d.Y, d.Z);
+      v.Set(d.X - 1, 0, d.Z - 1);
+      Check("corner voxel " + size, v);
+    }
+    {
+      BitVolume v(d.X, d.Y, d.Z);
+      for (int y = 0; y < d.Y; ++y)
+      {
+        for (int z = 0; z < d.Z; ++z)
+        {
+          v.Set(d.X / 3, y, z); // a plane x = const
+        }
+      }
+      Check("plane " + size, v);
+    }
+    {
+      BitVolume v(d.X, d.Y, d.Z);
+      for (int c = 0; c < 8; ++c)
+      {
+        v.Set(c & 1 ? d.X - 1 : 0, c & 2 ? d.Y - 1 : 0, c & 4 ? d.Z - 1 : 0);
+      }
+      Check("corners " + size, v);
+    }
+    {
+      BitVolume v(d.X, d.Y, d.Z);
+      for (int x = 0; x < d.X; ++x)
+      {
+        for (int y = 0; y < d.Y; ++y)
+        {
+          v.Set(x, y, 0); // the face z = 0
+        }
+      }
+      Check("face z=0 " + size, v);
+    }
+    {
+      BitVolume v(d.X, d.Y, d.Z);
+      std::uniform_int_distribution<int> rx(0, d.X - 1), ry(0, d.Y - 1), rz(0, d.Z - 1);
+      for (int n = 0; n < 3; ++n)
+      {
+        v.Set(rx(random), ry(random), rz(random));
+      }
+      Check("random sparse " + size, v);
+    }
+  }
+  {
+    BitVolume empty(4, 4, 4);
+    std::vector<int32_t> out(64);
+    const ChamferResult r =
+      ChamferPropagate(empty, ChamferMetric::Manhattan, 0, -7, out.data(), ThreadFor, nullptr);
+    bool all = r.Reached == 0;
+    for (int32_t v : out)
+    {
+      all = all && v == -7;
+    }
+    if (!all)
+    {
+      std::printf("FAIL: an empty zero set must leave every voxel unreached\n");
+      ++Failures;
+    }
+  }
+  std::printf("%d failures\n", Failures);
+  return Failures ? 1 : 0;
+}

@@ -1,0 +1,172 @@
+// Each bad input of vtkChamferVoxelDistance and vtkPolyDataVoxelizer gives the documented
+// message, no crash, and no (or an empty) output.
+// usage: TestChamferBadInput empty|noboundary|wrongsize|wrongtype|components|memory|
+//                            voxelize-empty|voxelize-nan|voxelize-memory|voxelize-lines
+#include "vtkChamferVoxelDistance.h"
+#include "vtkPolyDataVoxelizer.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
+#include "vtkExecutive.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace
+{
+std::string Errors, Warnings;
+
+void Record(vtkObject*, unsigned long event, void*, void* callData)
+{
+  (event == vtkCommand::ErrorEvent ? Errors : Warnings) += static_cast<const char*>(callData);
+}
+
+vtkNew<vtkPolyData> Triangle(double z = 0)
+{
+  vtkNew<vtkPolyData> mesh;
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(0, 0, z);
+  pts->InsertNextPoint(1, 0, 0);
+  pts->InsertNextPoint(0, 1, 0);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType t[3] = { 0, 1, 2 };
+  polys->InsertNextCell(3, t);
+  mesh->SetPoints(pts);
+  mesh->SetPolys(polys);
+  return mesh;
+}
+
+/// A 6^3 image whose Boundary mask has `values` values (all zero unless `set`).
+vtkNew<vtkImageData> Image(vtkIdType values, bool set)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(6, 6, 6);
+  vtkNew<vtkUnsignedCharArray> mask;
+  mask->SetName("Boundary");
+  mask->SetNumberOfTuples(values);
+  mask->Fill(0);
+  if (set)
+  {
+    mask->SetValue(values / 2, 1);
+  }
+  image->GetPointData()->AddArray(mask);
+  return image;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  const std::string mode = argc > 1 ? argv[1] : "";
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetCallback(Record);
+  vtkNew<vtkChamferVoxelDistance> chamfer;
+  vtkNew<vtkPolyDataVoxelizer> voxelizer;
+  vtkDistanceFieldAlgorithm* filter = chamfer;
+  if (mode.rfind("voxelize-", 0) == 0)
+  {
+    filter = voxelizer;
+  }
+  filter->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+  filter->SetResolution(16);
+  filter->SetBackendToCPU();
+  std::string expectError, expectWarning;
+  bool expectOutput = false;
+  if (mode == "empty" || mode == "voxelize-empty")
+  {
+    vtkNew<vtkPolyData> empty;
+    filter->SetInputData(empty);
+    expectWarning = "empty";
+  }
+  else if (mode == "noboundary")
+  {
+    filter->SetInputData(Image(216, false));
+    expectError = "no Boundary voxel is set";
+  }
+  else if (mode == "wrongsize")
+  {
+    filter->SetInputData(Image(100, true));
+    expectError = "The Boundary array has 100 values for 216 samples";
+  }
+  else if (mode == "wrongtype")
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(6, 6, 6);
+    vtkNew<vtkStringArray> names;
+    names->SetName("Boundary");
+    names->SetNumberOfValues(216);
+    image->GetPointData()->AddArray(names);
+    filter->SetInputData(image);
+    expectError = "not a numeric array";
+  }
+  else if (mode == "components")
+  {
+    auto image = Image(216, true);
+    image->GetPointData()->GetArray("Boundary")->SetNumberOfComponents(2);
+    image->GetPointData()->GetArray("Boundary")->SetNumberOfTuples(216);
+    filter->SetInputData(image);
+    expectError = "has 2 components";
+  }
+  else if (mode == "memory" || mode == "voxelize-memory")
+  {
+    filter->SetInputData(Triangle());
+    filter->SetMemoryLimit(1000);
+    expectError = "above MemoryLimit";
+  }
+  else if (mode == "voxelize-nan")
+  {
+    filter->SetInputData(Triangle(std::nan("")));
+    filter->ExplicitGridOn();
+    expectError = "NaN";
+  }
+  else if (mode == "voxelize-lines")
+  {
+    vtkNew<vtkPolyData> mesh;
+    mesh->DeepCopy(Triangle());
+    vtkNew<vtkCellArray> lines;
+    const vtkIdType segment[2] = { 0, 1 };
+    lines->InsertNextCell(2, segment);
+    mesh->SetLines(lines);
+    filter->SetInputData(mesh);
+    expectWarning = "Vertex and line cells have no area to voxelize";
+    expectOutput = true;
+  }
+  else
+  {
+    std::printf("unknown mode '%s'\n", mode.c_str());
+    return 2;
+  }
+  filter->Update();
+  const vtkIdType n = filter->GetOutput()->GetNumberOfPoints();
+  std::printf("mode %s: %lld samples\n  errors: %s\n  warnings: %s\n",
+    mode.c_str(),
+    (long long)n,
+    Errors.c_str(),
+    Warnings.c_str());
+  bool ok = true;
+  if (!expectError.empty() && Errors.find(expectError) == std::string::npos)
+  {
+    std::printf("FAIL: expected an error containing '%s'\n", expectError.c_str());
+    ok = false;
+  }
+  if (!expectWarning.empty() && Warnings.find(expectWarning) == std::string::npos)
+  {
+    std::printf("FAIL: expected a warning containing '%s'\n", expectWarning.c_str());
+    ok = false;
+  }
+  if (expectOutput != (n > 0))
+  {
+    std::printf("FAIL: expected %s output\n", expectOutput ? "an" : "an empty");
+    ok = false;
+  }
+  return ok ? 0 : 1;
+}
