@@ -14,6 +14,9 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "ChamferTransform.h"
+#include "HeadlessGL.h"
+#include "VoxelGPU.h"
+#include "Voxelizer.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <chrono>
@@ -169,12 +172,6 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   output->Initialize();
   this->LastLayers = 0;
   this->LastStageTimes.clear();
-  if (this->Backend == BACKEND_GPU)
-  {
-    vtkErrorMacro("Backend is GPU, but this filter has no GPU pass yet: use Auto or CPU.");
-    return 0;
-  }
-
   // The grid.
   vtkdf::SampleGrid grid;
   vtkdf::IndexBox unused;
@@ -210,10 +207,20 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     return 0;
   }
 
-  // The zero set, and the solid when a sign is wanted.
-  vtkdf::BitVolume boundary(nx, ny, nz), solid;
-  bool haveSolid = false;
+  bool useGPU = false;
   std::string error, warning;
+  if (!this->ChooseBackend(useGPU, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  vtkdf::HeadlessGL* gl = useGPU ? vtkdf::HeadlessGL::Get(error) : nullptr;
+
+  // The zero set, and the solid when a sign is wanted: read from the image, or
+  // voxelized (on the GPU, the voxelization stays there for the propagation).
+  vtkdf::BitVolume boundary(nx, ny, nz), solid;
+  vtkdf::MeshConversion conversion;
+  bool haveSolid = false;
   if (image)
   {
     bool found = false;
@@ -224,29 +231,40 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
       vtkErrorMacro(<< error);
       return 0;
     }
+    if (this->Signed && !haveSolid)
+    {
+      vtkWarningMacro("Signed is on but the input image has no Solid array: the distances are "
+                      "unsigned.");
+    }
   }
   else
   {
     haveSolid = this->Signed;
-    if (!vtkdf::VoxelizeMesh(mesh, grid, &boundary, haveSolid ? &solid : nullptr, error, warning))
+    conversion.Run(mesh);
+    warning = vtkdf::TrianglesOnly(conversion);
+    if (!gl)
     {
-      vtkErrorMacro("Invalid input mesh: " << error << ".");
-      return 0;
-    }
-    if (!warning.empty())
-    {
-      vtkWarningMacro(<< warning);
+      vtkdf::VoxelizeStatistics statistics;
+      if (!vtkdf::VoxelizeCPU(conversion.Mesh,
+            grid,
+            &boundary,
+            haveSolid ? &solid : nullptr,
+            vtkdf::SMPFor,
+            statistics,
+            error))
+      {
+        vtkErrorMacro("Invalid input mesh: " << error << ".");
+        return 0;
+      }
+      const std::string far = vtkdf::FarTriangles(statistics);
+      warning += (warning.empty() || far.empty() ? "" : " ") + far;
     }
   }
-  if (this->Signed && !haveSolid)
+  const char* emptyZeroSet =
+    "The zero set is empty: no Boundary voxel is set, so no distance can be propagated.";
+  if ((image || !gl) && !boundary.Any())
   {
-    vtkWarningMacro("Signed is on but the input image has no Solid array: the distances are "
-                    "unsigned.");
-  }
-  if (!boundary.Any())
-  {
-    vtkErrorMacro("The zero set is empty: no Boundary voxel is set, so no distance can be "
-                  "propagated.");
+    vtkErrorMacro(<< emptyZeroSet);
     return 0;
   }
   const auto voxelized = std::chrono::steady_clock::now();
@@ -261,24 +279,71 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     ? vtkdf::ChamferMetric::Manhattan
     : (this->Metric == CHESSBOARD26 ? vtkdf::ChamferMetric::Chessboard26
                                     : vtkdf::ChamferMetric::Chessboard18);
-  auto progress = [this](double fraction)
+  vtkdf::ChamferResult result;
+  if (gl)
   {
-    this->UpdateProgress(0.1 + 0.85 * fraction);
-    return !this->GetAbortExecute();
-  };
-  const vtkdf::ChamferResult result = vtkdf::ChamferPropagate(boundary,
-    metric,
-    this->MaximumLayers,
-    unreached,
-    distance->GetPointer(0),
-    vtkdf::SMPFor,
-    progress);
-  if (result.Aborted)
+    vtkdf::ChamferInput in;
+    in.Grid = grid;
+    if (image)
+    {
+      in.Boundary = &boundary;
+      in.Solid = haveSolid ? &solid : nullptr;
+    }
+    else
+    {
+      in.Mesh = &conversion.Mesh;
+    }
+    vtkdf::VoxelizeStatistics statistics;
+    const bool masksBack = this->OutputMasks && !image;
+    if (!vtkdf::ChamferGPU(*gl,
+          in,
+          metric,
+          this->MaximumLayers,
+          unreached,
+          this->Signed && haveSolid,
+          distance->GetPointer(0),
+          masksBack ? &boundary : nullptr,
+          masksBack && haveSolid ? &solid : nullptr,
+          result,
+          statistics,
+          error))
+    {
+      vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error << ".");
+      return 0;
+    }
+    const std::string far = vtkdf::FarTriangles(statistics);
+    warning += (warning.empty() || far.empty() ? "" : " ") + far;
+    if (result.ZeroSet == 0)
+    {
+      vtkErrorMacro(<< emptyZeroSet);
+      return 0;
+    }
+  }
+  if (!warning.empty())
   {
-    return 1;
+    vtkWarningMacro(<< warning);
+  }
+  if (!gl)
+  {
+    auto progress = [this](double fraction)
+    {
+      this->UpdateProgress(0.1 + 0.85 * fraction);
+      return !this->GetAbortExecute();
+    };
+    result = vtkdf::ChamferPropagate(boundary,
+      metric,
+      this->MaximumLayers,
+      unreached,
+      distance->GetPointer(0),
+      vtkdf::SMPFor,
+      progress);
+    if (result.Aborted)
+    {
+      return 1;
+    }
   }
   const auto propagated = std::chrono::steady_clock::now();
-  if (this->Signed && haveSolid)
+  if (!gl && this->Signed && haveSolid)
   {
     int32_t* d = distance->GetPointer(0);
     vtkdf::SMPFor(int64_t(nx) * ny,
@@ -322,8 +387,8 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     }
   }
   this->LastLayers = result.Layers;
-  this->LastBackend = "cpu";
-  this->LastRenderer = "cpu";
+  this->LastBackend = gl ? "gpu" : "cpu";
+  this->LastRenderer = gl ? gl->Renderer() : "cpu";
   const auto end = std::chrono::steady_clock::now();
   this->LastTime = std::chrono::duration<double>(end - start).count();
   this->LastStageTimes = std::string(image ? "masks:" : "voxelize:") +

@@ -8,6 +8,7 @@
 #include "vtkPolygon.h"
 #include "vtkSMPTools.h"
 
+#include "VoxelGPU.h"
 #include "Voxelizer.h"
 
 #include <sstream>
@@ -127,8 +128,29 @@ std::string MeshConversion::IgnoredCells() const
   return text.str();
 }
 
+std::string TrianglesOnly(const MeshConversion& conversion)
+{
+  std::string warning = conversion.IgnoredCells();
+  const size_t flat = conversion.Mesh.Segments.size() / 2 + conversion.Mesh.Vertices.size();
+  if (flat > 0)
+  {
+    warning += (warning.empty() ? "" : " ") +
+      std::string("Vertex and line cells have no area to voxelize: ") + std::to_string(flat) +
+      " points and segments ignored.";
+  }
+  return warning;
+}
+
+std::string FarTriangles(const VoxelizeStatistics& statistics)
+{
+  return statistics.FarTriangles > 0 ? std::to_string(statistics.FarTriangles) +
+      " triangles with a vertex more than 2^22 cells from the grid were ignored."
+                                     : std::string();
+}
+
 bool VoxelizeMesh(vtkPolyData* input,
   const SampleGrid& grid,
+  HeadlessGL* gpu,
   BitVolume* boundary,
   BitVolume* solid,
   std::string& error,
@@ -136,25 +158,14 @@ bool VoxelizeMesh(vtkPolyData* input,
 {
   MeshConversion conversion;
   conversion.Run(input);
-  warning = conversion.IgnoredCells();
-  const size_t flat = conversion.Mesh.Segments.size() / 2 + conversion.Mesh.Vertices.size();
-  if (flat > 0)
-  {
-    warning += (warning.empty() ? "" : " ") +
-      std::string("Vertex and line cells have no area to ") + "voxelize: " + std::to_string(flat) +
-      " points and segments ignored.";
-  }
+  warning = TrianglesOnly(conversion);
   VoxelizeStatistics statistics;
-  if (!VoxelizeCPU(conversion.Mesh, grid, boundary, solid, SMPFor, statistics, error))
-  {
-    return false;
-  }
-  if (statistics.FarTriangles > 0)
-  {
-    warning += (warning.empty() ? "" : " ") + std::to_string(statistics.FarTriangles) +
-      " triangles with a vertex more than 2^22 cells from the grid were ignored.";
-  }
-  return true;
+  const bool ok = gpu
+    ? VoxelizeGPU(*gpu, conversion.Mesh, grid, boundary, solid, statistics, error)
+    : VoxelizeCPU(conversion.Mesh, grid, boundary, solid, SMPFor, statistics, error);
+  const std::string far = FarTriangles(statistics);
+  warning += (warning.empty() || far.empty() ? "" : " ") + far;
+  return ok;
 }
 
 void BitsToMask(const BitVolume& bits, const SampleGrid& grid, const IndexBox& extent, uint8_t* out)

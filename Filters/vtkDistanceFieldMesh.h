@@ -5,8 +5,10 @@
 #define vtkDistanceFieldMesh_h
 
 #include "BitVolume.h"
+#include "HeadlessGL.h"
 #include "MeshSites.h"
 #include "SampleGrid.h"
+#include "Voxelizer.h"
 
 #include "vtkType.h"
 
@@ -35,10 +37,17 @@ private:
   void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell);
 };
 
-/// Voxelizes the triangles of `input` on `grid` (either output may be null). Returns
-/// false with `error` on invalid input; `warning` names what was ignored, if anything.
+/// The warning for cells a voxelizer ignores (vertices, lines, unusable cells), or "".
+std::string TrianglesOnly(const MeshConversion& conversion);
+/// The warning for triangles too far from the grid, or "".
+std::string FarTriangles(const VoxelizeStatistics& statistics);
+
+/// Voxelizes the triangles of `input` on `grid` (either output may be null), on the GPU
+/// when `gpu` is given. Returns false with `error` on invalid input or a GPU failure;
+/// `warning` names what was ignored, if anything.
 bool VoxelizeMesh(vtkPolyData* input,
   const SampleGrid& grid,
+  HeadlessGL* gpu,
   BitVolume* boundary,
   BitVolume* solid,
   std::string& error,

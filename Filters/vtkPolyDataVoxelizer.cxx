@@ -9,6 +9,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "HeadlessGL.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <chrono>
@@ -31,11 +32,6 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
     vtkWarningMacro("The input mesh is empty: the output is an empty image.");
     return 1;
   }
-  if (this->Backend == BACKEND_GPU)
-  {
-    vtkErrorMacro("Backend is GPU, but this filter has no GPU pass yet: use Auto or CPU.");
-    return 0;
-  }
 
   vtkdf::SampleGrid grid;
   vtkdf::IndexBox extent;
@@ -54,16 +50,31 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
     return 0;
   }
 
-  vtkdf::BitVolume boundary, solid;
+  bool useGPU = false;
   std::string error, warning;
+  if (!this->ChooseBackend(useGPU, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  vtkdf::HeadlessGL* gl = useGPU ? vtkdf::HeadlessGL::Get(error) : nullptr;
+  vtkdf::BitVolume boundary, solid;
   if (!vtkdf::VoxelizeMesh(input,
         grid,
+        gl,
         wantBoundary ? &boundary : nullptr,
         wantSolid ? &solid : nullptr,
         error,
         warning))
   {
-    vtkErrorMacro("Invalid input mesh: " << error << ".");
+    if (gl)
+    {
+      vtkErrorMacro("The GPU voxelizer (" << gl->Renderer() << ") failed: " << error << ".");
+    }
+    else
+    {
+      vtkErrorMacro("Invalid input mesh: " << error << ".");
+    }
     return 0;
   }
   if (!warning.empty())
@@ -86,8 +97,8 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
     output->GetPointData()->AddArray(array);
   }
   output->GetPointData()->SetActiveScalars(wantBoundary ? "Boundary" : "Solid");
-  this->LastBackend = "cpu";
-  this->LastRenderer = "cpu";
+  this->LastBackend = gl ? "gpu" : "cpu";
+  this->LastRenderer = gl ? gl->Renderer() : "cpu";
   this->LastTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   this->LastStageTimes = "voxelize:" + std::to_string(this->LastTime);
   this->UpdateProgress(1.0);

@@ -95,6 +95,7 @@ ChamferResult ChamferPropagate(const BitVolume& zero,
       }
     }
   }
+  result.ZeroSet = result.Reached;
   if (box.Empty())
   {
     return result;

@@ -29,6 +29,7 @@ struct ChamferResult
 {
   int Layers = 0;      // the largest layer index written
   int64_t Reached = 0; // voxels with a layer index (the zero set included)
+  int64_t ZeroSet = 0; // voxels of layer 0
   bool Aborted = false;
 };
 

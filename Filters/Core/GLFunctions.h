@@ -14,6 +14,21 @@ namespace vtkdf
 
 // X(pointer type, name without the gl prefix), one per function used.
 #define VTKDF_GL_FUNCTIONS(X)                                                                      \
+  X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                                                   \
+  X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                                                         \
+  X(PFNGLCLEARBUFFERDATAPROC, ClearBufferData)                                                     \
+  X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                                                         \
+  X(PFNGLCOPYIMAGESUBDATAPROC, CopyImageSubData)                                                   \
+  X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                                                     \
+  X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)                                                   \
+  X(PFNGLGETINTEGER64VPROC, GetInteger64v)                                                         \
+  X(PFNGLGETTEXTUREIMAGEPROC, GetTextureImage)                                                     \
+  X(PFNGLLOGICOPPROC, LogicOp)                                                                     \
+  X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                                                         \
+  X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                                                 \
+  X(PFNGLUNIFORM1DPROC, Uniform1d)                                                                 \
+  X(PFNGLUNIFORM3DPROC, Uniform3d)                                                                 \
+  X(PFNGLUNIFORM3IPROC, Uniform3i)                                                                 \
   X(PFNGLATTACHSHADERPROC, AttachShader)                                                           \
   X(PFNGLBEGINQUERYPROC, BeginQuery)                                                               \
   X(PFNGLBINDBUFFERPROC, BindBuffer)                                                               \

@@ -6,7 +6,9 @@
 // - mask images made here (uint8 and float masks): one voxel, a plane, the grid's
 //   corners and faces, with nz = 1, 129 and 300.
 //
-// usage: TestChamferDistance DATA_DIR
+// On the GPU backend the field also equals the CPU backend's, voxel for voxel.
+//
+// usage: TestChamferDistance DATA_DIR cpu|gpu
 #include "vtkChamferVoxelDistance.h"
 
 #include "VoxelReference.h"
@@ -23,20 +25,20 @@
 #include "vtkXMLPolyDataReader.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <string>
 
 namespace
 {
 int Failures = 0;
+std::string Backend = "cpu";
 
-/// Runs the filter and compares with the search; `zero`/`solid` come from the output's
-/// masks when null.
-void Compare(const std::string& name,
-  vtkDataObject* input,
+vtkSmartPointer<vtkImageData> Run(vtkDataObject* input,
   int metric,
   int layers,
-  bool signedField)
+  bool signedField,
+  const std::string& backend)
 {
   vtkNew<vtkChamferVoxelDistance> f;
   f->SetInputData(input);
@@ -45,9 +47,34 @@ void Compare(const std::string& name,
   f->SetSigned(signedField);
   f->OutputMasksOn();
   f->SetResolution(40);
-  f->SetBackendToCPU();
+  if (backend == "gpu")
+  {
+    f->SetBackendToGPU();
+  }
+  else
+  {
+    f->SetBackendToCPU();
+  }
   f->Update();
-  vtkImageData* out = f->GetOutput();
+  if (std::string(f->GetLastBackend()) != backend)
+  {
+    std::printf("FAIL: asked for %s, ran on %s\n", backend.c_str(), f->GetLastBackend());
+    ++Failures;
+  }
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->DeepCopy(f->GetOutput());
+  return out;
+}
+
+/// Runs the filter on the backend under test and compares with the search (and, on the
+/// GPU, with the CPU backend).
+void Compare(const std::string& name,
+  vtkDataObject* input,
+  int metric,
+  int layers,
+  bool signedField)
+{
+  vtkSmartPointer<vtkImageData> out = Run(input, metric, layers, signedField, Backend);
   auto* distance = vtkIntArray::SafeDownCast(out->GetPointData()->GetArray("ChamferDistance"));
   auto* boundary = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetArray("Boundary"));
   auto* solid = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetArray("Solid"));
@@ -65,6 +92,27 @@ void Compare(const std::string& name,
     ++Failures;
   }
   const voxelref::Grid g(out);
+  int layersRun = 0;
+  for (vtkIdType v = 0; v < distance->GetNumberOfTuples(); ++v)
+  {
+    const int value = std::abs(distance->GetValue(v));
+    layersRun = value != unreached ? std::max(layersRun, value) : layersRun;
+  }
+  if (Backend == "gpu")
+  {
+    auto cpu = Run(input, metric, layers, signedField, "cpu");
+    auto* other = vtkIntArray::SafeDownCast(cpu->GetPointData()->GetArray("ChamferDistance"));
+    vtkIdType differ = 0;
+    for (vtkIdType v = 0; other && v < distance->GetNumberOfTuples(); ++v)
+    {
+      differ += distance->GetValue(v) != other->GetValue(v);
+    }
+    if (!other || differ)
+    {
+      std::printf("FAIL: %s: GPU and CPU differ on %lld voxels\n", name.c_str(), (long long)differ);
+      ++Failures;
+    }
+  }
   std::vector<char> zero(g.Count());
   for (int64_t v = 0; v < g.Count(); ++v)
   {
@@ -96,7 +144,7 @@ void Compare(const std::string& name,
     g.Dims[1],
     g.Dims[2],
     (long long)wrong,
-    f->GetLastLayers(),
+    layersRun,
     (long long)negative);
   if (wrong)
   {
@@ -146,12 +194,13 @@ vtkSmartPointer<vtkImageData> MaskImage(int nx,
 
 int main(int argc, char* argv[])
 {
-  if (argc < 2)
+  if (argc < 3)
   {
-    std::printf("usage: %s DATA_DIR\n", argv[0]);
+    std::printf("usage: %s DATA_DIR cpu|gpu\n", argv[0]);
     return 2;
   }
   const std::string data = argv[1];
+  Backend = argv[2];
   for (const char* name : { "bunny_small", "teapot", "scad_back_to_back", "boeing_soup" })
   {
     vtkNew<vtkXMLPolyDataReader> reader;

@@ -8,7 +8,9 @@
 //   Solid is the box's interior only.
 // - Mode Both gives the same masks as Boundary and Solid alone.
 //
-// usage: TestVoxelizer DATA_DIR
+// - On the GPU backend, every mask equals the CPU backend's, bit for bit.
+//
+// usage: TestVoxelizer DATA_DIR cpu|gpu
 #include "vtkPolyDataVoxelizer.h"
 
 #include "VoxelReference.h"
@@ -30,6 +32,7 @@
 namespace
 {
 int Failures = 0;
+int Identical = 0; // masks compared equal between the backends
 #define CHECK(cond, ...)                                                                           \
   do                                                                                               \
   {                                                                                                \
@@ -55,16 +58,26 @@ struct Explicit
   int Dims[3];
 };
 
+std::string Backend = "cpu";
+
 vtkSmartPointer<vtkImageData> Voxelize(vtkPolyData* mesh,
   int mode,
   int resolution,
-  const Explicit* grid = nullptr)
+  const Explicit* grid = nullptr,
+  const std::string& backend = Backend)
 {
   vtkNew<vtkPolyDataVoxelizer> v;
   v->SetInputData(mesh);
   v->SetMode(mode);
   v->SetResolution(resolution);
-  v->SetBackendToCPU();
+  if (backend == "gpu")
+  {
+    v->SetBackendToGPU();
+  }
+  else
+  {
+    v->SetBackendToCPU();
+  }
   if (grid)
   {
     v->ExplicitGridOn();
@@ -75,6 +88,44 @@ vtkSmartPointer<vtkImageData> Voxelize(vtkPolyData* mesh,
   v->Update();
   auto out = vtkSmartPointer<vtkImageData>::New();
   out->DeepCopy(v->GetOutput());
+  if (backend == "gpu" && std::string(v->GetLastBackend()) != "gpu")
+  {
+    std::printf("FAIL: the GPU backend did not run\n");
+    ++Failures;
+  }
+  if (backend == "gpu" && Backend == "gpu")
+  {
+    // The same masks as the CPU backend, bit for bit.
+    auto cpu = Voxelize(mesh, mode, resolution, grid, "cpu");
+    for (const char* name : { "Boundary", "Solid" })
+    {
+      auto* a = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetArray(name));
+      auto* b = vtkUnsignedCharArray::SafeDownCast(cpu->GetPointData()->GetArray(name));
+      if (!a != !b)
+      {
+        std::printf("FAIL: %s present on one backend only\n", name);
+        ++Failures;
+      }
+      else if (a)
+      {
+        vtkIdType differ = 0;
+        for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+        {
+          differ += a->GetValue(i) != b->GetValue(i);
+        }
+        if (differ)
+        {
+          std::printf(
+            "FAIL: %s: %lld voxels differ between GPU and CPU\n", name, (long long)differ);
+          ++Failures;
+        }
+        else
+        {
+          ++Identical;
+        }
+      }
+    }
+  }
   return out;
 }
 
@@ -214,12 +265,13 @@ vtkSmartPointer<vtkPolyData> PottedPlant(int sheet)
 
 int main(int argc, char* argv[])
 {
-  if (argc < 2)
+  if (argc < 3)
   {
-    std::printf("usage: %s DATA_DIR\n", argv[0]);
+    std::printf("usage: %s DATA_DIR cpu|gpu\n", argv[0]);
     return 2;
   }
   const std::string data = argv[1];
+  Backend = argv[2];
   const int resolution = 48;
 
   for (const char* name : { "bunny_small", "teapot", "scad_back_to_back", "boeing_soup" })
@@ -281,6 +333,10 @@ int main(int argc, char* argv[])
         box,
         Voxelize(PottedPlant(sheet), vtkPolyDataVoxelizer::SOLID, resolution, &grid));
     }
+  }
+  if (Backend == "gpu")
+  {
+    std::printf("%d masks identical on the GPU and the CPU\n", Identical);
   }
   std::printf("%d failures\n", Failures);
   return Failures ? 1 : 0;

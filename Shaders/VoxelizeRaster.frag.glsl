@@ -1,0 +1,70 @@
+// The bits one triangle sets on one lane texel (blended with a logical OR):
+// - boundary: the candidate voxels whose centre is within the distance limit;
+// - solid: the half-voxel bin of the crossing, as a front (Out0) or back (Out1) bit.
+uniform int Mode;
+uniform int Na;
+uniform ivec3 Axes;     // the view's A, B, C
+uniform ivec3 Lo;       // the grid's first sample index
+uniform dvec3 Origin, Spacing;
+uniform double Limit2, Reach;
+
+flat in int TriIndex;
+layout(location = 0) out uvec4 Out0;
+layout(location = 1) out uvec4 Out1;
+
+uvec4 Bit(int i)
+{
+  uvec4 bits = uvec4(0u);
+  bits[i >> 5] = 1u << uint(i & 31);
+  return bits;
+}
+
+void main()
+{
+  Tri t = tris[TriIndex];
+  int64_t p = int64_t(gl_FragCoord.x), q = int64_t(gl_FragCoord.y);
+  int base = gl_Layer * 128;
+  int64_t e[3];
+  if (Mode == 1)
+  {
+    if (!CoversCentre(t, p, q, e))
+    {
+      discard;
+    }
+    int at = SolidBit(DepthAt(t, e), Na) - base;
+    if (at < 0 || at >= 128)
+    {
+      discard;
+    }
+    Out0 = t.Flags.x != 0 ? Bit(at) : uvec4(0u);
+    Out1 = t.Flags.x != 0 ? uvec4(0u) : Bit(at);
+    return;
+  }
+  if (!OverlapsCell(t, p, q, e))
+  {
+    discard;
+  }
+  int k0, k1;
+  BoundaryCandidates(t, DepthAt(t, e), DepthSpread(t), Reach, Na, k0, k1);
+  k0 = max(k0, base);
+  k1 = min(k1, base + 127);
+  uvec4 bits = uvec4(0u);
+  for (int k = k0; k <= k1; ++k)
+  {
+    ivec3 ijk;
+    ijk[Axes.x] = k;
+    ijk[Axes.y] = int(p);
+    ijk[Axes.z] = int(q);
+    precise dvec3 centre = Origin + dvec3(Lo + ijk) * Spacing;
+    if (SquaredDistanceToTriangle(centre, t.P0.xyz, t.P1.xyz, t.P2.xyz) <= Limit2)
+    {
+      bits |= Bit(k - base);
+    }
+  }
+  if (bits == uvec4(0u))
+  {
+    discard;
+  }
+  Out0 = bits;
+  Out1 = uvec4(0u);
+}
