@@ -120,52 +120,59 @@ ChamferResult ChamferPropagate(const BitVolume& zero,
       4,
       [&](int64_t begin, int64_t end)
       {
-        std::vector<uint64_t> acc(words);
         LaneBox localBox;
         int64_t localReached = 0;
-        // acc |= w, or acc |= n'(w) when `wide`, or acc |= n(w) when `shiftOnly`.
-        auto gather = [&](const uint64_t* lane, bool keep, bool shift)
+        const uint64_t full = ~uint64_t(0);
+        // n(w) of word `w` of a lane: its bits moved one voxel up and one down.
+        auto shifted = [words](const uint64_t* lane, int w)
         {
-          for (int w = 0; w < words; ++w)
-          {
-            uint64_t v = keep ? lane[w] : 0;
-            if (shift)
-            {
-              v |= (lane[w] << 1) | (w > 0 ? lane[w - 1] >> 63 : 0);
-              v |= (lane[w] >> 1) | (w + 1 < words ? lane[w + 1] << 63 : 0);
-            }
-            acc[w] |= v;
-          }
+          return (lane[w] << 1) | (w > 0 ? lane[w - 1] >> 63 : 0) | (lane[w] >> 1) |
+            (w + 1 < words ? lane[w + 1] << 63 : 0);
         };
         for (int y = region.Y0 + static_cast<int>(begin); y < region.Y0 + end; ++y)
         {
           for (int x = region.X0; x <= region.X1; ++x)
           {
-            std::fill(acc.begin(), acc.end(), 0);
-            gather(current.Lane(x, y), false, true);
+            uint64_t* a = accumulated.Lane(x, y);
+            bool saturated = true;
+            for (int w = 0; w < words && saturated; ++w)
+            {
+              saturated = a[w] == (w + 1 == words ? lastMask : full);
+            }
+            if (saturated)
+            {
+              continue; // every voxel of the lane has its layer (`next` is clear here)
+            }
+            // The neighbouring lanes that contribute, and whether as w or n'(w).
+            const uint64_t* neighbours[8];
+            bool wide[8];
+            int count = 0;
             for (int dy = -1; dy <= 1; ++dy)
             {
               for (int dx = -1; dx <= 1; ++dx)
               {
                 const int ox = x + dx, oy = y + dy;
-                if ((dx == 0 && dy == 0) || ox < 0 || oy < 0 || ox >= nx || oy >= ny)
-                {
-                  continue;
-                }
                 const bool diagonal = dx != 0 && dy != 0;
-                if (diagonal && !diagonals)
+                if ((dx == 0 && dy == 0) || ox < 0 || oy < 0 || ox >= nx || oy >= ny ||
+                  (diagonal && !diagonals))
                 {
                   continue;
                 }
-                gather(current.Lane(ox, oy), true, diagonal ? diagonalWide : faceWide);
+                neighbours[count] = current.Lane(ox, oy);
+                wide[count++] = diagonal ? diagonalWide : faceWide;
               }
             }
+            const uint64_t* centre = current.Lane(x, y);
             uint64_t* out = next.Lane(x, y);
-            uint64_t* a = accumulated.Lane(x, y);
             bool any = false;
             for (int w = 0; w < words; ++w)
             {
-              out[w] = acc[w] & ~a[w] & (w + 1 == words ? lastMask : ~uint64_t(0));
+              uint64_t v = shifted(centre, w);
+              for (int n = 0; n < count; ++n)
+              {
+                v |= neighbours[n][w] | (wide[n] ? shifted(neighbours[n], w) : 0);
+              }
+              out[w] = v & ~a[w] & (w + 1 == words ? lastMask : full);
               a[w] |= out[w];
               any = any || out[w] != 0;
             }
