@@ -40,6 +40,16 @@ public:
   bool Get(int x, int y, int z) const { return (this->Lane(x, y)[z >> 6] >> (z & 63)) & 1u; }
   void Set(int x, int y, int z) { this->Lane(x, y)[z >> 6] |= uint64_t(1) << (z & 63); }
 
+  /// 64 bits of lane (x, y) from voxel z on (zero past the lane's end).
+  uint64_t Bits64(int x, int y, int z) const
+  {
+    const uint64_t* lane = this->Lane(x, y);
+    const int w = z >> 6, shift = z & 63;
+    const uint64_t lo = w < this->Words ? lane[w] : 0;
+    const uint64_t hi = w + 1 < this->Words ? lane[w + 1] : 0;
+    return shift ? (lo >> shift) | (hi << (64 - shift)) : lo;
+  }
+
   /// The valid bits of a lane's last word.
   uint64_t LastWordMask() const
   {
@@ -76,6 +86,32 @@ private:
   int Words = 0;
   std::vector<uint64_t> Bits;
 };
+
+/// A 64 x 64 bit matrix transposed in place: afterwards m[r] bit c is the former m[c]
+/// bit r (recursive swaps of off-diagonal blocks, 6 rounds).
+inline void TransposeBits64(uint64_t m[64])
+{
+  static const uint64_t masks[6] = { 0x00000000FFFFFFFFull,
+    0x0000FFFF0000FFFFull,
+    0x00FF00FF00FF00FFull,
+    0x0F0F0F0F0F0F0F0Full,
+    0x3333333333333333ull,
+    0x5555555555555555ull };
+  int round = 0;
+  for (int j = 32; j != 0; j >>= 1, ++round)
+  {
+    for (int k = 0; k < 64; ++k)
+    {
+      if (k & j)
+      {
+        continue;
+      }
+      const uint64_t t = ((m[k] >> j) ^ m[k + j]) & masks[round];
+      m[k] ^= t << j;
+      m[k + j] ^= t;
+    }
+  }
+}
 
 } // namespace vtkdf
 

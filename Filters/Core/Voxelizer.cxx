@@ -213,6 +213,90 @@ void FillIntervals(View& view, const ParallelFor& parallelFor)
       }
     });
 }
+/// ORs (or ANDs, with `intersect`) the voxels of view `a` (0: lanes (y, z) along x; 1:
+/// lanes (z, x) along y) into z-lanes (x, y), 64 x 64 bits at a time.
+void TransposeInto(const BitVolume& view,
+  int a,
+  BitVolume& out,
+  bool intersect,
+  const ParallelFor& parallelFor)
+{
+  const int nx = out.Size(0), ny = out.Size(1), nz = out.Size(2);
+  // View 0: for each y, rows z hold bits x; view 1: for each x, rows z hold bits y.
+  const int planes = a == 0 ? ny : nx, columns = a == 0 ? nx : ny;
+  parallelFor(planes,
+    1,
+    [&](int64_t begin, int64_t end)
+    {
+      uint64_t tile[64];
+      for (int64_t plane = begin; plane < end; ++plane)
+      {
+        const int fixed = static_cast<int>(plane);
+        for (int z0 = 0; z0 < nz; z0 += 64)
+        {
+          for (int c0 = 0; c0 < columns; c0 += 64)
+          {
+            for (int r = 0; r < 64; ++r)
+            {
+              const int z = z0 + r;
+              tile[r] = z < nz ? (a == 0 ? view.Lane(fixed, z) : view.Lane(z, fixed))[c0 >> 6] : 0;
+            }
+            TransposeBits64(tile);
+            for (int c = 0; c < 64 && c0 + c < columns; ++c)
+            {
+              uint64_t& word =
+                (a == 0 ? out.Lane(c0 + c, fixed) : out.Lane(fixed, c0 + c))[z0 >> 6];
+              word = intersect ? (word & tile[c]) : (word | tile[c]);
+            }
+          }
+        }
+      }
+    });
+}
+
+/// The even bits of x, packed into its low 32 bits.
+inline uint64_t EvenBits(uint64_t x)
+{
+  x &= 0x5555555555555555ull;
+  x = (x | (x >> 1)) & 0x3333333333333333ull;
+  x = (x | (x >> 2)) & 0x0F0F0F0F0F0F0F0Full;
+  x = (x | (x >> 4)) & 0x00FF00FF00FF00FFull;
+  x = (x | (x >> 8)) & 0x0000FFFF0000FFFFull;
+  x = (x | (x >> 16)) & 0x00000000FFFFFFFFull;
+  return x;
+}
+
+/// From half-voxel bin lanes, one bit per voxel: voxel k is bin 2k + 1 + SolidGuard.
+BitVolume VoxelBins(const BitVolume& bins, int voxels, const ParallelFor& parallelFor)
+{
+  BitVolume out(bins.Size(0), bins.Size(1), voxels);
+  const int inWords = bins.WordsPerLane(), outWords = out.WordsPerLane();
+  parallelFor(out.NumberOfLanes(),
+    256,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t id = begin; id < end; ++id)
+      {
+        const int p = static_cast<int>(id % bins.Size(0)), q = static_cast<int>(id / bins.Size(0));
+        const uint64_t* in = bins.Lane(p, q);
+        uint64_t* lane = out.Lane(p, q);
+        // 64 bits starting at bit `from` of the bin lane.
+        auto take = [&](int from)
+        {
+          const int w = from >> 6, shift = from & 63;
+          const uint64_t lo = w < inWords ? in[w] : 0, hi = w + 1 < inWords ? in[w + 1] : 0;
+          return shift ? (lo >> shift) | (hi << (64 - shift)) : lo;
+        };
+        for (int w = 0; w < outWords; ++w)
+        {
+          const int from = 128 * w + 1 + SolidGuard;
+          lane[w] = EvenBits(take(from)) | (EvenBits(take(from + 64)) << 32);
+        }
+        lane[outWords - 1] &= out.LastWordMask();
+      }
+    });
+  return out;
+}
 } // namespace
 
 bool VoxelizeCPU(const MeshInput& mesh,
@@ -269,39 +353,25 @@ bool VoxelizeCPU(const MeshInput& mesh,
     }
     solid->Resize(n[0], n[1], n[2]);
   }
-  parallelFor(int64_t(n[0]) * n[1],
-    256,
-    [&](int64_t begin, int64_t end)
+  if (boundary)
+  {
+    // View z already has z-lanes; the x and y views are transposed in 64 x 64 tiles.
+    boundary->Data() = views[2].Boundary.Data();
+    TransposeInto(views[0].Boundary, 0, *boundary, false, parallelFor);
+    TransposeInto(views[1].Boundary, 1, *boundary, false, parallelFor);
+  }
+  if (solid)
+  {
+    // The solid lanes hold half-voxel bins: keep the voxel centres' bins, then AND.
+    BitVolume centres[3];
+    for (int a = 0; a < 3; ++a)
     {
-      for (int64_t id = begin; id < end; ++id)
-      {
-        const int i = static_cast<int>(id % n[0]), j = static_cast<int>(id / n[0]);
-        for (int k = 0; k < n[2]; ++k)
-        {
-          const int ijk[3] = { i, j, k };
-          const uint64_t bit = uint64_t(1) << (k & 63);
-          if (boundary)
-          {
-            bool set = false;
-            for (int a = 0; a < 3 && !set; ++a)
-            {
-              set = views[a].Boundary.Get(ijk[views[a].B], ijk[views[a].C], ijk[a]);
-            }
-            boundary->Lane(i, j)[k >> 6] |= set ? bit : 0;
-          }
-          if (solid)
-          {
-            bool set = true;
-            for (int a = 0; a < 3 && set; ++a)
-            {
-              set =
-                views[a].Front.Get(ijk[views[a].B], ijk[views[a].C], 2 * ijk[a] + 1 + SolidGuard);
-            }
-            solid->Lane(i, j)[k >> 6] |= set ? bit : 0;
-          }
-        }
-      }
-    });
+      centres[a] = VoxelBins(views[a].Front, n[a], parallelFor);
+    }
+    solid->Data() = centres[2].Data();
+    TransposeInto(centres[0], 0, *solid, true, parallelFor);
+    TransposeInto(centres[1], 1, *solid, true, parallelFor);
+  }
   return true;
 }
 
