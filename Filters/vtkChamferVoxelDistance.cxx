@@ -102,62 +102,10 @@ bool ReadMask(vtkImageData* image,
 }
 } // namespace
 
-vtkChamferVoxelDistance::vtkChamferVoxelDistance() = default;
-
-int vtkChamferVoxelDistance::FillInputPortInformation(int, vtkInformation* info)
+vtkChamferVoxelDistance::vtkChamferVoxelDistance()
 {
-  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
-  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-  return 1;
-}
-
-int vtkChamferVoxelDistance::RequestInformation(vtkInformation* request,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
-  {
-    // A mask image: the output has its grid.
-    int whole[6];
-    double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-    if (inInfo->Has(vtkDataObject::ORIGIN()))
-    {
-      inInfo->Get(vtkDataObject::ORIGIN(), origin);
-    }
-    if (inInfo->Has(vtkDataObject::SPACING()))
-    {
-      inInfo->Get(vtkDataObject::SPACING(), spacing);
-    }
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
-    outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-    outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  }
-  else if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
-  {
-    return 0;
-  }
-  // Every voxel depends on the whole zero set: the output is always the whole grid.
-  outInfo->Remove(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT());
-  return 1;
-}
-
-int vtkChamferVoxelDistance::RequestUpdateExtent(vtkInformation* request,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
-  {
-    int whole[6];
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
-    return 1;
-  }
-  return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
+  this->AcceptsImageInput = true;
+  this->ProducesSubExtents = false; // every voxel depends on the whole zero set
 }
 
 int vtkChamferVoxelDistance::RequestData(vtkInformation*,
@@ -177,16 +125,7 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   vtkdf::IndexBox unused;
   if (image)
   {
-    int extent[6];
-    image->GetExtent(extent);
-    for (int a = 0; a < 3; ++a)
-    {
-      grid.Origin[a] = image->GetOrigin()[a];
-      grid.Spacing[a] = image->GetSpacing()[a];
-      grid.Whole.Lo[a] = extent[2 * a];
-      grid.Whole.Hi[a] = extent[2 * a + 1];
-    }
-    if (grid.Whole.Empty())
+    if (!GetImageGrid(image, grid))
     {
       vtkWarningMacro("The input image is empty: the output is an empty image.");
       return 1;

@@ -25,7 +25,12 @@ vtkDistanceFieldAlgorithm::vtkDistanceFieldAlgorithm()
 
 int vtkDistanceFieldAlgorithm::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  if (this->AcceptsImageInput)
+  {
+    info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  }
   return 1;
 }
 
@@ -89,6 +94,32 @@ int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (this->AcceptsImageInput && inInfo &&
+    vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    // An image input: the output has its grid.
+    int whole[6];
+    double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    if (inInfo->Has(vtkDataObject::ORIGIN()))
+    {
+      inInfo->Get(vtkDataObject::ORIGIN(), origin);
+    }
+    if (inInfo->Has(vtkDataObject::SPACING()))
+    {
+      inInfo->Get(vtkDataObject::SPACING(), spacing);
+    }
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+    outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+    outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+    if (this->ProducesSubExtents)
+    {
+      outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+    }
+    return 1;
+  }
   double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
   int dims[3] = { 0, 0, 0 };
   if (this->ExplicitGrid)
@@ -123,12 +154,14 @@ int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
       ComputeDefaultGrid(bounds, this->Resolution, this->Padding, origin, spacing, dims);
     }
   }
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
   outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  if (this->ProducesSubExtents)
+  {
+    outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  }
   return 1;
 }
 
@@ -136,8 +169,16 @@ int vtkDistanceFieldAlgorithm::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector*)
 {
-  // Every sample may depend on every cell: ask for the whole mesh.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    // Every voxel may depend on every other: ask for the whole image.
+    int whole[6];
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+    return 1;
+  }
+  // Every sample may depend on every cell: ask for the whole mesh.
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
@@ -224,6 +265,20 @@ void vtkDistanceFieldAlgorithm::SetOutputExtent(vtkImageData* output,
     extent.Lo[0], extent.Hi[0], extent.Lo[1], extent.Hi[1], extent.Lo[2], extent.Hi[2]);
   output->SetOrigin(grid.Origin.data());
   output->SetSpacing(grid.Spacing.data());
+}
+
+bool vtkDistanceFieldAlgorithm::GetImageGrid(vtkImageData* image, vtkdf::SampleGrid& grid)
+{
+  int extent[6];
+  image->GetExtent(extent);
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.Origin[a] = image->GetOrigin()[a];
+    grid.Spacing[a] = image->GetSpacing()[a];
+    grid.Whole.Lo[a] = extent[2 * a];
+    grid.Whole.Hi[a] = extent[2 * a + 1];
+  }
+  return !grid.Whole.Empty();
 }
 
 double vtkDistanceFieldAlgorithm::EffectiveMemoryLimit() const

@@ -107,6 +107,12 @@ protected:
   /// `useGPU` is the decision for Auto.
   bool ChooseBackend(bool& useGPU, std::string& error);
 
+  /// Filters that also take a vtkImageData (a field or masks on a grid) set this; the
+  /// output then has the image's grid, and the whole image is requested.
+  bool AcceptsImageInput = false;
+  /// Whether a sub-extent can be computed alone (else the whole grid is produced).
+  bool ProducesSubExtents = true;
+
   /// The memory limit in bytes (resolving 0 to half the physical memory).
   double EffectiveMemoryLimit() const;
 
@@ -125,6 +131,9 @@ protected:
   static void SetOutputExtent(vtkImageData* output,
     const vtkdf::SampleGrid& grid,
     const vtkdf::IndexBox& extent);
+
+  /// The grid of an image (its extent as Whole); false when it is empty.
+  static bool GetImageGrid(vtkImageData* image, vtkdf::SampleGrid& grid);
 #endif
 
   int Backend = BACKEND_AUTO;
