@@ -7,6 +7,8 @@
 //         [--timing]
 //   vtkdf chamfer INPUT -o OUT.vti [--metric manhattan|chessboard18|chessboard26]
 //         [--layers M] [--signed] [grid] [--backend ...] [--timing]
+//   vtkdf medial INPUT -o OUT.vti [--angle THETA] [--region inside|outside|both] [grid]
+//         [--backend ...] [--points OUT.vtp] [--png SLICE.png] [--timing]
 //
 // grid: [--resolution N] [--padding F] [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ]
 // MESH: .vtp .vtk .ply .stl .obj; chamfer's INPUT may also be a .vti with a Boundary mask
@@ -15,6 +17,7 @@
 //   vtkdf: linfac dims=NXxNYxNZ backend=cpu renderer="cpu" time_s=0.123 ...
 #include "vtkChamferVoxelDistance.h"
 #include "vtkLinearFactorDistanceField.h"
+#include "vtkMedialAxisFilter.h"
 #include "vtkPolyDataVoxelizer.h"
 
 #include "vtkFloatArray.h"
@@ -32,6 +35,7 @@
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataReader.h"
+#include "vtkXMLPolyDataWriter.h"
 
 #include <algorithm>
 #include <cmath>
@@ -59,9 +63,13 @@ int Usage(const char* message = nullptr)
     "             [--backend auto|gpu|cpu] [--timing]\n"
     "       vtkdf chamfer INPUT -o OUT.vti [--metric manhattan|chessboard18|chessboard26]\n"
     "             [--layers M] [--signed] [grid] [--backend auto|gpu|cpu] [--timing]\n"
+    "       vtkdf medial INPUT -o OUT.vti [--angle THETA] [--region inside|outside|both]\n"
+    "             [grid] [--backend auto|gpu|cpu] [--points OUT.vtp] [--png SLICE.png] [--timing]\n"
     "grid:  [--resolution N] [--padding F]\n"
     "       [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ]\n"
-    "MESH:  .vtp .vtk .ply .stl .obj; chamfer's INPUT may also be a .vti with a Boundary mask\n");
+    "MESH:  .vtp .vtk .ply .stl .obj; chamfer's INPUT may also be a .vti with a Boundary mask,\n"
+    "       medial's a .vti with Distance and ClosestPoint (vtkdf linfac --signed --arrays\n"
+    "       distance,point)\n");
   return 2;
 }
 
@@ -540,6 +548,124 @@ int Chamfer(int argc, char* argv[])
   const std::string extra = " layers=" + std::to_string(filter->GetLastLayers());
   return Finish("chamfer", filter, common, extra);
 }
+/// The middle z slice: |distance| in grey levels, medial voxels in red, magnified.
+bool WriteMedialPNG(vtkImageData* field, const std::string& path)
+{
+  auto* medial = vtkUnsignedCharArray::SafeDownCast(field->GetPointData()->GetArray("Medial"));
+  auto* radius = vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("Radius"));
+  if (!medial || !radius)
+  {
+    return false;
+  }
+  int dims[3];
+  field->GetDimensions(dims);
+  const int k = dims[2] / 2;
+  const int scale = std::max(1, 512 / std::max(dims[0], dims[1]));
+  const double largest = std::max(1e-30, double(radius->GetRange()[1]));
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(dims[0] * scale, dims[1] * scale, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* rgb = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int y = 0; y < dims[1] * scale; ++y)
+  {
+    for (int x = 0; x < dims[0] * scale; ++x)
+    {
+      const vtkIdType v = x / scale + dims[0] * (y / scale + vtkIdType(dims[1]) * k);
+      const unsigned char grey =
+        static_cast<unsigned char>(255 - 200 * radius->GetValue(v) / largest);
+      unsigned char* pixel = rgb + 3 * (size_t(y) * dims[0] * scale + x);
+      pixel[0] = medial->GetValue(v) ? 220 : grey;
+      pixel[1] = medial->GetValue(v) ? 20 : grey;
+      pixel[2] = medial->GetValue(v) ? 20 : grey;
+    }
+  }
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(image);
+  writer->Write();
+  return writer->GetErrorCode() == 0;
+}
+
+int Medial(int argc, char* argv[])
+{
+  CommonOptions common;
+  std::string region = "inside", points, png;
+  double angle = 90;
+  ParseOptions(argc,
+    argv,
+    common,
+    [&](const std::string& arg, const std::function<const char*()>& next)
+    {
+      if (arg == "--angle")
+      {
+        angle = std::atof(next());
+      }
+      else if (arg == "--region")
+      {
+        region = next();
+      }
+      else if (arg == "--points")
+      {
+        points = next();
+      }
+      else if (arg == "--png")
+      {
+        png = next();
+      }
+      else
+      {
+        return false;
+      }
+      return true;
+    });
+  vtkNew<vtkMedialAxisFilter> filter;
+  const std::string input = argv[2];
+  if (EndsWith(input, ".vti"))
+  {
+    vtkNew<vtkXMLImageDataReader> reader;
+    reader->SetFileName(input.c_str());
+    reader->Update();
+    if (reader->GetErrorCode() || !reader->GetOutput())
+    {
+      return Usage(("cannot read " + input).c_str());
+    }
+    filter->SetInputData(reader->GetOutput());
+  }
+  else
+  {
+    filter->SetInputData(ReadMeshOrExit(input));
+  }
+  Configure(filter, common);
+  filter->SetSeparationAngle(angle);
+  if (region == "outside")
+  {
+    filter->SetRegionToOutside();
+  }
+  else if (region == "both")
+  {
+    filter->SetRegionToBoth();
+  }
+  else if (region != "inside")
+  {
+    return Usage("--region takes inside, outside or both");
+  }
+  filter->Update();
+  const std::string extra = " medial_voxels=" + std::to_string(filter->GetLastMedialCount());
+  int code = Finish("medial", filter, common, extra);
+  if (code == 0 && !points.empty())
+  {
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetFileName(points.c_str());
+    writer->SetInputData(filter->GetMedialPoints());
+    code = writer->Write() ? 0 : 1;
+  }
+  if (code == 0 && !png.empty() && !WriteMedialPNG(filter->GetOutput(), png))
+  {
+    std::fprintf(stderr, "vtkdf: cannot write %s\n", png.c_str());
+    code = 1;
+  }
+  return code;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -560,6 +686,10 @@ int main(int argc, char* argv[])
   if (subcommand == "chamfer")
   {
     return Chamfer(argc, argv);
+  }
+  if (subcommand == "medial")
+  {
+    return Medial(argc, argv);
   }
   return Usage(("unknown subcommand " + subcommand).c_str());
 }

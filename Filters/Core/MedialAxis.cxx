@@ -14,6 +14,7 @@ int64_t MedialAxisCPU(const MedialInput& input,
   const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
   const int64_t stride[3] = { 1, n[0], int64_t(n[0]) * n[1] };
   const double threshold = std::cos(input.SeparationAngle * M_PI / 180.0);
+  const double depth = MedialMinimumDepth;
   std::atomic<int64_t> total{ 0 };
   parallelFor(stride[2] * n[2],
     4096,
@@ -45,7 +46,9 @@ int64_t MedialAxisCPU(const MedialInput& input,
               const float dn = input.Distance[nb];
               const bool mine =
                 std::fabs(d) > std::fabs(dn) || (std::fabs(d) == std::fabs(dn) && at < nb);
-              if (!mine)
+              // Too close to the surface, the angle says nothing (MedialAxis.h).
+              if (!mine ||
+                double(std::fmin(std::fabs(d), std::fabs(dn))) <= depth * input.Grid.Spacing[a])
               {
                 continue;
               }

@@ -5,8 +5,12 @@
 // angle between c(x) - m and c(y) - m (m the midpoint of x and y) estimates the
 // separation angle of the medial surface crossing xy. When it reaches theta, the one of
 // x and y with the larger |distance| (ties: the lower index) is medial, which keeps the
-// axis one voxel thin. Each voxel decides only for itself, from its 6 pairs, so the
-// pass is parallel and its result independent of the order.
+// axis one voxel thin. Pairs closer to the surface than one spacing are skipped: two
+// voxels side by side at depth r over a flat surface see their closest points (one
+// spacing h apart) at 2 atan(h / 2r), 53 degrees at r = h, so below that depth the
+// angle says nothing. The depth does not depend on theta, so that a larger theta always
+// keeps a subset. Each voxel decides only for itself, from its
+// 6 pairs, so the pass is parallel and its result independent of the order.
 #ifndef vtkdf_MedialAxis_h
 #define vtkdf_MedialAxis_h
 
@@ -34,6 +38,9 @@ struct MedialInput
   double SeparationAngle = 90;         // degrees, in (0, 180)
   MedialRegion Region = MedialRegion::Inside;
 };
+
+/// The depth, in spacings, a pair needs (see above).
+constexpr double MedialMinimumDepth = 2.0;
 
 /// The cosine of the pair (i, j)'s separation angle, or 2 when it has none (a closest
 /// point at the midpoint, or not a number). Double precision; the GPU pass

@@ -1,0 +1,273 @@
+#include "vtkMedialAxisFilter.h"
+
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkLinearFactorDistanceField.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "HeadlessGL.h"
+#include "MedialAxis.h"
+#include "MedialAxisGPU.h"
+#include "vtkDistanceFieldMesh.h"
+
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkMedialAxisFilter);
+
+namespace
+{
+/// The named array as float with `components` components; null and `error` otherwise.
+vtkSmartPointer<vtkFloatArray> FloatArray(vtkImageData* image,
+  const char* name,
+  int components,
+  std::string& error)
+{
+  vtkDataArray* array = image->GetPointData()->GetArray(name);
+  if (!array)
+  {
+    error = std::string("The input image has no point-data array named ") + name +
+      " (vtkLinearFactorDistanceField makes it).";
+    return nullptr;
+  }
+  if (array->GetNumberOfComponents() != components ||
+    array->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    error = std::string("The ") + name + " array must have " + std::to_string(components) +
+      " component(s) per sample; it has " + std::to_string(array->GetNumberOfComponents()) +
+      " and " + std::to_string(array->GetNumberOfTuples()) + " tuples for " +
+      std::to_string(image->GetNumberOfPoints()) + " samples.";
+    return nullptr;
+  }
+  vtkSmartPointer<vtkFloatArray> values = vtkFloatArray::SafeDownCast(array);
+  if (!values)
+  {
+    values = vtkSmartPointer<vtkFloatArray>::New();
+    values->DeepCopy(array);
+  }
+  return values;
+}
+} // namespace
+
+vtkMedialAxisFilter::vtkMedialAxisFilter()
+{
+  this->SetNumberOfOutputPorts(2);
+  this->AcceptsImageInput = true;
+  this->ProducesSubExtents = false; // a pair needs its neighbour: the whole grid
+}
+
+int vtkMedialAxisFilter::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkImageData" : "vtkPolyData");
+  return 1;
+}
+
+vtkPolyData* vtkMedialAxisFilter::GetMedialPoints()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+int vtkMedialAxisFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
+  vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  vtkPolyData* points = vtkPolyData::GetData(outputVector, 1);
+  output->Initialize();
+  points->Initialize();
+  this->LastMedialCount = 0;
+  if (!(this->SeparationAngle > 0 && this->SeparationAngle < 180))
+  {
+    vtkErrorMacro(
+      "SeparationAngle must lie in (0, 180) degrees; it is " << this->SeparationAngle << ".");
+    return 0;
+  }
+
+  // The field: the input image, or the signed field of the input mesh.
+  vtkSmartPointer<vtkImageData> field = image;
+  if (mesh)
+  {
+    if (mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0)
+    {
+      vtkWarningMacro("The input mesh is empty: the outputs are empty.");
+      return 1;
+    }
+    vtkNew<vtkLinearFactorDistanceField> distance;
+    distance->SetInputData(mesh);
+    distance->SetResolution(this->Resolution);
+    distance->SetPadding(this->Padding);
+    distance->SetExplicitGrid(this->ExplicitGrid);
+    distance->SetGridOrigin(this->GridOrigin);
+    distance->SetGridSpacing(this->GridSpacing);
+    distance->SetGridDimensions(this->GridDimensions);
+    distance->SetBackend(this->Backend);
+    distance->SetMemoryLimit(this->MemoryLimit);
+    distance->SetSignModeToPseudoNormal();
+    distance->ComputeClosestPointOn();
+    distance->ComputeClosestCellIdOff();
+    distance->ComputeClosestFeatureOff();
+    distance->Update();
+    field = distance->GetOutput();
+    if (distance->GetErrorCode() || !field || field->GetNumberOfPoints() == 0)
+    {
+      vtkErrorMacro("The distance field of the input mesh could not be computed.");
+      return 0;
+    }
+  }
+  vtkdf::MedialInput input;
+  if (!field || !GetImageGrid(field, input.Grid))
+  {
+    vtkWarningMacro("The input is empty: the outputs are empty.");
+    return 1;
+  }
+  std::string error;
+  vtkSmartPointer<vtkFloatArray> distance = FloatArray(field, "Distance", 1, error);
+  vtkSmartPointer<vtkFloatArray> closest =
+    distance ? FloatArray(field, "ClosestPoint", 3, error) : nullptr;
+  if (!distance || !closest)
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  const vtkIdType n = field->GetNumberOfPoints();
+  if (this->Region == INSIDE && distance->GetRange()[0] >= 0)
+  {
+    vtkErrorMacro("Region is Inside but the field is unsigned (no negative Distance): compute it "
+                  "with SignMode PseudoNormal, or use Region Outside or Both.");
+    return 0;
+  }
+  // Cosines (double), the output arrays.
+  if (!this->CheckMemory(double(n) * (8 + 1 + 4 + 4), input.Grid.Whole))
+  {
+    return 0;
+  }
+  input.Distance = distance->GetPointer(0);
+  input.ClosestPoint = closest->GetPointer(0);
+  input.SeparationAngle = this->SeparationAngle;
+  input.Region = this->Region == INSIDE
+    ? vtkdf::MedialRegion::Inside
+    : (this->Region == OUTSIDE ? vtkdf::MedialRegion::Outside : vtkdf::MedialRegion::Both);
+
+  bool useGPU = false;
+  if (!this->ChooseBackend(useGPU, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  vtkdf::HeadlessGL* gl = useGPU ? vtkdf::HeadlessGL::Get(error) : nullptr;
+  vtkNew<vtkUnsignedCharArray> medial;
+  medial->SetName("Medial");
+  medial->SetNumberOfTuples(n);
+  std::vector<double> cosine(n);
+  int64_t count = 0;
+  if (gl)
+  {
+    if (!vtkdf::MedialAxisGPU(*gl, input, medial->GetPointer(0), cosine.data(), count, error))
+    {
+      vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error << ".");
+      return 0;
+    }
+  }
+  else
+  {
+    count = vtkdf::MedialAxisCPU(input, medial->GetPointer(0), cosine.data(), vtkdf::SMPFor);
+  }
+
+  // Port 0: the grid with Medial, SeparationAngle and Radius.
+  vtkNew<vtkFloatArray> angle, radius;
+  angle->SetName("SeparationAngle");
+  angle->SetNumberOfTuples(n);
+  radius->SetName("Radius");
+  radius->SetNumberOfTuples(n);
+  float* a = angle->GetPointer(0);
+  float* r = radius->GetPointer(0);
+  const float* d = distance->GetPointer(0);
+  vtkdf::SMPFor(n,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t v = begin; v < end; ++v)
+      {
+        a[v] = cosine[v] <= 1
+          ? static_cast<float>(std::acos(std::max(-1.0, cosine[v])) * 180.0 / M_PI)
+          : 0.0f;
+        r[v] = std::fabs(d[v]);
+      }
+    });
+  SetOutputExtent(output, input.Grid, input.Grid.Whole);
+  output->GetPointData()->AddArray(medial);
+  output->GetPointData()->AddArray(angle);
+  output->GetPointData()->AddArray(radius);
+  output->GetPointData()->SetActiveScalars("Medial");
+
+  // Port 1: one vertex per medial voxel.
+  vtkNew<vtkPoints> positions;
+  positions->SetDataTypeToDouble();
+  positions->SetNumberOfPoints(count);
+  vtkNew<vtkCellArray> vertices;
+  vtkNew<vtkUnsignedCharArray> pointMedial;
+  vtkNew<vtkFloatArray> pointAngle, pointRadius;
+  pointMedial->SetName("Medial");
+  pointAngle->SetName("SeparationAngle");
+  pointRadius->SetName("Radius");
+  pointMedial->SetNumberOfTuples(count);
+  pointAngle->SetNumberOfTuples(count);
+  pointRadius->SetNumberOfTuples(count);
+  const vtkdf::IndexBox& whole = input.Grid.Whole;
+  const int nx = whole.Size(0), ny = whole.Size(1);
+  vtkIdType next = 0;
+  for (vtkIdType v = 0; v < n; ++v)
+  {
+    if (!medial->GetValue(v))
+    {
+      continue;
+    }
+    const int ijk[3] = { whole.Lo[0] + static_cast<int>(v % nx),
+      whole.Lo[1] + static_cast<int>((v / nx) % ny),
+      whole.Lo[2] + static_cast<int>(v / (vtkIdType(nx) * ny)) };
+    positions->SetPoint(next,
+      input.Grid.Coordinate(0, ijk[0]),
+      input.Grid.Coordinate(1, ijk[1]),
+      input.Grid.Coordinate(2, ijk[2]));
+    pointMedial->SetValue(next, 1);
+    pointAngle->SetValue(next, a[v]);
+    pointRadius->SetValue(next, r[v]);
+    vertices->InsertNextCell(1, &next);
+    ++next;
+  }
+  points->SetPoints(positions);
+  points->SetVerts(vertices);
+  points->GetPointData()->AddArray(pointMedial);
+  points->GetPointData()->AddArray(pointAngle);
+  points->GetPointData()->AddArray(pointRadius);
+  points->GetPointData()->SetActiveScalars("Radius");
+
+  this->LastMedialCount = count;
+  this->LastBackend = gl ? "gpu" : "cpu";
+  this->LastRenderer = gl ? gl->Renderer() : "cpu";
+  this->LastTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  this->LastStageTimes = "medial:" + std::to_string(this->LastTime);
+  return 1;
+}
+
+void vtkMedialAxisFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const char* regions[] = { "Inside", "Outside", "Both" };
+  os << indent << "SeparationAngle: " << this->SeparationAngle << "\n";
+  os << indent << "Region: " << regions[this->Region] << "\n";
+  os << indent << "LastMedialCount: " << this->LastMedialCount << "\n";
+}
