@@ -127,6 +127,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
       return 0;
     }
   }
+  const auto fieldDone = std::chrono::steady_clock::now();
   vtkdf::MedialInput input;
   if (!field || !GetImageGrid(field, input.Grid))
   {
@@ -259,7 +260,9 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   this->LastBackend = gl ? "gpu" : "cpu";
   this->LastRenderer = gl ? gl->Renderer() : "cpu";
   this->LastTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  this->LastStageTimes = "medial:" + std::to_string(this->LastTime);
+  const double fieldTime = std::chrono::duration<double>(fieldDone - start).count();
+  this->LastStageTimes =
+    "field:" + std::to_string(fieldTime) + ",medial:" + std::to_string(this->LastTime - fieldTime);
   return 1;
 }
 
