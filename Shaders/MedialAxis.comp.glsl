@@ -23,11 +23,15 @@ uniform double Threshold; // cos(theta)
 uniform double Depth;     // the depth a pair needs, in spacings (MedialMinimumDepth)
 uniform int Region;       // 0 inside, 1 outside, 2 both
 uniform int First;        // voxel index of invocation 0 (dispatches are split)
+uniform int Last;         // one past the last voxel of this dispatch
+// The buffers are bound by ranges (slabs of z): element offsets of their first element.
+uniform int DistanceBase, ClosestBase, CosineBase;
 
 double PairCosine(dvec3 m, int i, int j)
 {
-  precise dvec3 u = dvec3(double(closest[3 * i]), double(closest[3 * i + 1]), double(closest[3 * i + 2])) - m;
-  precise dvec3 v = dvec3(double(closest[3 * j]), double(closest[3 * j + 1]), double(closest[3 * j + 2])) - m;
+  int a = 3 * i - ClosestBase, b = 3 * j - ClosestBase;
+  precise dvec3 u = dvec3(double(closest[a]), double(closest[a + 1]), double(closest[a + 2])) - m;
+  precise dvec3 v = dvec3(double(closest[b]), double(closest[b + 1]), double(closest[b + 2])) - m;
   precise double uu = u.x * u.x + u.y * u.y + u.z * u.z;
   precise double vv = v.x * v.x + v.y * v.y + v.z * v.z;
   precise double uv = u.x * v.x + u.y * v.y + u.z * v.z;
@@ -43,14 +47,13 @@ double PairCosine(dvec3 m, int i, int j)
 void main()
 {
   int at = First + int(gl_GlobalInvocationID.x);
-  int total = Dims.x * Dims.y * Dims.z;
-  if (at >= total)
+  if (at >= Last)
   {
     return;
   }
   ivec3 ijk = ivec3(at % Dims.x, (at / Dims.x) % Dims.y, at / (Dims.x * Dims.y));
   ivec3 stride = ivec3(1, Dims.x, Dims.x * Dims.y);
-  float d = distance[at];
+  float d = distance[at - DistanceBase];
   bool inRegion = Region == 2 || (Region == 0 ? d < 0.0 : d > 0.0);
   double best = 2.0lf;
   if (inRegion)
@@ -65,7 +68,7 @@ void main()
           continue;
         }
         int nb = at + side * stride[a];
-        float dn = distance[nb];
+        float dn = distance[nb - DistanceBase];
         bool mine = abs(d) > abs(dn) || (abs(d) == abs(dn) && at < nb);
         if (!mine || double(min(abs(d), abs(dn))) <= Depth * Spacing[a])
         {
@@ -81,5 +84,5 @@ void main()
       }
     }
   }
-  cosine[at] = best;
+  cosine[at - CosineBase] = best;
 }

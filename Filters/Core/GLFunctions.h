@@ -14,6 +14,7 @@ namespace vtkdf
 
 // X(pointer type, name without the gl prefix), one per function used.
 #define VTKDF_GL_FUNCTIONS(X)                                                                      \
+  X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                                                     \
   X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                                                   \
   X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                                                         \
   X(PFNGLCLEARBUFFERDATAPROC, ClearBufferData)                                                     \
