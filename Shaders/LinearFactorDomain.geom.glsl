@@ -17,6 +17,15 @@ struct GpuSite
 layout(std430, binding = 0) readonly buffer Sites { GpuSite sites[]; };
 layout(std430, binding = 1) readonly buffer Planes { vec4 planes[]; }; // index space, relative to the anchor
 
+// Range culling (RangeCulling.h): a site's bounds, and an upper bound of the field per
+// block of samples; a slice whose polygon meets no block where the site may still be
+// the nearest is not emitted (a column ends at its reach, as on the CPU).
+layout(std430, binding = 2) readonly buffer SiteBounds { vec4 siteBounds[]; }; // lo, hi per site
+layout(std430, binding = 3) readonly buffer BlockBounds { float blockBound[]; };
+uniform ivec3 blockCounts;
+uniform int blockSize;
+uniform float minSpacing;
+
 uniform ivec2 viewportSize;
 uniform vec3 spacing;
 uniform int layerBase;
@@ -40,6 +49,24 @@ vec3 distanceVectorAt(GpuSite s, vec3 indexPos)
     return dot(r, s.axis.xyz) * s.axis.xyz;
   }
   return r;
+}
+
+// Whether a site within [lo, hi] (world, relative to the extent's first sample) may be
+// the nearest somewhere in block b's cell (its samples widened by half a spacing). The
+// bound is widened by 1e-5 (relative) and 1e-4 spacing against float rounding.
+bool mayWin(ivec3 b, vec3 lo, vec3 hi)
+{
+  vec3 cellLo = (vec3(b * blockSize) - 0.5) * spacing;
+  vec3 cellHi = cellLo + float(blockSize) * spacing;
+  vec3 gap = max(max(lo - cellHi, cellLo - hi), vec3(0.0));
+  float bound = blockBound[b.x + blockCounts.x * (b.y + blockCounts.y * b.z)];
+  float limit = bound * (1.0 + 1e-5) + 1e-4 * minSpacing;
+  return dot(gap, gap) <= limit * limit;
+}
+
+int blockOf(float index, int count)
+{
+  return clamp(int(floor((index + 0.5) / float(blockSize))), 0, count - 1);
 }
 
 void main()
@@ -92,6 +119,27 @@ void main()
     return;
   }
   bool inB = (count % 2) == 1;
+  vec2 pmin = vec2(1e30), pmax = vec2(-1e30);
+  for (int v = 0; v < n; ++v)
+  {
+    vec2 q = inB ? bufB[v] : bufA[v];
+    pmin = min(pmin, q);
+    pmax = max(pmax, q);
+  }
+  vec3 siteLo = siteBounds[2 * id].xyz, siteHi = siteBounds[2 * id + 1].xyz;
+  int bw = blockOf(float(k), blockCounts.z);
+  bool alive = false;
+  for (int bv = blockOf(pmin.y, blockCounts.y); bv <= blockOf(pmax.y, blockCounts.y) && !alive; ++bv)
+  {
+    for (int bu = blockOf(pmin.x, blockCounts.x); bu <= blockOf(pmax.x, blockCounts.x) && !alive; ++bu)
+    {
+      alive = mayWin(ivec3(bu, bv, bw), siteLo, siteHi);
+    }
+  }
+  if (!alive)
+  {
+    return;
+  }
   // Convex polygon as a strip: v0, v1, v(n-1), v2, v(n-2), ...
   int left = 1, right = n - 1;
   for (int e = 0; e < n; ++e)

@@ -30,13 +30,13 @@ struct GpuSite
 struct GLObjects
 {
   const GLFunctions& gl;
-  GLuint Program = 0, Buffers[3] = { 0, 0, 0 }, VAO = 0, FBO = 0, Textures[3] = { 0, 0, 0 };
+  GLuint Program = 0, Buffers[5] = { 0, 0, 0, 0, 0 }, VAO = 0, FBO = 0, Textures[3] = { 0, 0, 0 };
   ~GLObjects()
   {
     gl.DeleteTextures(3, Textures);
     gl.DeleteFramebuffers(1, &FBO);
     gl.DeleteVertexArrays(1, &VAO);
-    gl.DeleteBuffers(3, Buffers);
+    gl.DeleteBuffers(5, Buffers);
     gl.DeleteProgram(Program);
   }
 };
@@ -131,7 +131,32 @@ bool ScanSitesGPU(HeadlessGL& context,
   {
     planes.assign(4, 0.f);
   }
-  gl.GenBuffers(3, gpu.Buffers);
+  // Site bounds (rounded outward to float) and the block bounds, for the slice test.
+  std::vector<float> siteBounds(8 * std::max<size_t>(1, numSites), 0.f);
+  for (size_t s = 0; s < numSites; ++s)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      siteBounds[8 * s + a] =
+        std::nextafter(static_cast<float>(sites.Sites[s].BoundsMin[a] - base[a]), -HUGE_VALF);
+      siteBounds[8 * s + 4 + a] =
+        std::nextafter(static_cast<float>(sites.Sites[s].BoundsMax[a] - base[a]), HUGE_VALF);
+    }
+  }
+  std::vector<float> blockBounds = culling.BlockBound;
+  if (blockBounds.empty())
+  {
+    blockBounds.assign(1, HUGE_VALF);
+  }
+  gl.GenBuffers(5, gpu.Buffers);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, gpu.Buffers[3]);
+  gl.BufferData(
+    GL_SHADER_STORAGE_BUFFER, siteBounds.size() * sizeof(float), siteBounds.data(), GL_STATIC_DRAW);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gpu.Buffers[4]);
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER,
+    blockBounds.size() * sizeof(float),
+    blockBounds.data(),
+    GL_STATIC_DRAW);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.Buffers[0]);
   gl.BufferData(GL_SHADER_STORAGE_BUFFER,
     std::max<size_t>(1, numSites) * sizeof(GpuSite),
@@ -176,6 +201,15 @@ bool ScanSitesGPU(HeadlessGL& context,
     static_cast<float>(grid.Spacing[1]),
     static_cast<float>(grid.Spacing[2]));
   gl.Uniform1f(gl.GetUniformLocation(gpu.Program, "margin"), 0.02f);
+  const std::array<int, 3> blockCounts =
+    culling.BlockBound.empty() ? std::array<int, 3>{ { 1, 1, 1 } } : culling.BlockCounts;
+  gl.Uniform3i(gl.GetUniformLocation(gpu.Program, "blockCounts"),
+    blockCounts[0],
+    blockCounts[1],
+    blockCounts[2]);
+  gl.Uniform1i(gl.GetUniformLocation(gpu.Program, "blockSize"), RangeCulling::BlockSize);
+  gl.Uniform1f(
+    gl.GetUniformLocation(gpu.Program, "minSpacing"), static_cast<float>(grid.MinSpacing()));
   double diagonal = 0;
   for (int a = 0; a < 3; ++a)
   {
