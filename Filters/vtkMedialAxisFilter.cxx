@@ -15,8 +15,11 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "HeadlessGL.h"
+#include "LinearFactorField.h"
 #include "MedialAxis.h"
 #include "MedialAxisGPU.h"
+#include "MeshSites.h"
+#include "RangeCulling.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <chrono>
@@ -84,6 +87,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   const auto start = std::chrono::steady_clock::now();
   vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
   vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   vtkPolyData* points = vtkPolyData::GetData(outputVector, 1);
   output->Initialize();
@@ -95,73 +99,12 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
       "SeparationAngle must lie in (0, 180) degrees; it is " << this->SeparationAngle << ".");
     return 0;
   }
-
-  // The field: the input image, or the signed field of the input mesh.
-  vtkSmartPointer<vtkImageData> field = image;
-  if (mesh)
+  if (mesh && (mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0))
   {
-    if (mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0)
-    {
-      vtkWarningMacro("The input mesh is empty: the outputs are empty.");
-      return 1;
-    }
-    vtkNew<vtkLinearFactorDistanceField> distance;
-    distance->SetInputData(mesh);
-    distance->SetResolution(this->Resolution);
-    distance->SetPadding(this->Padding);
-    distance->SetExplicitGrid(this->ExplicitGrid);
-    distance->SetGridOrigin(this->GridOrigin);
-    distance->SetGridSpacing(this->GridSpacing);
-    distance->SetGridDimensions(this->GridDimensions);
-    distance->SetBackend(this->Backend);
-    distance->SetMemoryLimit(this->MemoryLimit);
-    distance->SetSignModeToPseudoNormal();
-    distance->ComputeClosestPointOn();
-    distance->ComputeClosestCellIdOff();
-    distance->ComputeClosestFeatureOff();
-    distance->Update();
-    field = distance->GetOutput();
-    if (distance->GetErrorCode() || !field || field->GetNumberOfPoints() == 0)
-    {
-      vtkErrorMacro("The distance field of the input mesh could not be computed.");
-      return 0;
-    }
-  }
-  const auto fieldDone = std::chrono::steady_clock::now();
-  vtkdf::MedialInput input;
-  if (!field || !GetImageGrid(field, input.Grid))
-  {
-    vtkWarningMacro("The input is empty: the outputs are empty.");
+    vtkWarningMacro("The input mesh is empty: the outputs are empty.");
     return 1;
   }
   std::string error;
-  vtkSmartPointer<vtkFloatArray> distance = FloatArray(field, "Distance", 1, error);
-  vtkSmartPointer<vtkFloatArray> closest =
-    distance ? FloatArray(field, "ClosestPoint", 3, error) : nullptr;
-  if (!distance || !closest)
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
-  const vtkIdType n = field->GetNumberOfPoints();
-  if (this->Region == INSIDE && distance->GetRange()[0] >= 0)
-  {
-    vtkErrorMacro("Region is Inside but the field is unsigned (no negative Distance): compute it "
-                  "with SignMode PseudoNormal, or use Region Outside or Both.");
-    return 0;
-  }
-  // Cosines (double), the output arrays.
-  if (!this->CheckMemory(double(n) * (8 + 1 + 4 + 4), input.Grid.Whole))
-  {
-    return 0;
-  }
-  input.Distance = distance->GetPointer(0);
-  input.ClosestPoint = closest->GetPointer(0);
-  input.SeparationAngle = this->SeparationAngle;
-  input.Region = this->Region == INSIDE
-    ? vtkdf::MedialRegion::Inside
-    : (this->Region == OUTSIDE ? vtkdf::MedialRegion::Outside : vtkdf::MedialRegion::Both);
-
   bool useGPU = false;
   if (!this->ChooseBackend(useGPU, error))
   {
@@ -169,23 +112,150 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     return 0;
   }
   vtkdf::HeadlessGL* gl = useGPU ? vtkdf::HeadlessGL::Get(error) : nullptr;
+
+  vtkdf::MedialInput input;
+  input.SeparationAngle = this->SeparationAngle;
+  input.Region = this->Region == INSIDE
+    ? vtkdf::MedialRegion::Inside
+    : (this->Region == OUTSIDE ? vtkdf::MedialRegion::Outside : vtkdf::MedialRegion::Both);
+  vtkSmartPointer<vtkFloatArray> distance;
   vtkNew<vtkUnsignedCharArray> medial;
   medial->SetName("Medial");
-  medial->SetNumberOfTuples(n);
-  std::vector<double> cosine(n);
+  std::vector<double> cosine;
   int64_t count = 0;
-  if (gl)
+  std::chrono::steady_clock::time_point fieldDone;
+
+  if (mesh && gl)
   {
-    if (!vtkdf::MedialAxisGPU(*gl, input, medial->GetPointer(0), cosine.data(), count, error))
+    // The field and the medial pass, all on the GPU (only distances and cosines return).
+    vtkdf::FieldRequest request;
+    vtkdf::IndexBox unused;
+    if (!GetOutputGrid(outInfo, request.Grid, unused))
+    {
+      vtkWarningMacro("The grid is empty: the outputs are empty.");
+      return 1;
+    }
+    request.Extent = request.Grid.Whole;
+    input.Grid = request.Grid;
+    const double n = double(request.Extent.Count());
+    if (!this->CheckMemory(n * (8 + 8 + 1 + 4 + 4 + 16), request.Extent))
+    {
+      return 0;
+    }
+    vtkdf::MeshConversion conversion;
+    conversion.Run(mesh);
+    const std::string ignored = conversion.IgnoredCells();
+    if (!ignored.empty())
+    {
+      vtkWarningMacro(<< ignored);
+    }
+    vtkdf::MeshSites sites;
+    if (!sites.Build(conversion.Mesh,
+          vtkdf::Culling::Auto,
+          1e-4 * request.Grid.MinSpacing(),
+          error,
+          vtkdf::SMPFor) ||
+      sites.Sites.empty())
+    {
+      vtkErrorMacro("Invalid input mesh: " << (error.empty() ? "no usable cell" : error) << ".");
+      return 0;
+    }
+    vtkdf::RangeCulling culling;
+    culling.Build(sites, request.Grid, request.Extent, HUGE_VAL, vtkdf::SMPFor);
+    distance = vtkSmartPointer<vtkFloatArray>::New();
+    distance->SetNumberOfTuples(request.Extent.Count());
+    medial->SetNumberOfTuples(request.Extent.Count());
+    cosine.resize(request.Extent.Count());
+    vtkdf::ScanStatistics stats;
+    if (!vtkdf::MedialAxisFromSitesGPU(*gl,
+          sites,
+          culling,
+          request,
+          input,
+          distance->GetPointer(0),
+          medial->GetPointer(0),
+          cosine.data(),
+          count,
+          stats,
+          error))
     {
       vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error << ".");
       return 0;
     }
+    fieldDone = std::chrono::steady_clock::now();
   }
   else
   {
-    count = vtkdf::MedialAxisCPU(input, medial->GetPointer(0), cosine.data(), vtkdf::SMPFor);
+    // The field: the input image, or the signed field of the input mesh (CPU).
+    vtkSmartPointer<vtkImageData> field = image;
+    if (mesh)
+    {
+      vtkNew<vtkLinearFactorDistanceField> exact;
+      exact->SetInputData(mesh);
+      exact->SetResolution(this->Resolution);
+      exact->SetPadding(this->Padding);
+      exact->SetExplicitGrid(this->ExplicitGrid);
+      exact->SetGridOrigin(this->GridOrigin);
+      exact->SetGridSpacing(this->GridSpacing);
+      exact->SetGridDimensions(this->GridDimensions);
+      exact->SetBackendToCPU();
+      exact->SetMemoryLimit(this->MemoryLimit);
+      exact->SetSignModeToPseudoNormal();
+      exact->ComputeClosestPointOn();
+      exact->ComputeClosestCellIdOff();
+      exact->ComputeClosestFeatureOff();
+      exact->Update();
+      field = exact->GetOutput();
+      if (exact->GetErrorCode() || !field || field->GetNumberOfPoints() == 0)
+      {
+        vtkErrorMacro("The distance field of the input mesh could not be computed.");
+        return 0;
+      }
+    }
+    fieldDone = std::chrono::steady_clock::now();
+    if (!field || !GetImageGrid(field, input.Grid))
+    {
+      vtkWarningMacro("The input is empty: the outputs are empty.");
+      return 1;
+    }
+    distance = FloatArray(field, "Distance", 1, error);
+    vtkSmartPointer<vtkFloatArray> closest =
+      distance ? FloatArray(field, "ClosestPoint", 3, error) : nullptr;
+    if (!distance || !closest)
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    const vtkIdType n = field->GetNumberOfPoints();
+    if (this->Region == INSIDE && distance->GetRange()[0] >= 0)
+    {
+      vtkErrorMacro("Region is Inside but the field is unsigned (no negative Distance): compute "
+                    "it with SignMode PseudoNormal, or use Region Outside or Both.");
+      return 0;
+    }
+    // Cosines (double), the output arrays.
+    if (!this->CheckMemory(double(n) * (8 + 1 + 4 + 4), input.Grid.Whole))
+    {
+      return 0;
+    }
+    input.Distance = distance->GetPointer(0);
+    input.ClosestPoint = closest->GetPointer(0);
+    medial->SetNumberOfTuples(n);
+    cosine.resize(n);
+    if (gl)
+    {
+      if (!vtkdf::MedialAxisGPU(*gl, input, medial->GetPointer(0), cosine.data(), count, error))
+      {
+        vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error << ".");
+        return 0;
+      }
+    }
+    else
+    {
+      count = vtkdf::MedialAxisCPU(input, medial->GetPointer(0), cosine.data(), vtkdf::SMPFor);
+    }
   }
+  const vtkIdType n = medial->GetNumberOfTuples();
 
   // Port 0: the grid with Medial, SeparationAngle and Radius.
   vtkNew<vtkFloatArray> angle, radius;
@@ -261,8 +331,10 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   this->LastRenderer = gl ? gl->Renderer() : "cpu";
   this->LastTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double fieldTime = std::chrono::duration<double>(fieldDone - start).count();
-  this->LastStageTimes =
-    "field:" + std::to_string(fieldTime) + ",medial:" + std::to_string(this->LastTime - fieldTime);
+  this->LastStageTimes = mesh && gl ? "field+medial:" + std::to_string(fieldTime) +
+      ",outputs:" + std::to_string(this->LastTime - fieldTime)
+                                    : "field:" + std::to_string(fieldTime) +
+      ",medial:" + std::to_string(this->LastTime - fieldTime);
   return 1;
 }
 

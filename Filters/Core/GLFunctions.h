@@ -134,6 +134,39 @@ struct GLFunctions
   }
 };
 
+/// Buffers indexed by voxel are bound a slab of z at a time, so that no bound range
+/// exceeds GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the number of z slices per slab (with one
+/// slice of margin on each side), or 0 when not even one fits. `bytesPerVoxel` is the
+/// largest element size among the buffers.
+inline int64_t SlabSlices(const GLFunctions& gl,
+  int64_t slice,
+  int64_t bytesPerVoxel,
+  int64_t nz,
+  GLint& alignment)
+{
+  GLint64 maxBlock = 0;
+  gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+  gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
+  const int64_t slices = (maxBlock - 2 * alignment) / (slice * bytesPerVoxel) - 2;
+  return slices < 1 || alignment % 8 != 0 ? 0 : (slices < nz ? slices : nz);
+}
+
+/// Binds voxels [from, to) of a buffer of `elementBytes` elements per voxel to `binding`,
+/// from an aligned offset; returns the element (of `unitBytes`) the range starts at.
+inline int64_t BindVoxelRange(const GLFunctions& gl,
+  GLuint binding,
+  GLuint buffer,
+  int64_t from,
+  int64_t to,
+  int64_t elementBytes,
+  int64_t unitBytes,
+  GLint alignment)
+{
+  const int64_t begin = from * elementBytes / alignment * alignment;
+  gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, binding, buffer, begin, to * elementBytes - begin);
+  return begin / unitBytes;
+}
+
 } // namespace vtkdf
 
 #endif

@@ -3,6 +3,8 @@
 #include "LinearFactorDomain_frag.h"
 #include "LinearFactorDomain_geom.h"
 #include "LinearFactorDomain_vert.h"
+#include "LinearFactorFinalize_comp.h"
+#include "LinearFactorKeep_comp.h"
 #include "SliceDomain.h"
 
 #include "GLFunctions.h"
@@ -49,7 +51,8 @@ bool ScanSitesGPU(HeadlessGL& context,
   NearestSiteBuffer& nearest,
   const ProgressCallback& progress,
   ScanStatistics& stats,
-  std::string& error)
+  std::string& error,
+  unsigned residentIds)
 {
   HeadlessGL::Scope scope(context);
   const GLFunctions& gl = context.GL();
@@ -85,6 +88,22 @@ bool ScanSitesGPU(HeadlessGL& context,
     error = log;
     return false;
   }
+  GLuint keep = 0;
+  if (residentIds)
+  {
+    keep = context.BuildProgram({ { GL_COMPUTE_SHADER, LinearFactorKeep_comp } }, log);
+    if (!keep)
+    {
+      error = log;
+      return false;
+    }
+  }
+  struct ProgramGuard
+  {
+    const GLFunctions& GL;
+    GLuint Id;
+    ~ProgramGuard() { GL.DeleteProgram(Id); }
+  } keepGuard{ gl, keep };
 
   // Sites and their planes, relative to the extent's first sample (small numbers keep
   // float precision), planes in sample-index units relative to the site's anchor.
@@ -239,7 +258,7 @@ bool ScanSitesGPU(HeadlessGL& context,
     stats.Evaluations = 0;
   }
   std::vector<int32_t> points;
-  std::vector<float> distances(size_t(nx) * ny * layers);
+  std::vector<float> distances(residentIds ? 0 : size_t(nx) * ny * layers);
   std::vector<int32_t> ids(distances.size());
   const int batches = (nz + layers - 1) / layers;
   for (int batch = 0; batch < batches; ++batch)
@@ -285,41 +304,63 @@ bool ScanSitesGPU(HeadlessGL& context,
       gl.GetQueryObjectui64v(query, GL_QUERY_RESULT, &fragments);
       stats.Evaluations += static_cast<int64_t>(fragments);
     }
-    // Read back this batch's layers.
     const int count = k1 - k0 + 1;
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.GetTextureSubImage(gpu.Textures[0],
-      0,
-      0,
-      0,
-      0,
-      nx,
-      ny,
-      count,
-      GL_RED,
-      GL_FLOAT,
-      static_cast<GLsizei>(size_t(nx) * ny * count * sizeof(float)),
-      distances.data());
-    gl.GetTextureSubImage(gpu.Textures[1],
-      0,
-      0,
-      0,
-      0,
-      nx,
-      ny,
-      count,
-      GL_RED_INTEGER,
-      GL_INT,
-      static_cast<GLsizei>(size_t(nx) * ny * count * sizeof(int32_t)),
-      ids.data());
-    const int64_t offset = int64_t(k0) * nx * ny;
-    const int64_t n = int64_t(count) * nx * ny;
-    for (int64_t at = 0; at < n; ++at)
+    if (residentIds)
     {
-      const int32_t id = ids[at];
-      nearest.Set(offset + at,
-        id < 0 ? NearestSiteBuffer::Empty
-               : NearestSiteBuffer::Pack(distances[at] * distances[at], static_cast<uint32_t>(id)));
+      // Keep this batch's ids on the GPU (no readback).
+      GLint alignment = 1;
+      gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
+      const int64_t slice = int64_t(nx) * ny;
+      const int64_t base =
+        BindVoxelRange(gl, 4, residentIds, k0 * slice, (k0 + count) * slice, 4, 4, alignment);
+      gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+      gl.UseProgram(keep);
+      gl.BindImageTexture(0, gpu.Textures[1], 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32I);
+      gl.Uniform2i(gl.GetUniformLocation(keep, "Size"), nx, ny);
+      gl.Uniform1i(gl.GetUniformLocation(keep, "Layers"), count);
+      gl.Uniform1i(gl.GetUniformLocation(keep, "Offset"), static_cast<int>(k0 * slice - base));
+      gl.DispatchCompute((nx + 7) / 8, (ny + 7) / 8, count);
+      gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+      gl.UseProgram(gpu.Program);
+    }
+    else
+    {
+      // Read back this batch's layers.
+      gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+      gl.GetTextureSubImage(gpu.Textures[0],
+        0,
+        0,
+        0,
+        0,
+        nx,
+        ny,
+        count,
+        GL_RED,
+        GL_FLOAT,
+        static_cast<GLsizei>(size_t(nx) * ny * count * sizeof(float)),
+        distances.data());
+      gl.GetTextureSubImage(gpu.Textures[1],
+        0,
+        0,
+        0,
+        0,
+        nx,
+        ny,
+        count,
+        GL_RED_INTEGER,
+        GL_INT,
+        static_cast<GLsizei>(size_t(nx) * ny * count * sizeof(int32_t)),
+        ids.data());
+      const int64_t offset = int64_t(k0) * nx * ny;
+      const int64_t n = int64_t(count) * nx * ny;
+      for (int64_t at = 0; at < n; ++at)
+      {
+        const int32_t id = ids[at];
+        nearest.Set(offset + at,
+          id < 0
+            ? NearestSiteBuffer::Empty
+            : NearestSiteBuffer::Pack(distances[at] * distances[at], static_cast<uint32_t>(id)));
+      }
     }
     const GLenum status = gl.GetError();
     if (status != GL_NO_ERROR)
@@ -344,6 +385,97 @@ bool ScanSitesGPU(HeadlessGL& context,
     gl.DeleteQueries(1, &query);
   }
   gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  return true;
+}
+
+bool FinalizeGPU(HeadlessGL& context,
+  const MeshSites& sites,
+  const FieldRequest& request,
+  unsigned residentIds,
+  bool signedField,
+  unsigned distanceBuffer,
+  unsigned closestBuffer,
+  std::string& error)
+{
+  HeadlessGL::Scope scope(context);
+  const GLFunctions& gl = context.GL();
+  if (!scope.Ok())
+  {
+    error = "could not make the " + context.Platform() + " context current";
+    return false;
+  }
+  const IndexBox& ext = request.Extent;
+  const int nx = ext.Size(0), ny = ext.Size(1), nz = ext.Size(2);
+  const int64_t slice = int64_t(nx) * ny, voxels = slice * nz;
+  GLint alignment = 1;
+  const int64_t slab = SlabSlices(gl, slice, 12, nz, alignment);
+  if (slab == 0 || voxels > INT32_MAX)
+  {
+    error = "a slice of closest points does not fit GL_MAX_SHADER_STORAGE_BLOCK_SIZE";
+    return false;
+  }
+  std::string log;
+  const GLuint program =
+    context.BuildProgram({ { GL_COMPUTE_SHADER, LinearFactorFinalize_comp } }, log);
+  if (!program)
+  {
+    error = log;
+    return false;
+  }
+  // Sites in double: anchor (w: type), axis, pseudonormal.
+  std::vector<double> data(12 * std::max<size_t>(1, sites.Sites.size()), 0.0);
+  for (size_t s = 0; s < sites.Sites.size(); ++s)
+  {
+    const Site& site = sites.Sites[s];
+    for (int a = 0; a < 3; ++a)
+    {
+      data[12 * s + a] = site.Anchor[a];
+      data[12 * s + 4 + a] = site.Axis[a];
+      data[12 * s + 8 + a] = site.Normal[a];
+    }
+    data[12 * s + 3] = site.Type;
+  }
+  GLuint siteBuffer = 0;
+  gl.GenBuffers(1, &siteBuffer);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, siteBuffer);
+  gl.BufferData(
+    GL_SHADER_STORAGE_BUFFER, data.size() * sizeof(double), data.data(), GL_STATIC_DRAW);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, siteBuffer);
+  gl.UseProgram(program);
+  auto uniform = [&](const char* name) { return gl.GetUniformLocation(program, name); };
+  const SampleGrid& grid = request.Grid;
+  gl.Uniform3i(uniform("Dims"), nx, ny, nz);
+  gl.Uniform3i(uniform("Lo"), ext.Lo[0], ext.Lo[1], ext.Lo[2]);
+  gl.Uniform3d(uniform("Origin"), grid.Origin[0], grid.Origin[1], grid.Origin[2]);
+  gl.Uniform3d(uniform("Spacing"), grid.Spacing[0], grid.Spacing[1], grid.Spacing[2]);
+  gl.Uniform1i(uniform("Signed"), signedField);
+  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  const int64_t perDispatch = int64_t(65535) * 64;
+  for (int64_t z0 = 0; z0 < nz; z0 += slab)
+  {
+    const int64_t from = z0 * slice, to = std::min<int64_t>(nz, z0 + slab) * slice;
+    gl.Uniform1i(uniform("IdBase"),
+      static_cast<int>(BindVoxelRange(gl, 1, residentIds, from, to, 4, 4, alignment)));
+    gl.Uniform1i(uniform("DistanceBase"),
+      static_cast<int>(BindVoxelRange(gl, 2, distanceBuffer, from, to, 4, 4, alignment)));
+    gl.Uniform1i(uniform("ClosestBase"),
+      static_cast<int>(BindVoxelRange(gl, 3, closestBuffer, from, to, 12, 4, alignment)));
+    gl.Uniform1i(uniform("Last"), static_cast<int>(to));
+    for (int64_t first = from; first < to; first += perDispatch)
+    {
+      gl.Uniform1i(uniform("First"), static_cast<int>(first));
+      gl.DispatchCompute(static_cast<GLuint>((std::min(perDispatch, to - first) + 63) / 64), 1, 1);
+    }
+  }
+  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  gl.DeleteBuffers(1, &siteBuffer);
+  gl.DeleteProgram(program);
+  const GLenum status = gl.GetError();
+  if (status != GL_NO_ERROR)
+  {
+    error = "OpenGL error " + std::to_string(status) + " in the GPU finalize";
+    return false;
+  }
   return true;
 }
 

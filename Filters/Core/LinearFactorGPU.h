@@ -13,6 +13,8 @@ namespace vtkdf
 {
 
 /// Fills `nearest` like ScanSitesCPU; false (and `error`) when the GPU cannot run it.
+/// With `residentIds` (a GL buffer of one int per sample of the extent), the nearest
+/// site ids stay on the GPU, in that buffer, and `nearest` is not touched.
 bool ScanSitesGPU(HeadlessGL& gl,
   const MeshSites& sites,
   const RangeCulling& culling,
@@ -20,6 +22,19 @@ bool ScanSitesGPU(HeadlessGL& gl,
   NearestSiteBuffer& nearest,
   const ProgressCallback& progress,
   ScanStatistics& stats,
+  std::string& error,
+  unsigned residentIds = 0);
+
+/// Finalize on the GPU, from resident ids: the (signed) distance and closest point of
+/// every sample into GL buffers of 1 and 3 floats per sample, with the same double
+/// arithmetic as Finalize. No narrow band (MaximumDistance) here.
+bool FinalizeGPU(HeadlessGL& gl,
+  const MeshSites& sites,
+  const FieldRequest& request,
+  unsigned residentIds,
+  bool signedField,
+  unsigned distanceBuffer,
+  unsigned closestBuffer,
   std::string& error);
 
 } // namespace vtkdf

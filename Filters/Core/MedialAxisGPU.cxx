@@ -1,6 +1,7 @@
 #include "MedialAxisGPU.h"
 
 #include "GLFunctions.h"
+#include "LinearFactorGPU.h"
 #include "MedialAxis_comp.h"
 
 #include <algorithm>
@@ -8,6 +9,111 @@
 
 namespace vtkdf
 {
+
+namespace
+{
+/// The medial pass over a field already in GL buffers (1 and 3 floats per voxel);
+/// fills `cosine`.
+bool MedialPass(HeadlessGL& context,
+  const MedialInput& input,
+  GLuint distanceBuffer,
+  GLuint closestBuffer,
+  double* cosine,
+  std::string& error)
+{
+  const GLFunctions& gl = context.GL();
+  const IndexBox& whole = input.Grid.Whole;
+  const int nx = whole.Size(0), ny = whole.Size(1), nz = whole.Size(2);
+  const int64_t slice = int64_t(nx) * ny, voxels = slice * nz;
+  GLint alignment = 1;
+  const int64_t slab = SlabSlices(gl, slice, 12, nz, alignment);
+  if (slab == 0 || voxels > INT32_MAX)
+  {
+    error = "a slice of " + std::to_string(nx) + " x " + std::to_string(ny) +
+      " closest points does not fit GL_MAX_SHADER_STORAGE_BLOCK_SIZE";
+    return false;
+  }
+  std::string log;
+  const GLuint program = context.BuildProgram({ { GL_COMPUTE_SHADER, MedialAxis_comp } }, log);
+  if (!program)
+  {
+    error = log;
+    return false;
+  }
+  GLuint cosines = 0;
+  gl.GenBuffers(1, &cosines);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, cosines);
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER, voxels * 8, nullptr, GL_DYNAMIC_READ);
+  gl.UseProgram(program);
+  auto uniform = [&](const char* name) { return gl.GetUniformLocation(program, name); };
+  gl.Uniform3i(uniform("Dims"), nx, ny, nz);
+  gl.Uniform3i(uniform("Lo"), whole.Lo[0], whole.Lo[1], whole.Lo[2]);
+  gl.Uniform3d(uniform("Origin"), input.Grid.Origin[0], input.Grid.Origin[1], input.Grid.Origin[2]);
+  gl.Uniform3d(
+    uniform("Spacing"), input.Grid.Spacing[0], input.Grid.Spacing[1], input.Grid.Spacing[2]);
+  gl.Uniform1d(uniform("Threshold"), std::cos(input.SeparationAngle * M_PI / 180.0));
+  gl.Uniform1i(uniform("Region"), static_cast<int>(input.Region));
+  gl.Uniform1d(uniform("Depth"), MedialMinimumDepth);
+  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  const int64_t perDispatch = int64_t(65535) * 64;
+  for (int64_t z0 = 0; z0 < nz; z0 += slab)
+  {
+    const int64_t z1 = std::min<int64_t>(nz, z0 + slab); // exclusive
+    // Voxels [from, to) are read (one slice of neighbours on each side).
+    const int64_t from = std::max<int64_t>(0, z0 - 1) * slice,
+                  to = std::min<int64_t>(nz, z1 + 1) * slice;
+    gl.Uniform1i(uniform("DistanceBase"),
+      static_cast<int>(BindVoxelRange(gl, 0, distanceBuffer, from, to, 4, 4, alignment)));
+    gl.Uniform1i(uniform("ClosestBase"),
+      static_cast<int>(BindVoxelRange(gl, 1, closestBuffer, from, to, 12, 4, alignment)));
+    gl.Uniform1i(uniform("CosineBase"),
+      static_cast<int>(BindVoxelRange(gl, 2, cosines, z0 * slice, z1 * slice, 8, 8, alignment)));
+    gl.Uniform1i(uniform("Last"), static_cast<int>(z1 * slice));
+    for (int64_t first = z0 * slice; first < z1 * slice; first += perDispatch)
+    {
+      gl.Uniform1i(uniform("First"), static_cast<int>(first));
+      gl.DispatchCompute(
+        static_cast<GLuint>((std::min(perDispatch, z1 * slice - first) + 63) / 64), 1, 1);
+    }
+  }
+  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, cosines);
+  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, voxels * 8, cosine);
+  gl.DeleteBuffers(1, &cosines);
+  gl.DeleteProgram(program);
+  const GLenum status = gl.GetError();
+  if (status != GL_NO_ERROR)
+  {
+    error = "OpenGL error " + std::to_string(status) + " in the medial axis pass";
+    return false;
+  }
+  return true;
+}
+
+int64_t Mark(const double* cosine, uint8_t* medial, int64_t voxels)
+{
+  int64_t count = 0;
+  for (int64_t v = 0; v < voxels; ++v)
+  {
+    medial[v] = cosine[v] <= 1 ? 1 : 0;
+    count += medial[v];
+  }
+  return count;
+}
+
+/// Two GL buffers deleted with the scope.
+struct Buffers
+{
+  const GLFunctions& GL;
+  GLuint Id[3] = { 0, 0, 0 };
+  explicit Buffers(const GLFunctions& gl)
+    : GL(gl)
+  {
+    gl.GenBuffers(3, this->Id);
+  }
+  ~Buffers() { this->GL.DeleteBuffers(3, this->Id); }
+};
+} // namespace
 
 bool MedialAxisGPU(HeadlessGL& context,
   const MedialInput& input,
@@ -23,93 +129,60 @@ bool MedialAxisGPU(HeadlessGL& context,
     return false;
   }
   const GLFunctions& gl = context.GL();
-  const IndexBox& whole = input.Grid.Whole;
-  const int64_t voxels = whole.Count();
-  // The arrays are bound a slab of z at a time (with one slice of neighbours on each
-  // side), so that no range exceeds GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
-  GLint64 maxBlock = 0;
-  GLint alignment = 1;
-  gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-  gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
-  const int nx = whole.Size(0), ny = whole.Size(1), nz = whole.Size(2);
-  const int64_t slice = int64_t(nx) * ny;
-  const int64_t usable = maxBlock - 2 * alignment;
-  const int64_t slab = std::min<int64_t>(nz, usable / (slice * 12) - 2);
-  if (slab < 1 || voxels > INT32_MAX || alignment % 8 != 0)
+  const int64_t voxels = input.Grid.Whole.Count();
+  Buffers field(gl);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, field.Id[0]);
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER, voxels * 4, input.Distance, GL_STATIC_DRAW);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, field.Id[1]);
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER, voxels * 12, input.ClosestPoint, GL_STATIC_DRAW);
+  if (!MedialPass(context, input, field.Id[0], field.Id[1], cosine, error))
   {
-    error = "a slice of " + std::to_string(nx) + " x " + std::to_string(ny) +
-      " closest points does not fit GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
-      std::to_string(maxBlock / 1048576) + " MiB)";
     return false;
   }
-  std::string log;
-  const GLuint program = context.BuildProgram({ { GL_COMPUTE_SHADER, MedialAxis_comp } }, log);
-  if (!program)
+  count = Mark(cosine, medial, voxels);
+  return true;
+}
+
+bool MedialAxisFromSitesGPU(HeadlessGL& context,
+  const MeshSites& sites,
+  const RangeCulling& culling,
+  const FieldRequest& request,
+  const MedialInput& parameters,
+  float* distance,
+  uint8_t* medial,
+  double* cosine,
+  int64_t& count,
+  ScanStatistics& stats,
+  std::string& error)
+{
+  HeadlessGL::Scope scope(context);
+  if (!scope.Ok())
   {
-    error = log;
+    error = "could not make the " + context.Platform() + " context current";
     return false;
   }
-  GLuint buffers[3];
-  gl.GenBuffers(3, buffers);
-  const void* data[2] = { input.Distance, input.ClosestPoint };
-  const int64_t elementBytes[3] = { 4, 12, 8 };
+  const GLFunctions& gl = context.GL();
+  const int64_t voxels = request.Extent.Count();
+  Buffers field(gl); // distances, closest points, nearest-site ids
+  const int64_t bytes[3] = { voxels * 4, voxels * 12, voxels * 4 };
   for (int b = 0; b < 3; ++b)
   {
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[b]);
-    gl.BufferData(GL_SHADER_STORAGE_BUFFER,
-      voxels * elementBytes[b],
-      b < 2 ? data[b] : nullptr,
-      b < 2 ? GL_STATIC_DRAW : GL_DYNAMIC_READ);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, field.Id[b]);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, bytes[b], nullptr, GL_DYNAMIC_COPY);
   }
-  gl.UseProgram(program);
-  auto uniform = [&](const char* name) { return gl.GetUniformLocation(program, name); };
-  gl.Uniform3i(uniform("Dims"), nx, ny, nz);
-  gl.Uniform3i(uniform("Lo"), whole.Lo[0], whole.Lo[1], whole.Lo[2]);
-  gl.Uniform3d(uniform("Origin"), input.Grid.Origin[0], input.Grid.Origin[1], input.Grid.Origin[2]);
-  gl.Uniform3d(
-    uniform("Spacing"), input.Grid.Spacing[0], input.Grid.Spacing[1], input.Grid.Spacing[2]);
-  gl.Uniform1d(uniform("Threshold"), std::cos(input.SeparationAngle * M_PI / 180.0));
-  gl.Uniform1i(uniform("Region"), static_cast<int>(input.Region));
-  gl.Uniform1d(uniform("Depth"), MedialMinimumDepth);
-  const char* bases[3] = { "DistanceBase", "ClosestBase", "CosineBase" };
-  const int64_t perDispatch = int64_t(65535) * 64;
-  for (int z0 = 0; z0 < nz; z0 += static_cast<int>(slab))
+  NearestSiteBuffer unused;
+  if (!ScanSitesGPU(context, sites, culling, request, unused, nullptr, stats, error, field.Id[2]) ||
+    !FinalizeGPU(context, sites, request, field.Id[2], true, field.Id[0], field.Id[1], error))
   {
-    const int z1 = static_cast<int>(std::min<int64_t>(nz, z0 + slab)); // exclusive
-    // Voxels [from, to) must be readable; the range starts on an aligned byte offset.
-    const int64_t from = std::max(0, z0 - 1) * slice, to = std::min(nz, z1 + 1) * slice;
-    for (int b = 0; b < 3; ++b)
-    {
-      const int64_t begin = from * elementBytes[b] / alignment * alignment;
-      const int64_t end = to * elementBytes[b];
-      gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, b, buffers[b], begin, end - begin);
-      gl.Uniform1i(uniform(bases[b]), static_cast<int>(begin / (b == 2 ? 8 : 4)));
-    }
-    gl.Uniform1i(uniform("Last"), static_cast<int>(z1 * slice));
-    for (int64_t first = z0 * slice; first < z1 * slice; first += perDispatch)
-    {
-      gl.Uniform1i(uniform("First"), static_cast<int>(first));
-      const int64_t n = std::min(perDispatch, z1 * slice - first);
-      gl.DispatchCompute(static_cast<GLuint>((n + 63) / 64), 1, 1);
-    }
-  }
-  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[2]);
-  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, voxels * 8, cosine);
-  const GLenum status = gl.GetError();
-  gl.DeleteBuffers(3, buffers);
-  gl.DeleteProgram(program);
-  if (status != GL_NO_ERROR)
-  {
-    error = "OpenGL error " + std::to_string(status) + " in the medial axis pass";
     return false;
   }
-  count = 0;
-  for (int64_t v = 0; v < voxels; ++v)
+  if (!MedialPass(context, parameters, field.Id[0], field.Id[1], cosine, error))
   {
-    medial[v] = cosine[v] <= 1 ? 1 : 0;
-    count += medial[v];
+    return false;
   }
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, field.Id[0]);
+  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, voxels * 4, distance);
+  count = Mark(cosine, medial, voxels);
   return true;
 }
 

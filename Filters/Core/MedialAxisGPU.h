@@ -4,6 +4,7 @@
 #define vtkdf_MedialAxisGPU_h
 
 #include "HeadlessGL.h"
+#include "LinearFactorField.h"
 #include "MedialAxis.h"
 
 #include <string>
@@ -17,6 +18,23 @@ bool MedialAxisGPU(HeadlessGL& context,
   uint8_t* medial,
   double* cosine,
   int64_t& count,
+  std::string& error);
+
+/// The field of a mesh and its medial axis, all on the GPU: the scan keeps the nearest
+/// sites there, a GPU finalize turns them into the signed field with closest points
+/// (FinalizeGPU), and the medial pass reads that field where it is. Only the distances
+/// (for Radius) and the cosines come back. `parameters` gives the angle and region (its
+/// Distance and ClosestPoint pointers are not used).
+bool MedialAxisFromSitesGPU(HeadlessGL& context,
+  const MeshSites& sites,
+  const RangeCulling& culling,
+  const FieldRequest& request,
+  const MedialInput& parameters,
+  float* distance,
+  uint8_t* medial,
+  double* cosine,
+  int64_t& count,
+  ScanStatistics& stats,
   std::string& error);
 
 } // namespace vtkdf

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Benchmark (not a test): field + medial axis (vtkdf medial --timing) on armadillo_52k and
-# bunny_75k at 128^3 and 256^3, both backends.
+# bunny_75k at 128^3 and 256^3, both backends (on the GPU from a mesh, field and medial
+# pass are one fused GPU pass: their sum is in field_s).
 # usage: Testing/Benchmarks/medial.sh [BUILD_DIR] [MESH_DIR] [SIZES] [BACKENDS]
 set -euo pipefail
 build=${1:-build}
@@ -16,8 +17,12 @@ for mesh in armadillo_52k bunny_75k; do
         --backend "$backend" --timing | grep '^vtkdf:') || { echo "$mesh $n $backend: failed"; continue; }
       dims=$(sed -E 's/.*dims=([0-9x]+).*/\1/' <<<"$line")
       t=$(sed -E 's/.*time_s=([0-9.]+).*/\1/' <<<"$line")
-      f=$(sed -E 's/.*field:([0-9.]+).*/\1/' <<<"$line")
-      m=$(sed -E 's/.*medial:([0-9.]+).*/\1/' <<<"$line")
+      if grep -q 'field+medial:' <<<"$line"; then  # GPU from a mesh: one fused pass
+        f=$(sed -E 's/.*field\+medial:([0-9.]+).*/\1/' <<<"$line"); m=0
+      else
+        f=$(sed -E 's/.*field:([0-9.]+).*/\1/' <<<"$line")
+        m=$(sed -E 's/.*medial:([0-9.]+).*/\1/' <<<"$line")
+      fi
       v=$(sed -E 's/.*medial_voxels=([0-9]+).*/\1/' <<<"$line")
       r=$(sed -E 's/.*renderer="([^"]*)".*/\1/' <<<"$line")
       printf "%-14s %5s %-12s %-7s %9.3f %9.3f %9.3f %8s  %s\n" "$mesh" "$n" "$dims" "$backend" \
