@@ -45,15 +45,32 @@ inline bool ClipSlice(const IndexPlane* planes,
   inX[1] = x1, inY[1] = y0;
   inX[2] = x1, inY[2] = y1;
   inX[3] = x0, inY[3] = y1;
+  double f[SlicePolygon::MaxVertices];
   for (int p = 0; p < count && n > 0; ++p)
   {
     const double a = planes[p].A, b = planes[p].B, c = planes[p].C * k + planes[p].D;
+    // Each corner's side once; a plane that keeps every corner changes nothing.
+    bool all = true, none = true;
+    for (int v = 0; v < n; ++v)
+    {
+      f[v] = a * inX[v] + b * inY[v] + c;
+      all = all && f[v] >= 0;
+      none = none && !(f[v] >= 0);
+    }
+    if (all)
+    {
+      continue;
+    }
+    if (none)
+    {
+      n = 0;
+      break;
+    }
     int m = 0;
     for (int v = 0; v < n; ++v)
     {
       const int w = (v + 1 == n) ? 0 : v + 1;
-      const double fv = a * inX[v] + b * inY[v] + c;
-      const double fw = a * inX[w] + b * inY[w] + c;
+      const double fv = f[v], fw = f[w];
       if (fv >= 0)
       {
         outX[m] = inX[v], outY[m] = inY[v], ++m;
