@@ -63,33 +63,13 @@ bool ReadMask(vtkImageData* image,
   std::string& error)
 {
   found = false;
-  vtkAbstractArray* abstract = image->GetPointData()->GetAbstractArray(name);
-  if (!abstract)
+  if (!required && !image->GetPointData()->GetAbstractArray(name))
   {
-    if (required)
-    {
-      error = std::string("The input image has no point-data array named ") + name + ".";
-    }
-    return !required;
+    return true;
   }
-  vtkDataArray* array = vtkDataArray::SafeDownCast(abstract);
+  vtkDataArray* array = vtkdf::SampleArray(image, name, 1, error);
   if (!array)
   {
-    error = std::string("The ") + name + " array is a " + abstract->GetClassName() +
-      ", not a numeric array.";
-    return false;
-  }
-  if (array->GetNumberOfComponents() != 1)
-  {
-    error = std::string("The ") + name + " array has " +
-      std::to_string(array->GetNumberOfComponents()) + " components; a mask has one.";
-    return false;
-  }
-  if (array->GetNumberOfTuples() != image->GetNumberOfPoints())
-  {
-    error = std::string("The ") + name + " array has " +
-      std::to_string(array->GetNumberOfTuples()) + " values for " +
-      std::to_string(image->GetNumberOfPoints()) + " samples.";
     return false;
   }
   MaskToBits worker;

@@ -96,12 +96,12 @@ int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  int whole[6] = { 0, -1, 0, -1, 0, -1 };
+  double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
   if (this->AcceptsImageInput && inInfo &&
     vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
   {
     // An image input: the output has its grid.
-    int whole[6];
-    double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
     if (inInfo->Has(vtkDataObject::ORIGIN()))
     {
@@ -111,28 +111,18 @@ int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
     {
       inInfo->Get(vtkDataObject::SPACING(), spacing);
     }
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
-    outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-    outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-    if (this->ProducesSubExtents)
-    {
-      outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
-    }
-    return 1;
   }
-  double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
-  int dims[3] = { 0, 0, 0 };
-  if (this->ExplicitGrid)
+  else if (this->ExplicitGrid)
   {
     for (int a = 0; a < 3; ++a)
     {
       origin[a] = this->GridOrigin[a];
       spacing[a] = this->GridSpacing[a];
-      dims[a] = this->GridDimensions[a];
-      if (!(spacing[a] > 0) || dims[a] < 1)
+      whole[2 * a + 1] = this->GridDimensions[a] - 1;
+      if (!(spacing[a] > 0) || this->GridDimensions[a] < 1)
       {
         vtkErrorMacro("Explicit grid needs positive spacing and dimensions, got spacing "
-          << spacing[a] << " and dimension " << dims[a] << " on axis " << a);
+          << spacing[a] << " and dimension " << this->GridDimensions[a] << " on axis " << a);
         return 0;
       }
     }
@@ -148,13 +138,17 @@ int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
     }
     vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
     double bounds[6];
+    int dims[3];
     if (input && CellBounds(input, bounds) &&
       std::isfinite(bounds[0] + bounds[1] + bounds[2] + bounds[3] + bounds[4] + bounds[5]))
     {
       ComputeDefaultGrid(bounds, this->Resolution, this->Padding, origin, spacing, dims);
+      for (int a = 0; a < 3; ++a)
+      {
+        whole[2 * a + 1] = dims[a] - 1;
+      }
     }
   }
-  const int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
   outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);

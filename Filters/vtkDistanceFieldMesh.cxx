@@ -1,8 +1,11 @@
 #include "vtkDistanceFieldMesh.h"
 
 #include "vtkCellArray.h"
+#include "vtkDataArray.h"
 #include "vtkIdList.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
@@ -127,6 +130,61 @@ std::string MeshConversion::IgnoredCells() const
        << " triangle strips with fewer than 3 points, " << this->EmptyVertices
        << " vertex cells without points. The other cells are used.";
   return text.str();
+}
+
+bool BuildSites(vtkPolyData* input,
+  Culling culling,
+  double slack,
+  MeshSites& sites,
+  std::string& warning,
+  std::string& error)
+{
+  MeshConversion conversion;
+  conversion.Run(input);
+  warning = conversion.IgnoredCells();
+  if (!sites.Build(conversion.Mesh, culling, slack, error, SMPFor))
+  {
+    error = "Invalid input mesh: " + error + ".";
+    return false;
+  }
+  if (sites.Sites.size() >= 0xffffffffu)
+  {
+    error = "The mesh has " + std::to_string(sites.Sites.size()) + " sites, more than 2^32 - 1.";
+    return false;
+  }
+  return true;
+}
+
+vtkDataArray* SampleArray(vtkImageData* image, const char* name, int components, std::string& error)
+{
+  vtkAbstractArray* abstract = image->GetPointData()->GetAbstractArray(name);
+  if (!abstract)
+  {
+    error = std::string("The input image has no point-data array named ") + name + ".";
+    return nullptr;
+  }
+  vtkDataArray* array = vtkDataArray::SafeDownCast(abstract);
+  if (!array)
+  {
+    error = std::string("The ") + name + " array is a " + abstract->GetClassName() +
+      ", not a numeric array.";
+    return nullptr;
+  }
+  if (array->GetNumberOfComponents() != components)
+  {
+    error = std::string("The ") + name + " array has " +
+      std::to_string(array->GetNumberOfComponents()) + " components; it needs " +
+      std::to_string(components) + ".";
+    return nullptr;
+  }
+  if (array->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    error = std::string("The ") + name + " array has " +
+      std::to_string(array->GetNumberOfTuples()) + " values for " +
+      std::to_string(image->GetNumberOfPoints()) + " samples.";
+    return nullptr;
+  }
+  return array;
 }
 
 std::string TrianglesOnly(const MeshConversion& conversion)

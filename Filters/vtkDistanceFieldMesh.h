@@ -16,6 +16,8 @@
 #include <functional>
 #include <string>
 
+class vtkDataArray;
+class vtkImageData;
 class vtkPolyData;
 
 namespace vtkdf
@@ -36,6 +38,22 @@ struct MeshConversion
 private:
   void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell);
 };
+
+/// The sites of `input` (MeshSites::Build after MeshConversion). False and `error` on
+/// invalid input; `warning` names the cells that were ignored, if any.
+bool BuildSites(vtkPolyData* input,
+  Culling culling,
+  double slack,
+  MeshSites& sites,
+  std::string& warning,
+  std::string& error);
+
+/// The point-data array `name` of `image` when it is numeric, has `components`
+/// components and one tuple per sample; else null, and `error` says what is wrong.
+vtkDataArray* SampleArray(vtkImageData* image,
+  const char* name,
+  int components,
+  std::string& error);
 
 /// The warning for cells a voxelizer ignores (vertices, lines, unusable cells), or "".
 std::string TrianglesOnly(const MeshConversion& conversion);

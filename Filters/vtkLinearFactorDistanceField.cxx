@@ -60,57 +60,27 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
 
   // The grid (RequestInformation) and the part of it requested (streaming).
   vtkdf::FieldRequest request;
-  int whole[6], extent[6];
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
-  double origin[3], spacing[3];
-  outInfo->Get(vtkDataObject::ORIGIN(), origin);
-  outInfo->Get(vtkDataObject::SPACING(), spacing);
-  for (int a = 0; a < 3; ++a)
-  {
-    request.Grid.Origin[a] = origin[a];
-    request.Grid.Spacing[a] = spacing[a];
-    request.Grid.Whole.Lo[a] = whole[2 * a];
-    request.Grid.Whole.Hi[a] = whole[2 * a + 1];
-    request.Extent.Lo[a] = extent[2 * a];
-    request.Extent.Hi[a] = extent[2 * a + 1];
-  }
-  request.Extent = request.Extent.Intersect(request.Grid.Whole);
-  if (request.Extent.Empty())
+  if (!GetOutputGrid(outInfo, request.Grid, request.Extent))
   {
     vtkWarningMacro("The input mesh uses no point, or the requested extent is empty: the output is "
                     "an empty image.");
     return 1;
   }
+  double origin[3], spacing[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    origin[a] = request.Grid.Origin[a];
+    spacing[a] = request.Grid.Spacing[a];
+  }
+  const double samples = double(request.Extent.Count());
 
   // Refuse grids that overflow indices or memory before allocating anything.
-  const double samples =
-    double(request.Extent.Size(0)) * request.Extent.Size(1) * request.Extent.Size(2);
   const double bytesPerSample = 8.0 /* nearest-site buffer */ + (this->ComputeDistance ? 4 : 0) +
     (this->ComputeClosestCellId ? sizeof(vtkIdType) : 0) + (this->ComputeClosestFeature ? 1 : 0) +
     (this->ComputeClosestPoint ? 12 : 0);
-  if (samples > static_cast<double>(VTK_ID_MAX) || samples > 4.0e18)
+  if (!this->CheckMemory(samples * bytesPerSample, request.Extent))
   {
-    vtkErrorMacro("The grid has " << samples << " samples, more than vtkIdType can index.");
     return 0;
-  }
-  const double limit = this->EffectiveMemoryLimit();
-  if (samples * bytesPerSample > limit)
-  {
-    vtkErrorMacro("The grid (" << request.Extent.Size(0) << " x " << request.Extent.Size(1) << " x "
-                               << request.Extent.Size(2) << ") needs "
-                               << samples * bytesPerSample / 1048576.0
-                               << " MiB, above MemoryLimit (" << limit / 1048576.0 << " MiB).");
-    return 0;
-  }
-
-  vtkdf::MeshConversion conversion;
-  conversion.Run(input);
-  stage("convert");
-  const std::string ignored = conversion.IgnoredCells();
-  if (!ignored.empty())
-  {
-    vtkWarningMacro(<< ignored);
   }
 
   const double h = request.Grid.MinSpacing();
@@ -122,21 +92,21 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     ? vtkdf::Culling::NonManifold
     : (this->Culling == CULLING_MANIFOLD ? vtkdf::Culling::Manifold : vtkdf::Culling::Auto);
   vtkdf::MeshSites sites;
-  std::string error;
-  if (!sites.Build(conversion.Mesh, culling, 1e-4 * h, error, vtkdf::SMPFor))
+  std::string error, warning;
+  const bool built = vtkdf::BuildSites(input, culling, 1e-4 * h, sites, warning, error);
+  if (!warning.empty())
   {
-    vtkErrorMacro("Invalid input mesh: " << error << ".");
+    vtkWarningMacro(<< warning);
+  }
+  if (!built)
+  {
+    vtkErrorMacro(<< error);
     return 0;
   }
   if (sites.Sites.empty())
   {
     vtkWarningMacro("The input has no usable cell: the output is an empty image.");
     return 1;
-  }
-  if (sites.Sites.size() >= 0xffffffffu)
-  {
-    vtkErrorMacro("The mesh has " << sites.Sites.size() << " sites, more than 2^32 - 1.");
-    return 0;
   }
 
   stage("sites");

@@ -36,20 +36,10 @@ vtkSmartPointer<vtkFloatArray> FloatArray(vtkImageData* image,
   int components,
   std::string& error)
 {
-  vtkDataArray* array = image->GetPointData()->GetArray(name);
+  vtkDataArray* array = vtkdf::SampleArray(image, name, components, error);
   if (!array)
   {
-    error = std::string("The input image has no point-data array named ") + name +
-      " (vtkLinearFactorDistanceField makes it).";
-    return nullptr;
-  }
-  if (array->GetNumberOfComponents() != components ||
-    array->GetNumberOfTuples() != image->GetNumberOfPoints())
-  {
-    error = std::string("The ") + name + " array must have " + std::to_string(components) +
-      " component(s) per sample; it has " + std::to_string(array->GetNumberOfComponents()) +
-      " and " + std::to_string(array->GetNumberOfTuples()) + " tuples for " +
-      std::to_string(image->GetNumberOfPoints()) + " samples.";
+    error += " (vtkLinearFactorDistanceField makes Distance and ClosestPoint.)";
     return nullptr;
   }
   vtkSmartPointer<vtkFloatArray> values = vtkFloatArray::SafeDownCast(array);
@@ -142,22 +132,17 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     {
       return 0;
     }
-    vtkdf::MeshConversion conversion;
-    conversion.Run(mesh);
-    const std::string ignored = conversion.IgnoredCells();
-    if (!ignored.empty())
-    {
-      vtkWarningMacro(<< ignored);
-    }
     vtkdf::MeshSites sites;
-    if (!sites.Build(conversion.Mesh,
-          vtkdf::Culling::Auto,
-          1e-4 * request.Grid.MinSpacing(),
-          error,
-          vtkdf::SMPFor) ||
-      sites.Sites.empty())
+    std::string warning;
+    const bool built = vtkdf::BuildSites(
+      mesh, vtkdf::Culling::Auto, 1e-4 * request.Grid.MinSpacing(), sites, warning, error);
+    if (!warning.empty())
     {
-      vtkErrorMacro("Invalid input mesh: " << (error.empty() ? "no usable cell" : error) << ".");
+      vtkWarningMacro(<< warning);
+    }
+    if (!built || sites.Sites.empty())
+    {
+      vtkErrorMacro(<< (built ? "Invalid input mesh: no usable cell." : error));
       return 0;
     }
     vtkdf::RangeCulling culling;

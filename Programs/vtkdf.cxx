@@ -373,6 +373,23 @@ vtkSmartPointer<vtkPolyData> ReadMeshOrExit(const std::string& input)
   return mesh;
 }
 
+/// A .vti (an image of masks or a field) or a mesh.
+vtkSmartPointer<vtkDataObject> ReadMeshOrImageOrExit(const std::string& input)
+{
+  if (!EndsWith(input, ".vti"))
+  {
+    return ReadMeshOrExit(input);
+  }
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(input.c_str());
+  reader->Update();
+  if (reader->GetErrorCode() || !reader->GetOutput())
+  {
+    std::exit(Usage(("cannot read " + input).c_str()));
+  }
+  return reader->GetOutput();
+}
+
 int Linfac(int argc, char* argv[])
 {
   CommonOptions common;
@@ -508,22 +525,7 @@ int Chamfer(int argc, char* argv[])
       return true;
     });
   vtkNew<vtkChamferVoxelDistance> filter;
-  const std::string input = argv[2];
-  if (EndsWith(input, ".vti"))
-  {
-    vtkNew<vtkXMLImageDataReader> reader;
-    reader->SetFileName(input.c_str());
-    reader->Update();
-    if (reader->GetErrorCode() || !reader->GetOutput())
-    {
-      return Usage(("cannot read " + input).c_str());
-    }
-    filter->SetInputData(reader->GetOutput());
-  }
-  else
-  {
-    filter->SetInputData(ReadMeshOrExit(input));
-  }
+  filter->SetInputData(ReadMeshOrImageOrExit(argv[2]));
   Configure(filter, common);
   if (metric == "manhattan")
   {
@@ -619,22 +621,7 @@ int Medial(int argc, char* argv[])
       return true;
     });
   vtkNew<vtkMedialAxisFilter> filter;
-  const std::string input = argv[2];
-  if (EndsWith(input, ".vti"))
-  {
-    vtkNew<vtkXMLImageDataReader> reader;
-    reader->SetFileName(input.c_str());
-    reader->Update();
-    if (reader->GetErrorCode() || !reader->GetOutput())
-    {
-      return Usage(("cannot read " + input).c_str());
-    }
-    filter->SetInputData(reader->GetOutput());
-  }
-  else
-  {
-    filter->SetInputData(ReadMeshOrExit(input));
-  }
+  filter->SetInputData(ReadMeshOrImageOrExit(argv[2]));
   Configure(filter, common);
   filter->SetSeparationAngle(angle);
   if (region == "outside")

@@ -37,6 +37,15 @@ public:
     explicit Scope(HeadlessGL& gl);
     ~Scope();
     bool Ok() const { return this->Current; }
+    /// As Ok(); when the context could not be made current, `error` says so.
+    bool Ok(std::string& error) const
+    {
+      if (!this->Current)
+      {
+        error = "could not make the " + this->GL.Platform() + " context current";
+      }
+      return this->Current;
+    }
     Scope(const Scope&) = delete;
     Scope& operator=(const Scope&) = delete;
 

@@ -56,9 +56,8 @@ bool ScanSitesGPU(HeadlessGL& context,
 {
   HeadlessGL::Scope scope(context);
   const GLFunctions& gl = context.GL();
-  if (!scope.Ok())
+  if (!scope.Ok(error))
   {
-    error = "could not make the " + context.Platform() + " context current";
     return false;
   }
   stats = ScanStatistics();
@@ -399,9 +398,8 @@ bool FinalizeGPU(HeadlessGL& context,
 {
   HeadlessGL::Scope scope(context);
   const GLFunctions& gl = context.GL();
-  if (!scope.Ok())
+  if (!scope.Ok(error))
   {
-    error = "could not make the " + context.Platform() + " context current";
     return false;
   }
   const IndexBox& ext = request.Extent;

@@ -123,9 +123,8 @@ bool MedialAxisGPU(HeadlessGL& context,
   std::string& error)
 {
   HeadlessGL::Scope scope(context);
-  if (!scope.Ok())
+  if (!scope.Ok(error))
   {
-    error = "could not make the " + context.Platform() + " context current";
     return false;
   }
   const GLFunctions& gl = context.GL();
@@ -156,9 +155,8 @@ bool MedialAxisFromSitesGPU(HeadlessGL& context,
   std::string& error)
 {
   HeadlessGL::Scope scope(context);
-  if (!scope.Ok())
+  if (!scope.Ok(error))
   {
-    error = "could not make the " + context.Platform() + " context current";
     return false;
   }
   const GLFunctions& gl = context.GL();

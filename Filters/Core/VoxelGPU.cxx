@@ -413,9 +413,8 @@ bool VoxelizeGPU(HeadlessGL& context,
   std::string& error)
 {
   HeadlessGL::Scope scope(context);
-  if (!scope.Ok())
+  if (!scope.Ok(error))
   {
-    error = "could not make the " + context.Platform() + " context current";
     return false;
   }
   const GLFunctions& gl = context.GL();
@@ -461,9 +460,8 @@ bool ChamferGPU(HeadlessGL& context,
 {
   result = ChamferResult();
   HeadlessGL::Scope scope(context);
-  if (!scope.Ok())
+  if (!scope.Ok(error))
   {
-    error = "could not make the " + context.Platform() + " context current";
     return false;
   }
   const GLFunctions& gl = context.GL();

@@ -5,9 +5,7 @@
 #include "vtkChamferVoxelDistance.h"
 #include "vtkPolyDataVoxelizer.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
-#include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -16,19 +14,14 @@
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "TestSupport.h"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 namespace
 {
-std::string Errors, Warnings;
-
-void Record(vtkObject*, unsigned long event, void*, void* callData)
-{
-  (event == vtkCommand::ErrorEvent ? Errors : Warnings) += static_cast<const char*>(callData);
-}
-
 vtkNew<vtkPolyData> Triangle(double z = 0)
 {
   vtkNew<vtkPolyData> mesh;
@@ -65,8 +58,6 @@ vtkNew<vtkImageData> Image(vtkIdType values, bool set)
 int main(int argc, char* argv[])
 {
   const std::string mode = argc > 1 ? argv[1] : "";
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetCallback(Record);
   vtkNew<vtkChamferVoxelDistance> chamfer;
   vtkNew<vtkPolyDataVoxelizer> voxelizer;
   vtkDistanceFieldAlgorithm* filter = chamfer;
@@ -74,9 +65,7 @@ int main(int argc, char* argv[])
   {
     filter = voxelizer;
   }
-  filter->AddObserver(vtkCommand::ErrorEvent, observer);
-  filter->AddObserver(vtkCommand::WarningEvent, observer);
-  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+  testsupport::MessageRecorder recorder(filter);
   filter->SetResolution(16);
   filter->SetBackendToCPU();
   std::string expectError, expectWarning;
@@ -147,26 +136,5 @@ int main(int argc, char* argv[])
   }
   filter->Update();
   const vtkIdType n = filter->GetOutput()->GetNumberOfPoints();
-  std::printf("mode %s: %lld samples\n  errors: %s\n  warnings: %s\n",
-    mode.c_str(),
-    (long long)n,
-    Errors.c_str(),
-    Warnings.c_str());
-  bool ok = true;
-  if (!expectError.empty() && Errors.find(expectError) == std::string::npos)
-  {
-    std::printf("FAIL: expected an error containing '%s'\n", expectError.c_str());
-    ok = false;
-  }
-  if (!expectWarning.empty() && Warnings.find(expectWarning) == std::string::npos)
-  {
-    std::printf("FAIL: expected a warning containing '%s'\n", expectWarning.c_str());
-    ok = false;
-  }
-  if (expectOutput != (n > 0))
-  {
-    std::printf("FAIL: expected %s output\n", expectOutput ? "an" : "an empty");
-    ok = false;
-  }
-  return ok ? 0 : 1;
+  return recorder.Expect(mode, n, expectError, expectWarning, expectOutput) ? 0 : 1;
 }

@@ -11,6 +11,8 @@
 // usage: TestChamferDistance DATA_DIR cpu|gpu
 #include "vtkChamferVoxelDistance.h"
 
+#include "TestSupport.h"
+
 #include "VoxelReference.h"
 
 #include "vtkFieldData.h"
@@ -31,7 +33,6 @@
 
 namespace
 {
-int Failures = 0;
 std::string Backend = "cpu";
 
 vtkSmartPointer<vtkImageData> Run(vtkDataObject* input,
@@ -59,7 +60,7 @@ vtkSmartPointer<vtkImageData> Run(vtkDataObject* input,
   if (std::string(f->GetLastBackend()) != backend)
   {
     std::printf("FAIL: asked for %s, ran on %s\n", backend.c_str(), f->GetLastBackend());
-    ++Failures;
+    ++testsupport::Failures;
   }
   auto out = vtkSmartPointer<vtkImageData>::New();
   out->DeepCopy(f->GetOutput());
@@ -82,14 +83,14 @@ void Compare(const std::string& name,
   if (!distance || !boundary || !unreachedArray || (signedField && !solid))
   {
     std::printf("FAIL: %s: missing output arrays\n", name.c_str());
-    ++Failures;
+    ++testsupport::Failures;
     return;
   }
   const int unreached = unreachedArray->GetValue(0);
   if (layers > 0 && unreached != layers + 1)
   {
     std::printf("FAIL: %s: UnreachedValue %d, expected %d\n", name.c_str(), unreached, layers + 1);
-    ++Failures;
+    ++testsupport::Failures;
   }
   const voxelref::Grid g(out);
   int layersRun = 0;
@@ -110,7 +111,7 @@ void Compare(const std::string& name,
     if (!other || differ)
     {
       std::printf("FAIL: %s: GPU and CPU differ on %lld voxels\n", name.c_str(), (long long)differ);
-      ++Failures;
+      ++testsupport::Failures;
     }
   }
   std::vector<char> zero(g.Count());
@@ -154,12 +155,12 @@ void Compare(const std::string& name,
       (long long)first,
       distance->GetValue(first),
       expected[first]);
-    ++Failures;
+    ++testsupport::Failures;
   }
   if (signedField && negative == 0)
   {
     std::printf("FAIL: %s: a signed field with no negative value\n", name.c_str());
-    ++Failures;
+    ++testsupport::Failures;
   }
 }
 
@@ -254,6 +255,5 @@ int main(int argc, char* argv[])
       Compare(set.first + " " + size + " float", f32, 1, 0, false);
     }
   }
-  std::printf("%d failures\n", Failures);
-  return Failures ? 1 : 0;
+  return testsupport::Verdict();
 }

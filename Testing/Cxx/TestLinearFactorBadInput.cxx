@@ -2,13 +2,13 @@
 // usage: TestLinearFactorBadInput empty|nan|memory|overflow|cells|nogpu
 #include "vtkLinearFactorDistanceField.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
-#include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+
+#include "TestSupport.h"
 
 #include <cmath>
 #include <cstdio>
@@ -17,13 +17,6 @@
 
 namespace
 {
-std::string Errors, Warnings;
-
-void Record(vtkObject*, unsigned long event, void*, void* callData)
-{
-  (event == vtkCommand::ErrorEvent ? Errors : Warnings) += static_cast<const char*>(callData);
-}
-
 vtkNew<vtkPolyData> Triangle(double z = 0)
 {
   vtkNew<vtkPolyData> mesh;
@@ -47,12 +40,8 @@ int main(int argc, char* argv[])
   {
     setenv("VTKDF_GL_PLATFORM", "none", 1); // no route: as on a machine without any GL
   }
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetCallback(Record);
   vtkNew<vtkLinearFactorDistanceField> filter;
-  filter->AddObserver(vtkCommand::ErrorEvent, observer);
-  filter->AddObserver(vtkCommand::WarningEvent, observer);
-  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+  testsupport::MessageRecorder recorder(filter);
   filter->SetResolution(16);
   filter->SetBackendToCPU();
   std::string expectError, expectWarning;
@@ -105,26 +94,5 @@ int main(int argc, char* argv[])
   }
   filter->Update();
   const vtkIdType n = filter->GetOutput()->GetNumberOfPoints();
-  std::printf("mode %s: %lld samples\n  errors: %s\n  warnings: %s\n",
-    mode.c_str(),
-    (long long)n,
-    Errors.c_str(),
-    Warnings.c_str());
-  bool ok = true;
-  if (!expectError.empty() && Errors.find(expectError) == std::string::npos)
-  {
-    std::printf("FAIL: expected an error containing '%s'\n", expectError.c_str());
-    ok = false;
-  }
-  if (!expectWarning.empty() && Warnings.find(expectWarning) == std::string::npos)
-  {
-    std::printf("FAIL: expected a warning containing '%s'\n", expectWarning.c_str());
-    ok = false;
-  }
-  if (expectField != (n > 0))
-  {
-    std::printf("FAIL: expected %s output\n", expectField ? "a field as" : "an empty");
-    ok = false;
-  }
-  return ok ? 0 : 1;
+  return recorder.Expect(mode, n, expectError, expectWarning, expectField) ? 0 : 1;
 }

@@ -5,6 +5,8 @@
 // usage: TestLinearFactorExactness DATA_DIR cpu|gpu
 #include "vtkLinearFactorDistanceField.h"
 
+#include "TestSupport.h"
+
 #include "ExactDistance.h"
 
 #include "vtkCellArray.h"
@@ -27,17 +29,6 @@
 
 namespace
 {
-int Failures = 0;
-#define CHECK(cond, ...)                                                                           \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::printf("FAIL: " __VA_ARGS__);                                                           \
-      std::printf("\n");                                                                           \
-      ++Failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
 
 /// Per cell: its primitives (triangles by fan, segments, points) in input coordinates.
 struct Reference
@@ -556,6 +547,5 @@ int main(int argc, char* argv[])
         worst / spacing[0]);
     }
   }
-  std::printf("%d failures\n", Failures);
-  return Failures ? 1 : 0;
+  return testsupport::Verdict();
 }

@@ -15,6 +15,8 @@
 //
 // usage: TestMedialAxis cpu|gpu
 #include "vtkLinearFactorDistanceField.h"
+
+#include "TestSupport.h"
 #include "vtkMedialAxisFilter.h"
 
 #include "vtkCubeSource.h"
@@ -39,7 +41,6 @@
 
 namespace
 {
-int Failures = 0;
 std::string Backend = "cpu";
 using Point = std::array<double, 3>;
 
@@ -98,7 +99,7 @@ Result Medial(vtkPolyData* mesh, double theta, const std::string& backend)
   if (!medial || std::string(f->GetLastBackend()) != backend)
   {
     std::printf("FAIL: no Medial array, or not run on %s\n", backend.c_str());
-    ++Failures;
+    ++testsupport::Failures;
     return r;
   }
   r.Mask.resize(medial->GetNumberOfTuples());
@@ -181,12 +182,12 @@ void Check(const std::string& name,
   if (!(toExact <= 1.5 && fromExact <= 1.5))
   {
     std::printf("FAIL: %s: Hausdorff distance above 1.5 voxels\n", name.c_str());
-    ++Failures;
+    ++testsupport::Failures;
   }
   if (thin && full > 0)
   {
     std::printf("FAIL: %s: %lld medial voxels are not thin\n", name.c_str(), (long long)full);
-    ++Failures;
+    ++testsupport::Failures;
   }
   if (r.Points != static_cast<vtkIdType>(r.Marked.size()))
   {
@@ -194,7 +195,7 @@ void Check(const std::string& name,
       name.c_str(),
       (long long)r.Points,
       r.Marked.size());
-    ++Failures;
+    ++testsupport::Failures;
   }
   if (Backend == "gpu")
   {
@@ -215,7 +216,7 @@ void Check(const std::string& name,
     if (cpuRun.Mask.size() != r.Mask.size())
     {
       std::printf("FAIL: %s: the GPU's own field has another grid\n", name.c_str());
-      ++Failures;
+      ++testsupport::Failures;
     }
     // The medial pass on both backends, from the same field (computed once, on the CPU:
     // the two backends' fields agree to 1e-5 spacing, not bit for bit).
@@ -255,7 +256,7 @@ void Check(const std::string& name,
     {
       std::printf(
         "FAIL: %s: GPU and CPU mark different voxels from the same field\n", name.c_str());
-      ++Failures;
+      ++testsupport::Failures;
     }
   }
 }
@@ -318,7 +319,7 @@ int main(int argc, char* argv[])
     if (outside || high.Marked.empty() || high.Marked.size() >= low.Marked.size())
     {
       std::printf("FAIL: theta is not monotone\n");
-      ++Failures;
+      ++testsupport::Failures;
     }
   }
   {
@@ -358,6 +359,5 @@ int main(int argc, char* argv[])
     }
     Check("torus", Triangulated(source), 120, exact, true);
   }
-  std::printf("%d failures\n", Failures);
-  return Failures ? 1 : 0;
+  return testsupport::Verdict();
 }

@@ -3,26 +3,19 @@
 // usage: TestMedialBadInput noclosest|angle|unsigned|empty
 #include "vtkMedialAxisFilter.h"
 
-#include "vtkCallbackCommand.h"
-#include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
+#include "TestSupport.h"
+
 #include <cstdio>
 #include <string>
 
 namespace
 {
-std::string Errors, Warnings;
-
-void Record(vtkObject*, unsigned long event, void*, void* callData)
-{
-  (event == vtkCommand::ErrorEvent ? Errors : Warnings) += static_cast<const char*>(callData);
-}
-
 /// A 5^3 field: Distance = `sign` * (x + 1), and ClosestPoint unless `withClosest` is off.
 vtkNew<vtkImageData> Field(double sign, bool withClosest)
 {
@@ -51,12 +44,8 @@ vtkNew<vtkImageData> Field(double sign, bool withClosest)
 int main(int argc, char* argv[])
 {
   const std::string mode = argc > 1 ? argv[1] : "";
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetCallback(Record);
   vtkNew<vtkMedialAxisFilter> filter;
-  filter->AddObserver(vtkCommand::ErrorEvent, observer);
-  filter->AddObserver(vtkCommand::WarningEvent, observer);
-  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, observer);
+  testsupport::MessageRecorder recorder(filter);
   filter->SetBackendToCPU();
   std::string expectError, expectWarning;
   if (mode == "noclosest")
@@ -90,21 +79,5 @@ int main(int argc, char* argv[])
   filter->Update();
   const vtkIdType n =
     filter->GetOutput()->GetNumberOfPoints() + filter->GetMedialPoints()->GetNumberOfPoints();
-  std::printf("mode %s: %lld output points\n  errors: %s\n  warnings: %s\n",
-    mode.c_str(),
-    (long long)n,
-    Errors.c_str(),
-    Warnings.c_str());
-  bool ok = n == 0;
-  if (!expectError.empty() && Errors.find(expectError) == std::string::npos)
-  {
-    std::printf("FAIL: expected an error containing '%s'\n", expectError.c_str());
-    ok = false;
-  }
-  if (!expectWarning.empty() && Warnings.find(expectWarning) == std::string::npos)
-  {
-    std::printf("FAIL: expected a warning containing '%s'\n", expectWarning.c_str());
-    ok = false;
-  }
-  return ok ? 0 : 1;
+  return recorder.Expect(mode, n, expectError, expectWarning, false) ? 0 : 1;
 }

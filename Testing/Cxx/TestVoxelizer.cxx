@@ -13,6 +13,8 @@
 // usage: TestVoxelizer DATA_DIR cpu|gpu
 #include "vtkPolyDataVoxelizer.h"
 
+#include "TestSupport.h"
+
 #include "VoxelReference.h"
 
 #include "vtkCellArray.h"
@@ -31,19 +33,7 @@
 
 namespace
 {
-int Failures = 0;
 int Identical = 0; // masks compared equal between the backends
-#define CHECK(cond, ...)                                                                           \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(cond))                                                                                   \
-    {                                                                                              \
-      std::printf("FAIL: " __VA_ARGS__);                                                           \
-      std::printf("\n");                                                                           \
-      ++Failures;                                                                                  \
-    }                                                                                              \
-  } while (0)
-
 vtkSmartPointer<vtkPolyData> Load(const std::string& path)
 {
   vtkNew<vtkXMLPolyDataReader> reader;
@@ -91,7 +81,7 @@ vtkSmartPointer<vtkImageData> Voxelize(vtkPolyData* mesh,
   if (backend == "gpu" && std::string(v->GetLastBackend()) != "gpu")
   {
     std::printf("FAIL: the GPU backend did not run\n");
-    ++Failures;
+    ++testsupport::Failures;
   }
   if (backend == "gpu" && Backend == "gpu")
   {
@@ -104,7 +94,7 @@ vtkSmartPointer<vtkImageData> Voxelize(vtkPolyData* mesh,
       if (!a != !b)
       {
         std::printf("FAIL: %s present on one backend only\n", name);
-        ++Failures;
+        ++testsupport::Failures;
       }
       else if (a)
       {
@@ -117,7 +107,7 @@ vtkSmartPointer<vtkImageData> Voxelize(vtkPolyData* mesh,
         {
           std::printf(
             "FAIL: %s: %lld voxels differ between GPU and CPU\n", name, (long long)differ);
-          ++Failures;
+          ++testsupport::Failures;
         }
         else
         {
@@ -395,6 +385,5 @@ int main(int argc, char* argv[])
   {
     std::printf("%d masks identical on the GPU and the CPU\n", Identical);
   }
-  std::printf("%d failures\n", Failures);
-  return Failures ? 1 : 0;
+  return testsupport::Verdict();
 }

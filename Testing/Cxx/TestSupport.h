@@ -1,0 +1,95 @@
+// What the module's C++ tests share: a failure counter with a CHECK macro, and a
+// recorder of a filter's errors and warnings for the bad-input tests.
+#ifndef vtkdf_TestSupport_h
+#define vtkdf_TestSupport_h
+
+#include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
+#include "vtkNew.h"
+
+#include <cstdio>
+#include <string>
+
+namespace testsupport
+{
+inline int Failures = 0;
+
+/// Prints the verdict; the process's exit status.
+inline int Verdict()
+{
+  std::printf("%d failures\n", Failures);
+  return Failures ? 1 : 0;
+}
+
+/// The errors and warnings a filter (and its executive) report.
+class MessageRecorder
+{
+public:
+  explicit MessageRecorder(vtkAlgorithm* filter)
+  {
+    this->Observer->SetClientData(this);
+    this->Observer->SetCallback(
+      [](vtkObject*, unsigned long event, void* self, void* text)
+      {
+        auto* recorder = static_cast<MessageRecorder*>(self);
+        (event == vtkCommand::ErrorEvent ? recorder->Errors : recorder->Warnings) +=
+          static_cast<const char*>(text);
+      });
+    filter->AddObserver(vtkCommand::ErrorEvent, this->Observer);
+    filter->AddObserver(vtkCommand::WarningEvent, this->Observer);
+    filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->Observer);
+  }
+
+  /// Prints what was recorded; true when an expected (non-empty) error and warning are
+  /// among them and the output is as expected (`outputPoints` > 0 or not).
+  bool Expect(const std::string& mode,
+    long long outputPoints,
+    const std::string& error,
+    const std::string& warning,
+    bool expectOutput) const
+  {
+    std::printf("mode %s: %lld output points\n  errors: %s\n  warnings: %s\n",
+      mode.c_str(),
+      outputPoints,
+      this->Errors.c_str(),
+      this->Warnings.c_str());
+    bool ok = true;
+    if (!error.empty() && this->Errors.find(error) == std::string::npos)
+    {
+      std::printf("FAIL: expected an error containing '%s'\n", error.c_str());
+      ok = false;
+    }
+    if (!warning.empty() && this->Warnings.find(warning) == std::string::npos)
+    {
+      std::printf("FAIL: expected a warning containing '%s'\n", warning.c_str());
+      ok = false;
+    }
+    if (expectOutput != (outputPoints > 0))
+    {
+      std::printf("FAIL: expected %s output\n", expectOutput ? "an" : "an empty");
+      ok = false;
+    }
+    return ok;
+  }
+
+  std::string Errors, Warnings;
+
+private:
+  vtkNew<vtkCallbackCommand> Observer;
+};
+} // namespace testsupport
+
+#define CHECK(cond, ...)                                                                           \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(cond))                                                                                   \
+    {                                                                                              \
+      std::printf("FAIL: " __VA_ARGS__);                                                           \
+      std::printf("\n");                                                                           \
+      ++testsupport::Failures;                                                                     \
+    }                                                                                              \
+  } while (0)
+
+#endif
