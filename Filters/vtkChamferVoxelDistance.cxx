@@ -126,14 +126,12 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     return 0;
   }
 
-  bool useGPU = false;
   std::string error, warning;
-  if (!this->ChooseBackend(useGPU, error))
+  vtkdf::HeadlessGL* gl = nullptr;
+  if (!this->ChooseBackend(gl))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
-  vtkdf::HeadlessGL* gl = useGPU ? vtkdf::HeadlessGL::Get(error) : nullptr;
 
   // The zero set, and the solid when a sign is wanted: read from the image, or
   // voxelized (on the GPU, the voxelization stays there for the propagation).

@@ -179,26 +179,22 @@ int vtkDistanceFieldAlgorithm::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
-bool vtkDistanceFieldAlgorithm::ChooseBackend(bool& useGPU, std::string& error)
+bool vtkDistanceFieldAlgorithm::ChooseBackend(vtkdf::HeadlessGL*& gl)
 {
-  useGPU = false;
+  gl = nullptr;
   if (this->Backend == BACKEND_CPU)
   {
     return true;
   }
   std::string why;
-  vtkdf::HeadlessGL* gl = vtkdf::HeadlessGL::Get(why);
-  if (this->Backend == BACKEND_GPU)
+  vtkdf::HeadlessGL* context = vtkdf::HeadlessGL::Get(why);
+  if (this->Backend == BACKEND_GPU && !context)
   {
-    if (!gl)
-    {
-      error = "Backend is GPU but " + why;
-      return false;
-    }
-    useGPU = true;
-    return true;
+    vtkErrorMacro("Backend is GPU but " << why);
+    return false;
   }
-  useGPU = gl && !gl->IsSoftware();
+  // Auto: a hardware-accelerated context only.
+  gl = this->Backend == BACKEND_GPU || (context && !context->IsSoftware()) ? context : nullptr;
   return true;
 }
 

@@ -21,6 +21,7 @@ class vtkImageData;
 #ifndef __VTK_WRAP__
 namespace vtkdf
 {
+class HeadlessGL;
 struct IndexBox;
 struct SampleGrid;
 }
@@ -103,9 +104,11 @@ protected:
   /// when no cell uses any point.
   static bool CellBounds(vtkDataSet* input, double bounds[6]);
 
-  /// Whether the GPU should run; when it should and cannot, false and `error` says why.
-  /// `useGPU` is the decision for Auto.
-  bool ChooseBackend(bool& useGPU, std::string& error);
+#ifndef __VTK_WRAP__
+  /// The GL context to run on (null: the CPU), from Backend; false, with the error
+  /// reported, when the GPU is asked for and there is none.
+  bool ChooseBackend(vtkdf::HeadlessGL*& gl);
+#endif
 
   /// Filters that also take a vtkImageData (a field or masks on a grid) set this; the
   /// output then has the image's grid, and the whole image is requested.

@@ -110,10 +110,9 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   }
 
   stage("sites");
-  bool useGPU = false;
-  if (!this->ChooseBackend(useGPU, error))
+  vtkdf::HeadlessGL* gl = nullptr;
+  if (!this->ChooseBackend(gl))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
 
@@ -131,9 +130,8 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     return !this->GetAbortExecute();
   };
   vtkdf::ScanStatistics stats;
-  if (useGPU)
+  if (gl)
   {
-    vtkdf::HeadlessGL* gl = vtkdf::HeadlessGL::Get(error);
     if (!vtkdf::ScanSitesGPU(*gl, sites, range, request, nearest, progress, stats, error))
     {
       vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error);

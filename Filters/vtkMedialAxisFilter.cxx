@@ -95,13 +95,11 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     return 1;
   }
   std::string error;
-  bool useGPU = false;
-  if (!this->ChooseBackend(useGPU, error))
+  vtkdf::HeadlessGL* gl = nullptr;
+  if (!this->ChooseBackend(gl))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
-  vtkdf::HeadlessGL* gl = useGPU ? vtkdf::HeadlessGL::Get(error) : nullptr;
 
   vtkdf::MedialInput input;
   input.SeparationAngle = this->SeparationAngle;

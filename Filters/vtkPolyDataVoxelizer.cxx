@@ -50,14 +50,12 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
     return 0;
   }
 
-  bool useGPU = false;
   std::string error, warning;
-  if (!this->ChooseBackend(useGPU, error))
+  vtkdf::HeadlessGL* gl = nullptr;
+  if (!this->ChooseBackend(gl))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
-  vtkdf::HeadlessGL* gl = useGPU ? vtkdf::HeadlessGL::Get(error) : nullptr;
   vtkdf::BitVolume boundary, solid;
   if (!vtkdf::VoxelizeMesh(input,
         grid,
