@@ -97,13 +97,16 @@ int64_t ScanSite(const MeshSites& sites,
   const int u = axes.Inner, v = axes.Row, w = axes.Slice;
 
   // Planes with their coefficients in (inner, row, slice) order.
-  IndexPlane planes[SlicePolygon::MaxPlanes];
-  const int numPlanes = SiteIndexPlanes(sites, site, grid, planes, SlicePolygon::MaxPlanes);
+  IndexPlane planes[MaxDomainPlanes];
+  const int numPlanes = SiteIndexPlanes(sites, site, grid, planes, MaxDomainPlanes);
   for (int p = 0; p < numPlanes; ++p)
   {
     const double c[3] = { planes[p].A, planes[p].B, planes[p].C };
     planes[p].A = c[u], planes[p].B = c[v], planes[p].C = c[w];
   }
+  DomainSpans domain;
+  domain.Setup(
+    planes, numPlanes, site.Required, region.Lo[u], region.Hi[u], region.Lo[v], region.Hi[v]);
   double P[3][3];
   SiteProjector(site, P);
   const float step[3] = { static_cast<float>(-P[0][u] * grid.Spacing[u]),
@@ -115,14 +118,28 @@ int64_t ScanSite(const MeshSites& sites,
   stride[2] = stride[1] * ext.Size(1);
   const int64_t base = -(ext.Lo[0] * stride[0] + ext.Lo[1] * stride[1] + ext.Lo[2] * stride[2]);
   int64_t evaluations = 0;
-  SlicePolygon poly;
 
-  // Whether the site may be the nearest one in a block's cell (RangeCulling's bound).
-  auto mayWin = [&](int bu, int bv, int bw)
+  // Whether the site may be the nearest one in a block's cell (RangeCulling's bound),
+  // remembered for the blocks of the current slice's polygon box: its rows ask again.
+  constexpr int MaxCached = 256;
+  int8_t cached[MaxCached];
+  int cacheU0 = 0, cacheV0 = 0, cacheNU = 0, cacheNV = 0, cacheW = 0;
+  auto mayWin = [&](int bu, int bv) -> bool
   {
+    const int cu = bu - cacheU0, cv = bv - cacheV0;
+    const bool inCache = cu >= 0 && cu < cacheNU && cv >= 0 && cv < cacheNV;
+    if (inCache && cached[cv * cacheNU + cu] >= 0)
+    {
+      return cached[cv * cacheNU + cu] != 0;
+    }
     int block[3];
-    block[u] = bu, block[v] = bv, block[w] = bw;
-    return culling.MayWin(block, site.BoundsMin, site.BoundsMax, grid);
+    block[u] = bu, block[v] = bv, block[w] = cacheW;
+    const bool result = culling.MayWin(block, site.BoundsMin, site.BoundsMax);
+    if (inCache)
+    {
+      cached[cv * cacheNU + cu] = result ? 1 : 0;
+    }
+    return result;
   };
 
   // A slice is alive when its domain polygon meets a cell where the site may win. The
@@ -130,40 +147,39 @@ int64_t ScanSite(const MeshSites& sites,
   // part of it form one run around the anchor's: the scan stops at the first dead one.
   auto scanSlice = [&](int k) -> bool
   {
-    if (!ClipSlice(
-          planes, numPlanes, k, region.Lo[u], region.Hi[u], region.Lo[v], region.Hi[v], poly))
+    double box[4];
+    if (!domain.SliceBox(k, box))
     {
       return false;
     }
-    double xmin = HUGE_VAL, xmax = -HUGE_VAL, ymin = HUGE_VAL, ymax = -HUGE_VAL;
-    for (int c = 0; c < poly.Count; ++c)
+    const int bu0 = culling.BlockOf(u, box[0]), bu1 = culling.BlockOf(u, box[1]);
+    const int bv0 = culling.BlockOf(v, box[2]), bv1 = culling.BlockOf(v, box[3]);
+    cacheU0 = bu0, cacheV0 = bv0, cacheW = culling.BlockOf(w, k);
+    cacheNU = bu1 - bu0 + 1, cacheNV = bv1 - bv0 + 1;
+    if (cacheNU * cacheNV > MaxCached)
     {
-      xmin = std::min(xmin, poly.X[c]);
-      xmax = std::max(xmax, poly.X[c]);
-      ymin = std::min(ymin, poly.Y[c]);
-      ymax = std::max(ymax, poly.Y[c]);
+      cacheNU = cacheNV = 0;
     }
-    const int bw = culling.BlockOf(w, k);
-    const int bu0 = culling.BlockOf(u, xmin), bu1 = culling.BlockOf(u, xmax);
-    const int bv0 = culling.BlockOf(v, ymin), bv1 = culling.BlockOf(v, ymax);
+    std::fill(cached, cached + cacheNU * cacheNV, int8_t(-1));
     bool alive = false;
     for (int bv = bv0; bv <= bv1 && !alive; ++bv)
     {
       for (int bu = bu0; bu <= bu1 && !alive; ++bu)
       {
-        alive = mayWin(bu, bv, bw);
+        alive = mayWin(bu, bv);
       }
     }
     if (!alive)
     {
       return false;
     }
-    const int j0 = std::max(region.Lo[v], static_cast<int>(std::ceil(ymin)));
-    const int j1 = std::min(region.Hi[v], static_cast<int>(std::floor(ymax)));
+    domain.BeginSlice(k);
+    const int j0 = std::max(region.Lo[v], static_cast<int>(std::ceil(box[2])));
+    const int j1 = std::min(region.Hi[v], static_cast<int>(std::floor(box[3])));
     for (int j = j0; j <= j1; ++j)
     {
       double xl, xr;
-      if (!RowSpan(poly, j, xl, xr))
+      if (!domain.RowSpan(j, xl, xr))
       {
         continue;
       }
@@ -187,14 +203,14 @@ int64_t ScanSite(const MeshSites& sites,
         base + index[0] * stride[0] + index[1] * stride[1] + index[2] * stride[2];
       const int64_t inner = stride[u];
       // The row, one block at a time, skipping the blocks where the site cannot win.
-      const int bv = culling.BlockOf(v, j);
-      const int ib0 = culling.BlockOf(u, i0), ib1 = culling.BlockOf(u, i1);
+      const int bv = culling.BlockOfSample(v, j);
+      const int ib0 = culling.BlockOfSample(u, i0), ib1 = culling.BlockOfSample(u, i1);
       const int firstOfBlock0 = culling.BlockExtent.Lo[u];
       for (int bu = ib0; bu <= ib1; ++bu)
       {
         const int lo = std::max(i0, firstOfBlock0 + bu * RangeCulling::BlockSize);
         const int hi = std::min(i1, firstOfBlock0 + (bu + 1) * RangeCulling::BlockSize - 1);
-        if (hi < lo || !mayWin(bu, bv, bw))
+        if (hi < lo || !mayWin(bu, bv))
         {
           continue;
         }

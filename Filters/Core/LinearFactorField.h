@@ -105,7 +105,7 @@ struct ScanStatistics
   bool Aborted = false;
 };
 
-/// Sample-index planes of a site's domain, at most SlicePolygon::MaxPlanes (optional
+/// Sample-index planes of a site's domain, at most `capacity` (optional
 /// planes beyond that are dropped, which only enlarges the domain).
 int SiteIndexPlanes(const MeshSites& sites,
   const Site& site,

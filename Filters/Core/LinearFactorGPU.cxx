@@ -115,7 +115,7 @@ bool ScanSitesGPU(HeadlessGL& context,
   {
     base[a] = grid.Coordinate(a, ext.Lo[a]);
   }
-  IndexPlane indexPlanes[SlicePolygon::MaxPlanes];
+  IndexPlane indexPlanes[GpuMaxPlanes];
   for (size_t s = 0; s < numSites; ++s)
   {
     const Site& site = sites.Sites[s];

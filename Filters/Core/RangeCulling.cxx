@@ -193,6 +193,11 @@ void RangeCulling::Build(const MeshSites& sites,
   this->BlockBound = level0;
   this->BlockCounts = nb;
   this->BlockExtent = extent;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->CellOrigin[a] = grid.Coordinate(a, extent.Lo[a]) - 0.5 * grid.Spacing[a];
+    this->CellSize[a] = b * grid.Spacing[a];
+  }
   while (pyramid.Dims.back()[0] > 1 || pyramid.Dims.back()[1] > 1 || pyramid.Dims.back()[2] > 1)
   {
     const auto d = pyramid.Dims.back();
@@ -249,7 +254,10 @@ void RangeCulling::Build(const MeshSites& sites,
     }
   }
 
-  // Reach of each group, then each site's region.
+  // Reach of each group, then each site's region. The descent stops at pairs of blocks
+  // (ReachLevel 1): a reach a block wider costs the scan less than the finer descent
+  // costs here, and the scan still skips every block where a site cannot win.
+  constexpr int ReachLevel = 1;
   parallelFor(numBlocks,
     16,
     [&](int64_t begin, int64_t end)
@@ -302,7 +310,8 @@ void RangeCulling::Build(const MeshSites& sites,
           {
             continue;
           }
-          if (node.Level == 0 || FarthestDistance(box, group) <= pyramid.Min[node.Level][at])
+          if (node.Level <= ReachLevel ||
+            FarthestDistance(box, group) <= pyramid.Min[node.Level][at])
           {
             for (int a = 0; a < 3; ++a)
             {

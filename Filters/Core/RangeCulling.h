@@ -5,8 +5,9 @@
 // distance field from above over B (distance from its centre to the nearest mesh point,
 // plus the block's half diagonal). A site s can be the closest one somewhere in B only
 // if dist(B, s) <= U(B). Sites are grouped by the block that holds their anchor; the
-// reach of a group is the bounding box of the blocks that pass this test for its
-// bounding box, found by descending a min/max pyramid of U.
+// reach of a group is the bounding box of the pairs of blocks that pass this test for
+// its bounding box, found by descending a min/max pyramid of U. The scan then tests
+// single blocks with MayWin.
 #ifndef vtkdf_RangeCulling_h
 #define vtkdf_RangeCulling_h
 
@@ -40,10 +41,7 @@ public:
   /// Whether a site within the world box [lo, hi] may be the nearest one somewhere in
   /// the cell of block `block` (block indices within the extent; the cell is the
   /// block's samples widened by half a spacing, so cells tile space).
-  bool MayWin(const int block[3],
-    const double lo[3],
-    const double hi[3],
-    const SampleGrid& grid) const
+  bool MayWin(const int block[3], const double lo[3], const double hi[3]) const
   {
     const int64_t id = block[0] +
       int64_t(this->BlockCounts[0]) * (block[1] + int64_t(this->BlockCounts[1]) * block[2]);
@@ -51,28 +49,38 @@ public:
     double d2 = 0;
     for (int a = 0; a < 3; ++a)
     {
-      const double cellLo =
-        grid.Coordinate(a, this->BlockExtent.Lo[a] + block[a] * BlockSize) - 0.5 * grid.Spacing[a];
-      const double cellHi = cellLo + BlockSize * grid.Spacing[a];
+      const double cellLo = this->CellOrigin[a] + block[a] * this->CellSize[a];
+      const double cellHi = cellLo + this->CellSize[a];
       const double gap = lo[a] > cellHi ? lo[a] - cellHi : (cellLo > hi[a] ? cellLo - hi[a] : 0.0);
       d2 += gap * gap;
     }
     return d2 <= bound * bound;
   }
 
-  /// The block of sample index `index` along axis `a` (of the cell holding the
-  /// continuous index coordinate `index`).
+  /// The block of the cell holding the continuous sample-index coordinate `index`
+  /// along axis `a`.
   int BlockOf(int a, double index) const
   {
-    const int blk =
-      static_cast<int>(std::floor((index - this->BlockExtent.Lo[a] + 0.5) / BlockSize));
+    // floor without a library call: the argument may be negative.
+    const double x = (index - this->BlockExtent.Lo[a] + 0.5) * (1.0 / BlockSize);
+    int blk = static_cast<int>(x);
+    blk -= blk > x;
     return blk < 0 ? 0 : (blk >= this->BlockCounts[a] ? this->BlockCounts[a] - 1 : blk);
+  }
+
+  /// The block of sample `index` (within the extent) along axis `a`.
+  int BlockOfSample(int a, int index) const
+  {
+    return std::min((index - this->BlockExtent.Lo[a]) / BlockSize, this->BlockCounts[a] - 1);
   }
 
   /// Upper bounds of the field per block (x fastest), BlockCounts blocks over BlockExtent.
   std::vector<float> BlockBound;
   std::array<int, 3> BlockCounts{ { 0, 0, 0 } };
   IndexBox BlockExtent;
+  /// World coordinate where the cells of block 0 start, and a cell's width, per axis.
+  double CellOrigin[3] = { 0, 0, 0 };
+  double CellSize[3] = { 0, 0, 0 };
 };
 
 } // namespace vtkdf
