@@ -68,7 +68,11 @@ struct ScanAxes
 
 ScanAxes ChooseScanAxes(const Site& site)
 {
-  const double* n = site.Type == FaceSite ? site.Axis : site.Normal;
+  double n[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    n[a] = site.Type == FaceSite ? site.Axis[a] : site.Normal[a];
+  }
   const double m[3] = { std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2]) };
   ScanAxes axes;
   if (!(m[0] + m[1] + m[2] > 0))
@@ -332,55 +336,59 @@ void Finalize(const MeshSites& sites,
   const bool banded = std::isfinite(cap);
   // Inside/outside of every sample (0: unknown, outside the band).
   std::vector<int8_t> side(arrays.Signed && arrays.Distance ? n : 0, 0);
-  parallelFor(n,
-    4096,
-    [&](int64_t begin, int64_t end)
+  // One row of samples at a time: the row's j, k and coordinates are computed once.
+  parallelFor(ny * ext.Size(2),
+    std::max<int64_t>(1, 4096 / nx),
+    [&](int64_t rowBegin, int64_t rowEnd)
     {
-      for (int64_t at = begin; at < end; ++at)
+      for (int64_t row = rowBegin; row < rowEnd; ++row)
       {
-        const int i = ext.Lo[0] + static_cast<int>(at % nx);
-        const int j = ext.Lo[1] + static_cast<int>((at / nx) % ny);
-        const int k = ext.Lo[2] + static_cast<int>(at / (nx * ny));
-        const uint64_t packed = nearest.Get(at);
-        const double x[3] = { grid.Coordinate(0, i), grid.Coordinate(1, j), grid.Coordinate(2, k) };
-        double d[3] = { 0, 0, 0 }, distance = banded ? cap : HUGE_VAL;
-        const Site* site = nullptr;
-        if (packed != NearestSiteBuffer::Empty)
+        const int j = ext.Lo[1] + static_cast<int>(row % ny);
+        const int k = ext.Lo[2] + static_cast<int>(row / ny);
+        const double y = grid.Coordinate(1, j), z = grid.Coordinate(2, k);
+        for (int64_t at = row * nx, i = ext.Lo[0]; at < (row + 1) * nx; ++at, ++i)
         {
-          site = &sites.Sites[packed & 0xffffffffu];
-          sites.DistanceVector(*site, x, d);
-          distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-          if (banded && distance > cap)
+          const uint64_t packed = nearest.Get(at);
+          const double x[3] = { grid.Coordinate(0, static_cast<int>(i)), y, z };
+          double d[3] = { 0, 0, 0 }, distance = banded ? cap : HUGE_VAL;
+          const Site* site = nullptr;
+          if (packed != NearestSiteBuffer::Empty)
           {
-            distance = cap;
-            site = nullptr;
+            site = &sites.Sites[packed & 0xffffffffu];
+            sites.DistanceVector(*site, x, d);
+            distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if (banded && distance > cap)
+            {
+              distance = cap;
+              site = nullptr;
+            }
           }
-        }
-        if (arrays.Distance)
-        {
-          float value = static_cast<float>(distance);
-          if (site && arrays.Signed)
+          if (arrays.Distance)
           {
-            const double s =
-              d[0] * site->Normal[0] + d[1] * site->Normal[1] + d[2] * site->Normal[2];
-            side[at] = s > 0 ? -1 : 1;
-            value = s > 0 ? -value : value;
+            float value = static_cast<float>(distance);
+            if (site && arrays.Signed)
+            {
+              const double s =
+                d[0] * site->Normal[0] + d[1] * site->Normal[1] + d[2] * site->Normal[2];
+              side[at] = s > 0 ? -1 : 1;
+              value = s > 0 ? -value : value;
+            }
+            arrays.Distance[at] = value;
           }
-          arrays.Distance[at] = value;
-        }
-        if (arrays.ClosestCellId)
-        {
-          arrays.ClosestCellId[at] = site ? site->CellId : -1;
-        }
-        if (arrays.ClosestFeature)
-        {
-          arrays.ClosestFeature[at] = site ? site->Type : 255;
-        }
-        if (arrays.ClosestPoint)
-        {
-          for (int a = 0; a < 3; ++a)
+          if (arrays.ClosestCellId)
           {
-            arrays.ClosestPoint[3 * at + a] = site ? static_cast<float>(x[a] + d[a]) : NAN;
+            arrays.ClosestCellId[at] = site ? site->CellId : -1;
+          }
+          if (arrays.ClosestFeature)
+          {
+            arrays.ClosestFeature[at] = site ? site->Type : 255;
+          }
+          if (arrays.ClosestPoint)
+          {
+            for (int a = 0; a < 3; ++a)
+            {
+              arrays.ClosestPoint[3 * at + a] = site ? static_cast<float>(x[a] + d[a]) : NAN;
+            }
           }
         }
       }

@@ -8,6 +8,18 @@ namespace vtkdf
 {
 namespace
 {
+
+/// The largest float <= x and the smallest float >= x.
+float FloatBelow(double x)
+{
+  const float f = static_cast<float>(x);
+  return f > x ? std::nextafter(f, -HUGE_VALF) : f;
+}
+float FloatAbove(double x)
+{
+  const float f = static_cast<float>(x);
+  return f < x ? std::nextafter(f, HUGE_VALF) : f;
+}
 using Vec = std::array<double, 3>;
 
 Vec Sub(const double* a, const double* b)
@@ -82,24 +94,6 @@ struct FaceRecord
   Vec Normal;
 };
 } // namespace
-
-void MeshSites::DistanceVector(const Site& s, const double x[3], double out[3]) const
-{
-  Vec r = Sub(s.Anchor, x);
-  if (s.Type == EdgeSite)
-  {
-    const Vec t = { s.Axis[0], s.Axis[1], s.Axis[2] };
-    r = Sub(r.data(), Scale(t, Dot(r, t)).data());
-  }
-  else if (s.Type == FaceSite)
-  {
-    const Vec n = { s.Axis[0], s.Axis[1], s.Axis[2] };
-    r = Scale(n, Dot(r, n));
-  }
-  out[0] = r[0];
-  out[1] = r[1];
-  out[2] = r[2];
-}
 
 bool MeshSites::Build(const MeshInput& in,
   Culling culling,
@@ -620,7 +614,8 @@ bool MeshSites::Build(const MeshInput& in,
     for (int a = 0; a < 3; ++a)
     {
       s.Anchor[a] = anchor[a];
-      s.BoundsMin[a] = s.BoundsMax[a] = anchor[a];
+      s.BoundsMin[a] = FloatBelow(anchor[a]);
+      s.BoundsMax[a] = FloatAbove(anchor[a]);
     }
     return s;
   };
@@ -628,8 +623,8 @@ bool MeshSites::Build(const MeshInput& in,
   {
     for (int a = 0; a < 3; ++a)
     {
-      s.BoundsMin[a] = std::min(s.BoundsMin[a], x[a]);
-      s.BoundsMax[a] = std::max(s.BoundsMax[a], x[a]);
+      s.BoundsMin[a] = std::min(s.BoundsMin[a], FloatBelow(x[a]));
+      s.BoundsMax[a] = std::max(s.BoundsMax[a], FloatAbove(x[a]));
     }
   };
 
@@ -660,7 +655,7 @@ bool MeshSites::Build(const MeshInput& in,
         for (int a = 0; a < 3; ++a)
         {
           s.Axis[a] = f.Normal[a];
-          s.Normal[a] = f.Normal[a] * orientation;
+          s.Normal[a] = static_cast<float>(f.Normal[a] * orientation);
         }
         s.Required = 3;
       }
@@ -708,7 +703,7 @@ bool MeshSites::Build(const MeshInput& in,
         for (int k = 0; k < 3; ++k)
         {
           s.Axis[k] = t[k];
-          s.Normal[k] = pseudo[k];
+          s.Normal[k] = static_cast<float>(pseudo[k]);
         }
       }
     });
@@ -725,7 +720,7 @@ bool MeshSites::Build(const MeshInput& in,
         s.Required = 0;
         for (int a = 0; a < 3; ++a)
         {
-          s.Normal[a] = vertexNormal[v][a];
+          s.Normal[a] = static_cast<float>(vertexNormal[v][a]);
         }
         uint32_t at = s.PlaneBegin;
         if (vertexDomain[v] == Polar)

@@ -274,8 +274,8 @@ void RangeCulling::Build(const MeshSites& sites,
           const Site& s = sites.Sites[this->Order[o]];
           for (int a = 0; a < 3; ++a)
           {
-            group.Lo[a] = std::min(group.Lo[a], s.BoundsMin[a]);
-            group.Hi[a] = std::max(group.Hi[a], s.BoundsMax[a]);
+            group.Lo[a] = std::min<double>(group.Lo[a], s.BoundsMin[a]);
+            group.Hi[a] = std::max<double>(group.Hi[a], s.BoundsMax[a]);
           }
         }
         int reachLo[3] = { INT32_MAX, INT32_MAX, INT32_MAX };

@@ -41,7 +41,7 @@ public:
   /// Whether a site within the world box [lo, hi] may be the nearest one somewhere in
   /// the cell of block `block` (block indices within the extent; the cell is the
   /// block's samples widened by half a spacing, so cells tile space).
-  bool MayWin(const int block[3], const double lo[3], const double hi[3]) const
+  bool MayWin(const int block[3], const float lo[3], const float hi[3]) const
   {
     const int64_t id = block[0] +
       int64_t(this->BlockCounts[0]) * (block[1] + int64_t(this->BlockCounts[1]) * block[2]);
