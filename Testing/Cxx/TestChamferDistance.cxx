@@ -48,14 +48,7 @@ vtkSmartPointer<vtkImageData> Run(vtkDataObject* input,
   f->SetSigned(signedField);
   f->OutputMasksOn();
   f->SetResolution(40);
-  if (backend == "gpu")
-  {
-    f->SetBackendToGPU();
-  }
-  else
-  {
-    f->SetBackendToCPU();
-  }
+  testsupport::UseBackend(f.GetPointer(), backend);
   f->Update();
   if (std::string(f->GetLastBackend()) != backend)
   {

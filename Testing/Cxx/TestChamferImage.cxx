@@ -3,6 +3,7 @@
 // the surface's cross-section. Compared with Testing/Data/Baseline/TestChamferImage.png.
 //
 // usage: TestChamferImage DATA_DIR cpu|gpu -V BASELINE.png -T TMPDIR
+#include "TestSupport.h"
 #include "vtkChamferVoxelDistance.h"
 
 #include "vtkActor.h"
@@ -47,14 +48,7 @@ int main(int argc, char* argv[])
   chamfer->SetMetricToChessboard18();
   chamfer->SetMaximumLayers(30);
   chamfer->SignedOn();
-  if (backend == "gpu")
-  {
-    chamfer->SetBackendToGPU();
-  }
-  else
-  {
-    chamfer->SetBackendToCPU();
-  }
+  testsupport::UseBackend(chamfer.GetPointer(), backend);
   chamfer->Update();
   vtkImageData* field = chamfer->GetOutput();
   int dims[3];

@@ -6,6 +6,7 @@
 // The image is compared with Testing/Data/Baseline/<name>.png (vtkRegressionTester).
 //
 // usage: TestLinearFactorImages DATA_DIR distance|voronoi cpu|gpu -V BASELINE.png -T TMPDIR
+#include "TestSupport.h"
 #include "vtkLinearFactorDistanceField.h"
 
 #include "vtkActor.h"
@@ -89,14 +90,7 @@ int main(int argc, char* argv[])
   field->SetSignModeToPseudoNormal();
   field->SetComputeClosestPoint(false);
   field->SetComputeClosestFeature(false);
-  if (backend == "gpu")
-  {
-    field->SetBackendToGPU();
-  }
-  else
-  {
-    field->SetBackendToCPU();
-  }
+  testsupport::UseBackend(field.GetPointer(), backend);
   field->Update();
   vtkImageData* slice = field->GetOutput();
   if (slice->GetNumberOfPoints() != vtkIdType(nx) * ny)

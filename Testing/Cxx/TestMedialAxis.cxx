@@ -82,14 +82,7 @@ Result Medial(vtkPolyData* mesh, double theta, const std::string& backend)
   }
   f->SetSeparationAngle(theta);
   f->SetRegionToInside();
-  if (backend == "gpu")
-  {
-    f->SetBackendToGPU();
-  }
-  else
-  {
-    f->SetBackendToCPU();
-  }
+  testsupport::UseBackend(f.GetPointer(), backend);
   f->Update();
   Result r;
   r.Field = vtkSmartPointer<vtkImageData>::New();

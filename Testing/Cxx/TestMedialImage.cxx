@@ -3,6 +3,7 @@
 // Compared with Testing/Data/Baseline/TestMedialImage.png.
 //
 // usage: TestMedialImage DATA_DIR cpu|gpu -V BASELINE.png -T TMPDIR
+#include "TestSupport.h"
 #include "vtkMedialAxisFilter.h"
 
 #include "vtkActor.h"
@@ -37,14 +38,7 @@ int main(int argc, char* argv[])
   medial->SetResolution(64);
   medial->SetSeparationAngle(75);
   medial->SetRegionToInside();
-  if (backend == "gpu")
-  {
-    medial->SetBackendToGPU();
-  }
-  else
-  {
-    medial->SetBackendToCPU();
-  }
+  testsupport::UseBackend(medial.GetPointer(), backend);
   medial->Update();
   vtkPolyData* points = medial->GetMedialPoints();
   std::printf("%lld medial points (%s)\n",

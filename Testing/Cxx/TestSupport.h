@@ -1,5 +1,5 @@
-// What the module's C++ tests share: a failure counter with a CHECK macro, and a
-// recorder of a filter's errors and warnings for the bad-input tests.
+// What the module's C++ tests share: a failure counter with a CHECK macro, the backend
+// argument, and a recorder of a filter's errors and warnings for the bad-input tests.
 #ifndef vtkdf_TestSupport_h
 #define vtkdf_TestSupport_h
 
@@ -15,6 +15,13 @@
 namespace testsupport
 {
 inline int Failures = 0;
+
+/// Sets a filter's Backend from a test's "cpu" or "gpu" argument.
+template<typename Filter>
+void UseBackend(Filter* filter, const std::string& backend)
+{
+  filter->SetBackend(backend == "gpu" ? Filter::BACKEND_GPU : Filter::BACKEND_CPU);
+}
 
 /// Prints the verdict; the process's exit status.
 inline int Verdict()

@@ -60,14 +60,7 @@ vtkSmartPointer<vtkImageData> Voxelize(vtkPolyData* mesh,
   v->SetInputData(mesh);
   v->SetMode(mode);
   v->SetResolution(resolution);
-  if (backend == "gpu")
-  {
-    v->SetBackendToGPU();
-  }
-  else
-  {
-    v->SetBackendToCPU();
-  }
+  testsupport::UseBackend(v.GetPointer(), backend);
   if (grid)
   {
     v->ExplicitGridOn();
