@@ -235,11 +235,9 @@ bool MeshSites::Build(const MeshInput& in,
 
   // --- Faces (non-degenerate triangles) and every edge occurrence.
   std::vector<FaceRecord> faces;
-  std::vector<EdgeRecord> edges;
   std::vector<int64_t> vertexCell(nv, INT64_MAX);
   const int64_t numTriangles = static_cast<int64_t>(in.Triangles.size() / 3);
   faces.reserve(numTriangles);
-  edges.reserve(3 * numTriangles + in.Segments.size() / 2);
   // Triangles in the order of their first corner on the curve (a counting sort).
   std::vector<int64_t> triangleOrder(numTriangles);
   {
@@ -262,6 +260,36 @@ bool MeshSites::Build(const MeshInput& in,
       triangleOrder[start[key(t)]++] = t;
     }
   }
+  // Edge records go straight into buckets by their smaller point (a counting sort);
+  // sorting each small bucket by (B, Face) then orders them all by (A, B, Face).
+  const int64_t numSegments = static_cast<int64_t>(in.Segments.size() / 2);
+  std::vector<int64_t> edgeStart(nv + 1, 0);
+  auto countEdge = [&](int64_t a, int64_t b) { edgeStart[std::min(a, b) + 1] += a != b; };
+  for (int64_t t = 0; t < numTriangles; ++t)
+  {
+    const int64_t* ids = &in.Triangles[3 * t];
+    for (int k = 0; k < 3; ++k)
+    {
+      countEdge(canonical[ids[k]], canonical[ids[(k + 1) % 3]]);
+    }
+  }
+  for (int64_t s = 0; s < numSegments; ++s)
+  {
+    countEdge(canonical[in.Segments[2 * s]], canonical[in.Segments[2 * s + 1]]);
+  }
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    edgeStart[v + 1] += edgeStart[v];
+  }
+  std::vector<EdgeRecord> edges(edgeStart[nv]);
+  std::vector<int64_t> edgeFill(edgeStart.begin(), edgeStart.end() - 1);
+  auto addEdge = [&](int64_t a, int64_t b, int64_t face, int64_t cell)
+  {
+    if (a != b)
+    {
+      edges[edgeFill[std::min(a, b)]++] = { std::min(a, b), std::max(a, b), face, cell };
+    }
+  };
   for (const int64_t t : triangleOrder)
   {
     const int64_t cell = in.TriangleCells[t];
@@ -291,34 +319,35 @@ bool MeshSites::Build(const MeshInput& in,
     }
     for (int k = 0; k < 3; ++k)
     {
-      const int64_t a = c[k], b = c[(k + 1) % 3];
-      if (a != b)
-      {
-        edges.push_back({ std::min(a, b), std::max(a, b), face, cell });
-      }
+      addEdge(c[k], c[(k + 1) % 3], face, cell);
     }
   }
-  const int64_t numSegments = static_cast<int64_t>(in.Segments.size() / 2);
   for (int64_t s = 0; s < numSegments; ++s)
   {
     const int64_t a = canonical[in.Segments[2 * s]], b = canonical[in.Segments[2 * s + 1]];
     const int64_t cell = in.SegmentCells[s];
     vertexCell[a] = std::min(vertexCell[a], cell);
     vertexCell[b] = std::min(vertexCell[b], cell);
-    if (a != b)
-    {
-      edges.push_back({ std::min(a, b), std::max(a, b), -1, cell });
-    }
+    addEdge(a, b, -1, cell);
   }
   for (size_t v = 0; v < in.Vertices.size(); ++v)
   {
     const int64_t c = canonical[in.Vertices[v]];
     vertexCell[c] = std::min(vertexCell[c], in.VertexCells[v]);
   }
-  std::sort(edges.begin(),
-    edges.end(),
-    [](const EdgeRecord& x, const EdgeRecord& y)
-    { return x.A != y.A ? x.A < y.A : (x.B != y.B ? x.B < y.B : x.Face < y.Face); });
+  Run(parallelFor,
+    nv,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t v = begin; v < end; ++v)
+      {
+        std::sort(edges.begin() + edgeStart[v],
+          edges.begin() + edgeStart[v + 1],
+          [](const EdgeRecord& x, const EdgeRecord& y)
+          { return x.B != y.B ? x.B < y.B : x.Face < y.Face; });
+      }
+    });
 
   // Orientation: make the sign's pseudonormals point outward for closed meshes.
   double volume = 0;
@@ -330,14 +359,33 @@ bool MeshSites::Build(const MeshInput& in,
   const double orientation = volume < 0 ? -1.0 : 1.0;
 
   // Vertex pseudonormals (angle weighted) and per-vertex edge lists.
+  // The corner angles in parallel, then summed in face order (the same sums either way).
+  const int64_t numFaceRecords = static_cast<int64_t>(faces.size());
+  std::vector<double> cornerAngle(3 * numFaceRecords);
+  Run(parallelFor,
+    numFaceRecords,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t fi = begin; fi < end; ++fi)
+      {
+        const FaceRecord& f = faces[fi];
+        for (int k = 0; k < 3; ++k)
+        {
+          const Vec u = Sub(X(f.P[(k + 1) % 3]), X(f.P[k]));
+          const Vec w = Sub(X(f.P[(k + 2) % 3]), X(f.P[k]));
+          cornerAngle[3 * fi + k] = std::atan2(Norm(Cross(u, w)), Dot(u, w));
+        }
+      }
+    });
   std::vector<Vec> vertexNormal(nv, Vec{ 0, 0, 0 });
-  for (const FaceRecord& f : faces)
+  for (int64_t fi = 0; fi < numFaceRecords; ++fi)
   {
+    const FaceRecord& f = faces[fi];
     for (int k = 0; k < 3; ++k)
     {
-      const Vec u = Sub(X(f.P[(k + 1) % 3]), X(f.P[k])), w = Sub(X(f.P[(k + 2) % 3]), X(f.P[k]));
-      const double angle = std::atan2(Norm(Cross(u, w)), Dot(u, w));
-      vertexNormal[f.P[k]] = Add(vertexNormal[f.P[k]], Scale(f.Normal, angle * orientation));
+      vertexNormal[f.P[k]] =
+        Add(vertexNormal[f.P[k]], Scale(f.Normal, cornerAngle[3 * fi + k] * orientation));
     }
   }
 
@@ -351,6 +399,8 @@ bool MeshSites::Build(const MeshInput& in,
   };
   std::vector<EdgeGroup> edgeGroups;
   std::vector<std::array<int64_t, 2>> edgeEnds;
+  edgeGroups.reserve(edges.size());
+  edgeEnds.reserve(edges.size());
   std::vector<int64_t> vertexEdgeOffsets(nv + 1, 0);
   for (size_t e0 = 0; e0 < edges.size();)
   {
