@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <climits>
 #include <mutex>
+#include <vector>
 
 namespace vtkdf
 {
@@ -56,6 +57,109 @@ inline int64_t WriteLane(const uint64_t* lane,
   }
   return count;
 }
+
+/// n(w) of word `w` of a lane: its bits moved one voxel up and one down the lane.
+inline uint64_t Shifted(const uint64_t* lane, int w, int words)
+{
+  return (lane[w] << 1) | (w > 0 ? lane[w - 1] >> 63 : 0) | (lane[w] >> 1) |
+    (w + 1 < words ? lane[w + 1] << 63 : 0);
+}
+
+/// n'(w) = n(w) | w.
+inline uint64_t Wide(const uint64_t* lane, int w, int words)
+{
+  return lane[w] | Shifted(lane, w, words);
+}
+
+/// Word `w` of the next layer's candidates from the lanes around (x, y) in the current
+/// layer: `lanes[(dy + 1) * 3 + dx + 1]`, an all-zero lane outside the grid. A template
+/// per metric, so that the compiler sees a fixed set of operations.
+template<ChamferMetric Metric>
+inline uint64_t Candidates(const uint64_t* const lanes[9], int w, int words)
+{
+  uint64_t v = Shifted(lanes[4], w, words);
+  if (Metric == ChamferMetric::Manhattan)
+  {
+    v |= lanes[1][w] | lanes[3][w] | lanes[5][w] | lanes[7][w];
+  }
+  else
+  {
+    v |= Wide(lanes[1], w, words) | Wide(lanes[3], w, words) | Wide(lanes[5], w, words) |
+      Wide(lanes[7], w, words);
+    if (Metric == ChamferMetric::Chessboard18)
+    {
+      v |= lanes[0][w] | lanes[2][w] | lanes[6][w] | lanes[8][w];
+    }
+    else
+    {
+      v |= Wide(lanes[0], w, words) | Wide(lanes[2], w, words) | Wide(lanes[6], w, words) |
+        Wide(lanes[8], w, words);
+    }
+  }
+  return v;
+}
+
+/// One layer over the rows [begin, end) of `region`: writes the new voxels into `next`
+/// (and `accumulated`, and `distance`), grows `found`, returns how many were reached.
+template<ChamferMetric Metric>
+int64_t LayerRows(const BitVolume& current,
+  BitVolume& next,
+  BitVolume& accumulated,
+  const uint64_t* zeroLane,
+  const LaneBox& region,
+  int64_t begin,
+  int64_t end,
+  int32_t layer,
+  int32_t* distance,
+  LaneBox& found)
+{
+  const int nx = current.Size(0), ny = current.Size(1);
+  const int words = current.WordsPerLane();
+  const uint64_t lastMask = current.LastWordMask();
+  const uint64_t full = ~uint64_t(0);
+  const int64_t slice = int64_t(nx) * ny;
+  int64_t reached = 0;
+  for (int y = region.Y0 + static_cast<int>(begin); y < region.Y0 + end; ++y)
+  {
+    for (int x = region.X0; x <= region.X1; ++x)
+    {
+      uint64_t* a = accumulated.Lane(x, y);
+      bool saturated = true;
+      for (int w = 0; w < words && saturated; ++w)
+      {
+        saturated = a[w] == (w + 1 == words ? lastMask : full);
+      }
+      if (saturated)
+      {
+        continue; // every voxel of the lane has its layer (`next` is clear here)
+      }
+      const uint64_t* lanes[9];
+      for (int dy = -1; dy <= 1; ++dy)
+      {
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+          const int ox = x + dx, oy = y + dy;
+          const bool inside = ox >= 0 && oy >= 0 && ox < nx && oy < ny;
+          lanes[(dy + 1) * 3 + dx + 1] = inside ? current.Lane(ox, oy) : zeroLane;
+        }
+      }
+      uint64_t* out = next.Lane(x, y);
+      uint64_t any = 0;
+      for (int w = 0; w < words; ++w)
+      {
+        out[w] = Candidates<Metric>(lanes, w, words) & ~a[w] & (w + 1 == words ? lastMask : full);
+        a[w] |= out[w];
+        any |= out[w];
+      }
+      if (any)
+      {
+        found.Add(x, y);
+        reached += WriteLane(out, words, x + int64_t(nx) * y, slice, layer, distance);
+      }
+    }
+  }
+  return reached;
+}
 } // namespace
 
 ChamferResult ChamferPropagate(const BitVolume& zero,
@@ -69,7 +173,6 @@ ChamferResult ChamferPropagate(const BitVolume& zero,
   ChamferResult result;
   const int nx = zero.Size(0), ny = zero.Size(1), nz = zero.Size(2);
   const int words = zero.WordsPerLane();
-  const uint64_t lastMask = zero.LastWordMask();
   const int64_t total = int64_t(nx) * ny * nz, slice = int64_t(nx) * ny;
   parallelFor(total,
     1 << 16,
@@ -102,9 +205,7 @@ ChamferResult ChamferPropagate(const BitVolume& zero,
   }
   LaneBox written; // the lanes where `next` holds an older layer (cleared before reuse)
 
-  const bool faceWide = metric != ChamferMetric::Manhattan;        // n' on face neighbours
-  const bool diagonals = metric != ChamferMetric::Manhattan;       // edge lanes at all
-  const bool diagonalWide = metric == ChamferMetric::Chessboard26; // n' on them
+  const std::vector<uint64_t> zeroLane(words, 0); // the neighbours outside the grid
   for (int layer = 1; maximumLayers <= 0 || layer <= maximumLayers; ++layer)
   {
     // `next` holds layer - 2 within `written`: clear it there.
@@ -122,66 +223,44 @@ ChamferResult ChamferPropagate(const BitVolume& zero,
       {
         LaneBox localBox;
         int64_t localReached = 0;
-        const uint64_t full = ~uint64_t(0);
-        // n(w) of word `w` of a lane: its bits moved one voxel up and one down.
-        auto shifted = [words](const uint64_t* lane, int w)
+        switch (metric)
         {
-          return (lane[w] << 1) | (w > 0 ? lane[w - 1] >> 63 : 0) | (lane[w] >> 1) |
-            (w + 1 < words ? lane[w + 1] << 63 : 0);
-        };
-        for (int y = region.Y0 + static_cast<int>(begin); y < region.Y0 + end; ++y)
-        {
-          for (int x = region.X0; x <= region.X1; ++x)
-          {
-            uint64_t* a = accumulated.Lane(x, y);
-            bool saturated = true;
-            for (int w = 0; w < words && saturated; ++w)
-            {
-              saturated = a[w] == (w + 1 == words ? lastMask : full);
-            }
-            if (saturated)
-            {
-              continue; // every voxel of the lane has its layer (`next` is clear here)
-            }
-            // The neighbouring lanes that contribute, and whether as w or n'(w).
-            const uint64_t* neighbours[8];
-            bool wide[8];
-            int count = 0;
-            for (int dy = -1; dy <= 1; ++dy)
-            {
-              for (int dx = -1; dx <= 1; ++dx)
-              {
-                const int ox = x + dx, oy = y + dy;
-                const bool diagonal = dx != 0 && dy != 0;
-                if ((dx == 0 && dy == 0) || ox < 0 || oy < 0 || ox >= nx || oy >= ny ||
-                  (diagonal && !diagonals))
-                {
-                  continue;
-                }
-                neighbours[count] = current.Lane(ox, oy);
-                wide[count++] = diagonal ? diagonalWide : faceWide;
-              }
-            }
-            const uint64_t* centre = current.Lane(x, y);
-            uint64_t* out = next.Lane(x, y);
-            bool any = false;
-            for (int w = 0; w < words; ++w)
-            {
-              uint64_t v = shifted(centre, w);
-              for (int n = 0; n < count; ++n)
-              {
-                v |= neighbours[n][w] | (wide[n] ? shifted(neighbours[n], w) : 0);
-              }
-              out[w] = v & ~a[w] & (w + 1 == words ? lastMask : full);
-              a[w] |= out[w];
-              any = any || out[w] != 0;
-            }
-            if (any)
-            {
-              localBox.Add(x, y);
-              localReached += WriteLane(out, words, x + int64_t(nx) * y, slice, layer, distance);
-            }
-          }
+          case ChamferMetric::Manhattan:
+            localReached = LayerRows<ChamferMetric::Manhattan>(current,
+              next,
+              accumulated,
+              zeroLane.data(),
+              region,
+              begin,
+              end,
+              layer,
+              distance,
+              localBox);
+            break;
+          case ChamferMetric::Chessboard18:
+            localReached = LayerRows<ChamferMetric::Chessboard18>(current,
+              next,
+              accumulated,
+              zeroLane.data(),
+              region,
+              begin,
+              end,
+              layer,
+              distance,
+              localBox);
+            break;
+          case ChamferMetric::Chessboard26:
+            localReached = LayerRows<ChamferMetric::Chessboard26>(current,
+              next,
+              accumulated,
+              zeroLane.data(),
+              region,
+              begin,
+              end,
+              layer,
+              distance,
+              localBox);
+            break;
         }
         std::lock_guard<std::mutex> guard(merge);
         found.Merge(localBox);
