@@ -185,7 +185,27 @@ void RangeCulling::Build(const MeshSites& sites,
   std::vector<float>& level0 = pyramid.Max.back();
   for (int64_t id = 0; id < numBlocks; ++id)
   {
-    const double bound = std::min(std::sqrt(nearest2[id]) + halfDiagonal[id], maximumDistance);
+    // The farthest point of the block's cell from its mesh point p bounds the field
+    // over the cell; it is never above |centre - p| + half diagonal, and often well below.
+    double bound = HUGE_VAL;
+    if (nearestPoint[id] >= 0)
+    {
+      const int ids[3] = { static_cast<int>(id % nb[0]),
+        static_cast<int>((id / nb[0]) % nb[1]),
+        static_cast<int>(id / (int64_t(nb[0]) * nb[1])) };
+      const double* p = &points[3 * nearestPoint[id]];
+      double far2 = 0;
+      for (int a = 0; a < 3; ++a)
+      {
+        const double cellLo =
+          grid.Coordinate(a, extent.Lo[a] + ids[a] * b) - 0.5 * grid.Spacing[a];
+        const double cellHi = cellLo + b * grid.Spacing[a];
+        const double reach = std::max(std::fabs(p[a] - cellLo), std::fabs(cellHi - p[a]));
+        far2 += reach * reach;
+      }
+      bound = std::min(std::sqrt(far2), std::sqrt(nearest2[id]) + halfDiagonal[id]);
+    }
+    bound = std::min(bound, maximumDistance);
     // Round up so that float storage never makes the bound smaller.
     level0[id] = std::nextafter(static_cast<float>(bound), HUGE_VALF);
   }
