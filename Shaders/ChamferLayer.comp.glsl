@@ -20,6 +20,8 @@ layout(std430, binding = 1) buffer Counts
 };
 uniform ivec3 Dims;
 uniform int Texels;
+uniform int TexelBase;    // the first texel of this dispatch's slab
+uniform int DistanceBase; // the voxel index where the bound part of `distance` starts
 uniform int Metric; // 0 Manhattan, 1 Chessboard18, 2 Chessboard26
 uniform int Layer;
 uniform int CountSlot;
@@ -47,7 +49,7 @@ uvec4 Shifted(int x, int y, int texel)
 
 void main()
 {
-  ivec3 at = ivec3(gl_GlobalInvocationID.xyz);
+  ivec3 at = ivec3(gl_GlobalInvocationID.xyz) + ivec3(0, 0, TexelBase);
   int x = at.x, y = at.y, texel = at.z;
   if (x >= Dims.x || y >= Dims.y || texel >= Texels)
   {
@@ -100,7 +102,7 @@ void main()
       int bit = findLSB(word);
       word &= word - 1u;
       int z = texel * 128 + c * 32 + bit;
-      distance[x + Dims.x * (y + Dims.y * z)] = Layer;
+      distance[x + Dims.x * (y + Dims.y * z) - DistanceBase] = Layer;
     }
   }
   atomicAdd(count[CountSlot], total);

@@ -14,12 +14,14 @@ layout(std430, binding = 1) buffer Counts
 };
 uniform ivec3 Dims;
 uniform int Texels;
+uniform int TexelBase;    // the first texel of this dispatch's slab
+uniform int DistanceBase; // the voxel index where the bound part of `distance` starts
 uniform int Value;
 uniform int Negate;
 
 void main()
 {
-  ivec3 at = ivec3(gl_GlobalInvocationID.xyz);
+  ivec3 at = ivec3(gl_GlobalInvocationID.xyz) + ivec3(0, 0, TexelBase);
   if (at.x >= Dims.x || at.y >= Dims.y || at.z >= Texels)
   {
     return;
@@ -37,7 +39,7 @@ void main()
       int bit = findLSB(word);
       word &= word - 1u;
       int z = at.z * 128 + c * 32 + bit;
-      int index = at.x + Dims.x * (at.y + Dims.y * z);
+      int index = at.x + Dims.x * (at.y + Dims.y * z) - DistanceBase;
       distance[index] = Negate != 0 ? -distance[index] : Value;
     }
   }

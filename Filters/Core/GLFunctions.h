@@ -7,6 +7,7 @@
 
 #include <epoxy/gl.h>
 
+#include <cstdlib>
 #include <string>
 
 namespace vtkdf
@@ -134,18 +135,32 @@ struct GLFunctions
   }
 };
 
+/// The largest range of a buffer that one shader storage block may see: the driver's
+/// GL_MAX_SHADER_STORAGE_BLOCK_SIZE, or less when the environment variable
+/// VTKDF_MAX_SSBO_BYTES says so (the tests set it to run the slab loops on small grids).
+inline GLint64 MaxStorageBlock(const GLFunctions& gl)
+{
+  GLint64 maxBlock = 0;
+  gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+  if (const char* forced = std::getenv("VTKDF_MAX_SSBO_BYTES"))
+  {
+    const long long limit = std::atoll(forced);
+    maxBlock = limit > 0 && limit < maxBlock ? limit : maxBlock;
+  }
+  return maxBlock;
+}
+
 /// Buffers indexed by voxel are bound a slab of z at a time, so that no bound range
-/// exceeds GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the number of z slices per slab (with one
-/// slice of margin on each side), or 0 when not even one fits. `bytesPerVoxel` is the
-/// largest element size among the buffers.
+/// exceeds the storage block limit (MaxStorageBlock): the number of z slices per slab
+/// (with one slice of margin on each side), or 0 when not even one fits.
+/// `bytesPerVoxel` is the largest element size among the buffers.
 inline int64_t SlabSlices(const GLFunctions& gl,
   int64_t slice,
   int64_t bytesPerVoxel,
   int64_t nz,
   GLint& alignment)
 {
-  GLint64 maxBlock = 0;
-  gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+  const GLint64 maxBlock = MaxStorageBlock(gl);
   gl.GetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
   const int64_t slices = (maxBlock - 2 * alignment) / (slice * bytesPerVoxel) - 2;
   return slices < 1 || alignment % 8 != 0 ? 0 : (slices < nz ? slices : nz);

@@ -473,14 +473,18 @@ bool ChamferGPU(HeadlessGL& context,
   {
     return false;
   }
-  const int64_t voxels = int64_t(nx) * ny * nz;
-  GLint64 maxBlock = 0;
-  gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-  if (voxels * 4 > maxBlock)
+  const int64_t voxels = int64_t(nx) * ny * nz, slice = int64_t(nx) * ny;
+  // The distance array is bound a slab of whole texels (128 slices) at a time: a
+  // texel's invocation writes only its own 128 slices.
+  GLint alignment = 0;
+  const int64_t slabSlices = SlabSlices(gl, slice, 4, nz, alignment);
+  const int texelsPerSlab =
+    slabSlices >= nz ? texels : static_cast<int>(std::min<int64_t>(slabSlices / 128, texels));
+  if (texelsPerSlab < 1)
   {
-    error = "the distance array (" + std::to_string(voxels * 4 / 1048576) +
-      " MiB) exceeds GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" + std::to_string(maxBlock / 1048576) +
-      " MiB)";
+    error = "128 slices of the distance array (" + std::to_string(slice * 512 / 1048576) +
+      " MiB) exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
+      std::to_string(MaxStorageBlock(gl) / 1048576) + " MiB)";
     return false;
   }
 
@@ -531,14 +535,32 @@ bool ChamferGPU(HeadlessGL& context,
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, distances);
   gl.BufferData(GL_SHADER_STORAGE_BUFFER, voxels * 4, nullptr, GL_DYNAMIC_COPY);
   gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32I, GL_RED_INTEGER, GL_INT, &unreached);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, distances);
   constexpr int Batch = 8;
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counts);
   gl.BufferData(GL_SHADER_STORAGE_BUFFER, Batch * 4, nullptr, GL_DYNAMIC_READ);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counts);
 
-  // Layer 0.
+  // Runs `program` over every lane texel, one slab of texels at a time, with the slab's
+  // part of the distance array bound.
   const GLuint groupsX = (nx + 7) / 8, groupsY = (ny + 7) / 8;
+  auto dispatchSlabs = [&](GLuint program)
+  {
+    const GLint texelBase = Uniform(gl, program, "TexelBase");
+    const GLint distanceBase = Uniform(gl, program, "DistanceBase");
+    for (int t0 = 0; t0 < texels; t0 += texelsPerSlab)
+    {
+      const int t1 = std::min(texels, t0 + texelsPerSlab);
+      const int64_t from = 128 * int64_t(t0) * slice;
+      const int64_t to = std::min<int64_t>(128 * int64_t(t1), nz) * slice;
+      gl.Uniform1i(texelBase, t0);
+      gl.Uniform1i(distanceBase,
+        static_cast<int>(BindVoxelRange(gl, 0, distances, from, to, 4, 4, alignment)));
+      gl.DispatchCompute(groupsX, groupsY, t1 - t0);
+    }
+    gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  };
+
+  // Layer 0.
   const uint32_t zeros[Batch] = {};
   gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeros), zeros);
   gl.UseProgram(seed);
@@ -547,8 +569,8 @@ bool ChamferGPU(HeadlessGL& context,
   gl.Uniform1i(Uniform(gl, seed, "Texels"), texels);
   gl.Uniform1i(Uniform(gl, seed, "Value"), 0);
   gl.Uniform1i(Uniform(gl, seed, "Negate"), 0);
-  gl.DispatchCompute(groupsX, groupsY, texels);
-  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  dispatchSlabs(seed);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counts);
   uint32_t zeroSet = 0;
   gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeroSet), &zeroSet);
   result.ZeroSet = result.Reached = zeroSet;
@@ -610,11 +632,11 @@ bool ChamferGPU(HeadlessGL& context,
       accumulated.Bind(2, GL_READ_WRITE);
       gl.Uniform1i(layerLocation, l);
       gl.Uniform1i(slotLocation, l - start);
-      gl.DispatchCompute(groupsX, groupsY, texels);
-      gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+      dispatchSlabs(layer);
       std::swap(current, next);
     }
     uint32_t reached[Batch] = {};
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counts); // BindBufferRange moved the generic binding
     gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(reached), reached);
     for (int l = start; l <= end; ++l)
     {
@@ -633,8 +655,7 @@ bool ChamferGPU(HeadlessGL& context,
     gl.UseProgram(seed);
     solidZ.Bind(0, GL_READ_ONLY);
     gl.Uniform1i(Uniform(gl, seed, "Negate"), 1);
-    gl.DispatchCompute(groupsX, groupsY, texels);
-    gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    dispatchSlabs(seed);
   }
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, distances);
   gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, voxels * 4, distance);

@@ -8,7 +8,7 @@
 //
 // On the GPU backend the field also equals the CPU backend's, voxel for voxel.
 //
-// usage: TestChamferDistance DATA_DIR cpu|gpu
+// usage: TestChamferDistance DATA_DIR cpu|gpu (VTKDF_MAX_SSBO_BYTES: hand-made grids only)
 #include "vtkChamferVoxelDistance.h"
 
 #include "TestSupport.h"
@@ -195,7 +195,13 @@ int main(int argc, char* argv[])
   }
   const std::string data = argv[1];
   Backend = argv[2];
-  for (const char* name : { "bunny_small", "teapot", "scad_back_to_back", "boeing_soup" })
+  // With VTKDF_MAX_SSBO_BYTES set small (the ".slabs" test), the GPU binds the distance
+  // array a slab of 128 slices at a time: only the tall hand-made grids have several.
+  const bool slabs = std::getenv("VTKDF_MAX_SSBO_BYTES") != nullptr;
+  const std::vector<const char*> meshes = {
+    "bunny_small", "teapot", "scad_back_to_back", "boeing_soup"
+  };
+  for (const char* name : slabs ? std::vector<const char*>() : meshes)
   {
     vtkNew<vtkXMLPolyDataReader> reader;
     reader->SetFileName((data + "/" + name + ".vtp").c_str());
