@@ -197,8 +197,7 @@ void RangeCulling::Build(const MeshSites& sites,
       double far2 = 0;
       for (int a = 0; a < 3; ++a)
       {
-        const double cellLo =
-          grid.Coordinate(a, extent.Lo[a] + ids[a] * b) - 0.5 * grid.Spacing[a];
+        const double cellLo = grid.Coordinate(a, extent.Lo[a] + ids[a] * b) - 0.5 * grid.Spacing[a];
         const double cellHi = cellLo + b * grid.Spacing[a];
         const double reach = std::max(std::fabs(p[a] - cellLo), std::fabs(cellHi - p[a]));
         far2 += reach * reach;
@@ -211,6 +210,17 @@ void RangeCulling::Build(const MeshSites& sites,
   }
   pyramid.Min.push_back(level0);
   this->BlockBound = level0;
+  // Each block's mesh point, for MayWin's bisector test (NaN: none, the bound alone).
+  this->BlockPoint.assign(3 * numBlocks, std::numeric_limits<double>::quiet_NaN());
+  for (int64_t id = 0; id < numBlocks; ++id)
+  {
+    if (nearestPoint[id] >= 0)
+    {
+      std::copy(&points[3 * nearestPoint[id]],
+        &points[3 * nearestPoint[id]] + 3,
+        &this->BlockPoint[3 * id]);
+    }
+  }
   this->BlockCounts = nb;
   this->BlockExtent = extent;
   for (int a = 0; a < 3; ++a)

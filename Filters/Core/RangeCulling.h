@@ -41,20 +41,35 @@ public:
   /// Whether a site within the world box [lo, hi] may be the nearest one somewhere in
   /// the cell of block `block` (block indices within the extent; the cell is the
   /// block's samples widened by half a spacing, so cells tile space).
+  ///
+  /// Two necessary conditions. The site is within the field's upper bound of the block:
+  /// dist(cell, box) <= BlockBound. And, with p the block's mesh point, some x of the
+  /// cell is at least as close to the box as to p (else p beats every point of the
+  /// site there): min over x of dist(x, box)^2 - |x - p|^2 <= 0. For a fixed point of
+  /// the box that difference is affine in x, so its minimum is at a corner of the cell,
+  /// and the minimum over the corners splits into one choice per axis.
   bool MayWin(const int block[3], const float lo[3], const float hi[3]) const
   {
     const int64_t id = block[0] +
       int64_t(this->BlockCounts[0]) * (block[1] + int64_t(this->BlockCounts[1]) * block[2]);
     const double bound = this->BlockBound[id];
-    double d2 = 0;
+    const double* p = &this->BlockPoint[3 * id];
+    double d2 = 0, bisector = 0, scale = 0;
     for (int a = 0; a < 3; ++a)
     {
       const double cellLo = this->CellOrigin[a] + block[a] * this->CellSize[a];
       const double cellHi = cellLo + this->CellSize[a];
       const double gap = lo[a] > cellHi ? lo[a] - cellHi : (cellLo > hi[a] ? cellLo - hi[a] : 0.0);
       d2 += gap * gap;
+      // The corner coordinates cellLo and cellHi: dist to the box, and to p, squared.
+      const double gLo = lo[a] > cellLo ? lo[a] - cellLo : (cellLo > hi[a] ? cellLo - hi[a] : 0.0);
+      const double gHi = lo[a] > cellHi ? lo[a] - cellHi : (cellHi > hi[a] ? cellHi - hi[a] : 0.0);
+      const double pLo = cellLo - p[a], pHi = cellHi - p[a];
+      bisector += std::min(gLo * gLo - pLo * pLo, gHi * gHi - pHi * pHi);
+      scale += std::max(pLo * pLo, pHi * pHi) + this->CellSize[a] * this->CellSize[a];
     }
-    return d2 <= bound * bound;
+    // The relative margin covers rounding (a site through p itself ties at 0).
+    return d2 <= bound * bound && !(bisector > 1e-9 * scale);
   }
 
   /// The block of the cell holding the continuous sample-index coordinate `index`
@@ -76,6 +91,8 @@ public:
 
   /// Upper bounds of the field per block (x fastest), BlockCounts blocks over BlockExtent.
   std::vector<float> BlockBound;
+  /// The mesh point that gave each block its bound (xyz per block).
+  std::vector<double> BlockPoint;
   std::array<int, 3> BlockCounts{ { 0, 0, 0 } };
   IndexBox BlockExtent;
   /// World coordinate where the cells of block 0 start, and a cell's width, per axis.
