@@ -118,6 +118,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
 
   this->UpdateProgress(0.0);
   vtkdf::RangeCulling range;
+  range.ReachLevel = gl ? 0 : 1;
   range.Build(sites, request.Grid, request.Extent, request.MaximumDistance, vtkdf::SMPFor);
   stage("culling");
   this->UpdateProgress(0.1);

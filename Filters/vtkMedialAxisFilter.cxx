@@ -144,6 +144,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
       return 0;
     }
     vtkdf::RangeCulling culling;
+    culling.ReachLevel = 0; // the GPU scan
     culling.Build(sites, request.Grid, request.Extent, HUGE_VAL, vtkdf::SMPFor);
     distance = vtkSmartPointer<vtkFloatArray>::New();
     distance->SetNumberOfTuples(request.Extent.Count());

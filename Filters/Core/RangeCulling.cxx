@@ -284,10 +284,7 @@ void RangeCulling::Build(const MeshSites& sites,
     }
   }
 
-  // Reach of each group, then each site's region. The descent stops at pairs of blocks
-  // (ReachLevel 1): a reach a block wider costs the scan less than the finer descent
-  // costs here, and the scan still skips every block where a site cannot win.
-  constexpr int ReachLevel = 1;
+  // Reach of each group, then each site's region; the descent stops at ReachLevel.
   parallelFor(numBlocks,
     16,
     [&](int64_t begin, int64_t end)
@@ -340,7 +337,7 @@ void RangeCulling::Build(const MeshSites& sites,
           {
             continue;
           }
-          if (node.Level <= ReachLevel ||
+          if (node.Level <= this->ReachLevel ||
             FarthestDistance(box, group) <= pyramid.Min[node.Level][at])
           {
             for (int a = 0; a < 3; ++a)
