@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <climits>
 #include <mutex>
+#include <type_traits>
 #include <vector>
 
 namespace vtkdf
@@ -98,6 +99,9 @@ inline uint64_t Candidates(const uint64_t* const lanes[9], int w, int words)
   }
   return v;
 }
+
+template<ChamferMetric Metric>
+using MetricTag = std::integral_constant<ChamferMetric, Metric>;
 
 /// One layer over the rows [begin, end) of `region`: writes the new voxels into `next`
 /// (and `accumulated`, and `distance`), grows `found`, returns how many were reached.
@@ -223,43 +227,29 @@ ChamferResult ChamferPropagate(const BitVolume& zero,
       {
         LaneBox localBox;
         int64_t localReached = 0;
+        auto rows = [&](auto metricTag)
+        {
+          return LayerRows<decltype(metricTag)::value>(current,
+            next,
+            accumulated,
+            zeroLane.data(),
+            region,
+            begin,
+            end,
+            layer,
+            distance,
+            localBox);
+        };
         switch (metric)
         {
           case ChamferMetric::Manhattan:
-            localReached = LayerRows<ChamferMetric::Manhattan>(current,
-              next,
-              accumulated,
-              zeroLane.data(),
-              region,
-              begin,
-              end,
-              layer,
-              distance,
-              localBox);
+            localReached = rows(MetricTag<ChamferMetric::Manhattan>());
             break;
           case ChamferMetric::Chessboard18:
-            localReached = LayerRows<ChamferMetric::Chessboard18>(current,
-              next,
-              accumulated,
-              zeroLane.data(),
-              region,
-              begin,
-              end,
-              layer,
-              distance,
-              localBox);
+            localReached = rows(MetricTag<ChamferMetric::Chessboard18>());
             break;
           case ChamferMetric::Chessboard26:
-            localReached = LayerRows<ChamferMetric::Chessboard26>(current,
-              next,
-              accumulated,
-              zeroLane.data(),
-              region,
-              begin,
-              end,
-              layer,
-              distance,
-              localBox);
+            localReached = rows(MetricTag<ChamferMetric::Chessboard26>());
             break;
         }
         std::lock_guard<std::mutex> guard(merge);
