@@ -10,6 +10,7 @@
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
+#include <vtksys/SystemTools.hxx>
 
 #include <cstdio>
 #include <cstdlib>
@@ -24,6 +25,11 @@ int main(int argc, char* argv[])
   }
   const std::string out = argv[2];
   const int resolution = argc > 3 ? std::atoi(argv[3]) : 96;
+  if (!vtksys::SystemTools::MakeDirectory(out))
+  {
+    std::fprintf(stderr, "cannot create the directory %s\n", out.c_str());
+    return 1;
+  }
 
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName(argv[1]);
@@ -50,7 +56,11 @@ int main(int argc, char* argv[])
   vtkNew<vtkXMLImageDataWriter> imageWriter;
   imageWriter->SetInputConnection(distance->GetOutputPort());
   imageWriter->SetFileName((out + "/distance.vti").c_str());
-  imageWriter->Write();
+  if (!imageWriter->Write())
+  {
+    std::fprintf(stderr, "could not write %s/distance.vti\n", out.c_str());
+    return 1;
+  }
   std::printf("distance: %s (%s) %.3f s\n",
     distance->GetLastBackend(),
     distance->GetLastRenderer(),
@@ -59,14 +69,22 @@ int main(int argc, char* argv[])
   vtkNew<vtkXMLPolyDataWriter> pointsWriter;
   pointsWriter->SetInputConnection(medial->GetOutputPort(1));
   pointsWriter->SetFileName((out + "/medial.vtp").c_str());
-  pointsWriter->Write();
+  if (!pointsWriter->Write())
+  {
+    std::fprintf(stderr, "could not write %s/medial.vtp\n", out.c_str());
+    return 1;
+  }
   std::printf("medial axis: %lld voxels, %.3f s\n",
     static_cast<long long>(medial->GetLastMedialCount()),
     medial->GetLastTime());
 
   imageWriter->SetInputConnection(chamfer->GetOutputPort());
   imageWriter->SetFileName((out + "/chamfer.vti").c_str());
-  imageWriter->Write();
+  if (!imageWriter->Write())
+  {
+    std::fprintf(stderr, "could not write %s/chamfer.vti\n", out.c_str());
+    return 1;
+  }
   std::printf("chamfer: %d layers, %s, %.3f s\n",
     chamfer->GetLastLayers(),
     chamfer->GetLastBackend(),
