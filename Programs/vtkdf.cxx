@@ -355,7 +355,8 @@ int Finish(const char* subcommand,
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetFileName(common.Output.c_str());
   writer->SetInputData(field);
-  if (!writer->Write())
+  // VTK 9.1's XML writers return 1 from Write() even when the file cannot be opened.
+  if (!writer->Write() || writer->GetErrorCode() != 0)
   {
     std::fprintf(stderr, "vtkdf: cannot write %s\n", common.Output.c_str());
     return 1;
@@ -644,7 +645,11 @@ int Medial(int argc, char* argv[])
     vtkNew<vtkXMLPolyDataWriter> writer;
     writer->SetFileName(points.c_str());
     writer->SetInputData(filter->GetMedialPoints());
-    code = writer->Write() ? 0 : 1;
+    code = writer->Write() && writer->GetErrorCode() == 0 ? 0 : 1;
+    if (code != 0)
+    {
+      std::fprintf(stderr, "vtkdf: cannot write %s\n", points.c_str());
+    }
   }
   if (code == 0 && !png.empty() && !WriteMedialPNG(filter->GetOutput(), png))
   {

@@ -25,6 +25,7 @@ int main(int argc, char* argv[])
   }
   const std::string out = argv[2];
   const int resolution = argc > 3 ? std::atoi(argv[3]) : 96;
+  // (VTK 9.1's XML writers return 1 from Write() even on failure: the error code tells.)
   if (!vtksys::SystemTools::MakeDirectory(out))
   {
     std::fprintf(stderr, "cannot create the directory %s\n", out.c_str());
@@ -56,7 +57,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkXMLImageDataWriter> imageWriter;
   imageWriter->SetInputConnection(distance->GetOutputPort());
   imageWriter->SetFileName((out + "/distance.vti").c_str());
-  if (!imageWriter->Write())
+  if (!imageWriter->Write() || imageWriter->GetErrorCode() != 0)
   {
     std::fprintf(stderr, "could not write %s/distance.vti\n", out.c_str());
     return 1;
@@ -69,7 +70,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkXMLPolyDataWriter> pointsWriter;
   pointsWriter->SetInputConnection(medial->GetOutputPort(1));
   pointsWriter->SetFileName((out + "/medial.vtp").c_str());
-  if (!pointsWriter->Write())
+  if (!pointsWriter->Write() || pointsWriter->GetErrorCode() != 0)
   {
     std::fprintf(stderr, "could not write %s/medial.vtp\n", out.c_str());
     return 1;
@@ -80,7 +81,7 @@ int main(int argc, char* argv[])
 
   imageWriter->SetInputConnection(chamfer->GetOutputPort());
   imageWriter->SetFileName((out + "/chamfer.vti").c_str());
-  if (!imageWriter->Write())
+  if (!imageWriter->Write() || imageWriter->GetErrorCode() != 0)
   {
     std::fprintf(stderr, "could not write %s/chamfer.vti\n", out.c_str());
     return 1;

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# vtkdf end to end on bundled data: every subcommand, chained as a user would (linfac's
+# field into medial, voxelize's masks into chamfer), the --timing line's format, the
+# files written, and the failures that must give a non-zero exit status.
+# usage: TestCli.sh VTKDF DATA_DIR OUT_DIR
+set -u
+vtkdf=$1
+data=$2
+out=$3
+failures=0
+fail() {
+  echo "FAIL: $*"
+  failures=$((failures + 1))
+}
+mkdir -p "$out"
+rm -f "$out"/*
+
+# run NAME REGEX FILE... -- ARGS: runs vtkdf ARGS, expects status 0, a timing line
+# matching REGEX and non-empty FILEs.
+run() {
+  local name=$1 regex=$2
+  shift 2
+  local files=()
+  while [ "$1" != "--" ]; do
+    files+=("$1")
+    shift
+  done
+  shift
+  local line
+  if ! line=$("$vtkdf" "$@" 2>"$out/$name.err"); then
+    fail "$name: exit status $? ($(head -c 300 "$out/$name.err"))"
+    return
+  fi
+  echo "$line"
+  grep -Eq "$regex" <<<"$line" || fail "$name: no timing line matching $regex"
+  for f in "${files[@]}"; do
+    [ -s "$f" ] || fail "$name: $f not written"
+  done
+}
+
+timing='backend=cpu renderer="cpu" time_s=[0-9.]+'
+run linfac "^vtkdf: linfac dims=[0-9]+x[0-9]+x[0-9]+ $timing culling_factor=[0-9.]+ stages=sites:" \
+  "$out/linfac.vti" "$out/linfac.png" -- \
+  linfac "$data/bunny_small.vtp" -o "$out/linfac.vti" --resolution 24 --signed \
+  --arrays distance,point --backend cpu --timing --png "$out/linfac.png"
+run medial "^vtkdf: medial dims=[0-9]+x[0-9]+x[0-9]+ $timing medial_voxels=[1-9]" \
+  "$out/medial.vti" "$out/medial.vtp" -- \
+  medial "$out/linfac.vti" -o "$out/medial.vti" --points "$out/medial.vtp" --backend cpu --timing
+run voxelize "^vtkdf: voxelize dims=[0-9]+x[0-9]+x[0-9]+ $timing" "$out/voxels.vti" -- \
+  voxelize "$data/bunny_small.vtp" -o "$out/voxels.vti" --resolution 24 --backend cpu --timing
+run chamfer "^vtkdf: chamfer dims=[0-9]+x[0-9]+x[0-9]+ $timing layers=[1-9]" "$out/chamfer.vti" -- \
+  chamfer "$out/voxels.vti" -o "$out/chamfer.vti" --metric manhattan --backend cpu --timing
+
+# Failures: a message and a non-zero status, never a crash or a silent success.
+expect_failure() {
+  local name=$1
+  shift
+  "$vtkdf" "$@" >"$out/$name.out" 2>&1
+  local status=$?
+  if [ $status -eq 0 ] || [ $status -gt 128 ]; then
+    fail "$name: exit status $status, expected an error"
+  fi
+}
+expect_failure unwritable linfac "$data/bunny_small.vtp" -o /nonexistent/dir/x.vti --resolution 16
+expect_failure badbackend linfac "$data/bunny_small.vtp" -o "$out/x.vti" --backend nope
+expect_failure missing linfac "$data/no_such_mesh.vtp" -o "$out/x.vti"
+expect_failure subcommand frobnicate
+[ -e "$out/x.vti" ] && fail "a failed run wrote $out/x.vti"
+
+echo "$failures failures"
+[ $failures -eq 0 ]
