@@ -19,7 +19,6 @@
 #include "Voxelizer.h"
 #include "vtkDistanceFieldMesh.h"
 
-#include <chrono>
 #include <limits>
 
 vtkStandardNewMacro(vtkChamferVoxelDistance);
@@ -92,14 +91,13 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  const auto start = std::chrono::steady_clock::now();
+  this->StartTiming();
   vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
   vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
   this->LastLayers = 0;
-  this->LastStageTimes.clear();
   // The grid.
   vtkdf::SampleGrid grid;
   vtkdf::IndexBox unused;
@@ -184,7 +182,7 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     vtkErrorMacro(<< emptyZeroSet);
     return 0;
   }
-  const auto voxelized = std::chrono::steady_clock::now();
+  this->EndStage(image ? "masks" : "voxelize");
 
   // Propagation.
   vtkNew<vtkIntArray> distance;
@@ -259,7 +257,7 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
       return 1;
     }
   }
-  const auto propagated = std::chrono::steady_clock::now();
+  this->EndStage("propagate");
   if (!gl && this->Signed && haveSolid)
   {
     int32_t* d = distance->GetPointer(0);
@@ -304,14 +302,8 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     }
   }
   this->LastLayers = result.Layers;
-  this->LastBackend = gl ? "gpu" : "cpu";
-  this->LastRenderer = gl ? gl->Renderer() : "cpu";
-  const auto end = std::chrono::steady_clock::now();
-  this->LastTime = std::chrono::duration<double>(end - start).count();
-  this->LastStageTimes = std::string(image ? "masks:" : "voxelize:") +
-    std::to_string(std::chrono::duration<double>(voxelized - start).count()) +
-    ",propagate:" + std::to_string(std::chrono::duration<double>(propagated - voxelized).count()) +
-    ",arrays:" + std::to_string(std::chrono::duration<double>(end - propagated).count());
+  this->EndStage("arrays");
+  this->FinishTiming(gl);
   this->UpdateProgress(1.0);
   return 1;
 }

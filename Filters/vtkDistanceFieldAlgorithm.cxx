@@ -15,7 +15,9 @@
 
 #include <vtksys/SystemInformation.hxx>
 
+#include <chrono>
 #include <cmath>
+#include <sstream>
 
 vtkDistanceFieldAlgorithm::vtkDistanceFieldAlgorithm()
 {
@@ -177,6 +179,36 @@ int vtkDistanceFieldAlgorithm::RequestUpdateExtent(vtkInformation*,
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   return 1;
+}
+
+namespace
+{
+double SteadySeconds()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+} // namespace
+
+void vtkDistanceFieldAlgorithm::StartTiming()
+{
+  this->TimingStart = this->StageStart = SteadySeconds();
+  this->LastStageTimes.clear();
+}
+
+void vtkDistanceFieldAlgorithm::EndStage(const char* name)
+{
+  const double now = SteadySeconds();
+  std::ostringstream text;
+  text << (this->LastStageTimes.empty() ? "" : ",") << name << ":" << now - this->StageStart;
+  this->LastStageTimes += text.str();
+  this->StageStart = now;
+}
+
+void vtkDistanceFieldAlgorithm::FinishTiming(vtkdf::HeadlessGL* gl)
+{
+  this->LastTime = SteadySeconds() - this->TimingStart;
+  this->LastBackend = gl ? "gpu" : "cpu";
+  this->LastRenderer = gl ? gl->Renderer() : "cpu";
 }
 
 bool vtkDistanceFieldAlgorithm::ChooseBackend(vtkdf::HeadlessGL*& gl)

@@ -108,6 +108,16 @@ protected:
   /// The GL context to run on (null: the CPU), from Backend; false, with the error
   /// reported, when the GPU is asked for and there is none.
   bool ChooseBackend(vtkdf::HeadlessGL*& gl);
+
+  ///@{
+  /// The timing of a run: StartTiming() first in RequestData, EndStage(name) after each
+  /// stage (LastStageTimes gets "name:seconds", comma separated), FinishTiming(gl) when
+  /// the output is complete (LastTime, and LastBackend/LastRenderer from `gl`, null for
+  /// the CPU).
+  void StartTiming();
+  void EndStage(const char* name);
+  void FinishTiming(vtkdf::HeadlessGL* gl);
+  ///@}
 #endif
 
   /// Filters that also take a vtkImageData (a field or masks on a grid) set this; the
@@ -152,6 +162,7 @@ protected:
   std::string LastRenderer = "none";
   double LastTime = 0;
   std::string LastStageTimes;
+  double TimingStart = 0, StageStart = 0; // steady-clock seconds
 
 private:
   vtkDistanceFieldAlgorithm(const vtkDistanceFieldAlgorithm&) = delete;

@@ -21,9 +21,7 @@
 #include "LinearFactorGPU.h"
 #include "vtkDistanceFieldMesh.h"
 
-#include <chrono>
 #include <cmath>
-#include <sstream>
 
 vtkStandardNewMacro(vtkLinearFactorDistanceField);
 
@@ -33,24 +31,13 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  const auto start = std::chrono::steady_clock::now();
+  this->StartTiming();
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
   this->LastEvaluations = 0;
   this->LastCullingFactor = 0;
-  this->LastStageTimes.clear();
-  auto lap = start;
-  auto stage = [this, &lap](const char* name)
-  {
-    const auto now = std::chrono::steady_clock::now();
-    std::ostringstream text;
-    text << (this->LastStageTimes.empty() ? "" : ",") << name << ":"
-         << std::chrono::duration<double>(now - lap).count();
-    this->LastStageTimes += text.str();
-    lap = now;
-  };
 
   if (!input || input->GetNumberOfCells() == 0 || input->GetNumberOfPoints() == 0)
   {
@@ -109,7 +96,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     return 1;
   }
 
-  stage("sites");
+  this->EndStage("sites");
   vtkdf::HeadlessGL* gl = nullptr;
   if (!this->ChooseBackend(gl))
   {
@@ -120,7 +107,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   vtkdf::RangeCulling range;
   range.ReachLevel = gl ? 0 : 1;
   range.Build(sites, request.Grid, request.Extent, request.MaximumDistance, vtkdf::SMPFor);
-  stage("culling");
+  this->EndStage("culling");
   this->UpdateProgress(0.1);
 
   vtkdf::NearestSiteBuffer nearest;
@@ -138,21 +125,18 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
       vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error);
       return 0;
     }
-    this->LastBackend = "gpu";
-    this->LastRenderer = gl->Renderer();
   }
   else
   {
     stats = vtkdf::ScanSitesCPU(sites, range, request, nearest, vtkdf::SMPFor, progress);
-    this->LastBackend = "cpu";
-    this->LastRenderer = "cpu";
   }
   if (stats.Aborted)
   {
+    this->FinishTiming(gl);
     output->Initialize();
     return 1;
   }
-  stage("scan");
+  this->EndStage("scan");
   this->LastEvaluations = stats.Evaluations;
   this->LastCullingFactor = stats.Evaluations >= 0 ? double(stats.Evaluations) / samples : -1.0;
 
@@ -204,9 +188,9 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     pd->AddArray(a);
   }
   vtkdf::Finalize(sites, request, nearest, arrays, vtkdf::SMPFor);
-  stage("finalize");
+  this->EndStage("finalize");
   this->UpdateProgress(1.0);
-  this->LastTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  this->FinishTiming(gl);
   return 1;
 }
 

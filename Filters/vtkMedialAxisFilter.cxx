@@ -22,7 +22,6 @@
 #include "RangeCulling.h"
 #include "vtkDistanceFieldMesh.h"
 
-#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -74,7 +73,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  const auto start = std::chrono::steady_clock::now();
+  this->StartTiming();
   vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
   vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -111,7 +110,6 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   medial->SetName("Medial");
   std::vector<double> cosine;
   int64_t count = 0;
-  std::chrono::steady_clock::time_point fieldDone;
 
   if (mesh && gl)
   {
@@ -166,7 +164,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
       vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error << ".");
       return 0;
     }
-    fieldDone = std::chrono::steady_clock::now();
+    this->EndStage("field+medial");
   }
   else
   {
@@ -196,7 +194,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
         return 0;
       }
     }
-    fieldDone = std::chrono::steady_clock::now();
+    this->EndStage("field");
     if (!field || !GetImageGrid(field, input.Grid))
     {
       vtkWarningMacro("The input is empty: the outputs are empty.");
@@ -311,14 +309,8 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   points->GetPointData()->SetActiveScalars("Radius");
 
   this->LastMedialCount = count;
-  this->LastBackend = gl ? "gpu" : "cpu";
-  this->LastRenderer = gl ? gl->Renderer() : "cpu";
-  this->LastTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const double fieldTime = std::chrono::duration<double>(fieldDone - start).count();
-  this->LastStageTimes = mesh && gl ? "field+medial:" + std::to_string(fieldTime) +
-      ",outputs:" + std::to_string(this->LastTime - fieldTime)
-                                    : "field:" + std::to_string(fieldTime) +
-      ",medial:" + std::to_string(this->LastTime - fieldTime);
+  this->EndStage(mesh && gl ? "outputs" : "medial");
+  this->FinishTiming(gl);
   return 1;
 }
 

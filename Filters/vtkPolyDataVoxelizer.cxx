@@ -12,8 +12,6 @@
 #include "HeadlessGL.h"
 #include "vtkDistanceFieldMesh.h"
 
-#include <chrono>
-
 vtkStandardNewMacro(vtkPolyDataVoxelizer);
 
 vtkPolyDataVoxelizer::vtkPolyDataVoxelizer() = default;
@@ -22,7 +20,7 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  const auto start = std::chrono::steady_clock::now();
+  this->StartTiming();
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
@@ -95,10 +93,8 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
     output->GetPointData()->AddArray(array);
   }
   output->GetPointData()->SetActiveScalars(wantBoundary ? "Boundary" : "Solid");
-  this->LastBackend = gl ? "gpu" : "cpu";
-  this->LastRenderer = gl ? gl->Renderer() : "cpu";
-  this->LastTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  this->LastStageTimes = "voxelize:" + std::to_string(this->LastTime);
+  this->EndStage("voxelize");
+  this->FinishTiming(gl);
   this->UpdateProgress(1.0);
   return 1;
 }
