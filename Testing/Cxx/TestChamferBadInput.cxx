@@ -22,20 +22,6 @@
 
 namespace
 {
-vtkNew<vtkPolyData> Triangle(double z = 0)
-{
-  vtkNew<vtkPolyData> mesh;
-  vtkNew<vtkPoints> pts;
-  pts->InsertNextPoint(0, 0, z);
-  pts->InsertNextPoint(1, 0, 0);
-  pts->InsertNextPoint(0, 1, 0);
-  vtkNew<vtkCellArray> polys;
-  const vtkIdType t[3] = { 0, 1, 2 };
-  polys->InsertNextCell(3, t);
-  mesh->SetPoints(pts);
-  mesh->SetPolys(polys);
-  return mesh;
-}
 
 /// A 6^3 image whose Boundary mask has `values` values (all zero unless `set`).
 vtkNew<vtkImageData> Image(vtkIdType values, bool set)
@@ -107,20 +93,20 @@ int main(int argc, char* argv[])
   }
   else if (mode == "memory" || mode == "voxelize-memory")
   {
-    filter->SetInputData(Triangle());
+    filter->SetInputData(testsupport::Triangle());
     filter->SetMemoryLimit(1000);
     expectError = "above MemoryLimit";
   }
   else if (mode == "voxelize-nan")
   {
-    filter->SetInputData(Triangle(std::nan("")));
+    filter->SetInputData(testsupport::Triangle(std::nan("")));
     filter->ExplicitGridOn();
     expectError = "NaN";
   }
   else if (mode == "voxelize-lines")
   {
     vtkNew<vtkPolyData> mesh;
-    mesh->DeepCopy(Triangle());
+    mesh->DeepCopy(testsupport::Triangle());
     vtkNew<vtkCellArray> lines;
     const vtkIdType segment[2] = { 0, 1 };
     lines->InsertNextCell(2, segment);

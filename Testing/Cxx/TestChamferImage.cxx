@@ -3,6 +3,7 @@
 // the surface's cross-section. Compared with Testing/Data/Baseline/TestChamferImage.png.
 //
 // usage: TestChamferImage DATA_DIR cpu|gpu -V BASELINE.png -T TMPDIR
+#include "ImageTestSupport.h"
 #include "TestSupport.h"
 #include "vtkChamferVoxelDistance.h"
 
@@ -106,20 +107,9 @@ int main(int argc, char* argv[])
   image->GetMapper()->SetInputConnection(colours->GetOutputPort());
   image->GetProperty()->SetInterpolationTypeToNearest();
 
-  vtkNew<vtkPlane> plane;
-  plane->SetOrigin(0, 0, z);
-  plane->SetNormal(0, 0, 1);
-  vtkNew<vtkCutter> cutter;
-  cutter->SetInputConnection(reader->GetOutputPort());
-  cutter->SetCutFunction(plane);
-  vtkNew<vtkPolyDataMapper> cutMapper;
-  cutMapper->SetInputConnection(cutter->GetOutputPort());
-  cutMapper->ScalarVisibilityOff();
-  vtkNew<vtkActor> cutActor;
-  cutActor->SetMapper(cutMapper);
-  cutActor->GetProperty()->SetColor(1, 1, 1);
-  cutActor->GetProperty()->SetLineWidth(2);
-  cutActor->SetPosition(0, 0, 0.5 * field->GetSpacing()[2]);
+  const double white[3] = { 1, 1, 1 };
+  auto cutActor =
+    testsupport::SurfaceCut(reader->GetOutputPort(), z, white, 0.5 * field->GetSpacing()[2]);
 
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(1, 1, 1);

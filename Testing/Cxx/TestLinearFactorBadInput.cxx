@@ -15,24 +15,6 @@
 #include <cstdlib>
 #include <string>
 
-namespace
-{
-vtkNew<vtkPolyData> Triangle(double z = 0)
-{
-  vtkNew<vtkPolyData> mesh;
-  vtkNew<vtkPoints> pts;
-  pts->InsertNextPoint(0, 0, z);
-  pts->InsertNextPoint(1, 0, 0);
-  pts->InsertNextPoint(0, 1, 0);
-  vtkNew<vtkCellArray> polys;
-  const vtkIdType t[3] = { 0, 1, 2 };
-  polys->InsertNextCell(3, t);
-  mesh->SetPoints(pts);
-  mesh->SetPolys(polys);
-  return mesh;
-}
-} // namespace
-
 int main(int argc, char* argv[])
 {
   const std::string mode = argc > 1 ? argv[1] : "";
@@ -54,19 +36,19 @@ int main(int argc, char* argv[])
   }
   else if (mode == "nan")
   {
-    filter->SetInputData(Triangle(std::nan("")));
+    filter->SetInputData(testsupport::Triangle(std::nan("")));
     filter->ExplicitGridOn(); // the default grid cannot be made from NaN bounds
     expectError = "NaN";
   }
   else if (mode == "memory")
   {
-    filter->SetInputData(Triangle());
+    filter->SetInputData(testsupport::Triangle());
     filter->SetMemoryLimit(1000);
     expectError = "above MemoryLimit";
   }
   else if (mode == "overflow")
   {
-    filter->SetInputData(Triangle());
+    filter->SetInputData(testsupport::Triangle());
     filter->ExplicitGridOn();
     filter->SetGridDimensions(2100000, 2100000, 2100000);
     expectError = "more than vtkIdType can index";
@@ -74,7 +56,7 @@ int main(int argc, char* argv[])
   else if (mode == "cells")
   {
     vtkNew<vtkPolyData> mesh;
-    mesh->DeepCopy(Triangle());
+    mesh->DeepCopy(testsupport::Triangle());
     const vtkIdType two[2] = { 0, 1 };
     mesh->GetPolys()->InsertNextCell(2, two);
     filter->SetInputData(mesh);
@@ -83,7 +65,7 @@ int main(int argc, char* argv[])
   }
   else if (mode == "nogpu")
   {
-    filter->SetInputData(Triangle());
+    filter->SetInputData(testsupport::Triangle());
     filter->SetBackendToGPU();
     expectError = "Backend is GPU but no OpenGL 4.5 core context could be created";
   }

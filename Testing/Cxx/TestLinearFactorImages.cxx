@@ -6,6 +6,7 @@
 // The image is compared with Testing/Data/Baseline/<name>.png (vtkRegressionTester).
 //
 // usage: TestLinearFactorImages DATA_DIR distance|voronoi cpu|gpu -V BASELINE.png -T TMPDIR
+#include "ImageTestSupport.h"
 #include "TestSupport.h"
 #include "vtkLinearFactorDistanceField.h"
 
@@ -179,21 +180,8 @@ int main(int argc, char* argv[])
   renderer->AddActor(image);
 
   // The surface's cross-section on the slice.
-  vtkNew<vtkPlane> plane;
-  plane->SetOrigin(0, 0, zSlice);
-  plane->SetNormal(0, 0, 1);
-  vtkNew<vtkCutter> cutter;
-  cutter->SetInputConnection(reader->GetOutputPort());
-  cutter->SetCutFunction(plane);
-  vtkNew<vtkPolyDataMapper> cutMapper;
-  cutMapper->SetInputConnection(cutter->GetOutputPort());
-  cutMapper->ScalarVisibilityOff();
-  vtkNew<vtkActor> cutActor;
-  cutActor->SetMapper(cutMapper);
-  cutActor->GetProperty()->SetColor(
-    mode == "distance" ? 0.0 : 0.0, 0.0, mode == "distance" ? 0.6 : 0.0);
-  cutActor->GetProperty()->SetLineWidth(2);
-  cutActor->SetPosition(0, 0, 0.02 * h);
+  const double cutColour[3] = { 0, 0, mode == "distance" ? 0.6 : 0.0 };
+  auto cutActor = testsupport::SurfaceCut(reader->GetOutputPort(), zSlice, cutColour, 0.02 * h);
   renderer->AddActor(cutActor);
 
   vtkNew<vtkRenderWindow> window;

@@ -1,13 +1,17 @@
 // What the module's C++ tests share: a failure counter with a CHECK macro, the backend
-// argument, and a recorder of a filter's errors and warnings for the bad-input tests.
+// argument, a one-triangle mesh, and a recorder of a filter's errors and warnings for
+// the bad-input tests.
 #ifndef vtkdf_TestSupport_h
 #define vtkdf_TestSupport_h
 
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
 #include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 
 #include <cstdio>
 #include <string>
@@ -21,6 +25,22 @@ template<typename Filter>
 void UseBackend(Filter* filter, const std::string& backend)
 {
   filter->SetBackend(backend == "gpu" ? Filter::BACKEND_GPU : Filter::BACKEND_CPU);
+}
+
+/// One triangle, (0,0,z) (1,0,0) (0,1,0): the smallest valid mesh (z = NaN: an invalid one).
+inline vtkNew<vtkPolyData> Triangle(double z = 0)
+{
+  vtkNew<vtkPolyData> mesh;
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(0, 0, z);
+  pts->InsertNextPoint(1, 0, 0);
+  pts->InsertNextPoint(0, 1, 0);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType t[3] = { 0, 1, 2 };
+  polys->InsertNextCell(3, t);
+  mesh->SetPoints(pts);
+  mesh->SetPolys(polys);
+  return mesh;
 }
 
 /// Prints the verdict; the process's exit status.
