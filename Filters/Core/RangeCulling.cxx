@@ -84,32 +84,30 @@ void RangeCulling::Build(const MeshSites& sites,
     return box;
   };
 
-  // Upper bound of the field over each block: the distance from its centre to a mesh
-  // point, plus its half diagonal. Each block starts with the nearest of the points
+  // Upper bound of the field over each block: the distance from the farthest point of
+  // its cell to a mesh point p. Each block starts with the nearest of the points
   // that fall in it (points outside the extent count for the nearest block), then two
   // sweeps pass every block's point on to its 26 neighbours when it is nearer to their
   // centres (a vector distance transform). The point found is not always the nearest
   // one, but the bound only has to hold, and it does for any mesh point.
   // The bound holds over the block's cell: its samples' box widened by half a spacing,
   // so that cells tile space (the CPU scan tests continuous slices against them).
+  for (int a = 0; a < 3; ++a)
+  {
+    this->CellOrigin[a] = grid.Coordinate(a, extent.Lo[a]) - 0.5 * grid.Spacing[a];
+    this->CellSize[a] = b * grid.Spacing[a];
+  }
   std::vector<std::array<double, 3>> centres(numBlocks);
-  std::vector<double> halfDiagonal(numBlocks);
   for (int64_t id = 0; id < numBlocks; ++id)
   {
     const int ids[3] = { static_cast<int>(id % nb[0]),
       static_cast<int>((id / nb[0]) % nb[1]),
       static_cast<int>(id / (int64_t(nb[0]) * nb[1])) };
     const Box box = blockBox(ids[0], ids[1], ids[2], 1);
-    double far2 = 0;
     for (int a = 0; a < 3; ++a)
     {
       centres[id][a] = 0.5 * (box.Lo[a] + box.Hi[a]);
-      const double cellLo = grid.Coordinate(a, extent.Lo[a] + ids[a] * b) - 0.5 * grid.Spacing[a];
-      const double cellHi = cellLo + b * grid.Spacing[a];
-      const double reach = std::max(centres[id][a] - cellLo, cellHi - centres[id][a]);
-      far2 += reach * reach;
     }
-    halfDiagonal[id] = std::sqrt(far2);
   }
   const std::vector<double>& points = sites.SitePoints;
   auto distance2 = [&](int64_t point, int64_t block)
@@ -185,8 +183,8 @@ void RangeCulling::Build(const MeshSites& sites,
   std::vector<float>& level0 = pyramid.Max.back();
   for (int64_t id = 0; id < numBlocks; ++id)
   {
-    // The farthest point of the block's cell from its mesh point p bounds the field
-    // over the cell; it is never above |centre - p| + half diagonal, and often well below.
+    // The farthest point of the block's cell from its mesh point p (never above
+    // |centre - p| + the half diagonal, and often well below).
     double bound = HUGE_VAL;
     if (nearestPoint[id] >= 0)
     {
@@ -197,12 +195,12 @@ void RangeCulling::Build(const MeshSites& sites,
       double far2 = 0;
       for (int a = 0; a < 3; ++a)
       {
-        const double cellLo = grid.Coordinate(a, extent.Lo[a] + ids[a] * b) - 0.5 * grid.Spacing[a];
-        const double cellHi = cellLo + b * grid.Spacing[a];
+        const double cellLo = this->CellOrigin[a] + ids[a] * this->CellSize[a];
+        const double cellHi = cellLo + this->CellSize[a];
         const double reach = std::max(std::fabs(p[a] - cellLo), std::fabs(cellHi - p[a]));
         far2 += reach * reach;
       }
-      bound = std::min(std::sqrt(far2), std::sqrt(nearest2[id]) + halfDiagonal[id]);
+      bound = std::sqrt(far2);
     }
     bound = std::min(bound, maximumDistance);
     // Round up so that float storage never makes the bound smaller.
@@ -223,11 +221,6 @@ void RangeCulling::Build(const MeshSites& sites,
   }
   this->BlockCounts = nb;
   this->BlockExtent = extent;
-  for (int a = 0; a < 3; ++a)
-  {
-    this->CellOrigin[a] = grid.Coordinate(a, extent.Lo[a]) - 0.5 * grid.Spacing[a];
-    this->CellSize[a] = b * grid.Spacing[a];
-  }
   while (pyramid.Dims.back()[0] > 1 || pyramid.Dims.back()[1] > 1 || pyramid.Dims.back()[2] > 1)
   {
     const auto d = pyramid.Dims.back();
