@@ -358,12 +358,12 @@ bool MeshSites::Build(const MeshInput& in,
   }
   const double orientation = volume < 0 ? -1.0 : 1.0;
 
-  // Vertex pseudonormals (angle weighted) and per-vertex edge lists.
+  // Vertex pseudonormals (angle weighted).
   // The corner angles in parallel, then summed in face order (the same sums either way).
-  const int64_t numFaceRecords = static_cast<int64_t>(faces.size());
-  std::vector<double> cornerAngle(3 * numFaceRecords);
+  const int64_t numFaces = static_cast<int64_t>(faces.size());
+  std::vector<double> cornerAngle(3 * numFaces);
   Run(parallelFor,
-    numFaceRecords,
+    numFaces,
     4096,
     [&](int64_t begin, int64_t end)
     {
@@ -379,7 +379,7 @@ bool MeshSites::Build(const MeshInput& in,
       }
     });
   std::vector<Vec> vertexNormal(nv, Vec{ 0, 0, 0 });
-  for (int64_t fi = 0; fi < numFaceRecords; ++fi)
+  for (int64_t fi = 0; fi < numFaces; ++fi)
   {
     const FaceRecord& f = faces[fi];
     for (int k = 0; k < 3; ++k)
@@ -618,7 +618,6 @@ bool MeshSites::Build(const MeshInput& in,
     });
 
   // --- Plane counts, then every site and its planes written in place, in parallel.
-  const int64_t numFaces = static_cast<int64_t>(faces.size());
   auto edgePlanes = [&](int64_t e)
   {
     const bool wedge =
