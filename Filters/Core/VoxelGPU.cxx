@@ -540,13 +540,16 @@ bool ChamferGPU(HeadlessGL& context,
   gl.BufferData(GL_SHADER_STORAGE_BUFFER, Batch * 4, nullptr, GL_DYNAMIC_READ);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counts);
 
-  // Runs `program` over every lane texel, one slab of texels at a time, with the slab's
-  // part of the distance array bound.
+  // Runs the current program over every lane texel, one slab of texels at a time, with
+  // the slab's part of the distance array bound; `slabUniforms` are the program's
+  // TexelBase and DistanceBase locations.
   const GLuint groupsX = (nx + 7) / 8, groupsY = (ny + 7) / 8;
-  auto dispatchSlabs = [&](GLuint program)
+  const GLint seedSlab[2] = { Uniform(gl, seed, "TexelBase"), Uniform(gl, seed, "DistanceBase") };
+  const GLint layerSlab[2] = { Uniform(gl, layer, "TexelBase"),
+    Uniform(gl, layer, "DistanceBase") };
+  auto dispatchSlabs = [&](const GLint slabUniforms[2])
   {
-    const GLint texelBase = Uniform(gl, program, "TexelBase");
-    const GLint distanceBase = Uniform(gl, program, "DistanceBase");
+    const GLint texelBase = slabUniforms[0], distanceBase = slabUniforms[1];
     for (int t0 = 0; t0 < texels; t0 += texelsPerSlab)
     {
       const int t1 = std::min(texels, t0 + texelsPerSlab);
@@ -569,7 +572,7 @@ bool ChamferGPU(HeadlessGL& context,
   gl.Uniform1i(Uniform(gl, seed, "Texels"), texels);
   gl.Uniform1i(Uniform(gl, seed, "Value"), 0);
   gl.Uniform1i(Uniform(gl, seed, "Negate"), 0);
-  dispatchSlabs(seed);
+  dispatchSlabs(seedSlab);
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counts);
   uint32_t zeroSet = 0;
   gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeroSet), &zeroSet);
@@ -632,7 +635,7 @@ bool ChamferGPU(HeadlessGL& context,
       accumulated.Bind(2, GL_READ_WRITE);
       gl.Uniform1i(layerLocation, l);
       gl.Uniform1i(slotLocation, l - start);
-      dispatchSlabs(layer);
+      dispatchSlabs(layerSlab);
       std::swap(current, next);
     }
     uint32_t reached[Batch] = {};
@@ -655,7 +658,7 @@ bool ChamferGPU(HeadlessGL& context,
     gl.UseProgram(seed);
     solidZ.Bind(0, GL_READ_ONLY);
     gl.Uniform1i(Uniform(gl, seed, "Negate"), 1);
-    dispatchSlabs(seed);
+    dispatchSlabs(seedSlab);
   }
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, distances);
   gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, voxels * 4, distance);
