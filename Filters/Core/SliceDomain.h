@@ -45,6 +45,7 @@ public:
   {
     this->X0 = x0, this->X1 = x1, this->Y0 = y0, this->Y1 = y1;
     this->Empty = false;
+    this->ConditionCount = 0; // both eliminations add to them
     count = std::min(count, MaxDomainPlanes);
     IndexPlane normalized[MaxDomainPlanes + 2];
     int kept = 0;
@@ -231,10 +232,6 @@ private:
         this->Conditions[this->ConditionCount++] = { c, d };
       }
     };
-    if (gone == 0)
-    {
-      this->ConditionCount = 0;
-    }
     for (int p = 0; p < count; ++p)
     {
       const IndexPlane& l = planes[p];
