@@ -113,42 +113,57 @@ int64_t ScanSite(const MeshSites& sites,
     planes, numPlanes, site.Required, region.Lo[u], region.Hi[u], region.Lo[v], region.Hi[v]);
   double P[3][3];
   SiteProjector(site, P);
-  const float step[3] = { static_cast<float>(-P[0][u] * grid.Spacing[u]),
-    static_cast<float>(-P[1][u] * grid.Spacing[u]),
-    static_cast<float>(-P[2][u] * grid.Spacing[u]) };
+  // The distance vector is affine in the sample index: d(i, j, k) = d0 + i du + j dv +
+  // k dw (u, v, w the scan axes). Rows start from it in double; the inner loop steps in
+  // float, which is exact enough over a row (the GPU interpolates in float too).
+  double d0[3], du[3], dv[3], dw[3];
+  {
+    const double r[3] = { site.Anchor[0] - grid.Origin[0],
+      site.Anchor[1] - grid.Origin[1],
+      site.Anchor[2] - grid.Origin[2] };
+    for (int a = 0; a < 3; ++a)
+    {
+      d0[a] = P[a][0] * r[0] + P[a][1] * r[1] + P[a][2] * r[2];
+      du[a] = -P[a][u] * grid.Spacing[u];
+      dv[a] = -P[a][v] * grid.Spacing[v];
+      dw[a] = -P[a][w] * grid.Spacing[w];
+    }
+  }
+  const float step[3] = {
+    static_cast<float>(du[0]), static_cast<float>(du[1]), static_cast<float>(du[2])
+  };
   int64_t stride[3];
   stride[0] = 1;
   stride[1] = ext.Size(0);
   stride[2] = stride[1] * ext.Size(1);
   const int64_t base = -(ext.Lo[0] * stride[0] + ext.Lo[1] * stride[1] + ext.Lo[2] * stride[2]);
+  const int64_t strideU = stride[u], strideV = stride[v], strideW = stride[w];
   int64_t evaluations = 0;
 
   // Whether the site may be the nearest one in a block's cell (RangeCulling's bound),
-  // remembered for the blocks of the current slice's polygon box: its rows ask again.
-  constexpr int MaxCached = 256;
-  int8_t cached[MaxCached];
-  int cacheU0 = 0, cacheV0 = 0, cacheNU = 0, cacheNV = 0, cacheW = 0;
-  auto mayWin = [&](int bu, int bv) -> bool
+  // remembered in a small direct-mapped cache: the slices of a block layer ask about
+  // the same blocks, and a region is too large to hold an entry per block.
+  constexpr int CacheSize = 64;
+  int64_t cacheKey[CacheSize];
+  bool cacheValue[CacheSize];
+  std::fill(cacheKey, cacheKey + CacheSize, int64_t(-1));
+  auto mayWin = [&](const int block[3]) -> bool
   {
-    const int cu = bu - cacheU0, cv = bv - cacheV0;
-    const bool inCache = cu >= 0 && cu < cacheNU && cv >= 0 && cv < cacheNV;
-    if (inCache && cached[cv * cacheNU + cu] >= 0)
+    const int64_t key = block[0] + (int64_t(block[1]) << 21) + (int64_t(block[2]) << 42);
+    const int slot = (block[0] + 3 * block[1] + 5 * block[2]) & (CacheSize - 1);
+    if (cacheKey[slot] != key)
     {
-      return cached[cv * cacheNU + cu] != 0;
+      cacheKey[slot] = key;
+      cacheValue[slot] = culling.MayWin(block, site.BoundsMin, site.BoundsMax);
     }
-    int block[3];
-    block[u] = bu, block[v] = bv, block[w] = cacheW;
-    const bool result = culling.MayWin(block, site.BoundsMin, site.BoundsMax);
-    if (inCache)
-    {
-      cached[cv * cacheNU + cu] = result ? 1 : 0;
-    }
-    return result;
+    return cacheValue[slot];
   };
 
   // A slice is alive when its domain polygon meets a cell where the site may win. The
   // site's Voronoi region is star-shaped about the site, so the slices that hold a
   // part of it form one run around the anchor's: the scan stops at the first dead one.
+  // The test is per slice only: a block holds a sample or two of a typical domain, so
+  // testing the blocks of every row costs more than the evaluations it saves.
   auto scanSlice = [&](int k) -> bool
   {
     double box[4];
@@ -158,19 +173,15 @@ int64_t ScanSite(const MeshSites& sites,
     }
     const int bu0 = culling.BlockOf(u, box[0]), bu1 = culling.BlockOf(u, box[1]);
     const int bv0 = culling.BlockOf(v, box[2]), bv1 = culling.BlockOf(v, box[3]);
-    cacheU0 = bu0, cacheV0 = bv0, cacheW = culling.BlockOf(w, k);
-    cacheNU = bu1 - bu0 + 1, cacheNV = bv1 - bv0 + 1;
-    if (cacheNU * cacheNV > MaxCached)
-    {
-      cacheNU = cacheNV = 0;
-    }
-    std::fill(cached, cached + cacheNU * cacheNV, int8_t(-1));
+    int block[3];
+    block[w] = culling.BlockOfSample(w, k);
     bool alive = false;
     for (int bv = bv0; bv <= bv1 && !alive; ++bv)
     {
       for (int bu = bu0; bu <= bu1 && !alive; ++bu)
       {
-        alive = mayWin(bu, bv);
+        block[u] = bu, block[v] = bv;
+        alive = mayWin(block);
       }
     }
     if (!alive)
@@ -178,6 +189,8 @@ int64_t ScanSite(const MeshSites& sites,
       return false;
     }
     domain.BeginSlice(k);
+    const double dk[3] = { d0[0] + k * dw[0], d0[1] + k * dw[1], d0[2] + k * dw[2] };
+    const int64_t sliceStart = base + k * strideW;
     const int j0 = std::max(region.Lo[v], static_cast<int>(std::ceil(box[2])));
     const int j1 = std::min(region.Hi[v], static_cast<int>(std::floor(box[3])));
     for (int j = j0; j <= j1; ++j)
@@ -193,40 +206,17 @@ int64_t ScanSite(const MeshSites& sites,
       {
         continue;
       }
-      int index[3];
-      index[u] = i0, index[v] = j, index[w] = k;
-      const double r[3] = { site.Anchor[0] - grid.Coordinate(0, index[0]),
-        site.Anchor[1] - grid.Coordinate(1, index[1]),
-        site.Anchor[2] - grid.Coordinate(2, index[2]) };
-      float d[3];
-      for (int a = 0; a < 3; ++a)
+      const float d[3] = { static_cast<float>(dk[0] + j * dv[0] + i0 * du[0]),
+        static_cast<float>(dk[1] + j * dv[1] + i0 * du[1]),
+        static_cast<float>(dk[2] + j * dv[2] + i0 * du[2]) };
+      int64_t at = sliceStart + j * strideV + i0 * strideU;
+      for (int i = i0; i <= i1; ++i, at += strideU)
       {
-        d[a] = static_cast<float>(P[a][0] * r[0] + P[a][1] * r[1] + P[a][2] * r[2]);
+        const float t = static_cast<float>(i - i0);
+        const float dx = d[0] + t * step[0], dy = d[1] + t * step[1], dz = d[2] + t * step[2];
+        nearest.Offer(at, NearestSiteBuffer::Pack(dx * dx + dy * dy + dz * dz, siteIndex));
       }
-      const int64_t rowStart =
-        base + index[0] * stride[0] + index[1] * stride[1] + index[2] * stride[2];
-      const int64_t inner = stride[u];
-      // The row, one block at a time, skipping the blocks where the site cannot win.
-      const int bv = culling.BlockOfSample(v, j);
-      const int ib0 = culling.BlockOfSample(u, i0), ib1 = culling.BlockOfSample(u, i1);
-      const int firstOfBlock0 = culling.BlockExtent.Lo[u];
-      for (int bu = ib0; bu <= ib1; ++bu)
-      {
-        const int lo = std::max(i0, firstOfBlock0 + bu * RangeCulling::BlockSize);
-        const int hi = std::min(i1, firstOfBlock0 + (bu + 1) * RangeCulling::BlockSize - 1);
-        if (hi < lo || !mayWin(bu, bv))
-        {
-          continue;
-        }
-        int64_t at = rowStart + (lo - i0) * inner;
-        for (int i = lo; i <= hi; ++i, at += inner)
-        {
-          const float t = static_cast<float>(i - i0);
-          const float dx = d[0] + t * step[0], dy = d[1] + t * step[1], dz = d[2] + t * step[2];
-          nearest.Offer(at, NearestSiteBuffer::Pack(dx * dx + dy * dy + dz * dz, siteIndex));
-        }
-        evaluations += hi - lo + 1;
-      }
+      evaluations += i1 - i0 + 1;
     }
     return true;
   };

@@ -65,11 +65,13 @@ public:
     {
       const double cellLo = this->CellOrigin[a] + block[a] * this->CellSize[a];
       const double cellHi = cellLo + this->CellSize[a];
-      const double gap = lo[a] > cellHi ? lo[a] - cellHi : (cellLo > hi[a] ? cellLo - hi[a] : 0.0);
+      // Distances along the axis from the box [lo, hi] to the cell and to its corner
+      // coordinates cellLo and cellHi (lo <= hi, so at most one difference is positive).
+      const double boxLo = lo[a], boxHi = hi[a];
+      const double gap = std::max(std::max(boxLo - cellHi, cellLo - boxHi), 0.0);
       d2 += gap * gap;
-      // The corner coordinates cellLo and cellHi: dist to the box, and to p, squared.
-      const double gLo = lo[a] > cellLo ? lo[a] - cellLo : (cellLo > hi[a] ? cellLo - hi[a] : 0.0);
-      const double gHi = lo[a] > cellHi ? lo[a] - cellHi : (cellHi > hi[a] ? cellHi - hi[a] : 0.0);
+      const double gLo = std::max(std::max(boxLo - cellLo, cellLo - boxHi), 0.0);
+      const double gHi = std::max(std::max(boxLo - cellHi, cellHi - boxHi), 0.0);
       const double pLo = cellLo - p[a], pHi = cellHi - p[a];
       bisector += std::min(gLo * gLo - pLo * pLo, gHi * gHi - pHi * pHi);
       scale += std::max(pLo * pLo, pHi * pHi) + this->CellSize[a] * this->CellSize[a];

@@ -59,7 +59,8 @@ public:
         this->Empty = this->Empty || !(h.D >= 0);
         continue;
       }
-      normalized[kept++] = { h.A / scale, h.B / scale, h.C / scale, h.D / scale };
+      const double inv = 1.0 / scale;
+      normalized[kept++] = { h.A * inv, h.B * inv, h.C * inv, h.D * inv };
     }
     // Optional planes come after the required ones: drop them from the end until the
     // elimination fits (the required ones, at most 3, always fit).
@@ -116,27 +117,27 @@ public:
   /// The x range of row y on the slice of the last BeginSlice; false when it is empty.
   bool RowSpan(double y, double& xl, double& xr) const
   {
-    xl = this->X0;
-    xr = this->X1;
-    for (int r = 0; r < this->RowCount; ++r)
+    // Rows holds the lower bounds, then the upper bounds, then the conditions.
+    double lo = this->X0, hi = this->X1;
+    int r = 0;
+    for (; r < this->RowLoEnd; ++r)
     {
-      const double value = this->Rows[r].Y * y + this->RowOffset[r];
-      switch (this->RowKind[r])
+      lo = std::max(lo, this->Rows[r].Y * y + this->RowOffset[r]);
+    }
+    for (; r < this->RowHiEnd; ++r)
+    {
+      hi = std::min(hi, this->Rows[r].Y * y + this->RowOffset[r]);
+    }
+    for (; r < this->RowCount; ++r)
+    {
+      if (this->Rows[r].Y * y + this->RowOffset[r] < 0)
       {
-        case Lo:
-          xl = std::max(xl, value);
-          break;
-        case Hi:
-          xr = std::min(xr, value);
-          break;
-        default:
-          if (value < 0)
-          {
-            return false;
-          }
+        return false;
       }
     }
-    return xl <= xr;
+    xl = lo;
+    xr = hi;
+    return lo <= hi;
   }
 
 private:
@@ -144,13 +145,8 @@ private:
   static constexpr int MaxPairs = 256;
   static constexpr int MaxBounds = MaxPairs + MaxDomainPlanes + 2;
 
-  enum Kind : unsigned char
-  {
-    Lo,       // x >= value
-    Hi,       // x <= value
-    Condition // value >= 0 (the plane does not involve x)
-  };
-  /// Y*y + K*k + C.
+  /// Y*y + K*k + C: a lower bound of x, an upper bound, or a condition (>= 0) when the
+  /// plane does not involve x.
   struct RowBound
   {
     double Y, K, C;
@@ -175,24 +171,33 @@ private:
     return lx * ux <= MaxPairs && ly * uy <= MaxPairs;
   }
 
+  // The setup runs once per site, and a fine mesh has millions of sites whose domains
+  // hold no sample at all: its loops store every candidate and advance the counts by
+  // the tests' outcomes instead of branching on coefficient signs the CPU cannot predict.
+
   void SetupRows(const IndexPlane* planes, int count)
   {
-    this->RowCount = 0;
+    // Lower bounds of x first, then upper bounds, then the conditions, so that RowSpan's
+    // loops do not branch on the kind.
+    int lower = 0, upper = 0;
+    for (int p = 0; p < count; ++p)
+    {
+      lower += planes[p].A > Tiny;
+      upper += planes[p].A < -Tiny;
+    }
+    int at[3] = { 0, lower, lower + upper };
     for (int p = 0; p < count; ++p)
     {
       const IndexPlane& h = planes[p];
-      const int r = this->RowCount++;
-      if (std::fabs(h.A) > Tiny)
-      {
-        this->RowKind[r] = h.A > 0 ? Lo : Hi;
-        this->Rows[r] = { -h.B / h.A, -h.C / h.A, -h.D / h.A };
-      }
-      else
-      {
-        this->RowKind[r] = Condition;
-        this->Rows[r] = { h.B, h.C, h.D };
-      }
+      const bool bound = std::fabs(h.A) > Tiny;
+      const double inv = -1.0 / (bound ? h.A : 1.0);
+      const int kind = bound ? (h.A > 0 ? 0 : 1) : 2;
+      this->Rows[at[kind]++] =
+        bound ? RowBound{ h.B * inv, h.C * inv, h.D * inv } : RowBound{ h.B, h.C, h.D };
     }
+    this->RowLoEnd = lower;
+    this->RowHiEnd = lower + upper;
+    this->RowCount = count;
   }
 
   /// Fourier-Motzkin: eliminates the variable `gone` (0: x, 1: y) from the planes and
@@ -206,56 +211,68 @@ private:
     SliceBound* upper,
     int& upperCount)
   {
+    // Split the planes by the sign of the eliminated variable's coefficient; a plane
+    // without it is already a constraint on (kept variable, k).
+    double gc[MaxDomainPlanes + 2], kc[MaxDomainPlanes + 2];
+    int positive[MaxDomainPlanes + 2], negative[MaxDomainPlanes + 2];
+    int np = 0, nn = 0;
     lowerCount = upperCount = 0;
-    auto coefficient = [gone](const IndexPlane& h) { return gone == 0 ? h.A : h.B; };
-    auto other = [gone](const IndexPlane& h) { return gone == 0 ? h.B : h.A; };
-    // A constraint v*kept + c*k + d >= 0 on the kept variable and k.
-    auto add = [&](double v, double c, double d)
-    {
-      const double scale = std::max(std::fabs(v), std::fabs(c));
-      if (!(scale > 0))
-      {
-        this->Empty = this->Empty || !(d >= 0);
-        return;
-      }
-      v /= scale, c /= scale, d /= scale;
-      if (v > Tiny)
-      {
-        lower[lowerCount++] = { -c / v, -d / v };
-      }
-      else if (v < -Tiny)
-      {
-        upper[upperCount++] = { -c / v, -d / v };
-      }
-      else if (this->ConditionCount < 2 * MaxBounds)
-      {
-        this->Conditions[this->ConditionCount++] = { c, d };
-      }
-    };
     for (int p = 0; p < count; ++p)
     {
-      const IndexPlane& l = planes[p];
-      const double al = coefficient(l);
-      if (std::fabs(al) <= Tiny)
+      gc[p] = gone == 0 ? planes[p].A : planes[p].B;
+      kc[p] = gone == 0 ? planes[p].B : planes[p].A;
+      positive[np] = p;
+      negative[nn] = p;
+      np += gc[p] > Tiny;
+      nn += gc[p] < -Tiny;
+      if (!(std::fabs(gc[p]) > Tiny))
       {
-        add(other(l), l.C, l.D);
-        continue;
-      }
-      if (al < 0)
-      {
-        continue;
-      }
-      for (int q = 0; q < count; ++q)
-      {
-        const IndexPlane& u = planes[q];
-        const double au = coefficient(u);
-        if (au < -Tiny)
-        {
-          // (-au) * l + al * u has no `gone` term, and both weights are positive.
-          add(-au * other(l) + al * other(u), -au * l.C + al * u.C, -au * l.D + al * u.D);
-        }
+        this->AddBound(kc[p], planes[p].C, planes[p].D, lower, lowerCount, upper, upperCount);
       }
     }
+    for (int i = 0; i < np; ++i)
+    {
+      const int l = positive[i];
+      for (int j = 0; j < nn; ++j)
+      {
+        const int q = negative[j];
+        // (-g_q) * l + g_l * q has no `gone` term, and both weights are positive.
+        const double wl = -gc[q], wq = gc[l];
+        this->AddBound(wl * kc[l] + wq * kc[q],
+          wl * planes[l].C + wq * planes[q].C,
+          wl * planes[l].D + wq * planes[q].D,
+          lower,
+          lowerCount,
+          upper,
+          upperCount);
+      }
+    }
+  }
+
+  /// Files the constraint v*kept + c*k + d >= 0 as a lower or upper bound of the kept
+  /// variable, or (v counts as zero below Tiny relative to the constraint's scale) as a
+  /// condition on k alone.
+  void AddBound(double v,
+    double c,
+    double d,
+    SliceBound* lower,
+    int& lowerCount,
+    SliceBound* upper,
+    int& upperCount)
+  {
+    const double scale = std::max(std::fabs(v), std::fabs(c));
+    const bool bound = std::fabs(v) > Tiny * scale;
+    const bool condition = !bound && scale > 0;
+    // With neither, the constraint is 0 <= d: all or nothing.
+    this->Empty = this->Empty || (!(scale > 0) && !(d >= 0));
+    const double inv = -1.0 / (bound ? v : 1.0);
+    const double cInv = 1.0 / (condition ? scale : 1.0);
+    lower[lowerCount] = upper[upperCount] = { c * inv, d * inv };
+    lowerCount += bound && v > 0;
+    upperCount += bound && v < 0;
+    const int slot = std::min(this->ConditionCount, 2 * MaxBounds - 1);
+    this->Conditions[slot] = { c * cInv, d * cInv };
+    this->ConditionCount += condition && this->ConditionCount < 2 * MaxBounds;
   }
 
   static double Lower(const SliceBound* b, int count, double k, double start)
@@ -277,9 +294,8 @@ private:
 
   double X0 = 0, X1 = 0, Y0 = 0, Y1 = 0;
   bool Empty = false;
-  int RowCount = 0;
+  int RowCount = 0, RowLoEnd = 0, RowHiEnd = 0;
   RowBound Rows[MaxDomainPlanes];
-  Kind RowKind[MaxDomainPlanes];
   double RowOffset[MaxDomainPlanes];
   int YLoCount = 0, YHiCount = 0, XLoCount = 0, XHiCount = 0, ConditionCount = 0;
   SliceBound YLo[MaxBounds], YHi[MaxBounds], XLo[MaxBounds], XHi[MaxBounds];
