@@ -15,6 +15,7 @@
 #include "Voxelizer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace vtkdf
@@ -134,7 +135,7 @@ std::string MeshConversion::IgnoredCells() const
 
 bool BuildSites(vtkPolyData* input,
   Culling culling,
-  double slack,
+  const SampleGrid& grid,
   MeshSites& sites,
   std::string& warning,
   std::string& error)
@@ -142,6 +143,20 @@ bool BuildSites(vtkPolyData* input,
   MeshConversion conversion;
   conversion.Run(input);
   warning = conversion.IgnoredCells();
+  // The planes are used between the mesh and the samples: the diagonal of the box that
+  // holds both bounds that distance.
+  double bounds[6];
+  input->GetBounds(bounds);
+  double diagonal2 = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double g0 = grid.Coordinate(a, grid.Whole.Lo[a]);
+    const double g1 = grid.Coordinate(a, grid.Whole.Hi[a]);
+    const double lo = std::min(std::min(g0, g1), bounds[2 * a]);
+    const double hi = std::max(std::max(g0, g1), bounds[2 * a + 1]);
+    diagonal2 += (hi - lo) * (hi - lo);
+  }
+  const double slack = MeshSites::PlaneSlack(1e-4 * grid.MinSpacing(), std::sqrt(diagonal2));
   if (!sites.Build(conversion.Mesh, culling, slack, error, SMPFor))
   {
     error = "Invalid input mesh: " + error + ".";

@@ -39,11 +39,13 @@ private:
   void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell);
 };
 
-/// The sites of `input` (MeshSites::Build after MeshConversion). False and `error` on
-/// invalid input; `warning` names the cells that were ignored, if any.
+/// The sites of `input` (MeshSites::Build after MeshConversion) for fields on `grid`:
+/// the domains' slack is 1e-4 of the smallest spacing plus what the float planes need
+/// over the box that holds the mesh and the grid (MeshSites::PlaneSlack). False and
+/// `error` on invalid input; `warning` names the cells that were ignored, if any.
 bool BuildSites(vtkPolyData* input,
   Culling culling,
-  double slack,
+  const SampleGrid& grid,
   MeshSites& sites,
   std::string& warning,
   std::string& error);

@@ -70,7 +70,6 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     return 0;
   }
 
-  const double h = request.Grid.MinSpacing();
   if (this->MaximumDistance > 0)
   {
     request.MaximumDistance = this->MaximumDistance;
@@ -80,7 +79,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     : (this->Culling == CULLING_MANIFOLD ? vtkdf::Culling::Manifold : vtkdf::Culling::Auto);
   vtkdf::MeshSites sites;
   std::string error, warning;
-  const bool built = vtkdf::BuildSites(input, culling, 1e-4 * h, sites, warning, error);
+  const bool built = vtkdf::BuildSites(input, culling, request.Grid, sites, warning, error);
   if (!warning.empty())
   {
     vtkWarningMacro(<< warning);

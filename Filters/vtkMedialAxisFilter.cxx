@@ -130,8 +130,8 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     }
     vtkdf::MeshSites sites;
     std::string warning;
-    const bool built = vtkdf::BuildSites(
-      mesh, vtkdf::Culling::Auto, 1e-4 * request.Grid.MinSpacing(), sites, warning, error);
+    const bool built =
+      vtkdf::BuildSites(mesh, vtkdf::Culling::Auto, request.Grid, sites, warning, error);
     if (!warning.empty())
     {
       vtkWarningMacro(<< warning);

@@ -20,11 +20,12 @@ int SiteIndexPlanes(const MeshSites& sites,
   for (int p = 0; p < count; ++p)
   {
     const HalfSpace& h = sites.Planes[site.PlaneBegin + p];
-    // n . (origin + spacing * index) + d >= 0
+    // n . (origin + spacing * index - anchor) + d >= 0
     out[p].A = h.N[0] * grid.Spacing[0];
     out[p].B = h.N[1] * grid.Spacing[1];
     out[p].C = h.N[2] * grid.Spacing[2];
-    out[p].D = h.N[0] * grid.Origin[0] + h.N[1] * grid.Origin[1] + h.N[2] * grid.Origin[2] + h.D;
+    out[p].D = h.N[0] * (grid.Origin[0] - site.Anchor[0]) +
+      h.N[1] * (grid.Origin[1] - site.Anchor[1]) + h.N[2] * (grid.Origin[2] - site.Anchor[2]) + h.D;
   }
   return count;
 }

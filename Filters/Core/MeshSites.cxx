@@ -647,10 +647,19 @@ bool MeshSites::Build(const MeshInput& in,
   }
   this->Sites.resize(numSites);
   this->Planes.resize(planeBegin[numSites]);
-  auto setPlane = [&](uint32_t at, const Vec& n, const double* through)
+  // The plane through `through` with normal n, relative to the site's anchor. The offset
+  // is computed from the rounded normal, so the stored plane still passes through it.
+  auto setPlane = [&](uint32_t at, const Vec& n, const double* through, const double* anchor)
   {
-    this->Planes[at] = { { n[0], n[1], n[2] },
-      -Dot(n, Vec{ through[0], through[1], through[2] }) + slack };
+    HalfSpace& h = this->Planes[at];
+    for (int a = 0; a < 3; ++a)
+    {
+      h.N[a] = static_cast<float>(n[a]);
+    }
+    h.D =
+      static_cast<float>(-(h.N[0] * (through[0] - anchor[0]) + h.N[1] * (through[1] - anchor[1]) +
+                           h.N[2] * (through[2] - anchor[2])) +
+        slack);
   };
   auto initSite = [&](int64_t index, uint8_t type, int64_t cell, const double* anchor) -> Site&
   {
@@ -698,7 +707,7 @@ bool MeshSites::Build(const MeshInput& in,
           {
             m = Scale(m, -1.0);
           }
-          setPlane(s.PlaneBegin + k, m, a);
+          setPlane(s.PlaneBegin + k, m, a, s.Anchor);
           grow(s, X(f.P[k]));
         }
         for (int a = 0; a < 3; ++a)
@@ -724,8 +733,8 @@ bool MeshSites::Build(const MeshInput& in,
         Site& s = initSite(numFaces + e, EdgeSite, edgeGroups[e].Cell, X(a));
         grow(s, X(b));
         uint32_t at = s.PlaneBegin;
-        setPlane(at++, t, X(a));
-        setPlane(at++, Scale(t, -1.0), X(b));
+        setPlane(at++, t, X(a), s.Anchor);
+        setPlane(at++, Scale(t, -1.0), X(b), s.Anchor);
         s.Required = 2;
         const bool wedge = s.PlaneCount > 2;
         Vec pseudo{ 0, 0, 0 };
@@ -746,7 +755,7 @@ bool MeshSites::Build(const MeshInput& in,
             const Vec ac = Sub(X(c), X(a));
             Vec m = Sub(ac.data(), Scale(t, Dot(ac, t)).data());
             m = Scale(m, -1.0 / Norm(m));
-            setPlane(at++, m, X(a));
+            setPlane(at++, m, X(a), s.Anchor);
           }
         }
         for (int k = 0; k < 3; ++k)
@@ -776,14 +785,14 @@ bool MeshSites::Build(const MeshInput& in,
         {
           for (const auto& eu : incidentEdges(v))
           {
-            setPlane(at++, Scale(eu.second, -1.0), X(v));
+            setPlane(at++, Scale(eu.second, -1.0), X(v), s.Anchor);
           }
         }
         else if (vertexDomain[v] == Pyramid)
         {
           for (const Vec& w : pyramidSides[v])
           {
-            setPlane(at++, w, X(v));
+            setPlane(at++, w, X(v), s.Anchor);
           }
         }
       }

@@ -46,11 +46,15 @@ enum SiteType : uint8_t
   FaceSite = 2
 };
 
-/// n . x + d >= 0 (unit n, world coordinates, slack already added to d).
+/// n . (x - anchor) + d >= 0, with n unit, x in world coordinates, anchor the site's
+/// Anchor, and the slack already added to d. Relative to the anchor, d is about the
+/// size of the site, so float keeps it to 1e-7 of that; the float normal turns the plane
+/// by at most 2^-23 rad about the anchor, which the slack covers (see Build). Float
+/// halves the largest array of a fine mesh (10M planes for 871k triangles).
 struct HalfSpace
 {
-  double N[3];
-  double D;
+  float N[3];
+  float D;
 };
 
 struct Site
@@ -84,7 +88,9 @@ class MeshSites
 public:
   /// Builds sites and domains. `slack` (world units) enlarges every domain so that
   /// neighbouring domains overlap despite rounding; a site's formula is then evaluated
-  /// at most `slack` outside its exact region, which bounds the error by `slack`.
+  /// at most `slack` outside its exact region, which bounds the error by `slack`. The
+  /// planes are stored in float (HalfSpace): where they are used up to a distance L
+  /// from the mesh, the slack must exceed PlaneRounding * L as well (PlaneSlack).
   /// `parallelFor` (optional) runs the per-site passes in parallel; the result is the
   /// same either way.
   bool Build(const MeshInput& input,
@@ -92,6 +98,14 @@ public:
     double slack,
     std::string& error,
     const ParallelFor& parallelFor = ParallelFor());
+
+  /// How far a stored plane may be from the exact one, per unit of distance from the
+  /// site's anchor: the float normal's rounding (2^-24 per component), for each of the
+  /// two neighbours that share a boundary, with a margin.
+  static constexpr double PlaneRounding = 4.0 / (1 << 24);
+  /// The slack that keeps neighbouring domains overlapping wherever the planes are used
+  /// within `reach` of the mesh: `base` plus what the float planes' rounding needs.
+  static double PlaneSlack(double base, double reach) { return base + PlaneRounding * reach; }
 
   LargeVector<Site> Sites;
   LargeVector<HalfSpace> Planes;
