@@ -117,8 +117,18 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   }
   const int nx = grid.Whole.Size(0), ny = grid.Whole.Size(1), nz = grid.Whole.Size(2);
   const double voxels = double(grid.Whole.Count());
-  // Three views of lanes (voxelizing), three lane grids (propagating), the int32 field.
-  const double bytes = voxels * (6 / 8.0 + 3 / 8.0 + 4 + (this->OutputMasks ? 2 : 0));
+  // Three views of lanes (voxelizing), three lane grids and one bit plane per bit of the
+  // largest layer index (propagating; no metric needs more than nx + ny + nz layers),
+  // the int32 field.
+  int64_t largestLayer = int64_t(nx) + ny + nz;
+  largestLayer =
+    this->MaximumLayers > 0 ? std::min<int64_t>(largestLayer, this->MaximumLayers) : largestLayer;
+  int planes = 0;
+  while ((int64_t(1) << planes) <= largestLayer)
+  {
+    ++planes;
+  }
+  const double bytes = voxels * (6 / 8.0 + (3 + planes) / 8.0 + 4 + (this->OutputMasks ? 2 : 0));
   if (!this->CheckMemory(bytes, grid.Whole))
   {
     return 0;
@@ -249,6 +259,7 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
       metric,
       this->MaximumLayers,
       unreached,
+      this->Signed && haveSolid ? &solid : nullptr,
       distance->GetPointer(0),
       vtkdf::SMPFor,
       progress);
@@ -258,28 +269,6 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     }
   }
   this->EndStage("propagate");
-  if (!gl && this->Signed && haveSolid)
-  {
-    int32_t* d = distance->GetPointer(0);
-    vtkdf::SMPFor(int64_t(nx) * ny,
-      256,
-      [&](int64_t begin, int64_t end)
-      {
-        for (int64_t lane = begin; lane < end; ++lane)
-        {
-          const uint64_t* words =
-            solid.Lane(static_cast<int>(lane % nx), static_cast<int>(lane / nx));
-          for (int z = 0; z < nz; ++z)
-          {
-            if ((words[z >> 6] >> (z & 63)) & 1u)
-            {
-              d[lane + z * int64_t(nx) * ny] = -d[lane + z * int64_t(nx) * ny];
-            }
-          }
-        }
-      });
-  }
-
   SetOutputExtent(output, grid, grid.Whole);
   output->GetPointData()->SetScalars(distance);
   vtkNew<vtkIntArray> unreachedValue;

@@ -5,8 +5,9 @@
 //   Chessboard18:  n(w(x,y)) | n'(w(x+-1,y)) | n'(w(x,y+-1)) | w(x+-1,y+-1)
 //   Chessboard26:  n(w(x,y)) | n'(w) of all 8 neighbouring lanes
 // with n(w) = (w << 1) | (w >> 1) across words and n'(w) = n(w) | w. A whole lane is
-// one word operation per 64 voxels, and only the lanes within one voxel of the last
-// layer's bounding box are visited.
+// one word operation per 64 voxels. In each row (the lanes of one y), only the lanes
+// within one lane of the last layer's lanes in rows y - 1, y, y + 1 are visited, in one
+// flat loop over their words that the compiler vectorizes.
 #ifndef vtkdf_ChamferTransform_h
 #define vtkdf_ChamferTransform_h
 
@@ -34,12 +35,19 @@ struct ChamferResult
 };
 
 /// Writes into `distance` (nx * ny * nz, x fastest) the layer index of every voxel
-/// reached, and `unreached` elsewhere. `maximumLayers` > 0 stops after that layer.
-/// `progress` (optional) is called once per layer with the fraction of voxels reached.
+/// reached, and `unreached` elsewhere, negated at the voxels of `inside` (optional).
+/// `maximumLayers` > 0 stops after that layer. `progress` (optional) is called once per
+/// layer with the fraction of voxels reached; when it aborts, `distance` is not written.
+///
+/// The layers are not written into `distance` as they are found: each new voxel's layer
+/// index is OR-ed bit by bit into bit-plane lane grids (one word operation per 64 voxels
+/// and plane), and the planes are turned into the int32 array once at the end, in
+/// 64 x 64 tiles, so that every output row is written once and in order.
 ChamferResult ChamferPropagate(const BitVolume& zero,
   ChamferMetric metric,
   int maximumLayers,
   int32_t unreached,
+  const BitVolume* inside,
   int32_t* distance,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress);

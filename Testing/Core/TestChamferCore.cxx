@@ -1,7 +1,8 @@
 // The VTK-free chamfer transform against a breadth-first search with the same
 // neighbourhood, on hand-made voxel sets: one voxel, a plane, the grid's corners and
-// faces, random sparse sets; nz = 1, 64, 65, 129, 300; every metric, with and without
-// a maximum number of layers.
+// faces, random sparse sets; nz = 1, 64, 65, 129, 300 and 66000 (more than 2^16 layers);
+// every metric, with and without a maximum number of layers (3: within the first block
+// of eight layers, 11: within the second), unsigned and signed.
 #include "ChamferTransform.h"
 
 #include <cstdio>
@@ -95,49 +96,88 @@ std::vector<int32_t> Reference(const BitVolume& zero,
   return d;
 }
 
-void Check(const std::string& name, const BitVolume& zero)
+/// One run against the reference; `inside` (optional) negates its voxels.
+void CheckOne(const std::string& name,
+  const BitVolume& zero,
+  ChamferMetric metric,
+  int maxLayers,
+  const BitVolume* inside)
 {
   const char* metrics[] = { "manhattan", "chessboard18", "chessboard26" };
-  for (int m = 0; m < 3; ++m)
+  const int32_t unreached = maxLayers > 0 ? maxLayers + 1 : INT32_MAX;
+  auto expected = Reference(zero, metric, maxLayers, unreached);
+  int32_t layers = 0;
+  for (int32_t v : expected)
   {
-    for (int maxLayers : { 0, 3 })
+    layers = v != unreached ? std::max(layers, v) : layers;
+  }
+  const int nx = zero.Size(0), ny = zero.Size(1), nz = zero.Size(2);
+  for (int z = 0; z < nz && inside; ++z)
+  {
+    for (int y = 0; y < ny; ++y)
     {
-      const ChamferMetric metric = static_cast<ChamferMetric>(m);
-      const int32_t unreached = maxLayers > 0 ? maxLayers + 1 : INT32_MAX;
-      const auto expected = Reference(zero, metric, maxLayers, unreached);
-      std::vector<int32_t> got(expected.size());
-      const ChamferResult r =
-        ChamferPropagate(zero, metric, maxLayers, unreached, got.data(), ThreadFor, nullptr);
-      int64_t wrong = 0, first = -1;
-      for (size_t i = 0; i < got.size(); ++i)
+      for (int x = 0; x < nx; ++x)
       {
-        if (got[i] != expected[i])
-        {
-          first = first < 0 ? int64_t(i) : first;
-          ++wrong;
-        }
-      }
-      int32_t layers = 0;
-      for (int32_t v : expected)
-      {
-        layers = v != unreached ? std::max(layers, v) : layers;
-      }
-      if (wrong || r.Layers != layers)
-      {
-        std::printf("FAIL: %s %s M=%d: %lld voxels differ (first at %lld: %d, expected %d), "
-                    "layers %d, expected %d\n",
-          name.c_str(),
-          metrics[m],
-          maxLayers,
-          (long long)wrong,
-          (long long)first,
-          first >= 0 ? got[first] : 0,
-          first >= 0 ? expected[first] : 0,
-          r.Layers,
-          layers);
-        ++Failures;
+        int32_t& v = expected[x + int64_t(nx) * (y + int64_t(ny) * z)];
+        v = inside->Get(x, y, z) ? -v : v;
       }
     }
+  }
+  std::vector<int32_t> got(expected.size());
+  const ChamferResult r =
+    ChamferPropagate(zero, metric, maxLayers, unreached, inside, got.data(), ThreadFor, nullptr);
+  int64_t wrong = 0, first = -1;
+  for (size_t i = 0; i < got.size(); ++i)
+  {
+    if (got[i] != expected[i])
+    {
+      first = first < 0 ? int64_t(i) : first;
+      ++wrong;
+    }
+  }
+  if (wrong || r.Layers != layers)
+  {
+    std::printf("FAIL: %s %s M=%d%s: %lld voxels differ (first at %lld: %d, expected %d), "
+                "layers %d, expected %d\n",
+      name.c_str(),
+      metrics[static_cast<int>(metric)],
+      maxLayers,
+      inside ? " signed" : "",
+      (long long)wrong,
+      (long long)first,
+      first >= 0 ? got[first] : 0,
+      first >= 0 ? expected[first] : 0,
+      r.Layers,
+      layers);
+    ++Failures;
+  }
+}
+
+/// Every metric, with and without a maximum number of layers, unsigned and with a
+/// random half of the voxels inside.
+void Check(const std::string& name, const BitVolume& zero, std::mt19937& random)
+{
+  BitVolume inside(zero.Size(0), zero.Size(1), zero.Size(2));
+  for (int z = 0; z < zero.Size(2); ++z)
+  {
+    for (int y = 0; y < zero.Size(1); ++y)
+    {
+      for (int x = 0; x < zero.Size(0); ++x)
+      {
+        if (random() & 1)
+        {
+          inside.Set(x, y, z);
+        }
+      }
+    }
+  }
+  for (int m = 0; m < 3; ++m)
+  {
+    for (int maxLayers : { 0, 3, 11 })
+    {
+      CheckOne(name, zero, static_cast<ChamferMetric>(m), maxLayers, nullptr);
+    }
+    CheckOne(name, zero, static_cast<ChamferMetric>(m), 0, &inside);
   }
   std::printf("%-34s %dx%dx%d  %lld zero voxels: ok\n",
     name.c_str(),
@@ -160,19 +200,20 @@ int main()
          Dims{ 5, 6, 65 },
          Dims{ 4, 5, 129 },
          Dims{ 3, 4, 300 },
-         Dims{ 13, 11, 17 } })
+         Dims{ 13, 11, 17 },
+         Dims{ 70, 6, 130 } })
   {
     const std::string size =
       std::to_string(d.X) + "x" + std::to_string(d.Y) + "x" + std::to_string(d.Z);
     {
       BitVolume v(d.X, d.Y, d.Z);
       v.Set(d.X / 2, d.Y / 2, d.Z / 2);
-      Check("single voxel " + size, v);
+      Check("single voxel " + size, v, random);
     }
     {
       BitVolume v(d.X, d.Y, d.Z);
       v.Set(d.X - 1, 0, d.Z - 1);
-      Check("corner voxel " + size, v);
+      Check("corner voxel " + size, v, random);
     }
     {
       BitVolume v(d.X, d.Y, d.Z);
@@ -183,7 +224,7 @@ int main()
           v.Set(d.X / 3, y, z); // a plane x = const
         }
       }
-      Check("plane " + size, v);
+      Check("plane " + size, v, random);
     }
     {
       BitVolume v(d.X, d.Y, d.Z);
@@ -191,7 +232,7 @@ int main()
       {
         v.Set(c & 1 ? d.X - 1 : 0, c & 2 ? d.Y - 1 : 0, c & 4 ? d.Z - 1 : 0);
       }
-      Check("corners " + size, v);
+      Check("corners " + size, v, random);
     }
     {
       BitVolume v(d.X, d.Y, d.Z);
@@ -202,7 +243,7 @@ int main()
           v.Set(x, y, 0); // the face z = 0
         }
       }
-      Check("face z=0 " + size, v);
+      Check("face z=0 " + size, v, random);
     }
     {
       BitVolume v(d.X, d.Y, d.Z);
@@ -211,14 +252,21 @@ int main()
       {
         v.Set(rx(random), ry(random), rz(random));
       }
-      Check("random sparse " + size, v);
+      Check("random sparse " + size, v, random);
     }
+  }
+  {
+    // More than 2^16 layers: the layer indices need more than two bytes.
+    BitVolume line(1, 2, 66000);
+    line.Set(0, 0, 0);
+    CheckOne(
+      "one voxel at the end of a line 1x2x66000", line, ChamferMetric::Manhattan, 0, nullptr);
   }
   {
     BitVolume empty(4, 4, 4);
     std::vector<int32_t> out(64);
-    const ChamferResult r =
-      ChamferPropagate(empty, ChamferMetric::Manhattan, 0, -7, out.data(), ThreadFor, nullptr);
+    const ChamferResult r = ChamferPropagate(
+      empty, ChamferMetric::Manhattan, 0, -7, nullptr, out.data(), ThreadFor, nullptr);
     bool all = r.Reached == 0;
     for (int32_t v : out)
     {
