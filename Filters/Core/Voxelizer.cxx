@@ -35,10 +35,14 @@ struct View
 ///   or Back.
 /// - Boundary: each lane whose cell the projected triangle overlaps (conservative)
 ///   gets the voxels whose centre lies within half a cell diagonal of the triangle.
+///   A voxel whose bit is already set, in this view or in one of the `numberOfEarlier`
+///   views before it, needs no distance: the views are OR-ed in the end.
 void Rasterize(const MeshInput& mesh,
   const SampleGrid& grid,
   double orientation,
   View& view,
+  const View* earlier,
+  int numberOfEarlier,
   const ParallelFor& parallelFor,
   std::atomic<int64_t>& far)
 {
@@ -111,8 +115,22 @@ void Rasterize(const MeshInput& mesh,
               uint64_t* lane = view.Boundary.Lane(static_cast<int>(p), static_cast<int>(q));
               for (int k = k0; k <= k1; ++k)
               {
+                if ((__atomic_load_n(&lane[k >> 6], __ATOMIC_RELAXED) >> (k & 63)) & 1u)
+                {
+                  continue;
+                }
                 int ijk[3];
                 ijk[a] = k, ijk[b] = static_cast<int>(p), ijk[c] = static_cast<int>(q);
+                bool known = false;
+                for (int e = 0; e < numberOfEarlier && !known; ++e)
+                {
+                  const View& v = earlier[e];
+                  known = v.Boundary.Get(ijk[v.B], ijk[v.C], ijk[v.A]);
+                }
+                if (known)
+                {
+                  continue;
+                }
                 double centre[3];
                 for (int d = 0; d < 3; ++d)
                 {
@@ -335,7 +353,7 @@ bool VoxelizeCPU(const MeshInput& mesh,
       v.Front.Resize(n[v.B], n[v.C], 2 * n[a] + 1 + SolidGuard);
       v.Back.Resize(n[v.B], n[v.C], 2 * n[a] + 1 + SolidGuard);
     }
-    Rasterize(mesh, grid, orientation, v, parallelFor, far);
+    Rasterize(mesh, grid, orientation, v, views, a, parallelFor, far);
   }
   statistics.FarTriangles = far.load() / 3;
 
