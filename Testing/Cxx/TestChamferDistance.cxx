@@ -188,9 +188,8 @@ vtkSmartPointer<vtkImageData> MaskImage(int nx,
 
 int main(int argc, char* argv[])
 {
-  if (argc < 3)
+  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
   {
-    std::printf("usage: %s DATA_DIR cpu|gpu\n", argv[0]);
     return 2;
   }
   const std::string data = argv[1];

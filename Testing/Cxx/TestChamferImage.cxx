@@ -33,10 +33,9 @@
 
 int main(int argc, char* argv[])
 {
-  if (argc < 3)
+  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu -V BASELINE -T TMP"))
   {
-    std::fprintf(stderr, "usage: %s DATA_DIR cpu|gpu -V BASELINE -T TMP\n", argv[0]);
-    return 1;
+    return 2;
   }
   const std::string dataDir = argv[1], backend = argv[2];
   vtkNew<vtkXMLPolyDataReader> reader;

@@ -55,11 +55,10 @@ void CellColour(vtkIdType id, unsigned char rgb[3])
 
 int main(int argc, char* argv[])
 {
-  if (argc < 4)
+  if (!testsupport::HasArguments(
+        argc, argv, 3, "DATA_DIR distance|voronoi cpu|gpu -V BASELINE -T TMP"))
   {
-    std::fprintf(
-      stderr, "usage: %s DATA_DIR distance|voronoi cpu|gpu -V BASELINE -T TMP\n", argv[0]);
-    return 1;
+    return 2;
   }
   const std::string dataDir = argv[1], mode = argv[2], backend = argv[3];
 

@@ -1,6 +1,6 @@
-// What the module's C++ tests share: a failure counter with a CHECK macro, the backend
-// argument, a one-triangle mesh, and a recorder of a filter's errors and warnings for
-// the bad-input tests.
+// What the module's C++ tests share: a failure counter with a CHECK macro, the
+// arguments and the backend, a one-triangle mesh, and a recorder of a filter's errors and warnings
+// for the bad-input tests.
 #ifndef vtkdf_TestSupport_h
 #define vtkdf_TestSupport_h
 
@@ -19,6 +19,18 @@
 namespace testsupport
 {
 inline int Failures = 0;
+
+/// Whether the test got at least `count` arguments; prints its usage (the arguments it
+/// takes, after the program's name) when not.
+inline bool HasArguments(int argc, char* argv[], int count, const char* usage)
+{
+  if (argc > count)
+  {
+    return true;
+  }
+  std::fprintf(stderr, "usage: %s %s\n", argv[0], usage);
+  return false;
+}
 
 /// Sets a filter's Backend from a test's "cpu" or "gpu" argument.
 template<typename Filter>
