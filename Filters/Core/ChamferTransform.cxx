@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <type_traits>
@@ -11,6 +12,24 @@ namespace vtkdf
 {
 namespace
 {
+// The row loops are compiled twice on x86-64: for the generic target (SSE2, two
+// words per operation) and for AVX2 (four), chosen once at run time (the environment
+// variable VTKDF_DISABLE_AVX2 forces the generic one, which is how its test runs on a
+// machine with AVX2). Each loop body is an always-inlined function, so both versions
+// come from the same source.
+#if defined(__GNUC__) && defined(__x86_64__)
+#define VTKDF_HAVE_AVX2_CLONES 1
+#define VTKDF_INLINE inline __attribute__((always_inline))
+bool HaveAVX2()
+{
+  static const bool has =
+    __builtin_cpu_supports("avx2") && std::getenv("VTKDF_DISABLE_AVX2") == nullptr;
+  return has;
+}
+#else
+#define VTKDF_INLINE inline
+#endif
+
 /// The lanes [X0, X1] of one row (empty when X1 < X0).
 struct LaneRange
 {
@@ -23,13 +42,13 @@ struct LaneRange
 /// `below` and `above` are all ones where the lane has a word below / above word i (the
 /// carries between words), zero at the lane's ends; the words i - 1 and i + 1 are read
 /// in any case, so they must exist.
-inline uint64_t Along(const uint64_t* p, int64_t i, uint64_t below, uint64_t above)
+VTKDF_INLINE uint64_t Along(const uint64_t* p, int64_t i, uint64_t below, uint64_t above)
 {
   return (p[i] << 1) | (p[i] >> 1) | ((p[i - 1] >> 63) & below) | ((p[i + 1] << 63) & above);
 }
 
 /// n'(w) = n(w) | w.
-inline uint64_t Wide(const uint64_t* p, int64_t i, uint64_t below, uint64_t above)
+VTKDF_INLINE uint64_t Wide(const uint64_t* p, int64_t i, uint64_t below, uint64_t above)
 {
   return p[i] | Along(p, i, below, above);
 }
@@ -38,7 +57,7 @@ inline uint64_t Wide(const uint64_t* p, int64_t i, uint64_t below, uint64_t abov
 /// layer (`up`, `mid`, `down`, lanes of `W` words side by side). A template per metric,
 /// so that the row loop is a fixed sequence of word operations the compiler vectorizes.
 template<ChamferMetric Metric>
-inline uint64_t Candidates(const uint64_t* up,
+VTKDF_INLINE uint64_t Candidates(const uint64_t* up,
   const uint64_t* mid,
   const uint64_t* down,
   int64_t i,
@@ -87,7 +106,7 @@ struct Wavefront
 /// The candidates of words [begin, end) of a row whose lanes all have both x neighbours
 /// in the row (and the words around those): the new voxels go to `out` and `acc`.
 template<ChamferMetric Metric>
-void InnerRow(const uint64_t* __restrict up,
+VTKDF_INLINE void InnerRowLoop(const uint64_t* __restrict up,
   const uint64_t* __restrict mid,
   const uint64_t* __restrict down,
   const uint64_t* __restrict below,
@@ -104,6 +123,77 @@ void InnerRow(const uint64_t* __restrict up,
     out[i] = o;
     acc[i] |= o;
   }
+}
+
+/// plane[i] |= added[i] for i in [begin, end].
+VTKDF_INLINE void OrRowLoop(uint64_t* __restrict plane,
+  const uint64_t* __restrict added,
+  int64_t begin,
+  int64_t end)
+{
+  for (int64_t i = begin; i <= end; ++i)
+  {
+    plane[i] |= added[i];
+  }
+}
+
+#ifdef VTKDF_HAVE_AVX2_CLONES
+template<ChamferMetric Metric>
+__attribute__((target("avx2"))) void InnerRowAVX2(const uint64_t* up,
+  const uint64_t* mid,
+  const uint64_t* down,
+  const uint64_t* below,
+  const uint64_t* above,
+  uint64_t* acc,
+  uint64_t* out,
+  int64_t begin,
+  int64_t end,
+  int64_t W)
+{
+  InnerRowLoop<Metric>(up, mid, down, below, above, acc, out, begin, end, W);
+}
+
+__attribute__((target("avx2"))) void OrRowAVX2(uint64_t* plane,
+  const uint64_t* added,
+  int64_t begin,
+  int64_t end)
+{
+  OrRowLoop(plane, added, begin, end);
+}
+#endif
+
+template<ChamferMetric Metric>
+void InnerRow(const uint64_t* up,
+  const uint64_t* mid,
+  const uint64_t* down,
+  const uint64_t* below,
+  const uint64_t* above,
+  uint64_t* acc,
+  uint64_t* out,
+  int64_t begin,
+  int64_t end,
+  int64_t W)
+{
+#ifdef VTKDF_HAVE_AVX2_CLONES
+  if (HaveAVX2())
+  {
+    InnerRowAVX2<Metric>(up, mid, down, below, above, acc, out, begin, end, W);
+    return;
+  }
+#endif
+  InnerRowLoop<Metric>(up, mid, down, below, above, acc, out, begin, end, W);
+}
+
+void OrRow(uint64_t* plane, const uint64_t* added, int64_t begin, int64_t end)
+{
+#ifdef VTKDF_HAVE_AVX2_CLONES
+  if (HaveAVX2())
+  {
+    OrRowAVX2(plane, added, begin, end);
+    return;
+  }
+#endif
+  OrRowLoop(plane, added, begin, end);
 }
 
 /// The number of bits set in `set` and not in `except` over n words (the popcnt
@@ -237,12 +327,7 @@ int64_t LayerRows(Wavefront& f, int y0, int64_t begin, int64_t end, int32_t laye
     {
       if ((layer >> k) & 1)
       {
-        uint64_t* __restrict plane = f.Planes[k].Lane(0, y);
-        const uint64_t* __restrict added = out;
-        for (int64_t i = lo; i <= hi; ++i)
-        {
-          plane[i] |= added[i];
-        }
+        OrRow(f.Planes[k].Lane(0, y), out, lo, hi);
       }
     }
     ++rowsReached;
@@ -316,97 +401,127 @@ struct ByteSpread
   }
 };
 
-/// The layer indices from the bit planes, written x fastest: 64 lanes by 64 voxels of
-/// every plane are transposed at a time, so that each output row is written once, in
-/// order (the lanes run along z, the array along x).
+/// The layer indices of the rows (y, w) = (task / W, task % W) for task in [begin, end),
+/// from the bit planes, written x fastest: 64 lanes by 64 voxels of every plane are
+/// transposed at a time, so that each output row is written once, in order (the lanes
+/// run along z, the array along x).
+VTKDF_INLINE void WriteDistancesLoop(const Wavefront& f,
+  const BitVolume* inside,
+  int32_t unreached,
+  int32_t* distance,
+  int64_t begin,
+  int64_t end)
+{
+  static const ByteSpread spread;
+  const int nx = f.NX, nz = f.NZ, W = f.W;
+  const int planes = static_cast<int>(f.Planes.size());
+  const int64_t slice = int64_t(nx) * f.NY;
+  // Tiles: the planes, then the reached voxels, then the inside voxels.
+  std::vector<uint64_t> tiles((planes + 2) * 64);
+  uint64_t* reachedTile = tiles.data() + planes * 64;
+  uint64_t* insideTile = reachedTile + 64;
+  for (int64_t task = begin; task < end; ++task)
+  {
+    const int y = static_cast<int>(task / W), w = static_cast<int>(task % W);
+    const int rows = std::min(64, nz - 64 * w);
+    for (int x0 = 0; x0 < nx; x0 += 64)
+    {
+      const int columns = std::min(64, nx - x0);
+      auto load = [&](const BitVolume& v, uint64_t* tile)
+      {
+        for (int c = 0; c < 64; ++c)
+        {
+          tile[c] = c < columns ? v.Lane(x0 + c, y)[w] : 0;
+        }
+        TransposeBits64(tile);
+      };
+      for (int k = 0; k < planes; ++k)
+      {
+        load(f.Planes[k], tiles.data() + 64 * k);
+      }
+      load(f.Accumulated, reachedTile);
+      if (inside)
+      {
+        load(*inside, insideTile);
+      }
+      for (int r = 0; r < rows; ++r)
+      {
+        // Bytes per voxel of the row: the low and the high eight planes, reached,
+        // inside; spread from the tiles eight voxels at a time.
+        alignas(16) uint8_t low[64], high[64], reached[64], negative[64];
+        for (int c0 = 0; c0 < 64; c0 += 8)
+        {
+          auto bytesOf = [&](const uint64_t* tile) { return spread.Table[(tile[r] >> c0) & 255]; };
+          uint64_t lowBytes = 0, highBytes = 0;
+          for (int k = 0; k < std::min(planes, 8); ++k)
+          {
+            lowBytes |= bytesOf(tiles.data() + 64 * k) << k;
+          }
+          for (int k = 8; k < std::min(planes, 16); ++k)
+          {
+            highBytes |= bytesOf(tiles.data() + 64 * k) << (k - 8);
+          }
+          const uint64_t reachedBytes = bytesOf(reachedTile);
+          const uint64_t negativeBytes = inside ? bytesOf(insideTile) : 0;
+          std::memcpy(low + c0, &lowBytes, 8);
+          std::memcpy(high + c0, &highBytes, 8);
+          std::memcpy(reached + c0, &reachedBytes, 8);
+          std::memcpy(negative + c0, &negativeBytes, 8);
+        }
+        alignas(16) int32_t value[64];
+        for (int c = 0; c < 64; ++c)
+        {
+          value[c] = low[c] | (high[c] << 8);
+        }
+        for (int k = 16; k < planes; ++k) // more than 2^16 layers
+        {
+          for (int c = 0; c < 64; ++c)
+          {
+            value[c] |= static_cast<int32_t>((tiles[64 * k + r] >> c) & 1) << k;
+          }
+        }
+        int32_t* row = distance + x0 + y * int64_t(nx) + (64 * w + r) * slice;
+        for (int c = 0; c < columns; ++c)
+        {
+          const int32_t v = reached[c] ? value[c] : unreached;
+          row[c] = negative[c] ? -v : v;
+        }
+      }
+    }
+  }
+}
+
+#ifdef VTKDF_HAVE_AVX2_CLONES
+__attribute__((target("avx2"))) void WriteDistancesAVX2(const Wavefront& f,
+  const BitVolume* inside,
+  int32_t unreached,
+  int32_t* distance,
+  int64_t begin,
+  int64_t end)
+{
+  WriteDistancesLoop(f, inside, unreached, distance, begin, end);
+}
+#endif
+
+/// The int32 layer indices of every voxel (negated inside), from the bit planes.
 void WriteDistances(const Wavefront& f,
   const BitVolume* inside,
   int32_t unreached,
   int32_t* distance,
   const ParallelFor& parallelFor)
 {
-  static const ByteSpread spread;
-  const int nx = f.NX, ny = f.NY, nz = f.NZ, W = f.W;
-  const int planes = static_cast<int>(f.Planes.size());
-  const int64_t slice = int64_t(nx) * ny;
-  parallelFor(int64_t(ny) * W,
+  parallelFor(int64_t(f.NY) * f.W,
     1,
     [&](int64_t begin, int64_t end)
     {
-      // Tiles: the planes, then the reached voxels, then the inside voxels.
-      std::vector<uint64_t> tiles((planes + 2) * 64);
-      uint64_t* reachedTile = tiles.data() + planes * 64;
-      uint64_t* insideTile = reachedTile + 64;
-      for (int64_t task = begin; task < end; ++task)
+#ifdef VTKDF_HAVE_AVX2_CLONES
+      if (HaveAVX2())
       {
-        const int y = static_cast<int>(task / W), w = static_cast<int>(task % W);
-        const int rows = std::min(64, nz - 64 * w);
-        for (int x0 = 0; x0 < nx; x0 += 64)
-        {
-          const int columns = std::min(64, nx - x0);
-          auto load = [&](const BitVolume& v, uint64_t* tile)
-          {
-            for (int c = 0; c < 64; ++c)
-            {
-              tile[c] = c < columns ? v.Lane(x0 + c, y)[w] : 0;
-            }
-            TransposeBits64(tile);
-          };
-          for (int k = 0; k < planes; ++k)
-          {
-            load(f.Planes[k], tiles.data() + 64 * k);
-          }
-          load(f.Accumulated, reachedTile);
-          if (inside)
-          {
-            load(*inside, insideTile);
-          }
-          for (int r = 0; r < rows; ++r)
-          {
-            // Bytes per voxel of the row: the low and the high eight planes, reached,
-            // inside; spread from the tiles eight voxels at a time.
-            alignas(16) uint8_t low[64], high[64], reached[64], negative[64];
-            for (int c0 = 0; c0 < 64; c0 += 8)
-            {
-              auto bytesOf = [&](const uint64_t* tile)
-              { return spread.Table[(tile[r] >> c0) & 255]; };
-              uint64_t lowBytes = 0, highBytes = 0;
-              for (int k = 0; k < std::min(planes, 8); ++k)
-              {
-                lowBytes |= bytesOf(tiles.data() + 64 * k) << k;
-              }
-              for (int k = 8; k < std::min(planes, 16); ++k)
-              {
-                highBytes |= bytesOf(tiles.data() + 64 * k) << (k - 8);
-              }
-              const uint64_t reachedBytes = bytesOf(reachedTile);
-              const uint64_t negativeBytes = inside ? bytesOf(insideTile) : 0;
-              std::memcpy(low + c0, &lowBytes, 8);
-              std::memcpy(high + c0, &highBytes, 8);
-              std::memcpy(reached + c0, &reachedBytes, 8);
-              std::memcpy(negative + c0, &negativeBytes, 8);
-            }
-            alignas(16) int32_t value[64];
-            for (int c = 0; c < 64; ++c)
-            {
-              value[c] = low[c] | (high[c] << 8);
-            }
-            for (int k = 16; k < planes; ++k) // more than 2^16 layers
-            {
-              for (int c = 0; c < 64; ++c)
-              {
-                value[c] |= static_cast<int32_t>((tiles[64 * k + r] >> c) & 1) << k;
-              }
-            }
-            int32_t* row = distance + x0 + y * int64_t(nx) + (64 * w + r) * slice;
-            for (int c = 0; c < columns; ++c)
-            {
-              const int32_t v = reached[c] ? value[c] : unreached;
-              row[c] = negative[c] ? -v : v;
-            }
-          }
-        }
+        WriteDistancesAVX2(f, inside, unreached, distance, begin, end);
+        return;
       }
+#endif
+      WriteDistancesLoop(f, inside, unreached, distance, begin, end);
     });
 }
 } // namespace
