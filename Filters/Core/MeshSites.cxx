@@ -54,8 +54,13 @@ struct EdgeRecord
   int64_t Cell; // input cell
 };
 
-/// The edges at a vertex: (edge index, unit direction away from the vertex).
-using VertexEdge = std::pair<int64_t, std::array<double, 3>>;
+/// An edge at a vertex: its index, and +1 where its tangent points away from the vertex,
+/// -1 where it points towards it.
+struct VertexEdge
+{
+  int64_t Edge;
+  double Sign;
+};
 struct VertexEdgeSpan
 {
   const VertexEdge* First = nullptr;
@@ -443,11 +448,12 @@ bool MeshSites::Build(const MeshInput& in,
     std::vector<int64_t> fill(vertexEdgeOffsets.begin(), vertexEdgeOffsets.end() - 1);
     for (int64_t e = 0; e < numEdges; ++e)
     {
-      const Vec& t = edgeGroups[e].Tangent;
-      vertexEdges[fill[edgeEnds[e][0]]++] = { e, t };
-      vertexEdges[fill[edgeEnds[e][1]]++] = { e, Scale(t, -1.0) };
+      vertexEdges[fill[edgeEnds[e][0]]++] = { e, 1.0 };
+      vertexEdges[fill[edgeEnds[e][1]]++] = { e, -1.0 };
     }
   }
+  // The unit direction of an edge away from the vertex it is seen from.
+  auto away = [&](const VertexEdge& eu) { return Scale(edgeGroups[eu.Edge].Tangent, eu.Sign); };
   auto incidentEdges = [&](int64_t v)
   {
     return VertexEdgeSpan{ vertexEdges.data() + vertexEdgeOffsets[v],
@@ -486,13 +492,13 @@ bool MeshSites::Build(const MeshInput& in,
     bool closed = !incident.empty() && fan.size() == incident.size();
     for (const auto& eu : incident)
     {
-      closed = closed && edgeGroups[eu.first].Faces == 2;
+      closed = closed && edgeGroups[eu.Edge].Faces == 2;
     }
     if (closed)
     {
       // Walk the fan once around: it must visit every face (a single cycle).
       size_t steps = 0;
-      int64_t edge = incident[0].first, face = edgeFace(edge, 0);
+      int64_t edge = incident[0].Edge, face = edgeFace(edge, 0);
       const int64_t startFace = face;
       do
       {
@@ -500,9 +506,9 @@ bool MeshSites::Build(const MeshInput& in,
         int64_t next = -1;
         for (const auto& eu : incident)
         {
-          if (eu.first != edge && (edgeFace(eu.first, 0) == face || edgeFace(eu.first, 1) == face))
+          if (eu.Edge != edge && (edgeFace(eu.Edge, 0) == face || edgeFace(eu.Edge, 1) == face))
           {
-            next = eu.first;
+            next = eu.Edge;
           }
         }
         if (next < 0)
@@ -524,9 +530,9 @@ bool MeshSites::Build(const MeshInput& in,
     int convex = 0, concave = 0;
     for (const auto& eu : incident)
     {
-      const FaceRecord& f0 = faces[edgeFace(eu.first, 0)];
-      const FaceRecord& f1 = faces[edgeFace(eu.first, 1)];
-      const int64_t a = edgeEnds[eu.first][0], b = edgeEnds[eu.first][1];
+      const FaceRecord& f0 = faces[edgeFace(eu.Edge, 0)];
+      const FaceRecord& f1 = faces[edgeFace(eu.Edge, 1)];
+      const int64_t a = edgeEnds[eu.Edge][0], b = edgeEnds[eu.Edge][1];
       int64_t c1 = f1.P[0];
       for (int k = 0; k < 3; ++k)
       {
@@ -584,10 +590,10 @@ bool MeshSites::Build(const MeshInput& in,
     {
       for (size_t j = i + 1; j < incident.size(); ++j)
       {
-        const Vec r = Cross(incident[i].second, incident[j].second);
+        const Vec r = Cross(away(incident[i]), away(incident[j]));
         for (const auto& eu : incident)
         {
-          rank = std::max(rank, std::fabs(Dot(r, eu.second)));
+          rank = std::max(rank, std::fabs(Dot(r, away(eu))));
         }
         for (double sign : { 1.0, -1.0 })
         {
@@ -595,7 +601,7 @@ bool MeshSites::Build(const MeshInput& in,
           bool inDomain = Norm(ray) > 1e-12;
           for (const auto& eu : incident)
           {
-            inDomain = inDomain && Dot(ray, eu.second) <= 1e-12;
+            inDomain = inDomain && Dot(ray, away(eu)) <= 1e-12;
           }
           for (const Vec& w : sides)
           {
@@ -785,7 +791,7 @@ bool MeshSites::Build(const MeshInput& in,
         {
           for (const auto& eu : incidentEdges(v))
           {
-            setPlane(at++, Scale(eu.second, -1.0), X(v), s.Anchor);
+            setPlane(at++, Scale(away(eu), -1.0), X(v), s.Anchor);
           }
         }
         else if (vertexDomain[v] == Pyramid)
