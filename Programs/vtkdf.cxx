@@ -226,12 +226,34 @@ struct CommonOptions
   bool Timing = false;
 };
 
-/// Parses the options of argv[3...]: the shared ones here, the others by `own`
-/// (which returns false for an option it does not know). Exits on a usage error.
-void ParseOptions(int argc,
-  char* argv[],
-  CommonOptions& common,
-  const std::function<bool(const std::string&, const std::function<const char*()>&)>& own)
+/// A subcommand's own option: its name, and what to do with its value (`Flag` options
+/// take none, and get nullptr).
+struct Option
+{
+  const char* Name;
+  bool IsFlag;
+  std::function<void(const char*)> Set;
+};
+Option Flag(const char* name, bool& target)
+{
+  return { name, true, [&target](const char*) { target = true; } };
+}
+Option Text(const char* name, std::string& target)
+{
+  return { name, false, [&target](const char* value) { target = value; } };
+}
+Option Number(const char* name, double& target)
+{
+  return { name, false, [&target](const char* value) { target = std::atof(value); } };
+}
+Option Count(const char* name, int& target)
+{
+  return { name, false, [&target](const char* value) { target = std::atoi(value); } };
+}
+
+/// Parses the options of argv[3...] (after `vtkdf SUBCOMMAND INPUT`): the common ones,
+/// then the subcommand's `own`. Exits on a usage error.
+void ParseOptions(int argc, char* argv[], CommonOptions& common, const std::vector<Option>& own)
 {
   for (int a = 3; a < argc; ++a)
   {
@@ -281,9 +303,15 @@ void ParseOptions(int argc,
     {
       common.Timing = true;
     }
-    else if (!own(arg, next))
+    else
     {
-      std::exit(Usage(("unknown option " + arg).c_str()));
+      auto option =
+        std::find_if(own.begin(), own.end(), [&](const Option& o) { return arg == o.Name; });
+      if (option == own.end())
+      {
+        std::exit(Usage(("unknown option " + arg).c_str()));
+      }
+      option->Set(option->IsFlag ? nullptr : next());
     }
   }
   if (common.Output.empty())
@@ -400,34 +428,11 @@ int Linfac(int argc, char* argv[])
   ParseOptions(argc,
     argv,
     common,
-    [&](const std::string& arg, const std::function<const char*()>& next)
-    {
-      if (arg == "--signed")
-      {
-        signedField = true;
-      }
-      else if (arg == "--culling")
-      {
-        culling = next();
-      }
-      else if (arg == "--arrays")
-      {
-        arrays = next();
-      }
-      else if (arg == "--max-distance")
-      {
-        maxDistance = std::atof(next());
-      }
-      else if (arg == "--png")
-      {
-        png = next();
-      }
-      else
-      {
-        return false;
-      }
-      return true;
-    });
+    { Flag("--signed", signedField),
+      Text("--culling", culling),
+      Text("--arrays", arrays),
+      Number("--max-distance", maxDistance),
+      Text("--png", png) });
   vtkNew<vtkLinearFactorDistanceField> filter;
   filter->SetInputData(ReadMeshOrExit(argv[2]));
   Configure(filter, common);
@@ -466,18 +471,7 @@ int Voxelize(int argc, char* argv[])
 {
   CommonOptions common;
   std::string mode = "both";
-  ParseOptions(argc,
-    argv,
-    common,
-    [&](const std::string& arg, const std::function<const char*()>& next)
-    {
-      if (arg != "--mode")
-      {
-        return false;
-      }
-      mode = next();
-      return true;
-    });
+  ParseOptions(argc, argv, common, { Text("--mode", mode) });
   vtkNew<vtkPolyDataVoxelizer> filter;
   filter->SetInputData(ReadMeshOrExit(argv[2]));
   Configure(filter, common);
@@ -505,26 +499,7 @@ int Chamfer(int argc, char* argv[])
   ParseOptions(argc,
     argv,
     common,
-    [&](const std::string& arg, const std::function<const char*()>& next)
-    {
-      if (arg == "--metric")
-      {
-        metric = next();
-      }
-      else if (arg == "--layers")
-      {
-        layers = std::atoi(next());
-      }
-      else if (arg == "--signed")
-      {
-        signedField = true;
-      }
-      else
-      {
-        return false;
-      }
-      return true;
-    });
+    { Text("--metric", metric), Count("--layers", layers), Flag("--signed", signedField) });
   vtkNew<vtkChamferVoxelDistance> filter;
   filter->SetInputData(ReadMeshOrImageOrExit(argv[2]));
   Configure(filter, common);
@@ -597,30 +572,10 @@ int Medial(int argc, char* argv[])
   ParseOptions(argc,
     argv,
     common,
-    [&](const std::string& arg, const std::function<const char*()>& next)
-    {
-      if (arg == "--angle")
-      {
-        angle = std::atof(next());
-      }
-      else if (arg == "--region")
-      {
-        region = next();
-      }
-      else if (arg == "--points")
-      {
-        points = next();
-      }
-      else if (arg == "--png")
-      {
-        png = next();
-      }
-      else
-      {
-        return false;
-      }
-      return true;
-    });
+    { Number("--angle", angle),
+      Text("--region", region),
+      Text("--points", points),
+      Text("--png", png) });
   vtkNew<vtkMedialAxisFilter> filter;
   filter->SetInputData(ReadMeshOrImageOrExit(argv[2]));
   Configure(filter, common);
