@@ -32,7 +32,7 @@ public:
   /// `count` empty entries; `parallelFor` (optional) fills them in parallel.
   void Reset(int64_t count, const ParallelFor& parallelFor = ParallelFor())
   {
-    this->Values.reset(HugePageAllocator<std::atomic<uint64_t>>().allocate(count));
+    this->Values.reset(DefaultInitAllocator<std::atomic<uint64_t>>().allocate(count));
     this->Count = count;
     auto fill = [this](int64_t begin, int64_t end)
     {
@@ -74,7 +74,7 @@ private:
   {
     void operator()(std::atomic<uint64_t>* p) const
     {
-      HugePageAllocator<std::atomic<uint64_t>>().deallocate(p, 0);
+      DefaultInitAllocator<std::atomic<uint64_t>>().deallocate(p, 0);
     }
   };
   std::unique_ptr<std::atomic<uint64_t>[], Free> Values;
