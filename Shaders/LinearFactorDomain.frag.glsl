@@ -1,14 +1,4 @@
-#version 450 core
 // Length of the interpolated distance vector; the depth test keeps the nearest site.
-struct GpuSite
-{
-  vec4 anchor;
-  vec4 axis;
-  ivec4 lo;
-  ivec4 hi;
-};
-layout(std430, binding = 0) readonly buffer Sites { GpuSite sites[]; };
-layout(std430, binding = 1) readonly buffer Planes { vec4 planes[]; };
 
 uniform vec3 spacing;
 uniform int layerBase;

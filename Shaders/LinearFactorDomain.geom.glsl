@@ -1,4 +1,3 @@
-#version 450 core
 // Builds a site's domain polygon on one slice (the same clipping as SliceDomain.h) and
 // emits it into that slice's layer, with the site's distance vector at every corner:
 // the rasterizer interpolates it exactly (linear factorization, paper 000 section 3).
@@ -6,16 +5,6 @@ layout(points, invocations = 32) in;
 layout(triangle_strip, max_vertices = 32) out;
 
 const int MaxPlanes = 28;
-
-struct GpuSite
-{
-  vec4 anchor;  // xyz: anchor relative to the extent's first sample (world units); w: type
-  vec4 axis;    // edge tangent or face normal
-  ivec4 lo;     // region, sample indices relative to the extent; w: first plane
-  ivec4 hi;     // w: number of planes (w of anchor packs nothing else)
-};
-layout(std430, binding = 0) readonly buffer Sites { GpuSite sites[]; };
-layout(std430, binding = 1) readonly buffer Planes { vec4 planes[]; }; // index space, relative to the anchor
 
 // Range culling (RangeCulling.h): a site's bounds, and an upper bound of the field per
 // block of samples; a slice whose polygon meets no block where the site may still be

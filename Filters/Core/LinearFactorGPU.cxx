@@ -5,6 +5,7 @@
 #include "LinearFactorDomain_vert.h"
 #include "LinearFactorFinalize_comp.h"
 #include "LinearFactorKeep_comp.h"
+#include "LinearFactorSites.h"
 #include "SliceDomain.h"
 
 #include "GLFunctions.h"
@@ -78,9 +79,11 @@ bool ScanSitesGPU(HeadlessGL& context,
 
   GLObjects gpu{ gl };
   std::string log;
+  const std::string geometry = std::string(LinearFactorSites) + LinearFactorDomain_geom;
+  const std::string fragment = std::string(LinearFactorSites) + LinearFactorDomain_frag;
   gpu.Program = context.BuildProgram({ { GL_VERTEX_SHADER, LinearFactorDomain_vert },
-                                       { GL_GEOMETRY_SHADER, LinearFactorDomain_geom },
-                                       { GL_FRAGMENT_SHADER, LinearFactorDomain_frag } },
+                                       { GL_GEOMETRY_SHADER, geometry.c_str() },
+                                       { GL_FRAGMENT_SHADER, fragment.c_str() } },
     log);
   if (!gpu.Program)
   {
