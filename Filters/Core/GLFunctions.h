@@ -7,6 +7,7 @@
 
 #include <epoxy/gl.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -180,6 +181,21 @@ inline int64_t BindVoxelRange(const GLFunctions& gl,
   const int64_t begin = from * elementBytes / alignment * alignment;
   gl.BindBufferRange(GL_SHADER_STORAGE_BUFFER, binding, buffer, begin, to * elementBytes - begin);
   return begin / unitBytes;
+}
+
+/// False, with `error` naming the OpenGL error and `where` it surfaced, when the GL
+/// reports one; checked once at the end of each GPU pass.
+inline bool NoGLError(const GLFunctions& gl, const char* where, std::string& error)
+{
+  const GLenum status = gl.GetError();
+  if (status == GL_NO_ERROR)
+  {
+    return true;
+  }
+  char code[16];
+  std::snprintf(code, sizeof(code), "0x%x", static_cast<unsigned>(status));
+  error = std::string("OpenGL error ") + code + " " + where;
+  return false;
 }
 
 } // namespace vtkdf

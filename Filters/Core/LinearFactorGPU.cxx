@@ -364,12 +364,8 @@ bool ScanSitesGPU(HeadlessGL& context,
             : NearestSiteBuffer::Pack(distances[at] * distances[at], static_cast<uint32_t>(id)));
       }
     }
-    const GLenum status = gl.GetError();
-    if (status != GL_NO_ERROR)
+    if (!NoGLError(gl, "in the domain scan", error))
     {
-      char text[64];
-      std::snprintf(text, sizeof(text), "OpenGL error 0x%x", status);
-      error = text;
       if (query)
       {
         gl.DeleteQueries(1, &query);
@@ -471,13 +467,7 @@ bool FinalizeGPU(HeadlessGL& context,
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
   gl.DeleteBuffers(1, &siteBuffer);
   gl.DeleteProgram(program);
-  const GLenum status = gl.GetError();
-  if (status != GL_NO_ERROR)
-  {
-    error = "OpenGL error " + std::to_string(status) + " in the GPU finalize";
-    return false;
-  }
-  return true;
+  return NoGLError(gl, "in the GPU finalize", error);
 }
 
 } // namespace vtkdf

@@ -81,13 +81,7 @@ bool MedialPass(HeadlessGL& context,
   gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, voxels * 8, cosine);
   gl.DeleteBuffers(1, &cosines);
   gl.DeleteProgram(program);
-  const GLenum status = gl.GetError();
-  if (status != GL_NO_ERROR)
-  {
-    error = "OpenGL error " + std::to_string(status) + " in the medial axis pass";
-    return false;
-  }
-  return true;
+  return NoGLError(gl, "in the medial axis pass", error);
 }
 
 int64_t Mark(const double* cosine, uint8_t* medial, int64_t voxels)

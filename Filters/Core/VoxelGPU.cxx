@@ -394,13 +394,7 @@ bool VoxelizeToLanes(HeadlessGL& context,
   gl.Uniform1i(Uniform(gl, combine, "WantSolid"), solidZ != nullptr);
   gl.DispatchCompute((n[0] + 7) / 8, (n[1] + 7) / 8, (n[2] + 127) / 128);
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
-  const GLenum status = gl.GetError();
-  if (status != GL_NO_ERROR)
-  {
-    error = "OpenGL error " + std::to_string(status) + " while voxelizing";
-    return false;
-  }
-  return true;
+  return NoGLError(gl, "while voxelizing", error);
 }
 } // namespace
 
@@ -672,13 +666,7 @@ bool ChamferGPU(HeadlessGL& context,
     solidOut->Resize(nx, ny, nz);
     solidZ.Download(*solidOut);
   }
-  const GLenum status = gl.GetError();
-  if (status != GL_NO_ERROR)
-  {
-    error = "OpenGL error " + std::to_string(status) + " in the chamfer passes";
-    return false;
-  }
-  return true;
+  return NoGLError(gl, "in the chamfer passes", error);
 }
 
 } // namespace vtkdf
