@@ -1,6 +1,7 @@
 #include "MeshSites.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numeric>
 
@@ -98,6 +99,71 @@ struct FaceRecord
   int64_t Cell;
   Vec Normal;
 };
+
+/// The bits of x (21 of them) moved to every third position: one axis of a Morton code.
+uint64_t SpreadBits(uint64_t x)
+{
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffull;
+  x = (x | x << 16) & 0x1f0000ff0000ffull;
+  x = (x | x << 8) & 0x100f00f00f00f00full;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+
+/// A point's position on the Morton curve, and its input id.
+struct CurveKey
+{
+  uint64_t Code;
+  int64_t Id;
+};
+
+/// Sorts `items` by `before` (a strict total order: the result does not depend on the
+/// schedule): runs sorted in parallel, then merged pairwise, level by level.
+template<typename T, typename Before>
+void ParallelSort(std::vector<T>& items, const Before& before, const ParallelFor& parallelFor)
+{
+  const int64_t n = static_cast<int64_t>(items.size());
+  int64_t runs = 1;
+  while (parallelFor && runs < 16 && n / (2 * runs) >= 16384)
+  {
+    runs *= 2;
+  }
+  auto bound = [&](int64_t run) { return n * run / runs; };
+  Run(parallelFor,
+    runs,
+    1,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t r = begin; r < end; ++r)
+      {
+        std::sort(items.begin() + bound(r), items.begin() + bound(r + 1), before);
+      }
+    });
+  std::vector<T> merged(runs > 1 ? n : 0);
+  for (int64_t width = 1; width < runs; width *= 2)
+  {
+    Run(parallelFor,
+      runs / (2 * width),
+      1,
+      [&](int64_t begin, int64_t end)
+      {
+        for (int64_t pair = begin; pair < end; ++pair)
+        {
+          const int64_t lo = bound(2 * pair * width), mid = bound((2 * pair + 1) * width);
+          const int64_t hi = bound((2 * pair + 2) * width);
+          std::merge(items.begin() + lo,
+            items.begin() + mid,
+            items.begin() + mid,
+            items.begin() + hi,
+            merged.begin() + lo,
+            before);
+        }
+      });
+    items.swap(merged);
+  }
+}
 } // namespace
 
 bool MeshSites::Build(const MeshInput& in,
@@ -156,7 +222,6 @@ bool MeshSites::Build(const MeshInput& in,
   // Sort the points along a Morton curve (identical points stay adjacent, so they
   // merge below): sites, planes and every later pass then walk memory in space order,
   // which matters for large polygon soups whose input order is arbitrary.
-  std::vector<uint64_t> code(numPoints, 0);
   {
     double lo[3], hi[3];
     for (int a = 0; a < 3; ++a)
@@ -173,28 +238,42 @@ bool MeshSites::Build(const MeshInput& in,
     }
     const double side = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
     const double scale = side > 0 ? 2097151.0 / side : 0.0; // 21 bits per axis
-    for (int64_t id : order)
-    {
-      uint64_t c = 0;
-      for (int a = 0; a < 3; ++a)
+    std::vector<CurveKey> keys(order.size());
+    Run(parallelFor,
+      static_cast<int64_t>(order.size()),
+      4096,
+      [&](int64_t begin, int64_t end)
       {
-        const uint64_t q = static_cast<uint64_t>((P[3 * id + a] - lo[a]) * scale);
-        for (int bit = 0; bit < 21; ++bit)
+        for (int64_t i = begin; i < end; ++i)
         {
-          c |= ((q >> bit) & 1u) << (3 * bit + a);
+          const double* x = P + 3 * order[i];
+          uint64_t code = 0;
+          for (int a = 0; a < 3; ++a)
+          {
+            code |= SpreadBits(static_cast<uint64_t>((x[a] - lo[a]) * scale)) << a;
+          }
+          keys[i] = { code, order[i] };
         }
-      }
-      code[id] = c;
+      });
+    // The curve, then the coordinates (identical points end up adjacent), then the id.
+    ParallelSort(
+      keys,
+      [P](const CurveKey& x, const CurveKey& y)
+      {
+        if (x.Code != y.Code)
+        {
+          return x.Code < y.Code;
+        }
+        const double *px = P + 3 * x.Id, *py = P + 3 * y.Id;
+        return std::lexicographical_compare(px, px + 3, py, py + 3) ||
+          (std::equal(px, px + 3, py) && x.Id < y.Id);
+      },
+      parallelFor);
+    for (size_t i = 0; i < keys.size(); ++i)
+    {
+      order[i] = keys[i].Id;
     }
   }
-  std::sort(order.begin(),
-    order.end(),
-    [P, &code](int64_t a, int64_t b)
-    {
-      return code[a] != code[b]
-        ? code[a] < code[b]
-        : std::lexicographical_compare(P + 3 * a, P + 3 * a + 3, P + 3 * b, P + 3 * b + 3);
-    });
   std::vector<int64_t> canonical(numPoints, -1);
   std::vector<int64_t> merged; // canonical index -> input point id
   for (size_t k = 0; k < order.size(); ++k)
@@ -239,10 +318,7 @@ bool MeshSites::Build(const MeshInput& in,
   const double degenerate = 1e-10 * (diagonal > 0 ? diagonal : 1.0);
 
   // --- Faces (non-degenerate triangles) and every edge occurrence.
-  std::vector<FaceRecord> faces;
-  std::vector<int64_t> vertexCell(nv, INT64_MAX);
   const int64_t numTriangles = static_cast<int64_t>(in.Triangles.size() / 3);
-  faces.reserve(numTriangles);
   // Triangles in the order of their first corner on the curve (a counting sort).
   std::vector<int64_t> triangleOrder(numTriangles);
   {
@@ -265,80 +341,156 @@ bool MeshSites::Build(const MeshInput& in,
       triangleOrder[start[key(t)]++] = t;
     }
   }
-  // Edge records go straight into buckets by their smaller point (a counting sort);
-  // sorting each small bucket by (B, Face) then orders them all by (A, B, Face).
-  const int64_t numSegments = static_cast<int64_t>(in.Segments.size() / 2);
-  std::vector<int64_t> edgeStart(nv + 1, 0);
-  auto countEdge = [&](int64_t a, int64_t b) { edgeStart[std::min(a, b) + 1] += a != b; };
-  for (int64_t t = 0; t < numTriangles; ++t)
+  // The triangle at position i of that order: its merged corners, and whether it is a
+  // face (then with its unit normal).
+  auto corners = [&](int64_t i, int64_t c[3])
   {
-    const int64_t* ids = &in.Triangles[3 * t];
-    for (int k = 0; k < 3; ++k)
+    const int64_t* ids = &in.Triangles[3 * triangleOrder[i]];
+    c[0] = canonical[ids[0]], c[1] = canonical[ids[1]], c[2] = canonical[ids[2]];
+  };
+  auto faceNormal = [&](const int64_t c[3], Vec& normal)
+  {
+    if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
     {
-      countEdge(canonical[ids[k]], canonical[ids[(k + 1) % 3]]);
+      return false;
     }
-  }
+    const Vec e1 = Sub(X(c[1]), X(c[0])), e2 = Sub(X(c[2]), X(c[0]));
+    const Vec e3 = Sub(X(c[2]), X(c[1]));
+    const Vec n = Cross(e1, e2);
+    const double area2 = Norm(n);
+    const double longest = std::max(Norm(e1), std::max(Norm(e2), Norm(e3)));
+    if (!(area2 > degenerate * longest))
+    {
+      return false;
+    }
+    normal = Scale(n, 1.0 / area2);
+    return true;
+  };
+  // Two passes over fixed chunks of that order, so that faces are numbered as a serial
+  // loop would number them whatever the schedule: count faces and edge records, then
+  // write them. Edge records go straight into buckets by their smaller point (a
+  // counting sort); sorting each small bucket by (B, Face) then orders them all by
+  // (A, B, Face), whatever order the threads filled it in.
+  constexpr int64_t Chunk = 4096;
+  const int64_t numChunks = (numTriangles + Chunk - 1) / Chunk;
+  std::vector<int64_t> chunkFaces(numChunks + 1, 0);
+  std::vector<std::atomic<int64_t>> edgeCount(nv + 1); // value-initialized: zeros
+  std::vector<uint8_t> isFace(numTriangles);
+  Run(parallelFor,
+    numChunks,
+    1,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t chunk = begin; chunk < end; ++chunk)
+      {
+        int64_t count = 0;
+        for (int64_t i = chunk * Chunk; i < std::min(numTriangles, (chunk + 1) * Chunk); ++i)
+        {
+          int64_t c[3];
+          corners(i, c);
+          Vec normal;
+          isFace[i] = faceNormal(c, normal);
+          count += isFace[i];
+          for (int k = 0; k < 3; ++k)
+          {
+            const int64_t a = c[k], b = c[(k + 1) % 3];
+            if (a != b)
+            {
+              edgeCount[std::min(a, b) + 1].fetch_add(1, std::memory_order_relaxed);
+            }
+          }
+        }
+        chunkFaces[chunk + 1] = count;
+      }
+    });
+  const int64_t numSegments = static_cast<int64_t>(in.Segments.size() / 2);
   for (int64_t s = 0; s < numSegments; ++s)
   {
-    countEdge(canonical[in.Segments[2 * s]], canonical[in.Segments[2 * s + 1]]);
+    const int64_t a = canonical[in.Segments[2 * s]], b = canonical[in.Segments[2 * s + 1]];
+    edgeCount[std::min(a, b) + 1] += a != b;
   }
+  std::vector<int64_t> edgeStart(nv + 1, 0);
   for (int64_t v = 0; v < nv; ++v)
   {
-    edgeStart[v + 1] += edgeStart[v];
+    edgeStart[v + 1] = edgeStart[v] + edgeCount[v + 1].load(std::memory_order_relaxed);
   }
-  std::vector<EdgeRecord> edges(edgeStart[nv]);
-  std::vector<int64_t> edgeFill(edgeStart.begin(), edgeStart.end() - 1);
+  for (int64_t chunk = 0; chunk < numChunks; ++chunk)
+  {
+    chunkFaces[chunk + 1] += chunkFaces[chunk];
+  }
+  LargeVector<FaceRecord> faces(chunkFaces[numChunks]);
+  this->Statistics.DegenerateFaces = numTriangles - chunkFaces[numChunks];
+  LargeVector<EdgeRecord> edges(edgeStart[nv]);
+  std::vector<std::atomic<int64_t>>& edgeFill = edgeCount; // reused: the next free record
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    edgeFill[v].store(edgeStart[v], std::memory_order_relaxed);
+  }
+  // The smallest input cell using each point (ClosestCellId of its vertex site).
+  std::vector<std::atomic<int64_t>> vertexCell(nv);
+  for (auto& cell : vertexCell)
+  {
+    cell.store(INT64_MAX, std::memory_order_relaxed);
+  }
+  auto useVertex = [&](int64_t v, int64_t cell)
+  {
+    int64_t old = vertexCell[v].load(std::memory_order_relaxed);
+    while (cell < old && !vertexCell[v].compare_exchange_weak(old, cell, std::memory_order_relaxed))
+    {
+    }
+  };
   auto addEdge = [&](int64_t a, int64_t b, int64_t face, int64_t cell)
   {
     if (a != b)
     {
-      edges[edgeFill[std::min(a, b)]++] = { std::min(a, b), std::max(a, b), face, cell };
+      const int64_t at = edgeFill[std::min(a, b)].fetch_add(1, std::memory_order_relaxed);
+      edges[at] = { std::min(a, b), std::max(a, b), face, cell };
     }
   };
-  for (const int64_t t : triangleOrder)
-  {
-    const int64_t cell = in.TriangleCells[t];
-    int64_t c[3];
-    for (int k = 0; k < 3; ++k)
+  Run(parallelFor,
+    numChunks,
+    1,
+    [&](int64_t begin, int64_t end)
     {
-      c[k] = canonical[in.Triangles[3 * t + k]];
-      vertexCell[c[k]] = std::min(vertexCell[c[k]], cell);
-    }
-    int64_t face = -1;
-    if (c[0] != c[1] && c[1] != c[2] && c[2] != c[0])
-    {
-      const Vec e1 = Sub(X(c[1]), X(c[0])), e2 = Sub(X(c[2]), X(c[0]));
-      const Vec e3 = Sub(X(c[2]), X(c[1]));
-      const Vec n = Cross(e1, e2);
-      const double area2 = Norm(n);
-      const double longest = std::max(Norm(e1), std::max(Norm(e2), Norm(e3)));
-      if (area2 > degenerate * longest)
+      for (int64_t chunk = begin; chunk < end; ++chunk)
       {
-        face = static_cast<int64_t>(faces.size());
-        faces.push_back({ { c[0], c[1], c[2] }, cell, Scale(n, 1.0 / area2) });
+        int64_t face = chunkFaces[chunk];
+        for (int64_t i = chunk * Chunk; i < std::min(numTriangles, (chunk + 1) * Chunk); ++i)
+        {
+          const int64_t cell = in.TriangleCells[triangleOrder[i]];
+          int64_t c[3];
+          corners(i, c);
+          for (int k = 0; k < 3; ++k)
+          {
+            useVertex(c[k], cell);
+          }
+          int64_t id = -1;
+          if (isFace[i])
+          {
+            id = face++;
+            FaceRecord& f = faces[id];
+            faceNormal(c, f.Normal);
+            std::copy(c, c + 3, f.P);
+            f.Cell = cell;
+          }
+          for (int k = 0; k < 3; ++k)
+          {
+            addEdge(c[k], c[(k + 1) % 3], id, cell);
+          }
+        }
       }
-    }
-    if (face < 0)
-    {
-      ++this->Statistics.DegenerateFaces;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      addEdge(c[k], c[(k + 1) % 3], face, cell);
-    }
-  }
+    });
   for (int64_t s = 0; s < numSegments; ++s)
   {
     const int64_t a = canonical[in.Segments[2 * s]], b = canonical[in.Segments[2 * s + 1]];
     const int64_t cell = in.SegmentCells[s];
-    vertexCell[a] = std::min(vertexCell[a], cell);
-    vertexCell[b] = std::min(vertexCell[b], cell);
+    useVertex(a, cell);
+    useVertex(b, cell);
     addEdge(a, b, -1, cell);
   }
   for (size_t v = 0; v < in.Vertices.size(); ++v)
   {
-    const int64_t c = canonical[in.Vertices[v]];
-    vertexCell[c] = std::min(vertexCell[c], in.VertexCells[v]);
+    useVertex(canonical[in.Vertices[v]], in.VertexCells[v]);
   }
   Run(parallelFor,
     nv,
@@ -364,8 +516,8 @@ bool MeshSites::Build(const MeshInput& in,
   const double orientation = volume < 0 ? -1.0 : 1.0;
 
   // Vertex pseudonormals (angle weighted).
-  // The corner angles in parallel, then summed in face order (the same sums either way).
   const int64_t numFaces = static_cast<int64_t>(faces.size());
+  // The corner angles in parallel, then summed in face order (the same sums either way).
   std::vector<double> cornerAngle(3 * numFaces);
   Run(parallelFor,
     numFaces,
@@ -394,7 +546,9 @@ bool MeshSites::Build(const MeshInput& in,
     }
   }
 
-  // --- Edges: one per group of equal records, unless degenerate.
+  // --- Edges: one per group of equal records, unless degenerate. A group lies in one
+  // bucket (the records of one smaller point), so the buckets are counted, then written,
+  // in parallel; edges are numbered in bucket order, as a serial loop would.
   struct EdgeGroup
   {
     int64_t First, Last; // records [First, Last)
@@ -402,56 +556,131 @@ bool MeshSites::Build(const MeshInput& in,
     int Faces;           // incident non-degenerate faces
     Vec Tangent;         // unit, from edgeEnds[0] to edgeEnds[1]
   };
-  std::vector<EdgeGroup> edgeGroups;
-  std::vector<std::array<int64_t, 2>> edgeEnds;
-  edgeGroups.reserve(edges.size());
-  edgeEnds.reserve(edges.size());
-  std::vector<int64_t> vertexEdgeOffsets(nv + 1, 0);
-  for (size_t e0 = 0; e0 < edges.size();)
+  // Calls visit(first, last, b) for every group of bucket a (records [first, last), edge
+  // from a to b) that is not degenerate; returns how many were.
+  auto forEachGroup = [&](int64_t a, const auto& visit) -> int64_t
   {
-    size_t e1 = e0;
-    EdgeGroup group{ static_cast<int64_t>(e0), 0, INT64_MAX, 0, Vec{ 0, 0, 0 } };
-    while (e1 < edges.size() && edges[e1].A == edges[e0].A && edges[e1].B == edges[e0].B)
+    int64_t degenerateGroups = 0;
+    for (int64_t e0 = edgeStart[a]; e0 < edgeStart[a + 1];)
     {
-      group.Cell = std::min(group.Cell, edges[e1].Cell);
-      group.Faces += edges[e1].Face >= 0;
-      ++e1;
+      int64_t e1 = e0 + 1;
+      while (e1 < edgeStart[a + 1] && edges[e1].B == edges[e0].B)
+      {
+        ++e1;
+      }
+      if (Norm(Sub(X(edges[e0].B), X(a))) <= degenerate)
+      {
+        ++degenerateGroups;
+      }
+      else
+      {
+        visit(e0, e1, edges[e0].B);
+      }
+      e0 = e1;
     }
-    group.Last = static_cast<int64_t>(e1);
-    const int64_t a = edges[e0].A, b = edges[e0].B;
-    e0 = e1;
-    const Vec t = Sub(X(b), X(a));
-    const double length = Norm(t);
-    if (length <= degenerate)
+    return degenerateGroups;
+  };
+  std::vector<int64_t> groupStart(nv + 1, 0);
+  std::atomic<int64_t> degenerateEdges{ 0 };
+  Run(parallelFor,
+    nv,
+    4096,
+    [&](int64_t begin, int64_t end)
     {
-      ++this->Statistics.DegenerateEdges;
-      continue;
-    }
-    group.Tangent = Scale(t, 1.0 / length);
-    edgeGroups.push_back(group);
-    edgeEnds.push_back({ a, b });
-    ++vertexEdgeOffsets[a + 1];
-    ++vertexEdgeOffsets[b + 1];
+      int64_t local = 0;
+      for (int64_t a = begin; a < end; ++a)
+      {
+        int64_t count = 0;
+        local += forEachGroup(a, [&](int64_t, int64_t, int64_t) { ++count; });
+        groupStart[a + 1] = count;
+      }
+      degenerateEdges += local;
+    });
+  this->Statistics.DegenerateEdges = degenerateEdges.load();
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    groupStart[v + 1] += groupStart[v];
   }
-  const int64_t numEdges = static_cast<int64_t>(edgeGroups.size());
+  const int64_t numEdges = groupStart[nv];
+  LargeVector<EdgeGroup> edgeGroups(numEdges);
+  LargeVector<std::array<int64_t, 2>> edgeEnds(numEdges);
+  std::vector<std::atomic<int64_t>> vertexEdgeCount(nv + 1); // value-initialized: zeros
+  Run(parallelFor,
+    nv,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t a = begin; a < end; ++a)
+      {
+        int64_t e = groupStart[a];
+        forEachGroup(a,
+          [&](int64_t first, int64_t last, int64_t b)
+          {
+            EdgeGroup& group = edgeGroups[e];
+            group.First = first;
+            group.Last = last;
+            group.Cell = INT64_MAX;
+            group.Faces = 0;
+            for (int64_t r = first; r < last; ++r)
+            {
+              group.Cell = std::min(group.Cell, edges[r].Cell);
+              group.Faces += edges[r].Face >= 0;
+            }
+            const Vec t = Sub(X(b), X(a));
+            group.Tangent = Scale(t, 1.0 / Norm(t));
+            edgeEnds[e] = { a, b };
+            vertexEdgeCount[a + 1].fetch_add(1, std::memory_order_relaxed);
+            vertexEdgeCount[b + 1].fetch_add(1, std::memory_order_relaxed);
+            ++e;
+          });
+      }
+    });
   // The faces of an edge (records with a face come last in a group: sorted by Face).
   auto edgeFace = [&](int64_t e, int which) -> int64_t
   { return edges[edgeGroups[e].Last - edgeGroups[e].Faces + which].Face; };
 
-  // The edges of every vertex, contiguous per vertex: (edge, direction away from it).
+  // The edges of every vertex, contiguous per vertex, in edge order: (edge, direction
+  // away from it). Filled in parallel, then each vertex's few sorted.
+  std::vector<int64_t> vertexEdgeOffsets(nv + 1, 0);
   for (int64_t v = 0; v < nv; ++v)
   {
-    vertexEdgeOffsets[v + 1] += vertexEdgeOffsets[v];
+    vertexEdgeOffsets[v + 1] =
+      vertexEdgeOffsets[v] + vertexEdgeCount[v + 1].load(std::memory_order_relaxed);
   }
-  std::vector<VertexEdge> vertexEdges(vertexEdgeOffsets[nv]);
+  std::vector<std::atomic<int64_t>>& vertexEdgeFill = vertexEdgeCount; // the next free entry
+  for (int64_t v = 0; v < nv; ++v)
   {
-    std::vector<int64_t> fill(vertexEdgeOffsets.begin(), vertexEdgeOffsets.end() - 1);
-    for (int64_t e = 0; e < numEdges; ++e)
-    {
-      vertexEdges[fill[edgeEnds[e][0]]++] = { e, 1.0 };
-      vertexEdges[fill[edgeEnds[e][1]]++] = { e, -1.0 };
-    }
+    vertexEdgeFill[v].store(vertexEdgeOffsets[v], std::memory_order_relaxed);
   }
+  LargeVector<VertexEdge> vertexEdges(vertexEdgeOffsets[nv]);
+  Run(parallelFor,
+    numEdges,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t e = begin; e < end; ++e)
+      {
+        for (int side = 0; side < 2; ++side)
+        {
+          const int64_t at =
+            vertexEdgeFill[edgeEnds[e][side]].fetch_add(1, std::memory_order_relaxed);
+          vertexEdges[at] = { e, side == 0 ? 1.0 : -1.0 };
+        }
+      }
+    });
+  Run(parallelFor,
+    nv,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t v = begin; v < end; ++v)
+      {
+        std::sort(vertexEdges.begin() + vertexEdgeOffsets[v],
+          vertexEdges.begin() + vertexEdgeOffsets[v + 1],
+          [](const VertexEdge& x, const VertexEdge& y) { return x.Edge < y.Edge; });
+      }
+    });
+
   // The unit direction of an edge away from the vertex it is seen from.
   auto away = [&](const VertexEdge& eu) { return Scale(edgeGroups[eu.Edge].Tangent, eu.Sign); };
   auto incidentEdges = [&](int64_t v)
@@ -780,7 +1009,8 @@ bool MeshSites::Build(const MeshInput& in,
     {
       for (int64_t v = begin; v < end; ++v)
       {
-        Site& s = initSite(numFaces + numEdges + v, VertexSite, vertexCell[v], X(v));
+        Site& s = initSite(
+          numFaces + numEdges + v, VertexSite, vertexCell[v].load(std::memory_order_relaxed), X(v));
         s.Required = 0;
         for (int a = 0; a < 3; ++a)
         {
