@@ -112,6 +112,25 @@ uint64_t SpreadBits(uint64_t x)
   return x;
 }
 
+/// Sorts each bucket [offsets[b], offsets[b + 1]) of `items` by `before`, in parallel.
+template<typename Items, typename Before>
+void SortBuckets(Items& items,
+  const std::vector<int64_t>& offsets,
+  const Before& before,
+  const ParallelFor& parallelFor)
+{
+  Run(parallelFor,
+    static_cast<int64_t>(offsets.size()) - 1,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t b = begin; b < end; ++b)
+      {
+        std::sort(items.begin() + offsets[b], items.begin() + offsets[b + 1], before);
+      }
+    });
+}
+
 /// A point's position on the Morton curve, and its input id.
 struct CurveKey
 {
@@ -492,19 +511,12 @@ bool MeshSites::Build(const MeshInput& in,
   {
     useVertex(canonical[in.Vertices[v]], in.VertexCells[v]);
   }
-  Run(parallelFor,
-    nv,
-    4096,
-    [&](int64_t begin, int64_t end)
-    {
-      for (int64_t v = begin; v < end; ++v)
-      {
-        std::sort(edges.begin() + edgeStart[v],
-          edges.begin() + edgeStart[v + 1],
-          [](const EdgeRecord& x, const EdgeRecord& y)
-          { return x.B != y.B ? x.B < y.B : x.Face < y.Face; });
-      }
-    });
+  SortBuckets(
+    edges,
+    edgeStart,
+    [](const EdgeRecord& x, const EdgeRecord& y)
+    { return x.B != y.B ? x.B < y.B : x.Face < y.Face; },
+    parallelFor);
 
   // Orientation: make the sign's pseudonormals point outward for closed meshes.
   double volume = 0;
@@ -668,18 +680,11 @@ bool MeshSites::Build(const MeshInput& in,
         }
       }
     });
-  Run(parallelFor,
-    nv,
-    4096,
-    [&](int64_t begin, int64_t end)
-    {
-      for (int64_t v = begin; v < end; ++v)
-      {
-        std::sort(vertexEdges.begin() + vertexEdgeOffsets[v],
-          vertexEdges.begin() + vertexEdgeOffsets[v + 1],
-          [](const VertexEdge& x, const VertexEdge& y) { return x.Edge < y.Edge; });
-      }
-    });
+  SortBuckets(
+    vertexEdges,
+    vertexEdgeOffsets,
+    [](const VertexEdge& x, const VertexEdge& y) { return x.Edge < y.Edge; },
+    parallelFor);
 
   // The unit direction of an edge away from the vertex it is seen from.
   auto away = [&](const VertexEdge& eu) { return Scale(edgeGroups[eu.Edge].Tangent, eu.Sign); };
