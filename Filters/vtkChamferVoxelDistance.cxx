@@ -165,20 +165,24 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   else
   {
     haveSolid = this->Signed;
-    conversion.Run(mesh);
+    if (!conversion.Run(mesh, grid, error))
+    {
+      vtkErrorMacro("Invalid input: " << error << ".");
+      return 0;
+    }
     warning = vtkdf::TrianglesOnly(conversion);
     if (!gl)
     {
       vtkdf::VoxelizeStatistics statistics;
       if (!vtkdf::VoxelizeCPU(conversion.Mesh,
-            grid,
+            conversion.Grid,
             &boundary,
             haveSolid ? &solid : nullptr,
             vtkdf::SMPFor,
             statistics,
             error))
       {
-        vtkErrorMacro("Invalid input mesh: " << error << ".");
+        vtkErrorMacro("Invalid input: " << error << ".");
         return 0;
       }
       const std::string far = vtkdf::FarTriangles(statistics);
@@ -197,7 +201,7 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   // Propagation.
   vtkNew<vtkIntArray> distance;
   distance->SetName("ChamferDistance");
-  distance->SetNumberOfTuples(grid.Whole.Count());
+  vtkdf::AllocateTuples(distance, grid.Whole.Count());
   const int32_t unreached =
     this->MaximumLayers > 0 ? this->MaximumLayers + 1 : std::numeric_limits<int32_t>::max();
   const vtkdf::ChamferMetric metric = this->Metric == MANHATTAN
@@ -217,6 +221,7 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     else
     {
       in.Mesh = &conversion.Mesh;
+      in.Grid = conversion.Grid; // the voxelization runs in the local frame
     }
     vtkdf::VoxelizeStatistics statistics;
     const bool masksBack = this->OutputMasks && !image;
@@ -285,7 +290,7 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
       }
       vtkNew<vtkUnsignedCharArray> mask;
       mask->SetName(m == 0 ? "Boundary" : "Solid");
-      mask->SetNumberOfTuples(grid.Whole.Count());
+      vtkdf::AllocateTuples(mask, grid.Whole.Count());
       vtkdf::BitsToMask(m == 0 ? boundary : solid, grid, grid.Whole, mask->GetPointer(0));
       output->GetPointData()->AddArray(mask);
     }
@@ -297,11 +302,28 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   return 1;
 }
 
+bool vtkChamferVoxelDistance::CheckProperties()
+{
+  if (!this->Superclass::CheckProperties() ||
+    !this->CheckEnum("Metric", this->Metric, { "Manhattan", "Chessboard18", "Chessboard26" }))
+  {
+    return false;
+  }
+  if (this->MaximumLayers < 0 || this->MaximumLayers > VTK_INT_MAX - 1)
+  {
+    vtkErrorMacro("MaximumLayers must lie in [0, " << VTK_INT_MAX - 1 << "] (0: no limit); it is "
+                                                   << this->MaximumLayers << ".");
+    return false;
+  }
+  return true;
+}
+
 void vtkChamferVoxelDistance::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  const char* metrics[] = { "Manhattan", "Chessboard18", "Chessboard26" };
-  os << indent << "Metric: " << metrics[this->Metric] << "\n";
+  os << indent
+     << "Metric: " << EnumName(this->Metric, { "Manhattan", "Chessboard18", "Chessboard26" })
+     << "\n";
   os << indent << "MaximumLayers: " << this->MaximumLayers << "\n";
   os << indent << "Signed: " << this->Signed << "\n";
   os << indent << "OutputMasks: " << this->OutputMasks << "\n";

@@ -42,15 +42,16 @@ public:
     CHESSBOARD18 = 1,
     CHESSBOARD26 = 2
   };
-  vtkSetClampMacro(Metric, int, MANHATTAN, CHESSBOARD26);
+  vtkSetMacro(Metric, int);
   vtkGetMacro(Metric, int);
   void SetMetricToManhattan() { this->SetMetric(MANHATTAN); }
   void SetMetricToChessboard18() { this->SetMetric(CHESSBOARD18); }
   void SetMetricToChessboard26() { this->SetMetric(CHESSBOARD26); }
 
   ///@{
-  /// Stop after this many layers (0, the default: until nothing changes).
-  vtkSetClampMacro(MaximumLayers, int, 0, VTK_INT_MAX - 1);
+  /// Stop after this many layers (0, the default: until nothing changes); at most
+  /// VTK_INT_MAX - 1, so that unreached voxels can hold MaximumLayers + 1.
+  vtkSetMacro(MaximumLayers, int);
   vtkGetMacro(MaximumLayers, int);
   ///@}
 
@@ -76,6 +77,7 @@ protected:
   ~vtkChamferVoxelDistance() override = default;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool CheckProperties() override;
 
   int Metric = CHESSBOARD18;
   int MaximumLayers = 0;

@@ -3,6 +3,7 @@
 #include "vtkAlgorithmOutput.h"
 #include "vtkCellArray.h"
 #include "vtkDataSet.h"
+#include "vtkErrorCode.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -12,12 +13,19 @@
 
 #include "HeadlessGL.h"
 #include "SampleGrid.h"
+#include "vtkDistanceFieldMesh.h"
 
 #include <vtksys/SystemInformation.hxx>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
+#include <fstream>
+#include <new>
 #include <sstream>
+#include <stdexcept>
 
 vtkDistanceFieldAlgorithm::vtkDistanceFieldAlgorithm()
 {
@@ -52,82 +60,185 @@ void vtkDistanceFieldAlgorithm::ComputeDefaultGrid(const double bounds[6],
   }
 }
 
-bool vtkDistanceFieldAlgorithm::CellBounds(vtkDataSet* input, double bounds[6])
+bool vtkDistanceFieldAlgorithm::CellBounds(vtkDataSet* input, double bounds[6], std::string& error)
 {
   vtkPolyData* mesh = vtkPolyData::SafeDownCast(input);
-  if (!mesh || !mesh->GetPoints())
+  if (!mesh)
   {
+    error = "the input is not a vtkPolyData";
     return false;
   }
-  bool any = false;
-  for (int a = 0; a < 3; ++a)
+  return vtkdf::UsedPointBounds(mesh, bounds, error);
+}
+
+vtkTypeBool vtkDistanceFieldAlgorithm::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
   {
-    bounds[2 * a] = VTK_DOUBLE_MAX;
-    bounds[2 * a + 1] = -VTK_DOUBLE_MAX;
+    this->SetErrorCode(vtkErrorCode::NoError); // a new run
   }
-  for (vtkCellArray* cells :
-    { mesh->GetVerts(), mesh->GetLines(), mesh->GetPolys(), mesh->GetStrips() })
+  vtkTypeBool result = 0;
+  try
   {
-    if (!cells)
+    result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory: an allocation failed (the grid or the mesh is too large for "
+                  "the memory this process can get; MemoryLimit is checked against estimates).");
+  }
+  catch (const std::length_error& e)
+  {
+    vtkErrorMacro(
+      "A buffer would exceed its largest size (" << e.what() << "): the grid is too large.");
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("Failed: " << e.what());
+  }
+  if (!result)
+  {
+    if (this->GetErrorCode() == vtkErrorCode::NoError)
     {
-      continue;
+      this->SetErrorCode(vtkErrorCode::UserError);
     }
-    vtkIdType count;
-    const vtkIdType* ids;
-    for (cells->InitTraversal(); cells->GetNextCell(count, ids);)
+    // No output of a failed run may pass for a result.
+    for (int port = 0; port < this->GetNumberOfOutputPorts(); ++port)
     {
-      for (vtkIdType i = 0; i < count; ++i)
+      if (vtkDataObject* output = this->GetOutputDataObject(port))
       {
-        double x[3];
-        mesh->GetPoint(ids[i], x);
-        for (int a = 0; a < 3; ++a)
-        {
-          bounds[2 * a] = std::min(bounds[2 * a], x[a]);
-          bounds[2 * a + 1] = std::max(bounds[2 * a + 1], x[a]);
-        }
-        any = true;
+        output->Initialize();
       }
     }
   }
-  return any;
+  return result;
+}
+
+bool vtkDistanceFieldAlgorithm::CheckEnum(const char* name,
+  int value,
+  std::initializer_list<const char*> names)
+{
+  if (value >= 0 && value < static_cast<int>(names.size()))
+  {
+    return true;
+  }
+  std::ostringstream text;
+  int index = 0;
+  for (const char* n : names)
+  {
+    text << (index == 0 ? "" : (index + 1 == static_cast<int>(names.size()) ? " or " : ", "))
+         << index << " (" << n << ")";
+    ++index;
+  }
+  vtkErrorMacro(<< name << " must be " << text.str() << "; it is " << value << ".");
+  return false;
+}
+
+const char* vtkDistanceFieldAlgorithm::EnumName(int value, std::initializer_list<const char*> names)
+{
+  return value >= 0 && value < static_cast<int>(names.size()) ? names.begin()[value] : "(invalid)";
+}
+
+bool vtkDistanceFieldAlgorithm::CheckProperties()
+{
+  if (!this->CheckEnum("Backend", this->Backend, { "Auto", "GPU", "CPU" }))
+  {
+    return false;
+  }
+  if (!(this->MemoryLimit >= 0 && std::isfinite(this->MemoryLimit)))
+  {
+    vtkErrorMacro("MemoryLimit must be a finite number of bytes >= 0 (0: the default); it is "
+      << this->MemoryLimit << ".");
+    return false;
+  }
+  if (this->ExplicitGrid)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (!std::isfinite(this->GridOrigin[a]))
+      {
+        vtkErrorMacro("GridOrigin must be finite; it is ("
+          << this->GridOrigin[0] << ", " << this->GridOrigin[1] << ", " << this->GridOrigin[2]
+          << ").");
+        return false;
+      }
+      if (!(this->GridSpacing[a] > 0 && std::isfinite(this->GridSpacing[a])))
+      {
+        vtkErrorMacro("GridSpacing must be finite and positive; it is ("
+          << this->GridSpacing[0] << ", " << this->GridSpacing[1] << ", " << this->GridSpacing[2]
+          << ").");
+        return false;
+      }
+      if (this->GridDimensions[a] < 1)
+      {
+        vtkErrorMacro("GridDimensions must be >= 1; they are (" << this->GridDimensions[0] << ", "
+                                                                << this->GridDimensions[1] << ", "
+                                                                << this->GridDimensions[2] << ").");
+        return false;
+      }
+    }
+  }
+  else
+  {
+    if (this->Resolution < 2)
+    {
+      vtkErrorMacro("Resolution must be at least 2 samples; it is " << this->Resolution << ".");
+      return false;
+    }
+    if (!(this->Padding >= 0 && std::isfinite(this->Padding)))
+    {
+      vtkErrorMacro("Padding must be finite and >= 0; it is " << this->Padding << ".");
+      return false;
+    }
+  }
+  return true;
 }
 
 int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  if (!this->CheckProperties())
+  {
+    return 0;
+  }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  int whole[6] = { 0, -1, 0, -1, 0, -1 };
-  double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
+  vtkdf::SampleGrid grid;
+  const char* what = "The grid";
   if (this->AcceptsImageInput && inInfo &&
     vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
   {
     // An image input: the output has its grid.
+    int whole[6] = { 0, -1, 0, -1, 0, -1 };
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    for (int a = 0; a < 3; ++a)
+    {
+      grid.Whole.Lo[a] = whole[2 * a];
+      grid.Whole.Hi[a] = whole[2 * a + 1];
+    }
     if (inInfo->Has(vtkDataObject::ORIGIN()))
     {
-      inInfo->Get(vtkDataObject::ORIGIN(), origin);
+      inInfo->Get(vtkDataObject::ORIGIN(), grid.Origin.data());
     }
     if (inInfo->Has(vtkDataObject::SPACING()))
     {
-      inInfo->Get(vtkDataObject::SPACING(), spacing);
+      inInfo->Get(vtkDataObject::SPACING(), grid.Spacing.data());
     }
+    what = "The input image's grid";
   }
   else if (this->ExplicitGrid)
   {
     for (int a = 0; a < 3; ++a)
     {
-      origin[a] = this->GridOrigin[a];
-      spacing[a] = this->GridSpacing[a];
-      whole[2 * a + 1] = this->GridDimensions[a] - 1;
-      if (!(spacing[a] > 0) || this->GridDimensions[a] < 1)
-      {
-        vtkErrorMacro("Explicit grid needs positive spacing and dimensions, got spacing "
-          << spacing[a] << " and dimension " << this->GridDimensions[a] << " on axis " << a);
-        return 0;
-      }
+      grid.Origin[a] = this->GridOrigin[a];
+      grid.Spacing[a] = this->GridSpacing[a];
+      grid.Whole.Lo[a] = 0;
+      grid.Whole.Hi[a] = this->GridDimensions[a] - 1;
     }
+    what = "The explicit grid (GridOrigin, GridSpacing, GridDimensions)";
   }
   else
   {
@@ -140,20 +251,35 @@ int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
     }
     vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
     double bounds[6];
-    int dims[3];
-    if (input && CellBounds(input, bounds) &&
-      std::isfinite(bounds[0] + bounds[1] + bounds[2] + bounds[3] + bounds[4] + bounds[5]))
+    std::string error;
+    const bool empty = !input || input->GetNumberOfCells() == 0 || input->GetNumberOfPoints() == 0;
+    if (!empty && !CellBounds(input, bounds, error))
     {
-      ComputeDefaultGrid(bounds, this->Resolution, this->Padding, origin, spacing, dims);
-      for (int a = 0; a < 3; ++a)
-      {
-        whole[2 * a + 1] = dims[a] - 1;
-      }
+      vtkErrorMacro("Invalid input mesh: " << error << ".");
+      return 0;
     }
+    if (!empty)
+    {
+      grid = vtkdf::SampleGrid::FromBounds(bounds, this->Resolution, this->Padding);
+      what = "The default grid (from the mesh bounds, Resolution and Padding)";
+    }
+    // An empty mesh keeps the empty extent: RequestData warns and outputs nothing.
+  }
+  std::string error;
+  if (!grid.Whole.Empty() && !vtkdf::CheckGrid(grid, nullptr, error))
+  {
+    vtkErrorMacro(<< what << " is unusable: " << error << ".");
+    return 0;
+  }
+  int whole[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    whole[2 * a] = grid.Whole.Lo[a];
+    whole[2 * a + 1] = grid.Whole.Hi[a];
   }
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), grid.Origin.data(), 3);
+  outInfo->Set(vtkDataObject::SPACING(), grid.Spacing.data(), 3);
   if (this->ProducesSubExtents)
   {
     outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
@@ -238,12 +364,15 @@ bool vtkDistanceFieldAlgorithm::CheckMemory(double bytes, const vtkdf::IndexBox&
     vtkErrorMacro("The grid has " << samples << " samples, more than vtkIdType can index.");
     return false;
   }
-  const double limit = this->EffectiveMemoryLimit();
+  std::string source;
+  const double limit = this->EffectiveMemoryLimit(&source);
   if (bytes > limit)
   {
     vtkErrorMacro("The grid (" << grid.Size(0) << " x " << grid.Size(1) << " x " << grid.Size(2)
-                               << ") needs " << bytes / 1048576.0 << " MiB, above MemoryLimit ("
-                               << limit / 1048576.0 << " MiB).");
+                               << ") needs " << bytes / 1048576.0 << " MiB, above "
+                               << (source == "MemoryLimit" ? "MemoryLimit" : "the memory limit")
+                               << " (" << limit / 1048576.0 << " MiB"
+                               << (source == "MemoryLimit" ? "" : ": " + source) << ").");
     return false;
   }
   return true;
@@ -303,22 +432,127 @@ bool vtkDistanceFieldAlgorithm::GetImageGrid(vtkImageData* image, vtkdf::SampleG
   return !grid.Whole.Empty();
 }
 
-double vtkDistanceFieldAlgorithm::EffectiveMemoryLimit() const
+namespace
 {
-  if (this->MemoryLimit > 0)
+/// A number of bytes from a cgroup file ("max" or missing: -1).
+double ReadBytes(const std::string& path)
+{
+  std::ifstream file(path);
+  std::string word;
+  if (!(file >> word) || word == "max")
   {
-    return this->MemoryLimit;
+    return -1;
   }
+  char* end = nullptr;
+  const double value = std::strtod(word.c_str(), &end);
+  return end && *end == '\0' && value >= 0 ? value : -1;
+}
+
+/// What the process's cgroup still allows (limit less usage; the tightest along the
+/// cgroup v2 hierarchy, or cgroup v1's memory controller), or -1 when unlimited.
+double CgroupAvailable()
+{
+  std::ifstream self("/proc/self/cgroup");
+  std::string line;
+  double available = -1;
+  while (std::getline(self, line))
+  {
+    const size_t colon1 = line.find(':'), colon2 = line.find(':', colon1 + 1);
+    if (colon1 == std::string::npos || colon2 == std::string::npos)
+    {
+      continue;
+    }
+    const std::string controllers = line.substr(colon1 + 1, colon2 - colon1 - 1);
+    std::string path = line.substr(colon2 + 1);
+    const bool v2 = line.compare(0, colon1, "0") == 0 && controllers.empty();
+    const bool v1 = controllers.find("memory") != std::string::npos;
+    if (!v2 && !v1)
+    {
+      continue;
+    }
+    const std::string root = v2 ? "/sys/fs/cgroup" : "/sys/fs/cgroup/memory";
+    const char* limitFile = v2 ? "/memory.max" : "/memory.limit_in_bytes";
+    const char* usageFile = v2 ? "/memory.current" : "/memory.usage_in_bytes";
+    for (;;)
+    {
+      const std::string dir = root + (path == "/" ? "" : path);
+      const double limit = ReadBytes(dir + limitFile);
+      // cgroup v1 writes "no limit" as a huge number.
+      if (limit >= 0 && limit < 1e18)
+      {
+        const double usage = std::max(0.0, ReadBytes(dir + usageFile));
+        const double left = std::max(0.0, limit - usage);
+        available = available < 0 ? left : std::min(available, left);
+      }
+      if (path.empty() || path == "/")
+      {
+        break;
+      }
+      const size_t slash = path.find_last_of('/');
+      path = slash == 0 || slash == std::string::npos ? "/" : path.substr(0, slash);
+    }
+  }
+  return available;
+}
+
+/// What RLIMIT_AS still allows (limit less the address space in use), or -1.
+double AddressSpaceAvailable()
+{
+  struct rlimit limit;
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY)
+  {
+    return -1;
+  }
+  std::ifstream statm("/proc/self/statm");
+  double pages = 0;
+  statm >> pages;
+  const double used = pages * static_cast<double>(sysconf(_SC_PAGESIZE));
+  return std::max(0.0, static_cast<double>(limit.rlim_cur) - used);
+}
+} // namespace
+
+double vtkDistanceFieldAlgorithm::EffectiveMemoryLimit(std::string* source) const
+{
   vtksys::SystemInformation info;
   info.RunMemoryCheck();
-  return 0.5 * static_cast<double>(info.GetTotalPhysicalMemory()) * 1024.0 * 1024.0;
+  const double physical = static_cast<double>(info.GetTotalPhysicalMemory()) * 1024.0 * 1024.0;
+  double limit = this->MemoryLimit;
+  std::string from = "MemoryLimit";
+  if (!(limit > 0))
+  {
+    limit = 0.5 * physical;
+    from = "half the physical memory";
+  }
+  else if (limit > physical)
+  {
+    limit = physical; // more would be paged out, or end in the OOM killer
+    from = "the physical memory";
+  }
+  // Whatever was asked, never more than the process can still get. What the estimate
+  // leaves out (the mesh, the pipeline's other data) takes some of that: keep 3/4.
+  const double addressSpace = AddressSpaceAvailable();
+  if (addressSpace >= 0 && 0.75 * addressSpace < limit)
+  {
+    limit = 0.75 * addressSpace;
+    from = "3/4 of the address space RLIMIT_AS leaves";
+  }
+  const double cgroup = CgroupAvailable();
+  if (cgroup >= 0 && 0.75 * cgroup < limit)
+  {
+    limit = 0.75 * cgroup;
+    from = "3/4 of the memory the cgroup leaves";
+  }
+  if (source)
+  {
+    *source = from;
+  }
+  return limit;
 }
 
 void vtkDistanceFieldAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  const char* backends[] = { "Auto", "GPU", "CPU" };
-  os << indent << "Backend: " << backends[this->Backend] << "\n";
+  os << indent << "Backend: " << EnumName(this->Backend, { "Auto", "GPU", "CPU" }) << "\n";
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "Padding: " << this->Padding << "\n";
   os << indent << "ExplicitGrid: " << (this->ExplicitGrid ? "On" : "Off") << "\n";

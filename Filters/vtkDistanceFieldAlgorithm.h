@@ -8,6 +8,11 @@
  * allocating, and what the last run used (backend, GL renderer, time).
  *
  * The output honours UPDATE_EXTENT: a requested sub-extent is computed alone.
+ *
+ * Properties are not clamped when set: an invalid value (a NaN origin, a Resolution
+ * below 2, an unknown enum) is reported by name when the filter runs. Every failure,
+ * an allocation that fails included, is a vtkErrorMacro (so an ErrorEvent), a
+ * non-zero GetErrorCode() and empty outputs; nothing is thrown to the caller.
  */
 #ifndef vtkDistanceFieldAlgorithm_h
 #define vtkDistanceFieldAlgorithm_h
@@ -15,7 +20,8 @@
 #include "vtkDistanceFieldsModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
-#include <string> // For the renderer string
+#include <initializer_list> // For enum names
+#include <string>           // For the renderer string
 
 class vtkImageData;
 #ifndef __VTK_WRAP__
@@ -39,7 +45,7 @@ public:
     BACKEND_GPU = 1,  ///< the GPU, even a software rasterizer; an error when there is none
     BACKEND_CPU = 2   ///< vtkSMPTools on the CPU
   };
-  vtkSetClampMacro(Backend, int, BACKEND_AUTO, BACKEND_CPU);
+  vtkSetMacro(Backend, int);
   vtkGetMacro(Backend, int);
   void SetBackendToAuto() { this->SetBackend(BACKEND_AUTO); }
   void SetBackendToGPU() { this->SetBackend(BACKEND_GPU); }
@@ -47,15 +53,17 @@ public:
 
   ///@{
   /// Default grid: Resolution samples along the longest side of the input's bounds
-  /// padded by Padding times that side on every side (defaults 64 and 0.1).
-  vtkSetClampMacro(Resolution, int, 2, VTK_INT_MAX);
+  /// padded by Padding times that side on every side (defaults 64 and 0.1). Resolution
+  /// must be at least 2 and Padding finite and >= 0.
+  vtkSetMacro(Resolution, int);
   vtkGetMacro(Resolution, int);
-  vtkSetClampMacro(Padding, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Padding, double);
   vtkGetMacro(Padding, double);
   ///@}
 
   ///@{
-  /// Explicit grid, used when ExplicitGrid is on (spacing may differ per axis).
+  /// Explicit grid, used when ExplicitGrid is on (spacing may differ per axis): a finite
+  /// origin, finite positive spacing, dimensions >= 1.
   vtkSetMacro(ExplicitGrid, bool);
   vtkGetMacro(ExplicitGrid, bool);
   vtkBooleanMacro(ExplicitGrid, bool);
@@ -69,8 +77,11 @@ public:
 
   ///@{
   /// Largest number of bytes the output arrays and work buffers may take; 0 (the
-  /// default) means half of the physical memory. Larger grids fail before allocating.
-  vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);
+  /// default) means half of the physical memory. Whatever it says, the limit is never
+  /// above what the process can still get: its address-space limit (RLIMIT_AS, as set by
+  /// `ulimit -v`) and its cgroup's memory limit, less what is in use. Larger grids fail
+  /// before allocating.
+  vtkSetMacro(MemoryLimit, double);
   vtkGetMacro(MemoryLimit, double);
   ///@}
 
@@ -92,17 +103,34 @@ public:
     double spacing[3],
     int dimensions[3]);
 
+  /// Runs the request; a failure (a request returning 0, or an exception such as
+  /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
 protected:
   vtkDistanceFieldAlgorithm();
   ~vtkDistanceFieldAlgorithm() override = default;
+
+  /// Checks the properties before a run; reports the first invalid one by name (with
+  /// vtkErrorMacro) and returns false. Subclasses add their own and call this one.
+  virtual bool CheckProperties();
+
+  /// Whether the enum property `name` holds one of `names` (0, 1, ...); if not, reports
+  /// the values it may take.
+  bool CheckEnum(const char* name, int value, std::initializer_list<const char*> names);
+  /// names[value], or "(invalid)" (for PrintSelf, which may run before the check).
+  static const char* EnumName(int value, std::initializer_list<const char*> names);
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  /// Bounds of the points that the cells use (GRID.md ignores unused points); false
-  /// when no cell uses any point.
-  static bool CellBounds(vtkDataSet* input, double bounds[6]);
+  /// Bounds of the points that the cells use (GRID.md ignores unused points). False,
+  /// with `error` saying why, when a cell refers to a point that does not exist, a used
+  /// point has a NaN or infinite coordinate, or no cell uses any point.
+  static bool CellBounds(vtkDataSet* input, double bounds[6], std::string& error);
 
 #ifndef __VTK_WRAP__
   /// The GL context to run on (null: the CPU), from Backend; false, with the error
@@ -126,8 +154,9 @@ protected:
   /// Whether a sub-extent can be computed alone (else the whole grid is produced).
   bool ProducesSubExtents = true;
 
-  /// The memory limit in bytes (resolving 0 to half the physical memory).
-  double EffectiveMemoryLimit() const;
+  /// The memory limit in bytes (resolving 0 to half the physical memory, and capped by
+  /// what RLIMIT_AS and the cgroup leave); `source`, if given, names what set it.
+  double EffectiveMemoryLimit(std::string* source = nullptr) const;
 
 #ifndef __VTK_WRAP__
   /// Whether `bytes` fit in the memory limit and the grid's samples in vtkIdType; if
@@ -147,6 +176,12 @@ protected:
 
   /// The grid of an image (its extent as Whole); false when it is empty.
   static bool GetImageGrid(vtkImageData* image, vtkdf::SampleGrid& grid);
+
+  /// Whether `grid` can carry float32 distances to the stated accuracy: a finite origin,
+  /// finite positive spacing, distinct sample coordinates, and (with `bounds`, the mesh's
+  /// xmin, xmax, ...) a box holding mesh and grid whose diagonal float32 holds and that
+  /// spans at most 2^50 spacings. False with `error` naming the problem.
+  static bool CheckGrid(const vtkdf::SampleGrid& grid, const double* bounds, std::string& error);
 #endif
 
   int Backend = BACKEND_AUTO;

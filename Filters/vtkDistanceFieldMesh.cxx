@@ -15,21 +15,100 @@
 #include "Voxelizer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <mutex>
 #include <sstream>
 
 namespace vtkdf
 {
 
-void MeshConversion::Run(vtkPolyData* input)
+bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error)
 {
+  const vtkIdType numPoints = input->GetPoints() ? input->GetNumberOfPoints() : 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = VTK_DOUBLE_MAX;
+    bounds[2 * a + 1] = -VTK_DOUBLE_MAX;
+  }
+  bool any = false;
+  vtkIdType cellId = 0;
+  for (vtkCellArray* cells :
+    { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+  {
+    vtkIdType count;
+    const vtkIdType* ids;
+    for (cells->InitTraversal(); cells->GetNextCell(count, ids); ++cellId)
+    {
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        // Checked before the point is read: a file may hold any number there.
+        if (ids[i] < 0 || ids[i] >= numPoints)
+        {
+          error = "cell " + std::to_string(cellId) + " refers to point " + std::to_string(ids[i]) +
+            ", but the mesh has " + std::to_string(numPoints) + " points";
+          return false;
+        }
+        double x[3];
+        input->GetPoint(ids[i], x);
+        if (!(std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2])))
+        {
+          error = "point " + std::to_string(ids[i]) + " (used by cell " + std::to_string(cellId) +
+            ") has a " + (std::isnan(x[0] + x[1] + x[2]) ? "NaN" : "infinite") + " coordinate";
+          return false;
+        }
+        for (int a = 0; a < 3; ++a)
+        {
+          bounds[2 * a] = std::min(bounds[2 * a], x[a]);
+          bounds[2 * a + 1] = std::max(bounds[2 * a + 1], x[a]);
+        }
+        any = true;
+      }
+    }
+  }
+  if (!any)
+  {
+    error = "no cell of the mesh uses a point";
+  }
+  return any;
+}
+
+bool MeshConversion::Run(vtkPolyData* input, const SampleGrid& grid, std::string& error)
+{
+  double bounds[6];
+  if (!UsedPointBounds(input, bounds, error))
+  {
+    return false;
+  }
+  if (!CheckGrid(grid, bounds, error))
+  {
+    return false;
+  }
+  this->Frame = GridFrame::For(grid);
+  this->Grid = this->Frame.Local(grid);
+  for (int a = 0; a < 3; ++a)
+  {
+    this->LocalBounds[2 * a] = this->Frame.ToLocal(a, bounds[2 * a]);
+    this->LocalBounds[2 * a + 1] = this->Frame.ToLocal(a, bounds[2 * a + 1]);
+  }
   vtkPoints* points = input->GetPoints();
   const vtkIdType numPoints = points ? points->GetNumberOfPoints() : 0;
   this->Mesh.Points.resize(3 * numPoints);
-  for (vtkIdType i = 0; i < numPoints; ++i)
-  {
-    points->GetPoint(i, &this->Mesh.Points[3 * i]);
-  }
+  SMPFor(numPoints,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t i = begin; i < end; ++i)
+      {
+        double* x = &this->Mesh.Points[3 * i];
+        points->GetPoint(i, x);
+        for (int a = 0; a < 3; ++a)
+        {
+          x[a] = this->Frame.ToLocal(a, x[a]);
+        }
+      }
+    });
   vtkIdType cellId = 0;
   vtkIdType count;
   const vtkIdType* ids;
@@ -110,6 +189,7 @@ void MeshConversion::Run(vtkPolyData* input)
       }
     }
   }
+  return true;
 }
 
 void MeshConversion::AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell)
@@ -136,27 +216,30 @@ std::string MeshConversion::IgnoredCells() const
 bool BuildSites(vtkPolyData* input,
   Culling culling,
   const SampleGrid& grid,
+  MeshConversion& conversion,
   MeshSites& sites,
   std::string& warning,
   std::string& error)
 {
-  MeshConversion conversion;
-  conversion.Run(input);
+  if (!conversion.Run(input, grid, error))
+  {
+    error = "Invalid input: " + error + ".";
+    return false;
+  }
   warning = conversion.IgnoredCells();
   // The planes are used between the mesh and the samples: the diagonal of the box that
-  // holds both bounds that distance.
-  double bounds[6];
-  input->GetBounds(bounds);
+  // holds both bounds that distance (all in the local frame).
+  const SampleGrid& local = conversion.Grid;
   double diagonal2 = 0;
   for (int a = 0; a < 3; ++a)
   {
-    const double g0 = grid.Coordinate(a, grid.Whole.Lo[a]);
-    const double g1 = grid.Coordinate(a, grid.Whole.Hi[a]);
-    const double lo = std::min(std::min(g0, g1), bounds[2 * a]);
-    const double hi = std::max(std::max(g0, g1), bounds[2 * a + 1]);
+    const double g0 = local.Coordinate(a, local.Whole.Lo[a]);
+    const double g1 = local.Coordinate(a, local.Whole.Hi[a]);
+    const double lo = std::min(std::min(g0, g1), conversion.LocalBounds[2 * a]);
+    const double hi = std::max(std::max(g0, g1), conversion.LocalBounds[2 * a + 1]);
     diagonal2 += (hi - lo) * (hi - lo);
   }
-  const double slack = MeshSites::PlaneSlack(1e-4 * grid.MinSpacing(), std::sqrt(diagonal2));
+  const double slack = MeshSites::PlaneSlack(1e-4 * local.MinSpacing(), std::sqrt(diagonal2));
   if (!sites.Build(conversion.Mesh, culling, slack, error, SMPFor))
   {
     error = "Invalid input mesh: " + error + ".";
@@ -231,12 +314,15 @@ bool VoxelizeMesh(vtkPolyData* input,
   std::string& warning)
 {
   MeshConversion conversion;
-  conversion.Run(input);
+  if (!conversion.Run(input, grid, error))
+  {
+    return false;
+  }
   warning = TrianglesOnly(conversion);
   VoxelizeStatistics statistics;
   const bool ok = gpu
-    ? VoxelizeGPU(*gpu, conversion.Mesh, grid, boundary, solid, statistics, error)
-    : VoxelizeCPU(conversion.Mesh, grid, boundary, solid, SMPFor, statistics, error);
+    ? VoxelizeGPU(*gpu, conversion.Mesh, conversion.Grid, boundary, solid, statistics, error)
+    : VoxelizeCPU(conversion.Mesh, conversion.Grid, boundary, solid, SMPFor, statistics, error);
   const std::string far = FarTriangles(statistics);
   warning += (warning.empty() || far.empty() ? "" : " ") + far;
   return ok;
@@ -280,12 +366,46 @@ void BitsToMask(const BitVolume& bits, const SampleGrid& grid, const IndexBox& e
     });
 }
 
+void AllocateTuples(vtkDataArray* array, vtkIdType tuples)
+{
+  array->SetNumberOfTuples(tuples);
+  if (array->GetNumberOfTuples() != tuples)
+  {
+    throw std::bad_alloc();
+  }
+}
+
 void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body)
 {
+  std::atomic<bool> failed{ false };
+  std::exception_ptr first;
+  std::mutex lock;
   vtkSMPTools::For(0,
     static_cast<vtkIdType>(n),
     static_cast<vtkIdType>(grain),
-    [&body](vtkIdType begin, vtkIdType end) { body(begin, end); });
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      if (failed.load(std::memory_order_relaxed))
+      {
+        return;
+      }
+      try
+      {
+        body(begin, end);
+      }
+      catch (...)
+      {
+        std::lock_guard<std::mutex> guard(lock);
+        if (!failed.exchange(true))
+        {
+          first = std::current_exception();
+        }
+      }
+    });
+  if (first)
+  {
+    std::rethrow_exception(first);
+  }
 }
 
 } // namespace vtkdf

@@ -23,14 +23,27 @@ class vtkPolyData;
 namespace vtkdf
 {
 
+/// Bounds (xmin, xmax, ...) of the points that the cells of `input` use. Every point id
+/// is checked before its point is read. False and `error` when a cell refers to a point
+/// that does not exist, a used point has a NaN or infinite coordinate, or no cell uses a
+/// point.
+bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error);
+
 /// Copies the mesh into the core's plain arrays (polygons ear-cut into triangles,
-/// strips split, polylines into segments); counts the cells it cannot use.
+/// strips split, polylines into segments), in the local frame of the grid (GridFrame:
+/// translated to the grid's origin, divided by a power of two near its spacing), so that
+/// the cores see the same numbers at any coordinate scale. Counts the cells it cannot use.
 struct MeshConversion
 {
-  MeshInput Mesh;
+  MeshInput Mesh; // local coordinates
+  GridFrame Frame;
+  SampleGrid Grid;       // the grid, in local coordinates
+  double LocalBounds[6]; // of the used points, local coordinates
   vtkIdType ShortPolygons = 0, ShortLines = 0, ShortStrips = 0, EmptyVertices = 0;
 
-  void Run(vtkPolyData* input);
+  /// False and `error` on invalid input (UsedPointBounds), or when the mesh and `grid`
+  /// together cannot carry float32 distances (CheckGrid).
+  bool Run(vtkPolyData* input, const SampleGrid& grid, std::string& error);
 
   /// A sentence naming the cells that were ignored, or "" when none was.
   std::string IgnoredCells() const;
@@ -39,13 +52,15 @@ private:
   void AddTriangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell);
 };
 
-/// The sites of `input` (MeshSites::Build after MeshConversion) for fields on `grid`:
-/// the domains' slack is 1e-4 of the smallest spacing plus what the float planes need
-/// over the box that holds the mesh and the grid (MeshSites::PlaneSlack). False and
-/// `error` on invalid input; `warning` names the cells that were ignored, if any.
+/// The sites of `input` (MeshSites::Build after MeshConversion) for fields on `grid`,
+/// in the local frame `conversion.Frame` (`conversion.Grid` is the grid there): the
+/// domains' slack is 1e-4 of the smallest spacing plus what the float planes need over
+/// the box that holds the mesh and the grid (MeshSites::PlaneSlack). False and `error`
+/// on invalid input; `warning` names the cells that were ignored, if any.
 bool BuildSites(vtkPolyData* input,
   Culling culling,
   const SampleGrid& grid,
+  MeshConversion& conversion,
   MeshSites& sites,
   std::string& warning,
   std::string& error);
@@ -63,8 +78,8 @@ std::string TrianglesOnly(const MeshConversion& conversion);
 std::string FarTriangles(const VoxelizeStatistics& statistics);
 
 /// Voxelizes the triangles of `input` on `grid` (either output may be null), on the GPU
-/// when `gpu` is given. Returns false with `error` on invalid input or a GPU failure;
-/// `warning` names what was ignored, if anything.
+/// when `gpu` is given (in the local frame of the grid: the same bits at any scale). Returns false
+/// with `error` on invalid input or a GPU failure; `warning` names what was ignored, if anything.
 bool VoxelizeMesh(vtkPolyData* input,
   const SampleGrid& grid,
   HeadlessGL* gpu,
@@ -79,7 +94,13 @@ void BitsToMask(const BitVolume& bits,
   const IndexBox& extent,
   uint8_t* out);
 
-/// vtkSMPTools::For behind the cores' ParallelFor hook.
+/// Gives `array` `tuples` tuples; throws std::bad_alloc when VTK could not allocate
+/// them (it then reports and leaves the array short, which must not be written).
+void AllocateTuples(vtkDataArray* array, vtkIdType tuples);
+
+/// vtkSMPTools::For behind the cores' ParallelFor hook. An exception thrown by `body`
+/// (std::bad_alloc) stops the remaining chunks and is rethrown here, on the calling
+/// thread, whatever the SMP backend (a std::thread backend would otherwise terminate).
 void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body);
 
 } // namespace vtkdf

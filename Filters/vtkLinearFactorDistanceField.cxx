@@ -46,18 +46,21 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   }
 
   // The grid (RequestInformation) and the part of it requested (streaming).
+  vtkdf::SampleGrid grid;
   vtkdf::FieldRequest request;
-  if (!GetOutputGrid(outInfo, request.Grid, request.Extent))
+  if (!GetOutputGrid(outInfo, grid, request.Extent))
   {
-    vtkWarningMacro("The input mesh uses no point, or the requested extent is empty: the output is "
-                    "an empty image.");
+    vtkWarningMacro("The requested extent is empty: the output is an empty image.");
     return 1;
   }
-  double origin[3], spacing[3];
-  for (int a = 0; a < 3; ++a)
+  if (this->MaximumDistance > 0 && this->MaximumDistance < 1e-3 * grid.MinSpacing())
   {
-    origin[a] = request.Grid.Origin[a];
-    spacing[a] = request.Grid.Spacing[a];
+    vtkErrorMacro("MaximumDistance (" << this->MaximumDistance
+                                      << ") is below the field's accuracy, 1e-3 of the smallest "
+                                         "spacing ("
+                                      << 1e-3 * grid.MinSpacing()
+                                      << "): use 0 for no cap, or a larger one.");
+    return 0;
   }
   const double samples = double(request.Extent.Count());
 
@@ -70,16 +73,19 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     return 0;
   }
 
-  if (this->MaximumDistance > 0)
-  {
-    request.MaximumDistance = this->MaximumDistance;
-  }
   const vtkdf::Culling culling = this->Culling == CULLING_NON_MANIFOLD
     ? vtkdf::Culling::NonManifold
     : (this->Culling == CULLING_MANIFOLD ? vtkdf::Culling::Manifold : vtkdf::Culling::Auto);
+  // The cores work in the grid's local frame (scale-invariant); Finalize maps back.
+  vtkdf::MeshConversion conversion;
   vtkdf::MeshSites sites;
   std::string error, warning;
-  const bool built = vtkdf::BuildSites(input, culling, request.Grid, sites, warning, error);
+  const bool built = vtkdf::BuildSites(input, culling, grid, conversion, sites, warning, error);
+  request.Grid = conversion.Grid;
+  if (this->MaximumDistance > 0)
+  {
+    request.MaximumDistance = this->MaximumDistance / conversion.Frame.Scale;
+  }
   if (!warning.empty())
   {
     vtkWarningMacro(<< warning);
@@ -139,23 +145,17 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   this->LastEvaluations = stats.Evaluations;
   this->LastCullingFactor = stats.Evaluations >= 0 ? double(stats.Evaluations) / samples : -1.0;
 
-  // Arrays on the requested extent.
-  output->SetExtent(request.Extent.Lo[0],
-    request.Extent.Hi[0],
-    request.Extent.Lo[1],
-    request.Extent.Hi[1],
-    request.Extent.Lo[2],
-    request.Extent.Hi[2]);
-  output->SetOrigin(origin);
-  output->SetSpacing(spacing);
+  // Arrays on the requested extent, in world coordinates.
+  SetOutputExtent(output, grid, request.Extent);
   const vtkIdType n = static_cast<vtkIdType>(request.Extent.Count());
   vtkdf::FieldArrays arrays;
+  arrays.Frame = conversion.Frame;
   vtkPointData* pd = output->GetPointData();
   if (this->ComputeDistance)
   {
     vtkNew<vtkFloatArray> a;
     a->SetName("Distance");
-    a->SetNumberOfTuples(n);
+    vtkdf::AllocateTuples(a, n);
     arrays.Distance = a->GetPointer(0);
     arrays.Signed = this->SignMode == PSEUDO_NORMAL;
     pd->SetScalars(a);
@@ -164,7 +164,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   {
     vtkNew<vtkIdTypeArray> a;
     a->SetName("ClosestCellId");
-    a->SetNumberOfTuples(n);
+    vtkdf::AllocateTuples(a, n);
     static_assert(sizeof(vtkIdType) == sizeof(int64_t), "vtkIdType is 64 bits");
     arrays.ClosestCellId = reinterpret_cast<int64_t*>(a->GetPointer(0));
     pd->AddArray(a);
@@ -173,7 +173,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   {
     vtkNew<vtkUnsignedCharArray> a;
     a->SetName("ClosestFeature");
-    a->SetNumberOfTuples(n);
+    vtkdf::AllocateTuples(a, n);
     arrays.ClosestFeature = a->GetPointer(0);
     pd->AddArray(a);
   }
@@ -182,7 +182,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     vtkNew<vtkFloatArray> a;
     a->SetName("ClosestPoint");
     a->SetNumberOfComponents(3);
-    a->SetNumberOfTuples(n);
+    vtkdf::AllocateTuples(a, n);
     arrays.ClosestPoint = a->GetPointer(0);
     pd->AddArray(a);
   }
@@ -193,13 +193,29 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   return 1;
 }
 
+bool vtkLinearFactorDistanceField::CheckProperties()
+{
+  if (!this->Superclass::CheckProperties() ||
+    !this->CheckEnum("SignMode", this->SignMode, { "Unsigned", "PseudoNormal" }) ||
+    !this->CheckEnum("Culling", this->Culling, { "Auto", "NonManifold", "Manifold" }))
+  {
+    return false;
+  }
+  if (!(this->MaximumDistance >= 0 && std::isfinite(this->MaximumDistance)))
+  {
+    vtkErrorMacro("MaximumDistance must be finite and >= 0 (0: no cap); it is "
+      << this->MaximumDistance << ".");
+    return false;
+  }
+  return true;
+}
+
 void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  const char* cullings[] = { "Auto", "NonManifold", "Manifold" };
-  os << indent << "SignMode: " << (this->SignMode == PSEUDO_NORMAL ? "PseudoNormal" : "Unsigned")
+  os << indent << "SignMode: " << EnumName(this->SignMode, { "Unsigned", "PseudoNormal" }) << "\n";
+  os << indent << "Culling: " << EnumName(this->Culling, { "Auto", "NonManifold", "Manifold" })
      << "\n";
-  os << indent << "Culling: " << cullings[this->Culling] << "\n";
   os << indent << "MaximumDistance: " << this->MaximumDistance << "\n";
   os << indent << "ComputeDistance: " << this->ComputeDistance << "\n";
   os << indent << "ComputeClosestCellId: " << this->ComputeClosestCellId << "\n";

@@ -48,7 +48,7 @@ public:
     PSEUDO_NORMAL =
       1 ///< negative inside, by the angle-weighted pseudonormal of the closest feature
   };
-  vtkSetClampMacro(SignMode, int, UNSIGNED, PSEUDO_NORMAL);
+  vtkSetMacro(SignMode, int);
   vtkGetMacro(SignMode, int);
   void SetSignModeToUnsigned() { this->SetSignMode(UNSIGNED); }
   void SetSignModeToPseudoNormal() { this->SetSignMode(PSEUDO_NORMAL); }
@@ -59,7 +59,7 @@ public:
     CULLING_NON_MANIFOLD = 1,
     CULLING_MANIFOLD = 2
   };
-  vtkSetClampMacro(Culling, int, CULLING_AUTO, CULLING_MANIFOLD);
+  vtkSetMacro(Culling, int);
   vtkGetMacro(Culling, int);
   void SetCullingToAuto() { this->SetCulling(CULLING_AUTO); }
   void SetCullingToNonManifold() { this->SetCulling(CULLING_NON_MANIFOLD); }
@@ -67,8 +67,10 @@ public:
 
   ///@{
   /// Samples farther than this hold exactly this value (a narrow band); it also clips
-  /// the domains, which saves time. 0 (the default) means no limit.
-  vtkSetClampMacro(MaximumDistance, double, 0.0, VTK_DOUBLE_MAX);
+  /// the domains, which saves time. 0 (the default) means no limit. Otherwise it must be
+  /// finite, and at least 1e-3 of the smallest spacing (the field's accuracy: a smaller
+  /// cap could not be told apart from rounding).
+  vtkSetMacro(MaximumDistance, double);
   vtkGetMacro(MaximumDistance, double);
   ///@}
 
@@ -98,6 +100,7 @@ protected:
   ~vtkLinearFactorDistanceField() override = default;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool CheckProperties() override;
 
   int SignMode = UNSIGNED;
   int Culling = CULLING_AUTO;

@@ -82,12 +82,6 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   output->Initialize();
   points->Initialize();
   this->LastMedialCount = 0;
-  if (!(this->SeparationAngle > 0 && this->SeparationAngle < 180))
-  {
-    vtkErrorMacro(
-      "SeparationAngle must lie in (0, 180) degrees; it is " << this->SeparationAngle << ".");
-    return 0;
-  }
   if (mesh && (mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0))
   {
     vtkWarningMacro("The input mesh is empty: the outputs are empty.");
@@ -110,28 +104,39 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   medial->SetName("Medial");
   std::vector<double> cosine;
   int64_t count = 0;
+  // The world grid of the outputs, and what turns the distances into world units (the
+  // GPU path from a mesh computes in the grid's local frame).
+  vtkdf::SampleGrid outputGrid;
+  double distanceScale = 1;
 
   if (mesh && gl)
   {
     // The field and the medial pass, all on the GPU (only distances and cosines return).
     vtkdf::FieldRequest request;
+    vtkdf::SampleGrid grid;
     vtkdf::IndexBox unused;
-    if (!GetOutputGrid(outInfo, request.Grid, unused))
+    if (!GetOutputGrid(outInfo, grid, unused))
     {
       vtkWarningMacro("The grid is empty: the outputs are empty.");
       return 1;
     }
-    request.Extent = request.Grid.Whole;
-    input.Grid = request.Grid;
+    request.Extent = grid.Whole;
     const double n = double(request.Extent.Count());
     if (!this->CheckMemory(n * (8 + 8 + 1 + 4 + 4 + 16), request.Extent))
     {
       return 0;
     }
+    // The field and the pairs in the grid's local frame (scale-invariant); the output
+    // keeps the world grid, and distances are mapped back below.
+    vtkdf::MeshConversion conversion;
     vtkdf::MeshSites sites;
     std::string warning;
     const bool built =
-      vtkdf::BuildSites(mesh, vtkdf::Culling::Auto, request.Grid, sites, warning, error);
+      vtkdf::BuildSites(mesh, vtkdf::Culling::Auto, grid, conversion, sites, warning, error);
+    request.Grid = conversion.Grid;
+    input.Grid = request.Grid;
+    outputGrid = grid;
+    distanceScale = conversion.Frame.Scale;
     if (!warning.empty())
     {
       vtkWarningMacro(<< warning);
@@ -145,8 +150,8 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     culling.ReachLevel = 0; // the GPU scan
     culling.Build(sites, request.Grid, request.Extent, HUGE_VAL, vtkdf::SMPFor);
     distance = vtkSmartPointer<vtkFloatArray>::New();
-    distance->SetNumberOfTuples(request.Extent.Count());
-    medial->SetNumberOfTuples(request.Extent.Count());
+    vtkdf::AllocateTuples(distance, request.Extent.Count());
+    vtkdf::AllocateTuples(medial, request.Extent.Count());
     cosine.resize(request.Extent.Count());
     vtkdf::ScanStatistics stats;
     if (!vtkdf::MedialAxisFromSitesGPU(*gl,
@@ -200,6 +205,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
       vtkWarningMacro("The input is empty: the outputs are empty.");
       return 1;
     }
+    outputGrid = input.Grid;
     distance = FloatArray(field, "Distance", 1, error);
     vtkSmartPointer<vtkFloatArray> closest =
       distance ? FloatArray(field, "ClosestPoint", 3, error) : nullptr;
@@ -222,7 +228,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     }
     input.Distance = distance->GetPointer(0);
     input.ClosestPoint = closest->GetPointer(0);
-    medial->SetNumberOfTuples(n);
+    vtkdf::AllocateTuples(medial, n);
     cosine.resize(n);
     if (gl)
     {
@@ -242,9 +248,9 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   // Port 0: the grid with Medial, SeparationAngle and Radius.
   vtkNew<vtkFloatArray> angle, radius;
   angle->SetName("SeparationAngle");
-  angle->SetNumberOfTuples(n);
+  vtkdf::AllocateTuples(angle, n);
   radius->SetName("Radius");
-  radius->SetNumberOfTuples(n);
+  vtkdf::AllocateTuples(radius, n);
   float* a = angle->GetPointer(0);
   float* r = radius->GetPointer(0);
   const float* d = distance->GetPointer(0);
@@ -257,10 +263,10 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
         a[v] = cosine[v] <= 1
           ? static_cast<float>(std::acos(std::max(-1.0, cosine[v])) * 180.0 / M_PI)
           : 0.0f;
-        r[v] = std::fabs(d[v]);
+        r[v] = static_cast<float>(std::fabs(d[v]) * distanceScale);
       }
     });
-  SetOutputExtent(output, input.Grid, input.Grid.Whole);
+  SetOutputExtent(output, outputGrid, outputGrid.Whole);
   output->GetPointData()->AddArray(medial);
   output->GetPointData()->AddArray(angle);
   output->GetPointData()->AddArray(radius);
@@ -276,10 +282,10 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   pointMedial->SetName("Medial");
   pointAngle->SetName("SeparationAngle");
   pointRadius->SetName("Radius");
-  pointMedial->SetNumberOfTuples(count);
-  pointAngle->SetNumberOfTuples(count);
-  pointRadius->SetNumberOfTuples(count);
-  const vtkdf::IndexBox& whole = input.Grid.Whole;
+  vtkdf::AllocateTuples(pointMedial, count);
+  vtkdf::AllocateTuples(pointAngle, count);
+  vtkdf::AllocateTuples(pointRadius, count);
+  const vtkdf::IndexBox& whole = outputGrid.Whole;
   const int nx = whole.Size(0), ny = whole.Size(1);
   vtkIdType next = 0;
   for (vtkIdType v = 0; v < n; ++v)
@@ -292,9 +298,9 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
       whole.Lo[1] + static_cast<int>((v / nx) % ny),
       whole.Lo[2] + static_cast<int>(v / (vtkIdType(nx) * ny)) };
     positions->SetPoint(next,
-      input.Grid.Coordinate(0, ijk[0]),
-      input.Grid.Coordinate(1, ijk[1]),
-      input.Grid.Coordinate(2, ijk[2]));
+      outputGrid.Coordinate(0, ijk[0]),
+      outputGrid.Coordinate(1, ijk[1]),
+      outputGrid.Coordinate(2, ijk[2]));
     pointMedial->SetValue(next, 1);
     pointAngle->SetValue(next, a[v]);
     pointRadius->SetValue(next, r[v]);
@@ -314,11 +320,26 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   return 1;
 }
 
+bool vtkMedialAxisFilter::CheckProperties()
+{
+  if (!this->Superclass::CheckProperties() ||
+    !this->CheckEnum("Region", this->Region, { "Inside", "Outside", "Both" }))
+  {
+    return false;
+  }
+  if (!(this->SeparationAngle > 0 && this->SeparationAngle < 180))
+  {
+    vtkErrorMacro(
+      "SeparationAngle must lie in (0, 180) degrees; it is " << this->SeparationAngle << ".");
+    return false;
+  }
+  return true;
+}
+
 void vtkMedialAxisFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  const char* regions[] = { "Inside", "Outside", "Both" };
   os << indent << "SeparationAngle: " << this->SeparationAngle << "\n";
-  os << indent << "Region: " << regions[this->Region] << "\n";
+  os << indent << "Region: " << EnumName(this->Region, { "Inside", "Outside", "Both" }) << "\n";
   os << indent << "LastMedialCount: " << this->LastMedialCount << "\n";
 }

@@ -52,7 +52,7 @@ public:
     OUTSIDE = 1, ///< voxels with a positive distance
     BOTH = 2
   };
-  vtkSetClampMacro(Region, int, INSIDE, BOTH);
+  vtkSetMacro(Region, int);
   vtkGetMacro(Region, int);
   void SetRegionToInside() { this->SetRegion(INSIDE); }
   void SetRegionToOutside() { this->SetRegion(OUTSIDE); }
@@ -70,6 +70,7 @@ protected:
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool CheckProperties() override;
 
   double SeparationAngle = 90;
   int Region = INSIDE;

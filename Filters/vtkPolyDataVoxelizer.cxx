@@ -69,7 +69,7 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
     }
     else
     {
-      vtkErrorMacro("Invalid input mesh: " << error << ".");
+      vtkErrorMacro("Invalid input: " << error << ".");
     }
     return 0;
   }
@@ -88,7 +88,7 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
     }
     vtkNew<vtkUnsignedCharArray> array;
     array->SetName(mask == 0 ? "Boundary" : "Solid");
-    array->SetNumberOfTuples(extent.Count());
+    vtkdf::AllocateTuples(array, extent.Count());
     vtkdf::BitsToMask(mask == 0 ? boundary : solid, grid, extent, array->GetPointer(0));
     output->GetPointData()->AddArray(array);
   }
@@ -99,9 +99,14 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
   return 1;
 }
 
+bool vtkPolyDataVoxelizer::CheckProperties()
+{
+  return this->Superclass::CheckProperties() &&
+    this->CheckEnum("Mode", this->Mode, { "Boundary", "Solid", "Both" });
+}
+
 void vtkPolyDataVoxelizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  const char* modes[] = { "Boundary", "Solid", "Both" };
-  os << indent << "Mode: " << modes[this->Mode] << "\n";
+  os << indent << "Mode: " << EnumName(this->Mode, { "Boundary", "Solid", "Both" }) << "\n";
 }

@@ -40,7 +40,7 @@ public:
     SOLID = 1,    ///< the voxels inside closed parts (and on them)
     BOTH = 2      ///< both masks from one pass
   };
-  vtkSetClampMacro(Mode, int, BOUNDARY, BOTH);
+  vtkSetMacro(Mode, int);
   vtkGetMacro(Mode, int);
   void SetModeToBoundary() { this->SetMode(BOUNDARY); }
   void SetModeToSolid() { this->SetMode(SOLID); }
@@ -51,6 +51,7 @@ protected:
   ~vtkPolyDataVoxelizer() override = default;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool CheckProperties() override;
 
   int Mode = BOTH;
 

@@ -38,6 +38,8 @@
 #include "vtkXMLPolyDataWriter.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -92,7 +94,9 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
   {
     reader->SetFileName(path.c_str());
     reader->Update();
-    mesh = reader->GetOutput();
+    // A reader that failed (a missing, truncated or garbled file) says so in its error
+    // code; its output is then not the file's mesh.
+    mesh = reader->GetErrorCode() == 0 ? reader->GetOutput() : nullptr;
   };
   if (EndsWith(path, ".vtp"))
   {
@@ -242,13 +246,42 @@ Option Text(const char* name, std::string& target)
 {
   return { name, false, [&target](const char* value) { target = value; } };
 }
+/// The whole of `text` as a number (strtod: decimal, exponent, "nan", "inf"); exits with
+/// a usage error naming `option` otherwise. Range checks are the filters' (they name the
+/// property), except what cannot be passed on at all.
+double ParseNumber(const char* option, const char* text)
+{
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != '\0' || errno == ERANGE)
+  {
+    std::exit(Usage((std::string(option) + " takes a number, not '" + text + "'").c_str()));
+  }
+  return value;
+}
+
+/// The whole of `text` as an int (decimal); exits with a usage error naming `option`
+/// when it is not one or does not fit in an int (no wrapping: 4294967312 is not 16).
+int ParseInt(const char* option, const char* text)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long long value = std::strtoll(text, &end, 10);
+  if (end == text || *end != '\0' || errno == ERANGE || value < INT_MIN || value > INT_MAX)
+  {
+    std::exit(Usage((std::string(option) + " takes an integer, not '" + text + "'").c_str()));
+  }
+  return static_cast<int>(value);
+}
+
 Option Number(const char* name, double& target)
 {
-  return { name, false, [&target](const char* value) { target = std::atof(value); } };
+  return { name, false, [name, &target](const char* value) { target = ParseNumber(name, value); } };
 }
 Option Count(const char* name, int& target)
 {
-  return { name, false, [&target](const char* value) { target = std::atoi(value); } };
+  return { name, false, [name, &target](const char* value) { target = ParseInt(name, value); } };
 }
 
 /// Parses the options of argv[3...] (after `vtkdf SUBCOMMAND INPUT`): the common ones,
@@ -272,18 +305,18 @@ void ParseOptions(int argc, char* argv[], CommonOptions& common, const std::vect
     }
     else if (arg == "--resolution")
     {
-      common.Resolution = std::atoi(next());
+      common.Resolution = ParseInt("--resolution", next());
     }
     else if (arg == "--padding")
     {
-      common.Padding = std::atof(next());
+      common.Padding = ParseNumber("--padding", next());
     }
     else if (arg == "--origin" || arg == "--spacing")
     {
       double* v = arg == "--origin" ? common.Origin : common.Spacing;
       for (int k = 0; k < 3; ++k)
       {
-        v[k] = std::atof(next());
+        v[k] = ParseNumber(arg.c_str(), next());
       }
       (arg == "--origin" ? common.ExplicitOrigin : common.ExplicitSpacing) = true;
     }
@@ -291,7 +324,7 @@ void ParseOptions(int argc, char* argv[], CommonOptions& common, const std::vect
     {
       for (int k = 0; k < 3; ++k)
       {
-        common.Dims[k] = std::atoi(next());
+        common.Dims[k] = ParseInt("--dims", next());
       }
       common.ExplicitDims = true;
     }
@@ -352,11 +385,13 @@ void Configure(vtkDistanceFieldAlgorithm* filter, CommonOptions& common)
   }
 }
 
-/// Runs the filter; prints the timing line; writes the output. Returns the exit code.
+/// Runs the filter (once: a second Update() of a failed filter runs it again and prints
+/// every error twice); prints the timing line, with `extra()` after the time; writes the
+/// output. Returns the exit code.
 int Finish(const char* subcommand,
   vtkDistanceFieldAlgorithm* filter,
   const CommonOptions& common,
-  const std::string& extra)
+  const std::function<std::string()>& extra = std::function<std::string()>())
 {
   filter->Update();
   vtkImageData* field = filter->GetOutput();
@@ -377,7 +412,7 @@ int Finish(const char* subcommand,
       filter->GetLastBackend(),
       filter->GetLastRenderer(),
       filter->GetLastTime(),
-      extra.c_str(),
+      extra ? extra().c_str() : "",
       filter->GetLastStageTimes());
   }
   vtkNew<vtkXMLImageDataWriter> writer;
@@ -455,10 +490,15 @@ int Linfac(int argc, char* argv[])
   filter->SetComputeClosestCellId(arrays.find("cellid") != std::string::npos);
   filter->SetComputeClosestFeature(arrays.find("feature") != std::string::npos);
   filter->SetComputeClosestPoint(arrays.find("point") != std::string::npos);
-  filter->Update();
-  char extra[64];
-  std::snprintf(extra, sizeof(extra), " culling_factor=%.3f", filter->GetLastCullingFactor());
-  const int code = Finish("linfac", filter, common, extra);
+  const int code = Finish("linfac",
+    filter,
+    common,
+    [&]()
+    {
+      char extra[64];
+      std::snprintf(extra, sizeof(extra), " culling_factor=%.3f", filter->GetLastCullingFactor());
+      return std::string(extra);
+    });
   if (code == 0 && !png.empty() && !WriteSlicePNG(filter->GetOutput(), png))
   {
     std::fprintf(stderr, "vtkdf: cannot write %s (it needs the distance array)\n", png.c_str());
@@ -487,7 +527,7 @@ int Voxelize(int argc, char* argv[])
   {
     return Usage("--mode takes boundary, solid or both");
   }
-  return Finish("voxelize", filter, common, "");
+  return Finish("voxelize", filter, common);
 }
 
 int Chamfer(int argc, char* argv[])
@@ -522,9 +562,10 @@ int Chamfer(int argc, char* argv[])
   filter->SetMaximumLayers(layers);
   filter->SetSigned(signedField);
   filter->OutputMasksOn();
-  filter->Update();
-  const std::string extra = " layers=" + std::to_string(filter->GetLastLayers());
-  return Finish("chamfer", filter, common, extra);
+  return Finish("chamfer",
+    filter,
+    common,
+    [&]() { return " layers=" + std::to_string(filter->GetLastLayers()); });
 }
 /// The middle z slice: |distance| in grey levels, medial voxels in red, magnified.
 bool WriteMedialPNG(vtkImageData* field, const std::string& path)
@@ -592,9 +633,10 @@ int Medial(int argc, char* argv[])
   {
     return Usage("--region takes inside, outside or both");
   }
-  filter->Update();
-  const std::string extra = " medial_voxels=" + std::to_string(filter->GetLastMedialCount());
-  int code = Finish("medial", filter, common, extra);
+  int code = Finish("medial",
+    filter,
+    common,
+    [&]() { return " medial_voxels=" + std::to_string(filter->GetLastMedialCount()); });
   if (code == 0 && !points.empty())
   {
     vtkNew<vtkXMLPolyDataWriter> writer;

@@ -325,6 +325,8 @@ void Finalize(const MeshSites& sites,
   const int64_t nx = ext.Size(0), ny = ext.Size(1), n = ext.Count();
   const double cap = request.MaximumDistance;
   const bool banded = std::isfinite(cap);
+  const GridFrame& frame = arrays.Frame;
+  const float worldCap = static_cast<float>(cap * frame.Scale);
   // Inside/outside of every sample (0: unknown, outside the band).
   std::vector<int8_t> side(arrays.Signed && arrays.Distance ? n : 0, 0);
   // One row of samples at a time: the row's j, k and coordinates are computed once.
@@ -356,7 +358,7 @@ void Finalize(const MeshSites& sites,
           }
           if (arrays.Distance)
           {
-            float value = static_cast<float>(distance);
+            float value = static_cast<float>(distance * frame.Scale);
             if (site && arrays.Signed)
             {
               const double s =
@@ -378,7 +380,8 @@ void Finalize(const MeshSites& sites,
           {
             for (int a = 0; a < 3; ++a)
             {
-              arrays.ClosestPoint[3 * at + a] = site ? static_cast<float>(x[a] + d[a]) : NAN;
+              arrays.ClosestPoint[3 * at + a] =
+                site ? static_cast<float>(frame.ToWorld(a, x[a] + d[a])) : NAN;
             }
           }
         }
@@ -417,7 +420,7 @@ void Finalize(const MeshSites& sites,
         side[b] = side[at];
         if (side[b] < 0)
         {
-          arrays.Distance[b] = -static_cast<float>(cap);
+          arrays.Distance[b] = -worldCap;
         }
         queue.push_back(b);
       }

@@ -89,8 +89,11 @@ struct FieldRequest
 };
 
 /// Where Finalize writes; any pointer may be null. Arrays cover Extent, x fastest.
+/// The sites and the request are in the local frame `Frame`; distances and closest
+/// points are written in world coordinates (mapped in double, then rounded to float).
 struct FieldArrays
 {
+  GridFrame Frame;
   float* Distance = nullptr;
   bool Signed = false;
   int64_t* ClosestCellId = nullptr;

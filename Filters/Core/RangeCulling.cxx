@@ -67,7 +67,7 @@ void RangeCulling::Build(const MeshSites& sites,
   std::array<int, 3> nb;
   for (int a = 0; a < 3; ++a)
   {
-    nb[a] = (extent.Size(a) + b - 1) / b;
+    nb[a] = (extent.Size(a) - 1) / b + 1; // no overflow for an extent of 2^31 - 1
   }
   const int64_t numBlocks = int64_t(nb[0]) * nb[1] * nb[2];
   auto blockBox = [&](int bi, int bj, int bk, int span)
@@ -76,10 +76,12 @@ void RangeCulling::Build(const MeshSites& sites,
     Box box;
     for (int a = 0; a < 3; ++a)
     {
-      const int lo = extent.Lo[a] + ids[a] * b;
-      const int hi = std::min(extent.Lo[a] + (ids[a] + span) * b - 1, extent.Hi[a]);
-      box.Lo[a] = grid.Coordinate(a, lo);
-      box.Hi[a] = grid.Coordinate(a, hi);
+      // In 64 bits: the last block of a 2^31 - 1 extent ends past INT_MAX.
+      const int64_t lo = extent.Lo[a] + int64_t(ids[a]) * b;
+      const int64_t hi =
+        std::min<int64_t>(extent.Lo[a] + int64_t(ids[a] + span) * b - 1, extent.Hi[a]);
+      box.Lo[a] = grid.Coordinate(a, static_cast<int>(lo));
+      box.Hi[a] = grid.Coordinate(a, static_cast<int>(hi));
     }
     return box;
   };
@@ -366,7 +368,8 @@ void RangeCulling::Build(const MeshSites& sites,
         for (int a = 0; a < 3; ++a)
         {
           reach.Lo[a] = extent.Lo[a] + reachLo[a] * b;
-          reach.Hi[a] = std::min(extent.Lo[a] + (reachHi[a] + 1) * b - 1, extent.Hi[a]);
+          reach.Hi[a] = static_cast<int>(
+            std::min<int64_t>(extent.Lo[a] + int64_t(reachHi[a] + 1) * b - 1, extent.Hi[a]));
         }
         for (int64_t o = offsets[cluster]; o < offsets[cluster + 1]; ++o)
         {

@@ -208,7 +208,7 @@ bool VoxelizeToLanes(HeadlessGL& context,
 {
   const GLFunctions& gl = context.GL();
   statistics = VoxelizeStatistics();
-  if (!ValidateMesh(mesh, error))
+  if (!ValidateMesh(mesh, grid, error))
   {
     return false;
   }

@@ -265,9 +265,23 @@ inline double MeshOrientation(const MeshInput& mesh)
   return volume < 0 ? -1.0 : 1.0;
 }
 
-/// Point ids in range and finite coordinates; false and `error` otherwise.
-inline bool ValidateMesh(const MeshInput& mesh, std::string& error)
+/// The most voxels along an axis: a solid lane holds two bins per voxel plus guards in
+/// an int bit index.
+constexpr int MaximumAxisVoxels = 1 << 29;
+
+/// Point ids in range, finite coordinates and a grid whose lanes fit; false and `error`
+/// otherwise.
+inline bool ValidateMesh(const MeshInput& mesh, const SampleGrid& grid, std::string& error)
 {
+  for (int a = 0; a < 3; ++a)
+  {
+    if (grid.Whole.Size(a) > MaximumAxisVoxels)
+    {
+      error = "the grid has " + std::to_string(grid.Whole.Size(a)) +
+        " voxels along an axis; the voxelizer takes at most 2^29";
+      return false;
+    }
+  }
   const int64_t numPoints = static_cast<int64_t>(mesh.Points.size() / 3);
   for (int64_t id : mesh.Triangles)
   {
