@@ -1,0 +1,346 @@
+// Scale invariance of every filter (issue: results must not depend on the user's unit).
+// usage: TestScaleInvariance DATA_DIR linfac|voxelize|chamfer|medial cpu|gpu
+//
+// The trefoil knot and its default grid are scaled by k. For k = 2^100 and 2^-100 every
+// output must be exactly k times the unscaled one (distances, closest points, radii) or
+// the same (ids, features, masks, layers, medial marks), bit for bit: the cores work in
+// the grid's frame, scaled by a power of two, and such a scaling is exact in IEEE
+// arithmetic. For k = 10^-30 ... 10^30 distances must equal k times the unscaled ones
+// within 1e-3 of a spacing, and discrete outputs may differ only at ties, which are
+// counted and checked to be ties: two cells equally near (within 1e-3 h), a voxel
+// centre at half a cell diagonal from the mesh (within 1e-9 relative), a solid voxel
+// next to the surface, a medial pair at the angle threshold or between equal radii.
+#include "vtkCell.h"
+#include "vtkChamferVoxelDistance.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLinearFactorDistanceField.h"
+#include "vtkMath.h"
+#include "vtkMedialAxisFilter.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataVoxelizer.h"
+#include "vtkSmartPointer.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include "ExactDistance.h"
+#include "MedialAxis.h"
+#include "TestSupport.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace
+{
+constexpr int Resolution = 32;
+
+vtkSmartPointer<vtkPolyData> Scaled(vtkPolyData* mesh, double k)
+{
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(mesh);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    mesh->GetPoint(i, x);
+    points->SetPoint(i, k * x[0], k * x[1], k * x[2]);
+  }
+  out->SetPoints(points);
+  return out;
+}
+
+/// Exact distance from x to the mesh's cell `cell` (triangles), or to the whole mesh.
+double CellDistance(vtkPolyData* mesh, vtkIdType cell, const double x[3])
+{
+  double best = HUGE_VAL;
+  const vtkIdType first = cell < 0 ? 0 : cell, last = cell < 0 ? mesh->GetNumberOfCells() : cell + 1;
+  for (vtkIdType c = first; c < last; ++c)
+  {
+    vtkCell* triangle = mesh->GetCell(c);
+    double p[3][3], q[3];
+    for (int v = 0; v < 3; ++v)
+    {
+      mesh->GetPoint(triangle->GetPointId(v), p[v]);
+    }
+    vtkdf::reference::ClosestOnTriangle(x, p[0], p[1], p[2], q);
+    best = std::min(best, std::sqrt(vtkMath::Distance2BetweenPoints(x, q)));
+  }
+  return best;
+}
+
+struct Output
+{
+  vtkSmartPointer<vtkImageData> Image;
+  vtkDataArray* Get(const char* name) const { return this->Image->GetPointData()->GetArray(name); }
+};
+
+template<typename Filter>
+void Configure(Filter* filter, vtkPolyData* mesh, const std::string& backend)
+{
+  filter->SetInputData(mesh);
+  filter->SetResolution(Resolution);
+  testsupport::UseBackend(filter, backend);
+}
+
+Output LinearFactor(vtkPolyData* mesh, const std::string& backend)
+{
+  vtkNew<vtkLinearFactorDistanceField> filter;
+  Configure(filter.Get(), mesh, backend);
+  filter->SetSignModeToPseudoNormal();
+  filter->ComputeClosestFeatureOn();
+  filter->ComputeClosestPointOn();
+  filter->Update();
+  return { filter->GetOutput() };
+}
+
+Output Run(const std::string& name, vtkPolyData* mesh, const std::string& backend)
+{
+  if (name == "linfac")
+  {
+    return LinearFactor(mesh, backend);
+  }
+  if (name == "voxelize")
+  {
+    vtkNew<vtkPolyDataVoxelizer> filter;
+    Configure(filter.Get(), mesh, backend);
+    filter->Update();
+    return { filter->GetOutput() };
+  }
+  if (name == "chamfer")
+  {
+    vtkNew<vtkChamferVoxelDistance> filter;
+    Configure(filter.Get(), mesh, backend);
+    filter->SignedOn();
+    filter->OutputMasksOn();
+    filter->Update();
+    return { filter->GetOutput() };
+  }
+  vtkNew<vtkMedialAxisFilter> filter;
+  Configure(filter.Get(), mesh, backend);
+  filter->Update();
+  return { filter->GetOutput() };
+}
+
+/// Arrays whose values scale with k (distances, points) and arrays that must not change.
+struct Arrays
+{
+  std::vector<const char*> Scaling, Discrete;
+};
+Arrays ArraysOf(const std::string& name)
+{
+  if (name == "linfac")
+  {
+    return { { "Distance", "ClosestPoint" }, { "ClosestCellId", "ClosestFeature" } };
+  }
+  if (name == "voxelize")
+  {
+    return { {}, { "Boundary", "Solid" } };
+  }
+  if (name == "chamfer")
+  {
+    return { {}, { "ChamferDistance", "Boundary", "Solid" } };
+  }
+  return { { "Radius" }, { "Medial", "SeparationAngle" } };
+}
+
+/// The world position of sample v of `image`.
+void Position(vtkImageData* image, vtkIdType v, double x[3])
+{
+  image->GetPoint(v, x);
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (!testsupport::HasArguments(argc, argv, 3, "DATA_DIR linfac|voxelize|chamfer|medial cpu|gpu"))
+  {
+    return 2;
+  }
+  const std::string name = argv[2], backend = argv[3];
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName((std::string(argv[1]) + "/trefoil_knot.vtp").c_str());
+  reader->Update();
+  vtkPolyData* mesh = reader->GetOutput();
+
+  const Output base = Run(name, mesh, backend);
+  CHECK(base.Image->GetNumberOfPoints() > 0, "the unscaled run produced no output");
+  if (testsupport::Failures)
+  {
+    return testsupport::Verdict();
+  }
+  const double h = base.Image->GetSpacing()[0];
+  const vtkIdType n = base.Image->GetNumberOfPoints();
+  const Arrays arrays = ArraysOf(name);
+  // For the medial ties: the field the medial filter computes, at scale 1.
+  Output baseField;
+  if (name == "medial")
+  {
+    baseField = LinearFactor(mesh, backend);
+  }
+
+  const double scales[] = { std::ldexp(1.0, 100), std::ldexp(1.0, -100), 1e-30, 1e-20, 1e-10,
+    1e10, 1e20, 1e30 };
+  for (const double k : scales)
+  {
+    int exponent;
+    const bool exact = std::frexp(k, &exponent) == 0.5; // a power of two
+    vtkSmartPointer<vtkPolyData> scaled = Scaled(mesh, k);
+    const Output out = Run(name, scaled, backend);
+    CHECK(out.Image->GetNumberOfPoints() == n, "scale %g: %lld samples instead of %lld", k,
+      static_cast<long long>(out.Image->GetNumberOfPoints()), static_cast<long long>(n));
+    if (out.Image->GetNumberOfPoints() != n)
+    {
+      continue;
+    }
+    CHECK(std::fabs(out.Image->GetSpacing()[0] / k - h) <= 1e-12 * h, "scale %g: spacing %g", k,
+      out.Image->GetSpacing()[0]);
+
+    // Distances and points: k times, exactly or within 1e-3 h; a point may also move at a tie.
+    double largest = 0;
+    vtkIdType pointTies = 0;
+    for (const char* array : arrays.Scaling)
+    {
+      vtkDataArray* a0 = base.Get(array);
+      vtkDataArray* a1 = out.Get(array);
+      const int components = a0->GetNumberOfComponents();
+      vtkIdType inexact = 0;
+      double arrayLargest = 0;
+      for (vtkIdType v = 0; v < n; ++v)
+      {
+        for (int c = 0; c < components; ++c)
+        {
+          const double x0 = a0->GetComponent(v, c), x1 = a1->GetComponent(v, c);
+          // float(x0) * float(k) is exact for a power of two within float's range.
+          inexact += exact && static_cast<float>(x1) != static_cast<float>(x0) * static_cast<float>(k);
+          const double error = std::fabs(x1 / k - x0) / h;
+          if (components == 3 && error > 1e-3)
+          {
+            // A closest point may jump between two equally near cells.
+            double x[3];
+            Position(base.Image, v, x);
+            vtkDataArray* ids0 = base.Get("ClosestCellId");
+            vtkDataArray* ids1 = out.Get("ClosestCellId");
+            const double d0 = CellDistance(mesh, static_cast<vtkIdType>(ids0->GetTuple1(v)), x);
+            const double d1 = CellDistance(mesh, static_cast<vtkIdType>(ids1->GetTuple1(v)), x);
+            CHECK(std::fabs(d0 - d1) <= 1e-3 * h,
+              "scale %g: %s of sample %lld moved %g h without a tie", k, array,
+              static_cast<long long>(v), error);
+            pointTies += c == 0;
+            continue;
+          }
+          arrayLargest = std::max(arrayLargest, error);
+        }
+      }
+      CHECK(inexact == 0, "scale %g: %lld values of %s are not exactly k times the unscaled ones",
+        k, static_cast<long long>(inexact), array);
+      if (components == 1) // distances; a closest point away from a tie is checked above
+      {
+        largest = std::max(largest, arrayLargest);
+      }
+    }
+    CHECK(largest <= 1e-3, "scale %g: largest distance error %g h (at most 1e-3)", k, largest);
+
+    // Discrete outputs: equal, or (not for a power of two) different at ties only.
+    vtkIdType ties = 0;
+    bool masksEqual = true;
+    if (name == "chamfer")
+    {
+      for (vtkIdType u = 0; u < n && masksEqual; ++u)
+      {
+        masksEqual = base.Get("Boundary")->GetTuple1(u) == out.Get("Boundary")->GetTuple1(u) &&
+          base.Get("Solid")->GetTuple1(u) == out.Get("Solid")->GetTuple1(u);
+      }
+    }
+    for (const char* array : arrays.Discrete)
+    {
+      vtkDataArray* a0 = base.Get(array);
+      vtkDataArray* a1 = out.Get(array);
+      for (vtkIdType v = 0; v < n; ++v)
+      {
+        if (a0->GetTuple1(v) == a1->GetTuple1(v))
+        {
+          continue;
+        }
+        CHECK(!exact, "scale %g: %s differs at sample %lld", k, array, static_cast<long long>(v));
+        if (exact)
+        {
+          break;
+        }
+        double x[3];
+        Position(base.Image, v, x);
+        const std::string a = array;
+        bool tie = false;
+        if (a == "ClosestCellId" || a == "ClosestFeature")
+        {
+          const double d0 = CellDistance(mesh, static_cast<vtkIdType>(base.Get("ClosestCellId")->GetTuple1(v)), x);
+          const double d1 = CellDistance(mesh, static_cast<vtkIdType>(out.Get("ClosestCellId")->GetTuple1(v)), x);
+          // Also a feature flip at the same point (a face site against its own edge).
+          tie = std::fabs(d0 - d1) <= 1e-3 * h;
+        }
+        else if (a == "Boundary")
+        {
+          const double limit = 0.5 * std::sqrt(3.0) * h;
+          tie = std::fabs(CellDistance(mesh, -1, x) - limit) <= 1e-9 * limit;
+        }
+        else if (a == "Solid")
+        {
+          tie = CellDistance(mesh, -1, x) <= 0.5 * h;
+        }
+        else if (a == "ChamferDistance")
+        {
+          // Layers follow the masks: with equal masks they must be equal.
+          tie = !masksEqual;
+        }
+        else // Medial, SeparationAngle: a pair of v at the threshold, or radii equal
+        {
+          const Output& f0 = baseField;
+          int dims[3];
+          base.Image->GetDimensions(dims);
+          const vtkIdType stride[3] = { 1, dims[0], vtkIdType(dims[0]) * dims[1] };
+          const int ijk[3] = { static_cast<int>(v % dims[0]),
+            static_cast<int>((v / dims[0]) % dims[1]), static_cast<int>(v / stride[2]) };
+          auto* cp = vtkFloatArray::SafeDownCast(f0.Get("ClosestPoint"));
+          auto* d = f0.Get("Distance");
+          const double threshold = std::cos(90.0 * M_PI / 180.0);
+          for (int axis = 0; axis < 3 && !tie; ++axis)
+          {
+            for (int side = -1; side <= 1 && !tie; side += 2)
+            {
+              const int j = ijk[axis] + side;
+              if (j < 0 || j >= dims[axis])
+              {
+                continue;
+              }
+              const vtkIdType u = v + side * stride[axis];
+              double xu[3], m[3];
+              Position(base.Image, u, xu);
+              for (int c = 0; c < 3; ++c)
+              {
+                m[c] = 0.5 * (x[c] + xu[c]);
+              }
+              const double cosine =
+                vtkdf::PairCosine(m, cp->GetPointer(3 * v), cp->GetPointer(3 * u));
+              tie = std::fabs(cosine - threshold) <= 1e-3 ||
+                std::fabs(std::fabs(d->GetTuple1(v)) - std::fabs(d->GetTuple1(u))) <= 1e-3 * h;
+            }
+          }
+        }
+        CHECK(tie, "scale %g: %s differs at sample %lld, which is not a tie", k, array,
+          static_cast<long long>(v));
+        ties += tie;
+      }
+    }
+    std::printf("scale %-8g: largest distance error %.3g h, %lld discrete values and %lld closest "
+                "points differ at ties%s\n",
+      k, largest, static_cast<long long>(ties), static_cast<long long>(pointTies),
+      exact ? " (power of two: bit for bit)" : "");
+  }
+  return testsupport::Verdict();
+}
