@@ -55,7 +55,7 @@ bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error)
         if (!(std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2])))
         {
           error = "point " + std::to_string(ids[i]) + " (used by cell " + std::to_string(cellId) +
-            ") has a " + (std::isnan(x[0] + x[1] + x[2]) ? "NaN" : "infinite") + " coordinate";
+            ") has " + (std::isnan(x[0] + x[1] + x[2]) ? "a NaN" : "an infinite") + " coordinate";
           return false;
         }
         for (int a = 0; a < 3; ++a)

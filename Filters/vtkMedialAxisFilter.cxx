@@ -1,6 +1,8 @@
 #include "vtkMedialAxisFilter.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
+#include "vtkCommand.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -188,6 +190,28 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
       exact->SetBackendToCPU();
       exact->SetMemoryLimit(this->MemoryLimit);
       exact->SetSignModeToPseudoNormal();
+      // Its errors become this filter's (a caller observes this filter, not the inner one).
+      std::string innerError;
+      vtkNew<vtkCallbackCommand> forward;
+      forward->SetClientData(&innerError);
+      forward->SetCallback(
+        [](vtkObject*, unsigned long, void* clientData, void* callData)
+        {
+          auto* text = static_cast<std::string*>(clientData);
+          if (callData && text->empty())
+          {
+            // "ERROR: In FILE, line N\nCLASS (ADDRESS): MESSAGE\n": keep MESSAGE.
+            std::string message = static_cast<const char*>(callData);
+            const size_t start = message.find("): ");
+            message = start == std::string::npos ? message : message.substr(start + 3);
+            while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+            {
+              message.pop_back();
+            }
+            *text = message;
+          }
+        });
+      exact->AddObserver(vtkCommand::ErrorEvent, forward);
       exact->ComputeClosestPointOn();
       exact->ComputeClosestCellIdOff();
       exact->ComputeClosestFeatureOff();
@@ -195,7 +219,8 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
       field = exact->GetOutput();
       if (exact->GetErrorCode() || !field || field->GetNumberOfPoints() == 0)
       {
-        vtkErrorMacro("The distance field of the input mesh could not be computed.");
+        vtkErrorMacro("The distance field of the input mesh could not be computed: "
+          << (innerError.empty() ? std::string("no output") : innerError));
         return 0;
       }
     }

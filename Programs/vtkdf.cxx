@@ -430,9 +430,12 @@ int Finish(const char* subcommand,
 vtkSmartPointer<vtkPolyData> ReadMeshOrExit(const std::string& input)
 {
   vtkSmartPointer<vtkPolyData> mesh = ReadMesh(input);
-  if (!mesh)
+  // Some readers report a file they cannot parse only by an empty output.
+  if (!mesh || mesh->GetNumberOfPoints() == 0)
   {
-    std::exit(Usage(("cannot read " + input + " (expected .vtp .vtk .ply .stl .obj)").c_str()));
+    std::exit(Usage(("cannot read a mesh from " + input +
+      " (missing, unreadable, or no points; expected .vtp .vtk .ply .stl .obj)")
+                      .c_str()));
   }
   return mesh;
 }
@@ -447,9 +450,11 @@ vtkSmartPointer<vtkDataObject> ReadMeshOrImageOrExit(const std::string& input)
   vtkNew<vtkXMLImageDataReader> reader;
   reader->SetFileName(input.c_str());
   reader->Update();
-  if (reader->GetErrorCode() || !reader->GetOutput())
+  if (reader->GetErrorCode() || !reader->GetOutput() ||
+    reader->GetOutput()->GetNumberOfPoints() == 0)
   {
-    std::exit(Usage(("cannot read " + input).c_str()));
+    std::exit(
+      Usage(("cannot read an image from " + input + " (missing, unreadable or empty)").c_str()));
   }
   return reader->GetOutput();
 }

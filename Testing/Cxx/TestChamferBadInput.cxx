@@ -1,6 +1,6 @@
 // Each bad input of vtkChamferVoxelDistance and vtkPolyDataVoxelizer gives the documented
 // message, no crash, and no (or an empty) output.
-// usage: TestChamferBadInput empty|noboundary|wrongsize|wrongtype|components|memory|
+// usage: TestChamferBadInput empty|nanspacing|noboundary|wrongsize|wrongtype|components|memory|
 //                            voxelize-empty|voxelize-nan|voxelize-memory|voxelize-lines
 #include "vtkChamferVoxelDistance.h"
 #include "vtkPolyDataVoxelizer.h"
@@ -61,6 +61,13 @@ int main(int argc, char* argv[])
     vtkNew<vtkPolyData> empty;
     filter->SetInputData(empty);
     expectWarning = "empty";
+  }
+  else if (mode == "nanspacing")
+  {
+    auto image = Image(216, true);
+    image->SetSpacing(std::nan(""), 1, 1);
+    filter->SetInputData(image);
+    expectError = "The input image's grid is unusable: the grid spacing along x is not a finite";
   }
   else if (mode == "noboundary")
   {

@@ -53,6 +53,13 @@ int main(int argc, char* argv[])
     filter->SetInputData(Field(-1, false));
     expectError = "no point-data array named ClosestPoint";
   }
+  else if (mode == "nanspacing")
+  {
+    auto image = Field(-1, true);
+    image->SetSpacing(1, std::nan(""), 1);
+    filter->SetInputData(image);
+    expectError = "The input image's grid is unusable: the grid spacing along y is not a finite";
+  }
   else if (mode == "angle")
   {
     filter->SetInputData(Field(-1, true));

@@ -60,7 +60,8 @@ vtkSmartPointer<vtkPolyData> Scaled(vtkPolyData* mesh, double k)
 double CellDistance(vtkPolyData* mesh, vtkIdType cell, const double x[3])
 {
   double best = HUGE_VAL;
-  const vtkIdType first = cell < 0 ? 0 : cell, last = cell < 0 ? mesh->GetNumberOfCells() : cell + 1;
+  const vtkIdType first = cell < 0 ? 0 : cell,
+                  last = cell < 0 ? mesh->GetNumberOfCells() : cell + 1;
   for (vtkIdType c = first; c < last; ++c)
   {
     vtkCell* triangle = mesh->GetCell(c);
@@ -185,21 +186,27 @@ int main(int argc, char* argv[])
     baseField = LinearFactor(mesh, backend);
   }
 
-  const double scales[] = { std::ldexp(1.0, 100), std::ldexp(1.0, -100), 1e-30, 1e-20, 1e-10,
-    1e10, 1e20, 1e30 };
+  const double scales[] = {
+    std::ldexp(1.0, 100), std::ldexp(1.0, -100), 1e-30, 1e-20, 1e-10, 1e10, 1e20, 1e30
+  };
   for (const double k : scales)
   {
     int exponent;
     const bool exact = std::frexp(k, &exponent) == 0.5; // a power of two
     vtkSmartPointer<vtkPolyData> scaled = Scaled(mesh, k);
     const Output out = Run(name, scaled, backend);
-    CHECK(out.Image->GetNumberOfPoints() == n, "scale %g: %lld samples instead of %lld", k,
-      static_cast<long long>(out.Image->GetNumberOfPoints()), static_cast<long long>(n));
+    CHECK(out.Image->GetNumberOfPoints() == n,
+      "scale %g: %lld samples instead of %lld",
+      k,
+      static_cast<long long>(out.Image->GetNumberOfPoints()),
+      static_cast<long long>(n));
     if (out.Image->GetNumberOfPoints() != n)
     {
       continue;
     }
-    CHECK(std::fabs(out.Image->GetSpacing()[0] / k - h) <= 1e-12 * h, "scale %g: spacing %g", k,
+    CHECK(std::fabs(out.Image->GetSpacing()[0] / k - h) <= 1e-12 * h,
+      "scale %g: spacing %g",
+      k,
       out.Image->GetSpacing()[0]);
 
     // Distances and points: k times, exactly or within 1e-3 h; a point may also move at a tie.
@@ -218,7 +225,8 @@ int main(int argc, char* argv[])
         {
           const double x0 = a0->GetComponent(v, c), x1 = a1->GetComponent(v, c);
           // float(x0) * float(k) is exact for a power of two within float's range.
-          inexact += exact && static_cast<float>(x1) != static_cast<float>(x0) * static_cast<float>(k);
+          inexact +=
+            exact && static_cast<float>(x1) != static_cast<float>(x0) * static_cast<float>(k);
           const double error = std::fabs(x1 / k - x0) / h;
           if (components == 3 && error > 1e-3)
           {
@@ -230,16 +238,22 @@ int main(int argc, char* argv[])
             const double d0 = CellDistance(mesh, static_cast<vtkIdType>(ids0->GetTuple1(v)), x);
             const double d1 = CellDistance(mesh, static_cast<vtkIdType>(ids1->GetTuple1(v)), x);
             CHECK(std::fabs(d0 - d1) <= 1e-3 * h,
-              "scale %g: %s of sample %lld moved %g h without a tie", k, array,
-              static_cast<long long>(v), error);
+              "scale %g: %s of sample %lld moved %g h without a tie",
+              k,
+              array,
+              static_cast<long long>(v),
+              error);
             pointTies += c == 0;
             continue;
           }
           arrayLargest = std::max(arrayLargest, error);
         }
       }
-      CHECK(inexact == 0, "scale %g: %lld values of %s are not exactly k times the unscaled ones",
-        k, static_cast<long long>(inexact), array);
+      CHECK(inexact == 0,
+        "scale %g: %lld values of %s are not exactly k times the unscaled ones",
+        k,
+        static_cast<long long>(inexact),
+        array);
       if (components == 1) // distances; a closest point away from a tie is checked above
       {
         largest = std::max(largest, arrayLargest);
@@ -279,8 +293,10 @@ int main(int argc, char* argv[])
         bool tie = false;
         if (a == "ClosestCellId" || a == "ClosestFeature")
         {
-          const double d0 = CellDistance(mesh, static_cast<vtkIdType>(base.Get("ClosestCellId")->GetTuple1(v)), x);
-          const double d1 = CellDistance(mesh, static_cast<vtkIdType>(out.Get("ClosestCellId")->GetTuple1(v)), x);
+          const double d0 =
+            CellDistance(mesh, static_cast<vtkIdType>(base.Get("ClosestCellId")->GetTuple1(v)), x);
+          const double d1 =
+            CellDistance(mesh, static_cast<vtkIdType>(out.Get("ClosestCellId")->GetTuple1(v)), x);
           // Also a feature flip at the same point (a face site against its own edge).
           tie = std::fabs(d0 - d1) <= 1e-3 * h;
         }
@@ -305,7 +321,8 @@ int main(int argc, char* argv[])
           base.Image->GetDimensions(dims);
           const vtkIdType stride[3] = { 1, dims[0], vtkIdType(dims[0]) * dims[1] };
           const int ijk[3] = { static_cast<int>(v % dims[0]),
-            static_cast<int>((v / dims[0]) % dims[1]), static_cast<int>(v / stride[2]) };
+            static_cast<int>((v / dims[0]) % dims[1]),
+            static_cast<int>(v / stride[2]) };
           auto* cp = vtkFloatArray::SafeDownCast(f0.Get("ClosestPoint"));
           auto* d = f0.Get("Distance");
           const double threshold = std::cos(90.0 * M_PI / 180.0);
@@ -332,14 +349,20 @@ int main(int argc, char* argv[])
             }
           }
         }
-        CHECK(tie, "scale %g: %s differs at sample %lld, which is not a tie", k, array,
+        CHECK(tie,
+          "scale %g: %s differs at sample %lld, which is not a tie",
+          k,
+          array,
           static_cast<long long>(v));
         ties += tie;
       }
     }
     std::printf("scale %-8g: largest distance error %.3g h, %lld discrete values and %lld closest "
                 "points differ at ties%s\n",
-      k, largest, static_cast<long long>(ties), static_cast<long long>(pointTies),
+      k,
+      largest,
+      static_cast<long long>(ties),
+      static_cast<long long>(pointTies),
       exact ? " (power of two: bit for bit)" : "");
   }
   return testsupport::Verdict();

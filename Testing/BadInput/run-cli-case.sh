@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# One case of cases.txt through vtkdf: run-cli-case.sh VTKDF CORPUS DATA OUT SUBCOMMAND
+# INPUT "OPTIONS" "EXPECT". Fails on a crash (a signal), a time-out, a wrong exit status,
+# an error that does not name the problem, or an output unlike the exact reference.
+set -uo pipefail
+vtkdf=$1 corpus=$2 data=$3 out=$4 sub=$5 input=$6 options=$7 expect=$8
+mkdir -p "$out"
+path="$corpus/$input"
+[ -e "$path" ] || path="$data/$input"
+kind=${expect%% *}
+pattern=${expect#* }
+result="$out/$sub.vti"
+rm -f "$result"
+# shellcheck disable=SC2086 # the options are words
+timeout 120 "$vtkdf" "$sub" "$path" -o "$result" $options > "$out/$sub.stdout" 2> "$out/$sub.stderr"
+status=$?
+fail() {
+  echo "FAIL ($sub $input $options): $*"
+  sed -n 1,20p "$out/$sub.stderr"
+  exit 1
+}
+[ $status -eq 124 ] && fail "timed out"
+[ $status -ge 128 ] && fail "killed by signal $((status - 128))"
+case $kind in
+  error | empty)
+    [ $status -eq 1 ] || fail "exit status $status, expected 1"
+    grep -Eq -- "$pattern" "$out/$sub.stderr" || fail "no message matching '$pattern'"
+    [ -e "$result" ] && fail "an output file was written"
+    ;;
+  usage)
+    [ $status -eq 2 ] || fail "exit status $status, expected 2 (usage)"
+    grep -Eq -- "$pattern" "$out/$sub.stderr" || fail "no message matching '$pattern'"
+    ;;
+  exact)
+    [ $status -eq 0 ] || fail "exit status $status, expected 0"
+    /usr/bin/python3 "$corpus/check_output.py" "$path" "$result" || fail "output differs from the reference"
+    ;;
+  *) fail "unknown expectation '$expect'" ;;
+esac
+echo "ok ($sub $input $options): $kind"
