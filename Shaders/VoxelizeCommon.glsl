@@ -20,6 +20,24 @@ layout(std430, binding = 0) readonly buffer Triangles
   Tri tris[];
 };
 
+// One triangle set up for the boundary rule (VoxelizerRules.h's BoundaryTriangle).
+struct BoundaryTri
+{
+  dvec4 X;     // lane-plane x of the corners (lane units); w: orientation (+1, -1; 0: box only)
+  dvec4 Y;     // lane-plane y; w: depth change per lane along x
+  dvec4 Z;     // depths (voxels); w: depth change per lane along y
+  dvec4 Slack; // growth of the three edge functions by the reaches; w: depth spread
+  dvec4 P0;    // corners in the grid's coordinates
+  dvec4 P1;
+  dvec4 P2;
+  ivec4 Rect;  // lanes x0, x1, y0, y1 of the grown bounding box
+  ivec4 Depth; // x, y: the voxels of the grown depth range
+};
+layout(std430, binding = 1) readonly buffer BoundaryTriangles
+{
+  BoundaryTri btris[];
+};
+
 const int64_t Subpixel = 256l;
 const int SolidGuard = 2;
 
@@ -52,48 +70,11 @@ bool CoversCentre(Tri t, int64_t p, int64_t q, out int64_t e[3])
   return true;
 }
 
-bool OverlapsCell(Tri t, int64_t p, int64_t q, out int64_t e[3])
-{
-  int64_t halfCell = Subpixel / 2l;
-  for (int k = 0; k < 3; ++k)
-  {
-    int k1 = (k + 1) % 3;
-    e[k] = Edge(t, k, p, q);
-    if (e[k] + halfCell * (abs(t.X[k1] - t.X[k]) + abs(t.Y[k1] - t.Y[k])) < 0l)
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
 double DepthAt(Tri t, int64_t e[3])
 {
   precise double depth =
     (double(e[1]) * t.Z[0] + double(e[2]) * t.Z[1] + double(e[0]) * t.Z[2]) / double(t.X.w);
   return depth;
-}
-
-double DepthSpread(Tri t)
-{
-  precise double slopeP = -(double(t.Y[2] - t.Y[1]) * t.Z[0] + double(t.Y[0] - t.Y[2]) * t.Z[1] +
-                             double(t.Y[1] - t.Y[0]) * t.Z[2]) /
-    double(t.X.w) * double(Subpixel);
-  precise double slopeQ = (double(t.X[2] - t.X[1]) * t.Z[0] + double(t.X[0] - t.X[2]) * t.Z[1] +
-                            double(t.X[1] - t.X[0]) * t.Z[2]) /
-    double(t.X.w) * double(Subpixel);
-  precise double spread = 0.5lf * (abs(slopeP) + abs(slopeQ));
-  return spread;
-}
-
-void BoundaryCandidates(Tri t, double depth, double spread, double reach, int na, out int k0, out int k1)
-{
-  double zmin = min(t.Z[0], min(t.Z[1], t.Z[2]));
-  double zmax = max(t.Z[0], max(t.Z[1], t.Z[2]));
-  precise double lo = max(depth - spread, zmin) - reach;
-  precise double hi = min(depth + spread, zmax) + reach;
-  k0 = int(max(ceil(lo), 0.0lf));
-  k1 = int(min(floor(hi), double(na) - 1.0lf));
 }
 
 int SolidBit(double depth, int na)
@@ -106,6 +87,49 @@ double Dot(dvec3 u, dvec3 v)
 {
   precise double d = u.x * v.x + u.y * v.y + u.z * v.z;
   return d;
+}
+
+// The voxels [k0, k1] of lane (p, q) that may lie within reach of the triangle.
+bool BoundaryLaneCandidates(BoundaryTri t, int p, int q, double reach, out int k0, out int k1)
+{
+  double zmin = min(t.Z[0], min(t.Z[1], t.Z[2]));
+  double zmax = max(t.Z[0], max(t.Z[1], t.Z[2]));
+  precise double lo = zmin - reach, hi = zmax + reach;
+  k0 = 0;
+  k1 = -1;
+  if (t.X.w != 0.0lf)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      int k1e = (k + 1) % 3;
+      precise double e =
+        t.X.w * ((t.X[k1e] - t.X[k]) * (double(q) - t.Y[k]) - (t.Y[k1e] - t.Y[k]) * (double(p) - t.X[k]));
+      if (e + t.Slack[k] < 0.0lf)
+      {
+        return false;
+      }
+    }
+    precise double depth = t.Z[0] + t.Y.w * (double(p) - t.X[0]) + t.Z.w * (double(q) - t.Y[0]);
+    lo = max(depth - t.Slack.w, zmin) - reach;
+    hi = min(depth + t.Slack.w, zmax) + reach;
+  }
+  k0 = max(t.Depth.x, int(ceil(max(lo, -1.0lf))));
+  k1 = min(t.Depth.y, int(floor(min(hi, double(t.Depth.y) + 1.0lf))));
+  return k0 <= k1;
+}
+
+double SquaredDistanceToSegment(dvec3 p, dvec3 a, dvec3 b)
+{
+  precise dvec3 ab = b - a, ap = p - a;
+  precise double length2 = Dot(ab, ab), along = Dot(ap, ab);
+  precise double t = length2 > 0.0lf ? min(1.0lf, max(0.0lf, along / length2)) : 0.0lf;
+  precise double sum = 0.0lf;
+  for (int k = 0; k < 3; ++k)
+  {
+    precise double e = a[k] + t * ab[k] - p[k];
+    sum += e * e;
+  }
+  return sum;
 }
 
 double SquaredDistanceToTriangle(dvec3 p, dvec3 a, dvec3 b, dvec3 c)
@@ -148,7 +172,14 @@ double SquaredDistanceToTriangle(dvec3 p, dvec3 a, dvec3 b, dvec3 c)
   }
   else
   {
-    precise double denominator = 1.0lf / (va + vb + vc);
+    // A degenerate triangle (a segment or a point) is the union of its edges.
+    precise double area2 = va + vb + vc;
+    if (!(area2 > 0.0lf))
+    {
+      return min(SquaredDistanceToSegment(p, a, b),
+        min(SquaredDistanceToSegment(p, b, c), SquaredDistanceToSegment(p, c, a)));
+    }
+    precise double denominator = 1.0lf / area2;
     v = vb * denominator;
     w = vc * denominator;
   }

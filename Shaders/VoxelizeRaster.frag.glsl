@@ -21,12 +21,12 @@ uvec4 Bit(int i)
 
 void main()
 {
-  Tri t = tris[TriIndex];
   int64_t p = int64_t(gl_FragCoord.x), q = int64_t(gl_FragCoord.y);
   int base = gl_Layer * 128;
-  int64_t e[3];
   if (Mode == 1)
   {
+    Tri t = tris[TriIndex];
+    int64_t e[3];
     if (!CoversCentre(t, p, q, e))
     {
       discard;
@@ -40,12 +40,12 @@ void main()
     Out1 = t.Flags.x != 0 ? uvec4(0u) : Bit(at);
     return;
   }
-  if (!OverlapsCell(t, p, q, e))
+  BoundaryTri b = btris[TriIndex];
+  int k0, k1;
+  if (!BoundaryLaneCandidates(b, int(p), int(q), Reach, k0, k1))
   {
     discard;
   }
-  int k0, k1;
-  BoundaryCandidates(t, DepthAt(t, e), DepthSpread(t), Reach, Na, k0, k1);
   k0 = max(k0, base);
   k1 = min(k1, base + 127);
   uvec4 bits = uvec4(0u);
@@ -56,7 +56,7 @@ void main()
     ijk[Axes.y] = int(p);
     ijk[Axes.z] = int(q);
     precise dvec3 centre = Origin + dvec3(Lo + ijk) * Spacing;
-    if (SquaredDistanceToTriangle(centre, t.P0.xyz, t.P1.xyz, t.P2.xyz) <= Limit2)
+    if (SquaredDistanceToTriangle(centre, b.P0.xyz, b.P1.xyz, b.P2.xyz) <= Limit2)
     {
       bits |= Bit(k - base);
     }

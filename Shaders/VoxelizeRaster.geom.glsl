@@ -1,41 +1,44 @@
 // Covers the lanes a triangle may touch with a screen-aligned rectangle, once per lane
 // texel layer (128 bits of lane each) its bits may fall in; the fragment shader decides
-// every bit. 32 invocations of up to 8 layers each: up to 256 layers per triangle.
+// every bit. Boundary (Mode 0) draws the BoundaryTri records of this view, solid (Mode 1)
+// the Tri records. 32 invocations of up to 8 layers each: up to 256 layers per triangle.
 layout(points, invocations = 32) in;
 layout(triangle_strip, max_vertices = 32) out;
 
 uniform int Mode; // 0: boundary, 1: solid
 uniform int Nb, Nc, Na;
-uniform double Reach; // boundary distance limit, in voxels along the view axis
 
 flat out int TriIndex;
 
 void main()
 {
   int index = gl_PrimitiveIDIn;
-  Tri t = tris[index];
-  int64_t grow = Mode == 0 ? Subpixel / 2l : 0l;
-  int64_t xmin = min(t.X.x, min(t.X.y, t.X.z)) - grow, xmax = max(t.X.x, max(t.X.y, t.X.z)) + grow;
-  int64_t ymin = min(t.Y.x, min(t.Y.y, t.Y.z)) - grow, ymax = max(t.Y.x, max(t.Y.y, t.Y.z)) + grow;
-  int p0 = int(max(0l, -FloorDiv(-xmin, Subpixel))), p1 = int(min(int64_t(Nb - 1), FloorDiv(xmax, Subpixel)));
-  int q0 = int(max(0l, -FloorDiv(-ymin, Subpixel))), q1 = int(min(int64_t(Nc - 1), FloorDiv(ymax, Subpixel)));
-  if (p0 > p1 || q0 > q1)
-  {
-    return;
-  }
-  double zmin = min(t.Z[0], min(t.Z[1], t.Z[2])), zmax = max(t.Z[0], max(t.Z[1], t.Z[2]));
-  int first, last;
+  int p0, p1, q0, q1, first, last;
   if (Mode == 0)
   {
-    first = int(max(floor(zmin - Reach), 0.0lf));
-    last = int(min(ceil(zmax + Reach), double(Na - 1)));
+    // The grown bounding box and depth range, set up on the CPU.
+    BoundaryTri t = btris[index];
+    p0 = t.Rect.x;
+    p1 = t.Rect.y;
+    q0 = t.Rect.z;
+    q1 = t.Rect.w;
+    first = t.Depth.x;
+    last = t.Depth.y;
   }
   else
   {
+    Tri t = tris[index];
+    int64_t xmin = min(t.X.x, min(t.X.y, t.X.z)), xmax = max(t.X.x, max(t.X.y, t.X.z));
+    int64_t ymin = min(t.Y.x, min(t.Y.y, t.Y.z)), ymax = max(t.Y.x, max(t.Y.y, t.Y.z));
+    p0 = int(max(0l, -FloorDiv(-xmin, Subpixel)));
+    p1 = int(min(int64_t(Nb - 1), FloorDiv(xmax, Subpixel)));
+    q0 = int(max(0l, -FloorDiv(-ymin, Subpixel)));
+    q1 = int(min(int64_t(Nc - 1), FloorDiv(ymax, Subpixel)));
+    double zmin = min(t.Z[0], min(t.Z[1], t.Z[2])), zmax = max(t.Z[0], max(t.Z[1], t.Z[2]));
     first = SolidBit(zmin, Na);
     last = SolidBit(zmax, Na);
   }
-  if (first > last)
+  if (p0 > p1 || q0 > q1 || first > last)
   {
     return;
   }

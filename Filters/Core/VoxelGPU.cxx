@@ -33,6 +33,43 @@ struct alignas(32) GpuTriangle
 };
 static_assert(sizeof(GpuTriangle) == 224, "std430 layout of Tri");
 
+/// Shaders/VoxelizeCommon.glsl's `BoundaryTri` (std430: 256 bytes).
+struct alignas(32) GpuBoundaryTriangle
+{
+  double X[4], Y[4], Z[4], Slack[4];
+  double P[3][4];
+  int32_t Rect[4];
+  int32_t Depth[4];
+};
+static_assert(sizeof(GpuBoundaryTriangle) == 256, "std430 layout of BoundaryTri");
+
+GpuBoundaryTriangle Pack(const BoundaryTriangle& t)
+{
+  GpuBoundaryTriangle g{};
+  for (int k = 0; k < 3; ++k)
+  {
+    g.X[k] = t.X[k];
+    g.Y[k] = t.Y[k];
+    g.Z[k] = t.Z[k];
+    g.Slack[k] = t.Slack[k];
+    for (int d = 0; d < 3; ++d)
+    {
+      g.P[k][d] = t.P[k][d];
+    }
+  }
+  g.X[3] = t.Orientation;
+  g.Y[3] = t.GradP;
+  g.Z[3] = t.GradQ;
+  g.Slack[3] = t.Spread;
+  g.Rect[0] = t.P0;
+  g.Rect[1] = t.P1;
+  g.Rect[2] = t.Q0;
+  g.Rect[3] = t.Q1;
+  g.Depth[0] = t.K0;
+  g.Depth[1] = t.K1;
+  return g;
+}
+
 /// A lane texture: RGBA32UI 2D array, Nx x Ny lanes of Texels x 128 bits.
 class Lanes
 {
@@ -139,7 +176,7 @@ struct Objects
   }
   ~Objects()
   {
-    this->GL.DeleteBuffers(3, this->Buffers);
+    this->GL.DeleteBuffers(4, this->Buffers);
     this->GL.DeleteVertexArrays(1, &this->VAO);
     this->GL.DeleteFramebuffers(1, &this->FBO);
     for (GLuint p : this->Programs)
@@ -148,7 +185,7 @@ struct Objects
     }
   }
   const GLFunctions& GL;
-  GLuint Buffers[3] = { 0, 0, 0 }; // triangles, distances, counts
+  GLuint Buffers[4] = { 0, 0, 0, 0 }; // triangles, distances, counts, boundary triangles
   GLuint VAO = 0, FBO = 0;
   std::vector<GLuint> Programs;
 };
@@ -249,7 +286,7 @@ bool VoxelizeToLanes(HeadlessGL& context,
   if (!objects.VAO)
   {
     gl.GenVertexArrays(1, &objects.VAO);
-    gl.GenBuffers(3, objects.Buffers);
+    gl.GenBuffers(4, objects.Buffers);
     gl.GenFramebuffers(1, &objects.FBO);
   }
   gl.BindVertexArray(objects.VAO);
@@ -266,13 +303,26 @@ bool VoxelizeToLanes(HeadlessGL& context,
   Lanes solid[3] = { Lanes(gl), Lanes(gl), Lanes(gl) };
   const int64_t numTriangles = static_cast<int64_t>(mesh.Triangles.size() / 3);
   std::vector<GpuTriangle> records;
-  records.reserve(numTriangles);
+  std::vector<GpuBoundaryTriangle> boundaryRecords[3];
+  if (boundaryZ)
+  {
+    // Each triangle in its boundary view (VoxelizerRules.h, BoundaryTriangle).
+    for (int64_t t = 0; t < numTriangles; ++t)
+    {
+      BoundaryTriangle setup;
+      if (SetupBoundaryTriangle(mesh, t, grid, setup))
+      {
+        boundaryRecords[setup.View].push_back(Pack(setup));
+      }
+    }
+  }
+  records.reserve(solidZ ? numTriangles : 0);
   int64_t far = 0;
   for (int a = 0; a < 3; ++a)
   {
     const int b = (a + 1) % 3, c = (a + 2) % 3;
     records.clear();
-    for (int64_t t = 0; t < numTriangles; ++t)
+    for (int64_t t = 0; solidZ && t < numTriangles; ++t)
     {
       ProjectedTriangle p;
       bool isFar = false;
@@ -303,6 +353,13 @@ bool VoxelizeToLanes(HeadlessGL& context,
       records.data(),
       GL_STATIC_DRAW);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objects.Buffers[0]);
+    const std::vector<GpuBoundaryTriangle>& boundaryView = boundaryRecords[a];
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, objects.Buffers[3]);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER,
+      std::max<size_t>(1, boundaryView.size()) * sizeof(GpuBoundaryTriangle),
+      boundaryView.data(),
+      GL_STATIC_DRAW);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, objects.Buffers[3]);
 
     gl.UseProgram(raster);
     gl.Uniform1i(Uniform(gl, raster, "Nb"), n[b]);
@@ -313,7 +370,7 @@ bool VoxelizeToLanes(HeadlessGL& context,
     gl.Uniform3d(Uniform(gl, raster, "Origin"), grid.Origin[0], grid.Origin[1], grid.Origin[2]);
     gl.Uniform3d(Uniform(gl, raster, "Spacing"), grid.Spacing[0], grid.Spacing[1], grid.Spacing[2]);
     gl.Uniform1d(Uniform(gl, raster, "Limit2"), limit2);
-    gl.Uniform1d(Uniform(gl, raster, "Reach"), std::sqrt(limit2) / grid.Spacing[a]);
+    gl.Uniform1d(Uniform(gl, raster, "Reach"), BoundaryReach(grid, a));
     gl.Viewport(0, 0, n[b], n[c]);
     const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
     if (boundaryZ)
@@ -328,7 +385,7 @@ bool VoxelizeToLanes(HeadlessGL& context,
         return false;
       }
       gl.Uniform1i(Uniform(gl, raster, "Mode"), 0);
-      gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(records.size()));
+      gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(boundaryView.size()));
     }
     if (solidZ)
     {
@@ -522,7 +579,7 @@ bool ChamferGPU(HeadlessGL& context,
   if (!objects.VAO)
   {
     gl.GenVertexArrays(1, &objects.VAO);
-    gl.GenBuffers(3, objects.Buffers);
+    gl.GenBuffers(4, objects.Buffers);
     gl.GenFramebuffers(1, &objects.FBO);
   }
   const GLuint distances = objects.Buffers[1], counts = objects.Buffers[2];

@@ -28,30 +28,20 @@ struct View
   BitVolume Boundary, Front, Back;
 };
 
-/// Rasterizes every triangle into a view (vertices snapped to 1/256 of a spacing, exact
-/// integer edge functions):
-/// - Solid: each lane whose centre the projected triangle covers (top-left rule) meets
-///   it at depth z; the half-voxel bin of z goes to Front (triangle facing the view)
-///   or Back.
-/// - Boundary: each lane whose cell the projected triangle overlaps (conservative)
-///   gets the voxels whose centre lies within half a cell diagonal of the triangle.
-///   A voxel whose bit is already set, in this view or in one of the `numberOfEarlier`
-///   views before it, needs no distance: the views are OR-ed in the end.
-void Rasterize(const MeshInput& mesh,
+/// Rasterizes every triangle into a view's solid lanes (vertices snapped to 1/256 of a
+/// spacing, exact integer edge functions): each lane whose centre the projected
+/// triangle covers (top-left rule) meets it at depth z; the half-voxel bin of z goes to
+/// Front (triangle facing the view) or Back.
+void RasterizeSolid(const MeshInput& mesh,
   const SampleGrid& grid,
   double orientation,
   View& view,
-  const View* earlier,
-  int numberOfEarlier,
   const ParallelFor& parallelFor,
   std::atomic<int64_t>& far)
 {
   const IndexBox& whole = grid.Whole;
   const int a = view.A, b = view.B, c = view.C;
   const int nb = whole.Size(b), nc = whole.Size(c), na = whole.Size(a);
-  const bool boundary = view.Boundary.Size(0) > 0, solid = view.Front.Size(0) > 0;
-  const double limit2 = BoundaryLimit2(grid);
-  const double reach = std::sqrt(limit2) / grid.Spacing[a];
   const int64_t numTriangles = static_cast<int64_t>(mesh.Triangles.size() / 3);
   parallelFor(numTriangles,
     256,
@@ -71,75 +61,72 @@ void Rasterize(const MeshInput& mesh,
         const int64_t ymin = std::min(t.Y[0], std::min(t.Y[1], t.Y[2]));
         const int64_t ymax = std::max(t.Y[0], std::max(t.Y[1], t.Y[2]));
         int64_t e[3];
-        if (solid)
+        BitVolume& half = t.Entering ? view.Front : view.Back;
+        const int64_t p0 = std::max<int64_t>(0, -FloorDiv(-xmin, Subpixel));
+        const int64_t p1 = std::min<int64_t>(nb - 1, FloorDiv(xmax, Subpixel));
+        const int64_t q0 = std::max<int64_t>(0, -FloorDiv(-ymin, Subpixel));
+        const int64_t q1 = std::min<int64_t>(nc - 1, FloorDiv(ymax, Subpixel));
+        for (int64_t q = q0; q <= q1; ++q)
         {
-          // Lanes whose centre the triangle covers: one crossing each.
-          BitVolume& half = t.Entering ? view.Front : view.Back;
-          const int64_t p0 = std::max<int64_t>(0, -FloorDiv(-xmin, Subpixel));
-          const int64_t p1 = std::min<int64_t>(nb - 1, FloorDiv(xmax, Subpixel));
-          const int64_t q0 = std::max<int64_t>(0, -FloorDiv(-ymin, Subpixel));
-          const int64_t q1 = std::min<int64_t>(nc - 1, FloorDiv(ymax, Subpixel));
-          for (int64_t q = q0; q <= q1; ++q)
+          for (int64_t p = p0; p <= p1; ++p)
           {
-            for (int64_t p = p0; p <= p1; ++p)
+            if (CoversCentre(t, p, q, e))
             {
-              if (CoversCentre(t, p, q, e))
-              {
-                const int at = SolidBit(DepthAt(t, e), na);
-                uint64_t* lane = half.Lane(static_cast<int>(p), static_cast<int>(q));
-                AtomicOr(&lane[at >> 6], uint64_t(1) << (at & 63));
-              }
+              const int at = SolidBit(DepthAt(t, e), na);
+              uint64_t* lane = half.Lane(static_cast<int>(p), static_cast<int>(q));
+              AtomicOr(&lane[at >> 6], uint64_t(1) << (at & 63));
             }
           }
         }
-        if (boundary)
+      }
+    });
+}
+
+/// The boundary voxels of the triangles whose view is `view` (BoundaryTriangle): the
+/// candidates of each lane of the grown footprint, decided by the exact distance.
+void RasterizeBoundary(const std::vector<BoundaryTriangle>& triangles,
+  const std::vector<int64_t>& ids,
+  const SampleGrid& grid,
+  View& view,
+  const ParallelFor& parallelFor)
+{
+  const IndexBox& whole = grid.Whole;
+  const int a = view.A, b = view.B, c = view.C;
+  const double limit2 = BoundaryLimit2(grid);
+  const double reach = BoundaryReach(grid, a);
+  parallelFor(static_cast<int64_t>(ids.size()),
+    64,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t i = begin; i < end; ++i)
+      {
+        const BoundaryTriangle& t = triangles[ids[i]];
+        for (int q = t.Q0; q <= t.Q1; ++q)
         {
-          // Lanes whose cell the triangle overlaps (conservative); the exact distance
-          // decides among the voxels it may reach.
-          const int64_t half = Subpixel / 2;
-          const int64_t p0 = std::max<int64_t>(0, -FloorDiv(-(xmin - half), Subpixel));
-          const int64_t p1 = std::min<int64_t>(nb - 1, FloorDiv(xmax + half, Subpixel));
-          const int64_t q0 = std::max<int64_t>(0, -FloorDiv(-(ymin - half), Subpixel));
-          const int64_t q1 = std::min<int64_t>(nc - 1, FloorDiv(ymax + half, Subpixel));
-          const double spread = DepthSpread(t);
-          for (int64_t q = q0; q <= q1; ++q)
+          for (int p = t.P0; p <= t.P1; ++p)
           {
-            for (int64_t p = p0; p <= p1; ++p)
+            int k0, k1;
+            if (!BoundaryLaneCandidates(t, p, q, reach, k0, k1))
             {
-              if (!OverlapsCell(t, p, q, e))
+              continue;
+            }
+            uint64_t* lane = view.Boundary.Lane(p, q);
+            for (int k = k0; k <= k1; ++k)
+            {
+              if ((__atomic_load_n(&lane[k >> 6], __ATOMIC_RELAXED) >> (k & 63)) & 1u)
               {
                 continue;
               }
-              int k0, k1;
-              BoundaryCandidates(t, DepthAt(t, e), spread, reach, na, k0, k1);
-              uint64_t* lane = view.Boundary.Lane(static_cast<int>(p), static_cast<int>(q));
-              for (int k = k0; k <= k1; ++k)
+              int ijk[3];
+              ijk[a] = k, ijk[b] = p, ijk[c] = q;
+              double centre[3];
+              for (int d = 0; d < 3; ++d)
               {
-                if ((__atomic_load_n(&lane[k >> 6], __ATOMIC_RELAXED) >> (k & 63)) & 1u)
-                {
-                  continue;
-                }
-                int ijk[3];
-                ijk[a] = k, ijk[b] = static_cast<int>(p), ijk[c] = static_cast<int>(q);
-                bool known = false;
-                for (int e = 0; e < numberOfEarlier && !known; ++e)
-                {
-                  const View& v = earlier[e];
-                  known = v.Boundary.Get(ijk[v.B], ijk[v.C], ijk[v.A]);
-                }
-                if (known)
-                {
-                  continue;
-                }
-                double centre[3];
-                for (int d = 0; d < 3; ++d)
-                {
-                  centre[d] = grid.Coordinate(d, whole.Lo[d] + ijk[d]);
-                }
-                if (SquaredDistanceToTriangle(centre, t.P[0], t.P[1], t.P[2]) <= limit2)
-                {
-                  AtomicOr(&lane[k >> 6], uint64_t(1) << (k & 63));
-                }
+                centre[d] = grid.Coordinate(d, whole.Lo[d] + ijk[d]);
+              }
+              if (SquaredDistanceToTriangle(centre, t.P[0], t.P[1], t.P[2]) <= limit2)
+              {
+                AtomicOr(&lane[k >> 6], uint64_t(1) << (k & 63));
               }
             }
           }
@@ -336,6 +323,30 @@ bool VoxelizeCPU(const MeshInput& mesh,
   const double orientation = MeshOrientation(mesh);
   statistics.FlippedOrientation = orientation < 0;
 
+  // Each triangle's boundary view (its setup), and the triangles of each view.
+  std::vector<BoundaryTriangle> setups;
+  std::vector<int64_t> ofView[3];
+  if (boundary)
+  {
+    setups.resize(statistics.Triangles);
+    std::vector<char> useful(statistics.Triangles);
+    parallelFor(statistics.Triangles,
+      1024,
+      [&](int64_t begin, int64_t end)
+      {
+        for (int64_t t = begin; t < end; ++t)
+        {
+          useful[t] = SetupBoundaryTriangle(mesh, t, grid, setups[t]);
+        }
+      });
+    for (int64_t t = 0; t < statistics.Triangles; ++t)
+    {
+      if (useful[t])
+      {
+        ofView[setups[t].View].push_back(t);
+      }
+    }
+  }
   View views[3];
   std::atomic<int64_t> far{ 0 };
   for (int a = 0; a < 3; ++a)
@@ -347,13 +358,14 @@ bool VoxelizeCPU(const MeshInput& mesh,
     if (boundary)
     {
       v.Boundary.Resize(n[v.B], n[v.C], n[a]);
+      RasterizeBoundary(setups, ofView[a], grid, v, parallelFor);
     }
     if (solid)
     {
       v.Front.Resize(n[v.B], n[v.C], 2 * n[a] + 1 + SolidGuard);
       v.Back.Resize(n[v.B], n[v.C], 2 * n[a] + 1 + SolidGuard);
+      RasterizeSolid(mesh, grid, orientation, v, parallelFor, far);
     }
-    Rasterize(mesh, grid, orientation, v, views, a, parallelFor, far);
   }
   statistics.FarTriangles = far.load() / 3;
 

@@ -119,58 +119,11 @@ inline bool CoversCentre(const ProjectedTriangle& t, int64_t p, int64_t q, int64
   return true;
 }
 
-/// Whether the triangle overlaps the lane's cell (the square of one spacing around its
-/// centre); fills the edge values.
-inline bool OverlapsCell(const ProjectedTriangle& t, int64_t p, int64_t q, int64_t e[3])
-{
-  const int64_t half = Subpixel / 2;
-  for (int k = 0; k < 3; ++k)
-  {
-    const int k1 = (k + 1) % 3;
-    e[k] = Edge(t, k, p, q);
-    if (e[k] + half * (std::llabs(t.X[k1] - t.X[k]) + std::llabs(t.Y[k1] - t.Y[k])) < 0)
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
 /// Depth of the triangle's plane on the lane (barycentric: the weight of vertex k is the
 /// edge function opposite it).
 inline double DepthAt(const ProjectedTriangle& t, const int64_t e[3])
 {
   return (double(e[1]) * t.Z[0] + double(e[2]) * t.Z[1] + double(e[0]) * t.Z[2]) / double(t.Area);
-}
-
-/// Half the change of depth across a lane's cell.
-inline double DepthSpread(const ProjectedTriangle& t)
-{
-  const double slopeP = -(double(t.Y[2] - t.Y[1]) * t.Z[0] + double(t.Y[0] - t.Y[2]) * t.Z[1] +
-                          double(t.Y[1] - t.Y[0]) * t.Z[2]) /
-    double(t.Area) * double(Subpixel);
-  const double slopeQ = (double(t.X[2] - t.X[1]) * t.Z[0] + double(t.X[0] - t.X[2]) * t.Z[1] +
-                          double(t.X[1] - t.X[0]) * t.Z[2]) /
-    double(t.Area) * double(Subpixel);
-  return 0.5 * (std::fabs(slopeP) + std::fabs(slopeQ));
-}
-
-/// The voxels of a lane that may lie within `reach` (voxel units along A) of the part of
-/// the triangle over the lane's cell: [k0, k1], clamped to [0, na - 1].
-inline void BoundaryCandidates(const ProjectedTriangle& t,
-  double depth,
-  double spread,
-  double reach,
-  int na,
-  int& k0,
-  int& k1)
-{
-  const double zmin = std::min(t.Z[0], std::min(t.Z[1], t.Z[2]));
-  const double zmax = std::max(t.Z[0], std::max(t.Z[1], t.Z[2]));
-  const double lo = std::max(depth - spread, zmin) - reach;
-  const double hi = std::min(depth + spread, zmax) + reach;
-  k0 = static_cast<int>(std::max(std::ceil(lo), 0.0));
-  k1 = static_cast<int>(std::min(std::floor(hi), na - 1.0));
 }
 
 /// The lane bit (half-voxel bin + guard) of a crossing at `depth`.
@@ -180,8 +133,31 @@ inline int SolidBit(double depth, int na)
   return static_cast<int>(std::floor(std::min(std::max(u, -1.0), 2.0 * na))) + SolidGuard;
 }
 
+/// Squared distance from p to segment ab (a point when a = b).
+inline double SquaredDistanceToSegment(const double p[3], const double a[3], const double b[3])
+{
+  double ab[3], ap[3];
+  double length2 = 0, along = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    ab[k] = b[k] - a[k];
+    ap[k] = p[k] - a[k];
+    length2 += ab[k] * ab[k];
+    along += ap[k] * ab[k];
+  }
+  const double t = length2 > 0 ? std::min(1.0, std::max(0.0, along / length2)) : 0.0;
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double e = a[k] + t * ab[k] - p[k];
+    d2 += e * e;
+  }
+  return d2;
+}
+
 /// Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection,
-/// 5.1.5).
+/// 5.1.5); a degenerate triangle (collinear corners, repeated points) counts as the
+/// segments it is made of.
 inline double SquaredDistanceToTriangle(const double p[3],
   const double a[3],
   const double b[3],
@@ -230,7 +206,15 @@ inline double SquaredDistanceToTriangle(const double p[3],
   }
   else
   {
-    const double denominator = 1 / (va + vb + vc);
+    // Only a proper triangle gets here with va + vb + vc = |ab x ac|^2 > 0; a degenerate
+    // one (a segment or a point) is the union of its edges.
+    const double area2 = va + vb + vc;
+    if (!(area2 > 0))
+    {
+      return std::min(SquaredDistanceToSegment(p, a, b),
+        std::min(SquaredDistanceToSegment(p, b, c), SquaredDistanceToSegment(p, c, a)));
+    }
+    const double denominator = 1 / area2;
     v = vb * denominator, w = vc * denominator;
   }
   double d2sum = 0;
@@ -248,6 +232,182 @@ inline double BoundaryLimit2(const SampleGrid& grid)
   return 0.25 *
     (grid.Spacing[0] * grid.Spacing[0] + grid.Spacing[1] * grid.Spacing[1] +
       grid.Spacing[2] * grid.Spacing[2]);
+}
+
+/// A triangle set up for the boundary rule. The rule must find every voxel whose centre
+/// c lies within r (half the cell diagonal) of the triangle. With q the triangle point
+/// nearest to c, |c - q| <= r bounds each coordinate difference by r, so along any
+/// view c's lane lies within r / h_B and r / h_C (lane units) of q's projection, and c's
+/// depth within r / h_A of q's. Each triangle is therefore rasterized in one view only:
+/// the one its plane faces most (largest |n_A| h_A, so depth changes by at most one
+/// voxel per lane), over the projected triangle grown by those reaches (the Minkowski
+/// sum with a rectangle: three edge tests with slack, and the grown bounding box), with
+/// the voxels of each lane between the depths of the plane over the grown lane cell,
+/// clamped to the triangle's depth range and grown by r / h_A. Degenerate triangles
+/// (segments, points: no usable plane) and triangles too far from the grid for double
+/// edge functions use the grown bounding box and the whole depth range. No vertex is
+/// snapped: the candidates only have to include every such voxel, and the exact distance
+/// decides, so the CPU and GPU passes set the same bits. The reaches carry a relative
+/// slack of 1e-6 for rounding.
+struct BoundaryTriangle
+{
+  int View;                // A
+  double X[3], Y[3], Z[3]; // lane-plane coordinates (lane units) and depths (voxels)
+  double P[3][3];          // corners in the grid's coordinates
+  double Orientation;      // +1 or -1: edge functions >= 0 inside; 0: bounding box only
+  double Slack[3];         // the growth of edge function k by the reaches
+  double GradP, GradQ;     // depth change per lane along B and C
+  double Spread;           // half the depth change across a grown lane cell
+  int P0, P1, Q0, Q1;      // the lanes of the grown bounding box, within the grid
+  int K0, K1;              // the voxels of the depth range grown by the reach, within the grid
+};
+
+/// The reach along axis a, in voxels, with the rounding slack.
+inline double BoundaryReach(const SampleGrid& grid, int a)
+{
+  return std::sqrt(BoundaryLimit2(grid)) / grid.Spacing[a] * (1 + 1e-6) + 1e-6;
+}
+
+/// Sets up triangle `t` for the boundary rule; false when no voxel of the grid can be
+/// within reach of it.
+inline bool SetupBoundaryTriangle(const MeshInput& mesh,
+  int64_t t,
+  const SampleGrid& grid,
+  BoundaryTriangle& out)
+{
+  const double* corner[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    corner[k] = &mesh.Points[3 * mesh.Triangles[3 * t + k]];
+    std::copy(corner[k], corner[k] + 3, out.P[k]);
+  }
+  // In voxel units (sample index coordinates).
+  double v[3][3];
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      v[k][d] = (corner[k][d] - grid.Origin[d]) / grid.Spacing[d] - grid.Whole.Lo[d];
+    }
+  }
+  double u[3], w[3], n[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    u[d] = v[1][d] - v[0][d];
+    w[d] = v[2][d] - v[0][d];
+  }
+  n[0] = u[1] * w[2] - u[2] * w[1];
+  n[1] = u[2] * w[0] - u[0] * w[2];
+  n[2] = u[0] * w[1] - u[1] * w[0];
+  const double longest2 = std::max(u[0] * u[0] + u[1] * u[1] + u[2] * u[2],
+    std::max(w[0] * w[0] + w[1] * w[1] + w[2] * w[2],
+      (w[0] - u[0]) * (w[0] - u[0]) + (w[1] - u[1]) * (w[1] - u[1]) +
+        (w[2] - u[2]) * (w[2] - u[2])));
+  const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  // A usable plane: the sine of the triangle's largest angle above 1e-9 or so.
+  bool planar = n2 > 1e-18 * longest2 * longest2;
+  int a = 0;
+  for (int d = 1; d < 3; ++d)
+  {
+    if (planar ? std::fabs(n[d]) > std::fabs(n[a])
+               : std::fabs(std::max(v[0][d], std::max(v[1][d], v[2][d])) -
+                   std::min(v[0][d], std::min(v[1][d], v[2][d]))) >
+          std::fabs(std::max(v[0][a], std::max(v[1][a], v[2][a])) -
+            std::min(v[0][a], std::min(v[1][a], v[2][a]))))
+    {
+      a = d;
+    }
+  }
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
+  out.View = a;
+  double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  for (int k = 0; k < 3; ++k)
+  {
+    out.X[k] = v[k][b];
+    out.Y[k] = v[k][c];
+    out.Z[k] = v[k][a];
+    for (int d = 0; d < 3; ++d)
+    {
+      lo[d] = std::min(lo[d], v[k][d]);
+      hi[d] = std::max(hi[d], v[k][d]);
+    }
+  }
+  // Edge functions in double stay exact enough within 2^22 lanes of the grid.
+  for (int d = 0; d < 3; ++d)
+  {
+    planar = planar && std::fabs(lo[d]) < SnapRange && std::fabs(hi[d]) < SnapRange;
+  }
+  const double rb = BoundaryReach(grid, b), rc = BoundaryReach(grid, c),
+               ra = BoundaryReach(grid, a);
+  const double nb = grid.Whole.Size(b), nc = grid.Whole.Size(c), na = grid.Whole.Size(a);
+  // The grown box, clamped in double before the conversion to int.
+  auto first = [](double x, double size)
+  { return static_cast<int>(std::ceil(std::min(std::max(x, -1.0), size))); };
+  auto last = [](double x, double size)
+  { return static_cast<int>(std::floor(std::min(std::max(x, -1.0), size))); };
+  out.P0 = std::max(0, first(lo[b] - rb, nb));
+  out.P1 = std::min(grid.Whole.Size(b) - 1, last(hi[b] + rb, nb));
+  out.Q0 = std::max(0, first(lo[c] - rc, nc));
+  out.Q1 = std::min(grid.Whole.Size(c) - 1, last(hi[c] + rc, nc));
+  out.K0 = std::max(0, first(lo[a] - ra, na));
+  out.K1 = std::min(grid.Whole.Size(a) - 1, last(hi[a] + ra, na));
+  if (out.P0 > out.P1 || out.Q0 > out.Q1 || out.K0 > out.K1)
+  {
+    return false;
+  }
+  out.Orientation = 0;
+  out.GradP = out.GradQ = out.Spread = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    out.Slack[k] = 0;
+  }
+  if (planar)
+  {
+    // n[a] is twice the projected area: not zero for the view the plane faces most.
+    out.Orientation = n[a] > 0 ? 1.0 : -1.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const int k1 = (k + 1) % 3;
+      out.Slack[k] = std::fabs(out.X[k1] - out.X[k]) * rc + std::fabs(out.Y[k1] - out.Y[k]) * rb;
+    }
+    out.GradP = -n[b] / n[a];
+    out.GradQ = -n[c] / n[a];
+    out.Spread = std::fabs(out.GradP) * rb + std::fabs(out.GradQ) * rc;
+  }
+  return true;
+}
+
+/// The voxels [k0, k1] of lane (p, q) that may lie within reach of the triangle; false
+/// when none.
+inline bool BoundaryLaneCandidates(const BoundaryTriangle& t,
+  int p,
+  int q,
+  double reach,
+  int& k0,
+  int& k1)
+{
+  const double zmin = std::min(t.Z[0], std::min(t.Z[1], t.Z[2]));
+  const double zmax = std::max(t.Z[0], std::max(t.Z[1], t.Z[2]));
+  double lo = zmin - reach, hi = zmax + reach;
+  if (t.Orientation != 0)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int k1 = (k + 1) % 3;
+      const double e =
+        t.Orientation * ((t.X[k1] - t.X[k]) * (q - t.Y[k]) - (t.Y[k1] - t.Y[k]) * (p - t.X[k]));
+      if (e + t.Slack[k] < 0)
+      {
+        return false;
+      }
+    }
+    const double depth = t.Z[0] + t.GradP * (p - t.X[0]) + t.GradQ * (q - t.Y[0]);
+    lo = std::max(depth - t.Spread, zmin) - reach;
+    hi = std::min(depth + t.Spread, zmax) + reach;
+  }
+  k0 = std::max(t.K0, static_cast<int>(std::ceil(std::max(lo, -1.0))));
+  k1 = std::min(t.K1, static_cast<int>(std::floor(std::min(hi, double(t.K1) + 1))));
+  return k0 <= k1;
 }
 
 /// +1 when the mesh's signed volume is positive (outward triangles), else -1.
