@@ -225,6 +225,11 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     }
     vtkdf::VoxelizeStatistics statistics;
     const bool masksBack = this->OutputMasks && !image;
+    auto progress = [this](double fraction)
+    {
+      this->UpdateProgress(0.1 + 0.85 * fraction);
+      return !this->GetAbortExecute();
+    };
     if (!vtkdf::ChamferGPU(*gl,
           in,
           metric,
@@ -236,10 +241,15 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
           masksBack && haveSolid ? &solid : nullptr,
           result,
           statistics,
-          error))
+          error,
+          progress))
     {
       vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error << ".");
       return 0;
+    }
+    if (result.Aborted)
+    {
+      return 1; // an empty output
     }
     const std::string far = vtkdf::FarTriangles(statistics);
     warning += (warning.empty() || far.empty() ? "" : " ") + far;

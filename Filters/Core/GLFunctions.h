@@ -60,6 +60,7 @@ namespace vtkdf
   X(PFNGLENABLEPROC, Enable)                                                                       \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)                                     \
   X(PFNGLENDQUERYPROC, EndQuery)                                                                   \
+  X(PFNGLFINISHPROC, Finish)                                                                       \
   X(PFNGLFRAMEBUFFERTEXTUREPROC, FramebufferTexture)                                               \
   X(PFNGLGENBUFFERSPROC, GenBuffers)                                                               \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                                                     \

@@ -189,12 +189,15 @@ bool ScanSitesGPU(HeadlessGL& context,
   gl.GenVertexArrays(1, &gpu.VAO);
   gl.BindVertexArray(gpu.VAO);
 
-  // Layers per batch: what the array textures and a memory budget allow.
+  // Layers per batch: what the array textures and a memory budget allow, and at most a
+  // sixteenth of the grid, so that progress is reported, and an abort honoured, at
+  // least every sixteenth of the scan.
   const int64_t bytesPerLayer = int64_t(nx) * ny * 12;
   const int64_t budget = int64_t(1) << 30;
+  const int64_t perBatch = (int64_t(nz) + MinimumBatches - 1) / MinimumBatches;
   const int layers = static_cast<int>(std::max<int64_t>(1,
     std::min<int64_t>(
-      { int64_t(nz), int64_t(maxLayers), budget / std::max<int64_t>(1, bytesPerLayer) })));
+      { perBatch, int64_t(maxLayers), budget / std::max<int64_t>(1, bytesPerLayer) })));
   gl.GenTextures(3, gpu.Textures);
   const GLenum formats[3] = { GL_R32F, GL_R32I, GL_DEPTH_COMPONENT32F };
   for (int t = 0; t < 3; ++t)
@@ -371,6 +374,12 @@ bool ScanSitesGPU(HeadlessGL& context,
         gl.DeleteQueries(1, &query);
       }
       return false;
+    }
+    // The batch is done on the GPU before it is reported: the fraction is then true,
+    // and an abort stops the scan within one batch.
+    if (progress)
+    {
+      gl.Finish();
     }
     if (progress && !progress(double(batch + 1) / batches))
     {

@@ -21,9 +21,20 @@ struct IndexBox
 
   bool Empty() const { return Hi[0] < Lo[0] || Hi[1] < Lo[1] || Hi[2] < Lo[2]; }
   int Size(int a) const { return Hi[a] - Lo[a] + 1; }
+  /// The number of samples; INT64_MAX when that overflows (2^21 along every axis
+  /// does): a caller checking memory rejects it.
   int64_t Count() const
   {
-    return this->Empty() ? 0 : int64_t(Size(0)) * int64_t(Size(1)) * int64_t(Size(2));
+    if (this->Empty())
+    {
+      return 0;
+    }
+    int64_t count = 0;
+    if (__builtin_mul_overflow(int64_t(Size(0)) * int64_t(Size(1)), int64_t(Size(2)), &count))
+    {
+      return INT64_MAX;
+    }
+    return count;
   }
   IndexBox Intersect(const IndexBox& o) const
   {

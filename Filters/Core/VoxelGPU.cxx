@@ -507,7 +507,8 @@ bool ChamferGPU(HeadlessGL& context,
   BitVolume* solidOut,
   ChamferResult& result,
   VoxelizeStatistics& statistics,
-  std::string& error)
+  std::string& error,
+  const ProgressCallback& progress)
 {
   result = ChamferResult();
   HeadlessGL::Scope scope(context);
@@ -701,6 +702,15 @@ bool ChamferGPU(HeadlessGL& context,
       }
       result.Layers = l;
       result.Reached += reached[l - start];
+    }
+    // Progress per batch (the readback above waited for it): the share of the voxels
+    // reached, or of the layers when MaximumLayers bounds them.
+    const double fraction =
+      maximumLayers > 0 ? double(end) / maximumLayers : double(result.Reached) / double(voxels);
+    if (progress && !done && !progress(std::min(1.0, fraction)))
+    {
+      result.Aborted = true;
+      return true;
     }
   }
 

@@ -51,7 +51,8 @@ bool ChamferGPU(HeadlessGL& context,
   BitVolume* solidOut,
   ChamferResult& result,
   VoxelizeStatistics& statistics,
-  std::string& error);
+  std::string& error,
+  const ProgressCallback& progress = ProgressCallback());
 
 } // namespace vtkdf
 

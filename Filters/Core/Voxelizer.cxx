@@ -241,16 +241,25 @@ void TransposeInto(const BitVolume& view,
         {
           for (int c0 = 0; c0 < columns; c0 += 64)
           {
+            // The lane pointer is chosen before it is indexed: GCC 12 miscompiles
+            // (a ? p() : q())[i >> 6] under -fsanitize=shift (the front end puts the
+            // index into both arms with one SAVE_EXPR, evaluated in the first arm only,
+            // so the other arm reads an uninitialized temporary: a wild address).
             for (int r = 0; r < 64; ++r)
             {
               const int z = z0 + r;
-              tile[r] = z < nz ? (a == 0 ? view.Lane(fixed, z) : view.Lane(z, fixed))[c0 >> 6] : 0;
+              tile[r] = 0;
+              if (z < nz)
+              {
+                const uint64_t* lane = a == 0 ? view.Lane(fixed, z) : view.Lane(z, fixed);
+                tile[r] = lane[c0 >> 6];
+              }
             }
             TransposeBits64(tile);
             for (int c = 0; c < 64 && c0 + c < columns; ++c)
             {
-              uint64_t& word =
-                (a == 0 ? out.Lane(c0 + c, fixed) : out.Lane(fixed, c0 + c))[z0 >> 6];
+              uint64_t* lane = a == 0 ? out.Lane(c0 + c, fixed) : out.Lane(fixed, c0 + c);
+              uint64_t& word = lane[z0 >> 6];
               word = intersect ? (word & tile[c]) : (word | tile[c]);
             }
           }

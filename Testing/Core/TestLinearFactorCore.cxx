@@ -109,13 +109,13 @@ void RunCase(const std::string& name, const MeshInput& mesh, int resolution)
     // The parallel build writes the same sites and planes.
     MeshSites parallel;
     Check(parallel.Build(mesh, culling, 1e-5 * h, error, ThreadFor), name + ": build " + error);
-    Check(parallel.Sites.size() == sites.Sites.size() &&
-        parallel.Planes.size() == sites.Planes.size() &&
-        std::memcmp(parallel.Sites.data(), sites.Sites.data(), sites.Sites.size() * sizeof(Site)) ==
-          0 &&
-        std::memcmp(parallel.Planes.data(),
-          sites.Planes.data(),
-          sites.Planes.size() * sizeof(HalfSpace)) == 0,
+    // memcmp only on non-empty arrays: an empty vector's data() may be null.
+    auto same = [](const auto& u, const auto& v)
+    {
+      return u.size() == v.size() &&
+        (u.empty() || std::memcmp(u.data(), v.data(), u.size() * sizeof(u[0])) == 0);
+    };
+    Check(same(parallel.Sites, sites.Sites) && same(parallel.Planes, sites.Planes),
       name + ": the parallel build differs from the serial one");
     RangeCulling range;
     range.Build(sites, request.Grid, request.Extent, HUGE_VAL, ThreadFor);
