@@ -3,7 +3,7 @@
 # ./build-sanitize (after Testing/setup.sh has installed what it needs) and runs the
 # whole test suite under them. Undefined behaviour aborts the test that hits it; leaks
 # fail it, except those entirely inside third-party libraries listed, with the reason,
-# in Testing/Sanitizers/lsan.supp.
+# in Testing/Sanitizers/lsan.supp. Extra arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDF_SANITIZE=ON \
@@ -13,4 +13,5 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/Testing/Sanitizers/lsan.supp
 cd build-sanitize
-xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure -j "$(nproc)" "$@"
+# Not the ulimit -v test: ASan reserves terabytes of address space for its shadow memory.
+xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure -j "$(nproc)" -LE ulimit "$@"

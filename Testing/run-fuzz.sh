@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer target (Testing/Fuzz/FuzzFilters.cxx) with clang, address and
+# undefined-behaviour sanitizers into ./build-fuzz, and runs it for SECONDS (default 120)
+# from the seeds of Testing/Fuzz/seeds (the corpus it grows stays in build-fuzz/corpus).
+# Any finding stops it with a non-zero status and leaves the input as build-fuzz/crash-*.
+# usage: Testing/run-fuzz.sh [SECONDS] [more libFuzzer options]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-120}
+shift || true
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDF_FUZZ=ON \
+  -DBUILD_TESTING=OFF -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+cmake --build build-fuzz -j "$(nproc)" --target FuzzFilters
+mkdir -p build-fuzz/corpus
+export ASAN_OPTIONS=detect_leaks=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export LSAN_OPTIONS=suppressions=$PWD/Testing/Sanitizers/lsan.supp
+cd build-fuzz
+./Testing/Fuzz/FuzzFilters -max_total_time="$seconds" -max_len=512 -timeout=30 -rss_limit_mb=4096 \
+  -print_final_stats=1 "$@" corpus ../Testing/Fuzz/seeds
