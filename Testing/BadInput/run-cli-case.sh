@@ -21,6 +21,9 @@ fail() {
 }
 [ $status -eq 124 ] && fail "timed out"
 [ $status -ge 128 ] && fail "killed by signal $((status - 128))"
+# Every message once (running a filter twice printed each error twice).
+twice=$(grep -o 'ERR|.*' "$out/$sub.stderr" | sed 's/(0x[0-9a-f]*)//g' | sort | uniq -d | head -1)
+[ -z "$twice" ] || fail "a message is printed twice: $twice"
 case $kind in
   error | empty)
     [ $status -eq 1 ] || fail "exit status $status, expected 1"
