@@ -213,6 +213,22 @@ GLuint Build(HeadlessGL& context,
   return program;
 }
 
+/// `records` into `buffer` (one record's worth at least: an empty buffer cannot be
+/// bound), bound at shader storage binding `binding`.
+template<typename Record>
+void UploadRecords(const GLFunctions& gl,
+  GLuint buffer,
+  GLuint binding,
+  const std::vector<Record>& records)
+{
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER,
+    std::max<size_t>(1, records.size()) * sizeof(Record),
+    records.data(),
+    GL_STATIC_DRAW);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer);
+}
+
 GLint Uniform(const GLFunctions& gl, GLuint program, const char* name)
 {
   return gl.GetUniformLocation(program, name);
@@ -347,19 +363,9 @@ bool VoxelizeToLanes(HeadlessGL& context,
       g.Flags[0] = p.Entering;
       records.push_back(g);
     }
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, objects.Buffers[0]);
-    gl.BufferData(GL_SHADER_STORAGE_BUFFER,
-      std::max<size_t>(1, records.size()) * sizeof(GpuTriangle),
-      records.data(),
-      GL_STATIC_DRAW);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objects.Buffers[0]);
+    UploadRecords(gl, objects.Buffers[0], 0, records);
     const std::vector<GpuBoundaryTriangle>& boundaryView = boundaryRecords[a];
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, objects.Buffers[3]);
-    gl.BufferData(GL_SHADER_STORAGE_BUFFER,
-      std::max<size_t>(1, boundaryView.size()) * sizeof(GpuBoundaryTriangle),
-      boundaryView.data(),
-      GL_STATIC_DRAW);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, objects.Buffers[3]);
+    UploadRecords(gl, objects.Buffers[3], 1, boundaryView);
 
     gl.UseProgram(raster);
     gl.Uniform1i(Uniform(gl, raster, "Nb"), n[b]);
