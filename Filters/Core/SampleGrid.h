@@ -167,6 +167,14 @@ inline bool CheckGrid(const SampleGrid& grid, const double* bounds, std::string&
         ") is below 1e-34, where float32 distances lose their precision";
       return false;
     }
+    // Even along an axis of one sample: a voxel's size enters the voxelizer's reach.
+    if (!(grid.Spacing[a] < MaximumExtent &&
+          grid.Spacing[a] <= MaximumSpacings * grid.MinSpacing()))
+    {
+      error = "the grid spacing along " + axis + " (" + FormatNumber(grid.Spacing[a]) +
+        ") is above 1e38 or more than 2^50 times the smallest spacing";
+      return false;
+    }
     double lo = grid.Coordinate(a, grid.Whole.Lo[a]);
     double hi = grid.Coordinate(a, grid.Whole.Hi[a]);
     // Neighbouring samples must have distinct coordinates.
