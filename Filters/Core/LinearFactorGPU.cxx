@@ -11,6 +11,7 @@
 #include "GLFunctions.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -189,15 +190,12 @@ bool ScanSitesGPU(HeadlessGL& context,
   gl.GenVertexArrays(1, &gpu.VAO);
   gl.BindVertexArray(gpu.VAO);
 
-  // Layers per batch: what the array textures and a memory budget allow, and at most a
-  // sixteenth of the grid, so that progress is reported, and an abort honoured, at
-  // least every sixteenth of the scan.
+  // Layers a batch may hold: what the array textures and a memory budget allow.
   const int64_t bytesPerLayer = int64_t(nx) * ny * 12;
   const int64_t budget = int64_t(1) << 30;
-  const int64_t perBatch = (int64_t(nz) + MinimumBatches - 1) / MinimumBatches;
   const int layers = static_cast<int>(std::max<int64_t>(1,
     std::min<int64_t>(
-      { perBatch, int64_t(maxLayers), budget / std::max<int64_t>(1, bytesPerLayer) })));
+      { int64_t(nz), int64_t(maxLayers), budget / std::max<int64_t>(1, bytesPerLayer) })));
   gl.GenTextures(3, gpu.Textures);
   const GLenum formats[3] = { GL_R32F, GL_R32I, GL_DEPTH_COMPONENT32F };
   for (int t = 0; t < 3; ++t)
@@ -249,7 +247,7 @@ bool ScanSitesGPU(HeadlessGL& context,
   }
   gl.Uniform1f(gl.GetUniformLocation(gpu.Program, "depthScale"), static_cast<float>(1.0 / reach));
   const GLint layerBaseAt = gl.GetUniformLocation(gpu.Program, "layerBase");
-  gl.Uniform1i(gl.GetUniformLocation(gpu.Program, "layerCount"), layers);
+  const GLint layerCountAt = gl.GetUniformLocation(gpu.Program, "layerCount");
   gl.Viewport(0, 0, nx, ny);
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(GL_LESS);
@@ -265,10 +263,22 @@ bool ScanSitesGPU(HeadlessGL& context,
   std::vector<int32_t> points;
   std::vector<float> distances(residentIds ? 0 : size_t(nx) * ny * layers);
   std::vector<int32_t> ids(distances.size());
-  const int batches = (nz + layers - 1) / layers;
-  for (int batch = 0; batch < batches; ++batch)
+  // Batches of slices. With a progress callback, each batch is finished on the GPU
+  // before it is reported (the fraction is then true, and an abort stops the scan within
+  // one batch), and batches are sized by time: the first holds 1/MinimumBatches of the
+  // slices, the next ones as many as the measured rate scans in BatchSeconds, at most
+  // twice the last. Every
+  // batch costs a draw, a clear and a synchronisation (about 60 ms on llvmpipe), so
+  // a fast GPU takes few large batches and a slow one still reports often.
+  int batchLayers = progress ? static_cast<int>(std::min<int64_t>(
+                                 layers, (int64_t(nz) + MinimumBatches - 1) / MinimumBatches))
+                             : layers;
+  for (int k0 = 0, next = 0; k0 < nz; k0 = next)
   {
-    const int k0 = batch * layers, k1 = std::min(nz, k0 + layers) - 1;
+    const auto batchStart = std::chrono::steady_clock::now();
+    const int k1 = std::min(nz, k0 + batchLayers) - 1;
+    next = k1 + 1;
+    gl.Uniform1i(layerCountAt, k1 - k0 + 1);
     points.clear();
     for (size_t s = 0; s < numSites; ++s)
     {
@@ -375,16 +385,20 @@ bool ScanSitesGPU(HeadlessGL& context,
       }
       return false;
     }
-    // The batch is done on the GPU before it is reported: the fraction is then true,
-    // and an abort stops the scan within one batch.
     if (progress)
     {
       gl.Finish();
-    }
-    if (progress && !progress(double(batch + 1) / batches))
-    {
-      stats.Aborted = true;
-      break;
+      if (!progress(double(k1 + 1) / nz))
+      {
+        stats.Aborted = true;
+        break;
+      }
+      const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - batchStart).count();
+      // At most twice the last batch, so that even a fast GPU reports a few times.
+      const double rate = (k1 - k0 + 1) / std::max(seconds, 1e-6); // slices per second
+      const double bound = std::min(double(layers), 2.0 * (k1 - k0 + 1));
+      batchLayers = static_cast<int>(std::max(1.0, std::min(bound, rate * BatchSeconds)));
     }
   }
   if (query)

@@ -15,9 +15,12 @@ namespace vtkdf
 /// Fills `nearest` like ScanSitesCPU; false (and `error`) when the GPU cannot run it.
 /// With `residentIds` (a GL buffer of one int per sample of the extent), the nearest
 /// site ids stay on the GPU, in that buffer, and `nearest` is not touched.
-/// The scan runs in at least this many batches of slices (fewer on a grid of fewer
-/// slices); `progress` is called after each, once the GPU has finished it.
+/// With a progress callback, the scan's first batch holds 1/MinimumBatches of the
+/// slices and later ones what the measured rate scans in BatchSeconds (at most twice the
+/// last); `progress` is
+/// called after each batch, once the GPU has finished it.
 constexpr int MinimumBatches = 16;
+constexpr double BatchSeconds = 0.25;
 
 bool ScanSitesGPU(HeadlessGL& gl,
   const MeshSites& sites,

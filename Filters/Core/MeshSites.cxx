@@ -256,7 +256,10 @@ bool MeshSites::Build(const MeshInput& in,
       }
     }
     const double side = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
-    const double scale = side > 0 ? 2097151.0 / side : 0.0; // 21 bits per axis
+    // 21 bits per axis. Points a denormal distance apart (side below 2^-1003) would
+    // overflow the scale: they take the division instead.
+    const double scale = side > 0 ? 2097151.0 / side : 0.0;
+    const bool finiteScale = std::isfinite(scale);
     std::vector<CurveKey> keys(order.size());
     Run(parallelFor,
       static_cast<int64_t>(order.size()),
@@ -269,7 +272,9 @@ bool MeshSites::Build(const MeshInput& in,
           uint64_t code = 0;
           for (int a = 0; a < 3; ++a)
           {
-            code |= SpreadBits(static_cast<uint64_t>((x[a] - lo[a]) * scale)) << a;
+            const double cell =
+              finiteScale ? (x[a] - lo[a]) * scale : (x[a] - lo[a]) / side * 2097151.0;
+            code |= SpreadBits(static_cast<uint64_t>(std::min(cell, 2097151.0))) << a;
           }
           keys[i] = { code, order[i] };
         }
