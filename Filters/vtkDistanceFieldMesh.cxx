@@ -1,7 +1,9 @@
 #include "vtkDistanceFieldMesh.h"
 
+#include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
 #include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -24,6 +26,66 @@
 namespace vtkdf
 {
 
+namespace
+{
+/// The bounds of the points marked in `used`, or the first such point that is not
+/// finite (-1 when all are): one pass over the typed point array.
+struct UsedBoundsWorker
+{
+  const std::vector<uint8_t>* Used;
+  double* Bounds;
+  vtkIdType FirstBad = -1;
+
+  template<typename ArrayT>
+  void operator()(ArrayT* points)
+  {
+    const auto tuples = vtk::DataArrayTupleRange<3>(points);
+    const std::vector<uint8_t>& used = *this->Used;
+    vtkIdType id = 0;
+    for (const auto x : tuples)
+    {
+      if (used[id])
+      {
+        const double p[3] = {
+          static_cast<double>(x[0]), static_cast<double>(x[1]), static_cast<double>(x[2])
+        };
+        if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+        {
+          this->FirstBad = id;
+          return;
+        }
+        for (int a = 0; a < 3; ++a)
+        {
+          this->Bounds[2 * a] = std::min(this->Bounds[2 * a], p[a]);
+          this->Bounds[2 * a + 1] = std::max(this->Bounds[2 * a + 1], p[a]);
+        }
+      }
+      ++id;
+    }
+  }
+};
+
+/// The first cell (in the filters' numbering: verts, lines, polys, strips) using `point`.
+vtkIdType FirstCellUsing(vtkPolyData* input, vtkIdType point)
+{
+  vtkIdType cellId = 0;
+  for (vtkCellArray* cells :
+    { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+  {
+    vtkIdType count;
+    const vtkIdType* ids;
+    for (cells->InitTraversal(); cells->GetNextCell(count, ids); ++cellId)
+    {
+      if (std::find(ids, ids + count, point) != ids + count)
+      {
+        return cellId;
+      }
+    }
+  }
+  return -1;
+}
+} // namespace
+
 bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error)
 {
   const vtkIdType numPoints = input->GetPoints() ? input->GetNumberOfPoints() : 0;
@@ -32,6 +94,9 @@ bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error)
     bounds[2 * a] = VTK_DOUBLE_MAX;
     bounds[2 * a + 1] = -VTK_DOUBLE_MAX;
   }
+  // The ids first, checked before any point is read (a file may hold any number
+  // there); then each used point once, from the typed array.
+  std::vector<uint8_t> used(numPoints, 0);
   bool any = false;
   vtkIdType cellId = 0;
   for (vtkCellArray* cells :
@@ -43,26 +108,13 @@ bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error)
     {
       for (vtkIdType i = 0; i < count; ++i)
       {
-        // Checked before the point is read: a file may hold any number there.
         if (ids[i] < 0 || ids[i] >= numPoints)
         {
           error = "cell " + std::to_string(cellId) + " refers to point " + std::to_string(ids[i]) +
             ", but the mesh has " + std::to_string(numPoints) + " points";
           return false;
         }
-        double x[3];
-        input->GetPoint(ids[i], x);
-        if (!(std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2])))
-        {
-          error = "point " + std::to_string(ids[i]) + " (used by cell " + std::to_string(cellId) +
-            ") has " + (std::isnan(x[0] + x[1] + x[2]) ? "a NaN" : "an infinite") + " coordinate";
-          return false;
-        }
-        for (int a = 0; a < 3; ++a)
-        {
-          bounds[2 * a] = std::min(bounds[2 * a], x[a]);
-          bounds[2 * a + 1] = std::max(bounds[2 * a + 1], x[a]);
-        }
+        used[ids[i]] = 1;
         any = true;
       }
     }
@@ -70,8 +122,24 @@ bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error)
   if (!any)
   {
     error = "no cell of the mesh uses a point";
+    return false;
   }
-  return any;
+  UsedBoundsWorker worker{ &used, bounds };
+  vtkDataArray* points = input->GetPoints()->GetData();
+  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(points, worker))
+  {
+    worker(points); // other value types, through the vtkDataArray API
+  }
+  if (worker.FirstBad >= 0)
+  {
+    double x[3];
+    input->GetPoint(worker.FirstBad, x);
+    error = "point " + std::to_string(worker.FirstBad) + " (used by cell " +
+      std::to_string(FirstCellUsing(input, worker.FirstBad)) + ") has " +
+      (std::isnan(x[0] + x[1] + x[2]) ? "a NaN" : "an infinite") + " coordinate";
+    return false;
+  }
+  return true;
 }
 
 bool MeshConversion::Run(vtkPolyData* input, const SampleGrid& grid, std::string& error)
