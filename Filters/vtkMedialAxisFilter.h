@@ -2,14 +2,18 @@
  * @class   vtkMedialAxisFilter
  * @brief   The theta-simplified medial axis of a distance field.
  *
- * Implements §6.3 of Sud et al. (I3D 2006): from the distance field and the closest
- * boundary point of every voxel, two 6-adjacent voxels x and y whose closest points
- * c(x), c(y) are seen from their midpoint m at an angle of at least SeparationAngle
- * (theta) straddle the medial surface; the one with the larger |distance| (ties: the
- * lower index) is marked, so the axis is one voxel thin. This is the separation-angle
- * criterion of Foskey, Lin and Manocha's theta-SMA: a larger theta keeps fewer, more
- * significant branches, and the set for a larger theta is a subset of the set for a
- * smaller one.
+ * Implements §6.3 of Sud et al. (I3D 2006) with the separation-angle criterion of
+ * Foskey, Lin and Manocha's theta-SMA: from the distance field and the closest boundary
+ * point of every voxel, each 2x2x2 cell of voxels gets an aperture, that of the smallest
+ * cone holding its 8 corners' directions to their closest points. A cell whose aperture
+ * reaches SeparationAngle (theta) straddles the medial axis; it marks its corner of
+ * largest |distance| (ties: the lower index), the one nearest the axis, so the axis stays
+ * thin. The aperture is the true separation angle of a medial sheet through the cell,
+ * and 180 degrees for a line (a tube's axis) or a point (a sphere's centre) through it,
+ * so any theta below 180 finds them wherever the grid falls. Near the surface, a cell
+ * counts only where no single vertex or edge could give it its aperture (see
+ * Filters/Core/MedialAxis.h). A larger theta keeps fewer, more significant branches, and
+ * the set for a larger theta is a subset of the set for a smaller one.
  *
  * Input, either:
  * - a vtkImageData with point arrays `Distance` and `ClosestPoint` (what
@@ -19,10 +23,12 @@
  *
  * Region: Inside (negative distances: needs a signed field; the default), Outside, Both.
  *
- * Output port 0: vtkImageData with `Medial` (uint8), `SeparationAngle` (float, degrees;
- * 0 where not medial) and `Radius` (|distance|). Output port 1: vtkPolyData with one
+ * Output port 0: vtkImageData with `Medial` (uint8), `SeparationAngle` (float, degrees:
+ * the largest aperture of the cells that marked the voxel, at most 180; 0 where not
+ * medial) and `Radius` (|distance|). Output port 1: vtkPolyData with one
  * vertex per medial voxel and the same arrays (spheres of radius Radius by glyphing).
- * Both backends give the same voxels (the pair cosines are computed in double on both).
+ * Both backends give the same voxels and apertures (computed in the same double
+ * arithmetic on both).
  */
 #ifndef vtkMedialAxisFilter_h
 #define vtkMedialAxisFilter_h

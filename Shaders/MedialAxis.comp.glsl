@@ -1,8 +1,9 @@
 #version 450 core
-// The medial axis pass (Filters/Core/MedialAxis.cxx MedialAxisCPU, the same arithmetic
-// in double precision, `precise`): per voxel, the smallest cosine of the separation
-// angles of the 6 pairs it is the medial voxel of (larger |distance|, ties to the lower
-// index), 2 when none reaches the threshold.
+// The medial axis pass (Filters/Core/MedialAxis.cxx MedialAxisCPU and SmallestCapCosine
+// in MedialAxis.h: the same arithmetic in double precision, `precise`, so that both
+// backends mark the same voxels): per voxel, over the 2x2x2 cells whose marked corner it
+// is (largest |distance|, ties to the lower index), the smallest cosine of the cells'
+// apertures that count (not a fan's) and reach the threshold; 2 when none.
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Distances
 {
@@ -19,29 +20,97 @@ layout(std430, binding = 2) writeonly buffer Cosines
 uniform ivec3 Dims;
 uniform ivec3 Lo;
 uniform dvec3 Origin, Spacing;
-uniform double Threshold; // cos(theta)
-uniform double Depth;     // the depth a pair needs, in spacings (MedialMinimumDepth)
-uniform int Region;       // 0 inside, 1 outside, 2 both
-uniform int First;        // voxel index of invocation 0 (dispatches are split)
-uniform int Last;         // one past the last voxel of this dispatch
+uniform double Threshold;    // cos(theta)
+uniform double HalfDiagonal; // half the cell diagonal, l/2
+uniform double CapTolerance; // MedialCapTolerance
+uniform double FanMargin;    // MedialFanMargin
+uniform int Region;          // 0 inside, 1 outside, 2 both
+uniform int First;           // voxel index of invocation 0 (dispatches are split)
+uniform int Last;            // one past the last voxel of this dispatch
 // The buffers are bound by ranges (slabs of z): element offsets of their first element.
 uniform int DistanceBase, ClosestBase, CosineBase;
 
-double PairCosine(dvec3 m, int i, int j)
+dvec3 u[8];
+
+bool HoldsAll(dvec3 centre, double cosRadius)
 {
-  int a = 3 * i - ClosestBase, b = 3 * j - ClosestBase;
-  precise dvec3 u = dvec3(double(closest[a]), double(closest[a + 1]), double(closest[a + 2])) - m;
-  precise dvec3 v = dvec3(double(closest[b]), double(closest[b + 1]), double(closest[b + 2])) - m;
-  precise double uu = u.x * u.x + u.y * u.y + u.z * u.z;
-  precise double vv = v.x * v.x + v.y * v.y + v.z * v.z;
-  precise double uv = u.x * v.x + u.y * v.y + u.z * v.z;
-  precise double norms = sqrt(uu * vv);
-  if (!(norms > 0.0lf))
+  for (int k = 0; k < 8; ++k)
   {
-    return 2.0lf;
+    precise double c = centre.x * u[k].x + centre.y * u[k].y + centre.z * u[k].z;
+    if (c < cosRadius - CapTolerance)
+    {
+      return false;
+    }
   }
-  precise double c = uv / norms;
+  return true;
+}
+
+double Dot(dvec3 a, dvec3 b)
+{
+  precise double c = a.x * b.x + a.y * b.y + a.z * b.z;
   return c;
+}
+
+double SmallestCapCosine()
+{
+  int wi = 0, wj = 1;
+  double widest = Dot(u[0], u[1]);
+  for (int i = 0; i < 8; ++i)
+  {
+    for (int j = i + 1; j < 8; ++j)
+    {
+      double c = Dot(u[i], u[j]);
+      if (c < widest)
+      {
+        widest = c;
+        wi = i;
+        wj = j;
+      }
+    }
+  }
+  precise dvec3 s = u[wi] + u[wj];
+  precise double sn = sqrt(Dot(s, s));
+  if (!(sn > 1e-12lf))
+  {
+    return 0.0lf;
+  }
+  s = s / sn;
+  double pairCos = Dot(s, u[wi]);
+  if (HoldsAll(s, pairCos))
+  {
+    return pairCos;
+  }
+  double best = 0.0lf;
+  for (int i = 0; i < 8; ++i)
+  {
+    for (int j = i + 1; j < 8; ++j)
+    {
+      for (int k = j + 1; k < 8; ++k)
+      {
+        precise dvec3 e = u[j] - u[i];
+        precise dvec3 f = u[k] - u[i];
+        precise dvec3 n =
+          dvec3(e.y * f.z - e.z * f.y, e.z * f.x - e.x * f.z, e.x * f.y - e.y * f.x);
+        precise double nn = sqrt(Dot(n, n));
+        if (!(nn > 1e-12lf))
+        {
+          continue;
+        }
+        n = n / nn;
+        double c = Dot(n, u[i]);
+        if (c < 0.0lf)
+        {
+          c = -c;
+          n = -n;
+        }
+        if (c > best && HoldsAll(n, c))
+        {
+          best = c;
+        }
+      }
+    }
+  }
+  return best;
 }
 
 void main()
@@ -53,35 +122,84 @@ void main()
   }
   ivec3 ijk = ivec3(at % Dims.x, (at / Dims.x) % Dims.y, at / (Dims.x * Dims.y));
   ivec3 stride = ivec3(1, Dims.x, Dims.x * Dims.y);
-  float d = distance[at - DistanceBase];
-  bool inRegion = Region == 2 || (Region == 0 ? d < 0.0 : d > 0.0);
   double best = 2.0lf;
-  if (inRegion)
+  // The voxel's own |distance| bounds its cells' D (MedialAxis.cxx): most stop here.
+  float own = distance[at - DistanceBase];
+  bool inRegion = Region == 2 ? !isnan(own) : (Region == 0 ? own < 0.0 : own > 0.0);
+  double own2 = double(own) * double(own) * (1.0lf + 1e-6lf);
+  bool candidate = inRegion &&
+    own2 - HalfDiagonal * HalfDiagonal > HalfDiagonal * HalfDiagonal * (FanMargin * FanMargin);
+  for (int o = 0; o < 8 && candidate; ++o)
   {
-    for (int a = 0; a < 3; ++a)
+    ivec3 lo = ijk - ivec3(o & 1, (o >> 1) & 1, o >> 2);
+    if (any(lessThan(lo, ivec3(0))) || any(greaterThanEqual(lo + 1, Dims)))
     {
-      for (int side = -1; side <= 1; side += 2)
-      {
-        int other = ijk[a] + side;
-        if (other < 0 || other >= Dims[a])
-        {
-          continue;
-        }
-        int nb = at + side * stride[a];
-        float dn = distance[nb - DistanceBase];
-        bool mine = abs(d) > abs(dn) || (abs(d) == abs(dn) && at < nb);
-        if (!mine || double(min(abs(d), abs(dn))) <= Depth * Spacing[a])
-        {
-          continue;
-        }
-        precise dvec3 m = Origin + dvec3(Lo + ijk) * Spacing;
-        m[a] += 0.5lf * double(side) * Spacing[a];
-        double cs = PairCosine(m, at, nb);
-        if (cs <= Threshold && cs < best)
-        {
-          best = cs;
-        }
-      }
+      continue;
+    }
+    int base = lo.x + lo.y * stride.y + lo.z * stride.z;
+    // This voxel is the cell's marked corner (MedialAxis.h MarkedCorner): every corner
+    // in the region, the earlier ones less deep, the later ones no deeper. Most cells
+    // fail at their first deeper corner.
+    int corner[8];
+    float d[8];
+    bool mine = true;
+    for (int k = 0; k < 8 && mine; ++k)
+    {
+      corner[k] = base + (k & 1) + ((k >> 1) & 1) * stride.y + (k >> 2) * stride.z;
+      d[k] = distance[corner[k] - DistanceBase];
+      bool inside = Region == 2 ? !isnan(d[k]) : (Region == 0 ? d[k] < 0.0 : d[k] > 0.0);
+      mine = inside && (k == o || (k < o ? abs(d[k]) < abs(own) : abs(d[k]) <= abs(own)));
+    }
+    if (!mine)
+    {
+      continue;
+    }
+    // MedialAxis.h MeasureMedialCell.
+    precise double squares = 0.0lf;
+    for (int k = 0; k < 8; ++k)
+    {
+      squares += double(d[k]) * double(d[k]);
+    }
+    precise double fan2 = squares / 8.0lf - HalfDiagonal * HalfDiagonal;
+    precise double depth = fan2 > 0.0lf ? sqrt(fan2) / HalfDiagonal : 0.0lf;
+    if (!(depth > FanMargin))
+    {
+      continue;
+    }
+    bool usable = true;
+    for (int k = 0; k < 8 && usable; ++k)
+    {
+      int c = 3 * corner[k] - ClosestBase;
+      ivec3 kijk = lo + ivec3(k & 1, (k >> 1) & 1, k >> 2);
+      precise dvec3 x = Origin + dvec3(Lo + kijk) * Spacing;
+      precise dvec3 v =
+        dvec3(double(closest[c]), double(closest[c + 1]), double(closest[c + 2])) - x;
+      precise double norm = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+      usable = norm > 0.0lf && !isinf(norm);
+      u[k] = v / norm;
+    }
+    if (!usable)
+    {
+      continue;
+    }
+    // A cell that surely does not count (MedialAxis.h MeasureMedialCell).
+    double farthest = 1.0lf;
+    for (int k = 1; k < 8; ++k)
+    {
+      farthest = min(farthest, Dot(u[0], u[k]));
+    }
+    precise double doubled = 2.0lf * farthest * farthest - 1.0lf;
+    precise double farReach = sqrt(1.0lf - farthest * farthest) * depth;
+    if (farthest >= 0.0lf && (doubled > Threshold + 1e-6lf || farReach < FanMargin - 1e-6lf))
+    {
+      continue;
+    }
+    precise double capCos = SmallestCapCosine();
+    precise double reach = sqrt(1.0lf - capCos * capCos) * depth;
+    precise double cs = 2.0lf * capCos * capCos - 1.0lf;
+    if (reach > FanMargin && cs <= Threshold && cs < best)
+    {
+      best = cs;
     }
   }
   cosine[at - CosineBase] = best;

@@ -14,7 +14,9 @@ int64_t MedialAxisCPU(const MedialInput& input,
   const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
   const int64_t stride[3] = { 1, n[0], int64_t(n[0]) * n[1] };
   const double threshold = std::cos(input.SeparationAngle * M_PI / 180.0);
-  const double depth = MedialMinimumDepth;
+  const auto& h = input.Grid.Spacing;
+  const double halfDiagonal = 0.5 * std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+  const double fanLeast = halfDiagonal * halfDiagonal * (MedialFanMargin * MedialFanMargin);
   std::atomic<int64_t> total{ 0 };
   parallelFor(stride[2] * n[2],
     4096,
@@ -26,45 +28,48 @@ int64_t MedialAxisCPU(const MedialInput& input,
         const int ijk[3] = { static_cast<int>(at % n[0]),
           static_cast<int>((at / n[0]) % n[1]),
           static_cast<int>(at / stride[2]) };
-        const float d = input.Distance[at];
-        const bool inRegion = input.Region == MedialRegion::Both ||
-          (input.Region == MedialRegion::Inside ? d < 0 : d > 0);
         double best = 2;
-        if (inRegion)
+        // A voxel marks only cells whose corners are in the region and no deeper than it,
+        // so its own |distance| bounds their D: D^2 <= d^2 - l^2/4 (most voxels stop here;
+        // the 1e-6 keeps this test looser than the cell's, whatever the rounding).
+        const double own = input.Distance[at];
+        const bool candidate = InRegion(input.Distance[at], input.Region) &&
+          own * own * (1 + 1e-6) - halfDiagonal * halfDiagonal > fanLeast;
+        // The 8 cells this voxel is a corner of: as corner o, of the cell from ijk - o.
+        for (int o = 0; o < 8 && candidate; ++o)
         {
-          for (int a = 0; a < 3; ++a)
+          const int lo[3] = { ijk[0] - (o & 1), ijk[1] - ((o >> 1) & 1), ijk[2] - (o >> 2) };
+          if (lo[0] < 0 || lo[1] < 0 || lo[2] < 0 || lo[0] + 1 >= n[0] || lo[1] + 1 >= n[1] ||
+            lo[2] + 1 >= n[2])
           {
-            for (int side = -1; side <= 1; side += 2)
+            continue;
+          }
+          const int64_t base = lo[0] + lo[1] * stride[1] + lo[2] * stride[2];
+          float d[8];
+          for (int k = 0; k < 8; ++k)
+          {
+            d[k] =
+              input.Distance[base + (k & 1) + ((k >> 1) & 1) * stride[1] + (k >> 2) * stride[2]];
+          }
+          if (MarkedCorner(d, input.Region) != o)
+          {
+            continue;
+          }
+          const float* closest[8];
+          double x[8][3];
+          for (int k = 0; k < 8; ++k)
+          {
+            const int c[3] = { lo[0] + (k & 1), lo[1] + ((k >> 1) & 1), lo[2] + (k >> 2) };
+            closest[k] = input.ClosestPoint + 3 * (c[0] + c[1] * stride[1] + c[2] * stride[2]);
+            for (int a = 0; a < 3; ++a)
             {
-              const int other = ijk[a] + side;
-              if (other < 0 || other >= n[a])
-              {
-                continue;
-              }
-              const int64_t nb = at + side * stride[a];
-              // This voxel is the pair's medial one: larger |distance|, ties to the lower index.
-              const float dn = input.Distance[nb];
-              const bool mine =
-                std::fabs(d) > std::fabs(dn) || (std::fabs(d) == std::fabs(dn) && at < nb);
-              // Too close to the surface, the angle says nothing (MedialAxis.h).
-              if (!mine ||
-                double(std::fmin(std::fabs(d), std::fabs(dn))) <= depth * input.Grid.Spacing[a])
-              {
-                continue;
-              }
-              double m[3];
-              for (int c = 0; c < 3; ++c)
-              {
-                m[c] = input.Grid.Coordinate(c, whole.Lo[c] + ijk[c]);
-              }
-              m[a] += 0.5 * side * input.Grid.Spacing[a];
-              const double cs =
-                PairCosine(m, input.ClosestPoint + 3 * at, input.ClosestPoint + 3 * nb);
-              if (cs <= threshold && cs < best)
-              {
-                best = cs;
-              }
+              x[k][a] = input.Grid.Coordinate(a, whole.Lo[a] + c[a]);
             }
+          }
+          const MedialCellMeasure cell = MeasureMedialCell(d, closest, x, halfDiagonal, threshold);
+          if (cell.Reach > MedialFanMargin && cell.Cosine <= threshold && cell.Cosine < best)
+          {
+            best = cell.Cosine;
           }
         }
         medial[at] = best <= 1 ? 1 : 0;

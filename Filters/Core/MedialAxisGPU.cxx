@@ -53,7 +53,10 @@ bool MedialPass(HeadlessGL& context,
     uniform("Spacing"), input.Grid.Spacing[0], input.Grid.Spacing[1], input.Grid.Spacing[2]);
   gl.Uniform1d(uniform("Threshold"), std::cos(input.SeparationAngle * M_PI / 180.0));
   gl.Uniform1i(uniform("Region"), static_cast<int>(input.Region));
-  gl.Uniform1d(uniform("Depth"), MedialMinimumDepth);
+  const auto& h = input.Grid.Spacing;
+  gl.Uniform1d(uniform("HalfDiagonal"), 0.5 * std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]));
+  gl.Uniform1d(uniform("CapTolerance"), MedialCapTolerance);
+  gl.Uniform1d(uniform("FanMargin"), MedialFanMargin);
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
   const int64_t perDispatch = int64_t(65535) * 64;
   for (int64_t z0 = 0; z0 < nz; z0 += slab)

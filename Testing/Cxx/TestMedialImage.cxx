@@ -1,6 +1,7 @@
 // Regression image of vtkMedialAxisFilter: the medial points of armadillo_52k (theta
 // 75, inside, 64^3), as spheres coloured by Radius, inside the translucent surface.
-// Compared with Testing/Data/Baseline/TestMedialImage.png.
+// Compared with Testing/Data/Baseline/TestMedialImage.png. Also by numbers: the skeleton
+// is connected (its largest 26-connected set of voxels holds at least 90% of them).
 //
 // usage: TestMedialImage DATA_DIR cpu|gpu -V BASELINE.png -T TMPDIR
 #include "TestSupport.h"
@@ -19,8 +20,69 @@
 #include "vtkRenderer.h"
 #include "vtkXMLPolyDataReader.h"
 
+#include "vtkImageData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
 #include <cstdio>
 #include <string>
+#include <vector>
+
+namespace
+{
+/// The share of the medial voxels in the largest 26-connected set of them.
+double LargestComponentShare(vtkImageData* image)
+{
+  auto* medial = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetArray("Medial"));
+  int n[3];
+  image->GetDimensions(n);
+  std::vector<char> left(
+    medial->GetPointer(0), medial->GetPointer(0) + medial->GetNumberOfTuples());
+  const int64_t total = std::count(left.begin(), left.end(), 1);
+  int64_t largest = 0;
+  std::vector<int64_t> stack;
+  for (int64_t start = 0; start < static_cast<int64_t>(left.size()); ++start)
+  {
+    if (!left[start])
+    {
+      continue;
+    }
+    int64_t size = 0;
+    left[start] = 0;
+    stack.push_back(start);
+    while (!stack.empty())
+    {
+      const int64_t v = stack.back();
+      stack.pop_back();
+      ++size;
+      const int i = static_cast<int>(v % n[0]), j = static_cast<int>((v / n[0]) % n[1]),
+                k = static_cast<int>(v / (int64_t(n[0]) * n[1]));
+      for (int dz = -1; dz <= 1; ++dz)
+      {
+        for (int dy = -1; dy <= 1; ++dy)
+        {
+          for (int dx = -1; dx <= 1; ++dx)
+          {
+            const int a = i + dx, b = j + dy, c = k + dz;
+            if (a < 0 || b < 0 || c < 0 || a >= n[0] || b >= n[1] || c >= n[2])
+            {
+              continue;
+            }
+            const int64_t u = a + int64_t(n[0]) * (b + int64_t(n[1]) * c);
+            if (left[u])
+            {
+              left[u] = 0;
+              stack.push_back(u);
+            }
+          }
+        }
+      }
+    }
+    largest = std::max(largest, size);
+  }
+  return total ? double(largest) / total : 0;
+}
+} // namespace
 
 int main(int argc, char* argv[])
 {
@@ -46,6 +108,13 @@ int main(int argc, char* argv[])
   if (points->GetNumberOfPoints() == 0)
   {
     std::printf("FAIL: no medial point\n");
+    return 1;
+  }
+  const double connected = LargestComponentShare(medial->GetOutput());
+  std::printf("the largest 26-connected set holds %.1f%% of the medial voxels\n", 100 * connected);
+  if (!(connected >= 0.9))
+  {
+    std::printf("FAIL: the skeleton falls apart\n");
     return 1;
   }
 

@@ -282,6 +282,14 @@ int main(int argc, char* argv[])
         {
           continue;
         }
+        // A cell's aperture comes from float closest points through a cap of up to three
+        // of them: where both scales mark the voxel, it may move by rounding (near 180
+        // degrees, acos turns 1e-7 in the cosine into 0.03 degrees).
+        if (std::string(array) == "SeparationAngle" && a0->GetTuple1(v) > 0 &&
+          a1->GetTuple1(v) > 0 && std::fabs(a0->GetTuple1(v) - a1->GetTuple1(v)) <= 0.05)
+        {
+          continue;
+        }
         CHECK(!exact, "scale %g: %s differs at sample %lld", k, array, static_cast<long long>(v));
         if (exact)
         {
@@ -314,7 +322,8 @@ int main(int argc, char* argv[])
           // Layers follow the masks: with equal masks they must be equal.
           tie = !masksEqual;
         }
-        else // Medial, SeparationAngle: a pair of v at the threshold, or radii equal
+        else // Medial, SeparationAngle: a cell of v at the threshold, at the fan bound, or
+             // with two largest |distance| equal
         {
           const Output& f0 = baseField;
           int dims[3];
@@ -324,29 +333,42 @@ int main(int argc, char* argv[])
             static_cast<int>((v / dims[0]) % dims[1]),
             static_cast<int>(v / stride[2]) };
           auto* cp = vtkFloatArray::SafeDownCast(f0.Get("ClosestPoint"));
-          auto* d = f0.Get("Distance");
+          auto* dist = f0.Get("Distance");
           const double threshold = std::cos(90.0 * M_PI / 180.0);
-          for (int axis = 0; axis < 3 && !tie; ++axis)
+          for (int o = 0; o < 8 && !tie; ++o)
           {
-            for (int side = -1; side <= 1 && !tie; side += 2)
+            const int lo[3] = { ijk[0] - (o & 1), ijk[1] - ((o >> 1) & 1), ijk[2] - (o >> 2) };
+            if (lo[0] < 0 || lo[1] < 0 || lo[2] < 0 || lo[0] + 1 >= dims[0] ||
+              lo[1] + 1 >= dims[1] || lo[2] + 1 >= dims[2])
             {
-              const int j = ijk[axis] + side;
-              if (j < 0 || j >= dims[axis])
-              {
-                continue;
-              }
-              const vtkIdType u = v + side * stride[axis];
-              double xu[3], m[3];
-              Position(base.Image, u, xu);
-              for (int c = 0; c < 3; ++c)
-              {
-                m[c] = 0.5 * (x[c] + xu[c]);
-              }
-              const double cosine =
-                vtkdf::PairCosine(m, cp->GetPointer(3 * v), cp->GetPointer(3 * u));
-              tie = std::fabs(cosine - threshold) <= 1e-3 ||
-                std::fabs(std::fabs(d->GetTuple1(v)) - std::fabs(d->GetTuple1(u))) <= 1e-3 * h;
+              continue;
             }
+            float d[8];
+            const float* closest[8];
+            double corner[8][3];
+            for (int k = 0; k < 8; ++k)
+            {
+              const vtkIdType id = (lo[0] + (k & 1)) + (lo[1] + ((k >> 1) & 1)) * stride[1] +
+                (lo[2] + (k >> 2)) * stride[2];
+              d[k] = static_cast<float>(dist->GetTuple1(id));
+              closest[k] = cp->GetPointer(3 * id);
+              Position(base.Image, id, corner[k]);
+            }
+            const int marked = vtkdf::MarkedCorner(d, vtkdf::MedialRegion::Inside);
+            for (int k = 0; k < 8 && marked >= 0; ++k)
+            {
+              tie = tie ||
+                (k != marked && std::fabs(std::fabs(d[k]) - std::fabs(d[marked])) <= 1e-3 * h);
+            }
+            const double* spacing = base.Image->GetSpacing();
+            const vtkdf::MedialCellMeasure cell = vtkdf::MeasureMedialCell(d,
+              closest,
+              corner,
+              0.5 *
+                std::sqrt(
+                  spacing[0] * spacing[0] + spacing[1] * spacing[1] + spacing[2] * spacing[2]));
+            tie = tie || std::fabs(cell.Cosine - threshold) <= 1e-3 ||
+              std::fabs(cell.Reach - vtkdf::MedialFanMargin) <= 1e-3;
           }
         }
         CHECK(tie,
