@@ -50,13 +50,9 @@
 
 namespace
 {
-int Usage(const char* message = nullptr)
+void PrintUsage(FILE* out)
 {
-  if (message)
-  {
-    std::fprintf(stderr, "vtkdf: %s\n", message);
-  }
-  std::fprintf(stderr,
+  std::fprintf(out,
     "usage: vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--backend auto|gpu|cpu]\n"
     "             [--culling auto|nonmanifold|manifold]\n"
     "             [--arrays distance,cellid,feature,point] [--max-distance D]\n"
@@ -71,7 +67,18 @@ int Usage(const char* message = nullptr)
     "       [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ]\n"
     "MESH:  .vtp .vtk .ply .stl .obj; chamfer's INPUT may also be a .vti with a Boundary mask,\n"
     "       medial's a .vti with Distance and ClosestPoint (vtkdf linfac --signed --arrays\n"
-    "       distance,point)\n");
+    "       distance,point)\n"
+    "       vtkdf --help: this text\n");
+}
+
+/// A usage error: the message and the usage on stderr; the exit status 2.
+int Usage(const char* message = nullptr)
+{
+  if (message)
+  {
+    std::fprintf(stderr, "vtkdf: %s\n", message);
+  }
+  PrintUsage(stderr);
   return 2;
 }
 
@@ -664,6 +671,14 @@ int Medial(int argc, char* argv[])
 
 int main(int argc, char* argv[])
 {
+  for (int i = 1; i < argc; ++i)
+  {
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0)
+    {
+      PrintUsage(stdout);
+      return 0;
+    }
+  }
   if (argc < 3)
   {
     return Usage();

@@ -67,5 +67,12 @@ expect_failure missing linfac "$data/no_such_mesh.vtp" -o "$out/x.vti"
 expect_failure subcommand frobnicate
 [ -e "$out/x.vti" ] && fail "a failed run wrote $out/x.vti"
 
+# --help (alone or after a subcommand): the usage on stdout, status 0.
+for args in "--help" "-h" "medial --help"; do
+  # shellcheck disable=SC2086
+  "$vtkdf" $args >"$out/help.out" 2>"$out/help.err" || fail "vtkdf $args: exit status $?"
+  grep -q "usage: vtkdf linfac" "$out/help.out" || fail "vtkdf $args: no usage on stdout"
+done
+
 echo "$failures failures"
 [ $failures -eq 0 ]

@@ -2,10 +2,11 @@
 # Installs what the project needs on Debian 12 (as root) and builds it into ./build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# clang and its runtime libraries: the libFuzzer target (Testing/run-fuzz.sh).
+# clang and its runtime libraries: the libFuzzer target (Testing/run-fuzz.sh); dpkg-dev
+# and file: cpack's Debian packages (Testing/run-install-tests.sh).
 packages="cmake g++ make pkg-config libvtk9-dev python3-vtk9 python3-numpy libegl-dev
   libegl1-mesa-dev libgl1-mesa-dri libgles-dev libosmesa6-dev libepoxy-dev libglm-dev xvfb xauth
-  clang libclang-rt-14-dev"
+  clang libclang-rt-14-dev dpkg-dev file"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
