@@ -13,5 +13,5 @@ vtk_module_add_module(DistanceFields::vtkDistanceFields
   PRIVATE_HEADERS "${df_root}/Filters/vtkDistanceFieldMesh.h")
 vtk_module_include(DistanceFields::vtkDistanceFields
   PUBLIC "$<BUILD_INTERFACE:${df_root}/Filters>"
-  PRIVATE "${df_root}/Filters/Core" "${CMAKE_BINARY_DIR}/Filters/Core")
+  PRIVATE "$<TARGET_PROPERTY:vtkdf_core,INTERFACE_INCLUDE_DIRECTORIES>")
 vtk_module_link(DistanceFields::vtkDistanceFields PRIVATE PkgConfig::EPOXY ${CMAKE_DL_LIBS})
