@@ -12,7 +12,7 @@
  * and 180 degrees for a line (a tube's axis) or a point (a sphere's centre) through it,
  * so any theta below 180 finds them wherever the grid falls. Near the surface, a cell
  * counts only where no single vertex or edge could give it its aperture (see
- * Filters/Core/MedialAxis.h). A larger theta keeps fewer, more significant branches, and
+ * Filters/Core/Medial/MedialAxis.h). A larger theta keeps fewer, more significant branches, and
  * the set for a larger theta is a subset of the set for a smaller one.
  *
  * Input, either:

@@ -1,5 +1,5 @@
 #version 450 core
-// The medial axis pass (Filters/Core/MedialAxis.cxx MedialAxisCPU and SmallestCapCosine
+// The medial axis pass (Filters/Core/Medial/MedialAxis.cxx MedialAxisCPU and SmallestCapCosine
 // in MedialAxis.h: the same arithmetic in double precision, `precise`, so that both
 // backends mark the same voxels): per voxel, over the 2x2x2 cells whose marked corner it
 // is (largest |distance|, ties to the lower index), the smallest cosine of the cells'

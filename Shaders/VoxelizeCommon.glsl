@@ -1,6 +1,6 @@
 #version 450 core
 #extension GL_ARB_gpu_shader_int64 : require
-// The voxelizer's per-lane rules on the GPU. They repeat Filters/Core/VoxelizerRules.h
+// The voxelizer's per-lane rules on the GPU. They repeat Filters/Core/Voxels/VoxelizerRules.h
 // operation for operation (64-bit integers, IEEE doubles, `precise` so that nothing is
 // fused or reordered), so that the GPU and CPU passes set the same bits.
 

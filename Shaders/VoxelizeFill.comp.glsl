@@ -1,5 +1,5 @@
 #version 450 core
-// The solid intervals of one view's lanes (Filters/Core/Voxelizer.cxx FillIntervals,
+// The solid intervals of one view's lanes (Filters/Core/Voxels/Voxelizer.cxx FillIntervals,
 // the same rule): a run of front bits then a run of back bits fills the bins after the
 // run's first front up to its last back. One invocation per lane.
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -1,4 +1,4 @@
-// The medial-axis cell estimator (Filters/Core/MedialAxis.h), VTK-free:
+// The medial-axis cell estimator (Filters/Core/Medial/MedialAxis.h), VTK-free:
 // - SmallestCapCosine on random sets of 8 directions spread from a few degrees to all
 //   around: its cap holds every direction, and a numerical search finds no smaller one
 //   (the smallest cap's cosine is the largest, over centres c, of the smallest c . u_k);
