@@ -19,9 +19,11 @@
 #include "HeadlessGL.h"
 #include "LinearFactorField.h"
 #include "LinearFactorGPU.h"
+#include "WindingSigns.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <cmath>
+#include <vector>
 
 vtkStandardNewMacro(vtkLinearFactorDistanceField);
 
@@ -67,7 +69,8 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   // Refuse grids that overflow indices or memory before allocating anything.
   const double bytesPerSample = 8.0 /* nearest-site buffer */ + (this->ComputeDistance ? 4 : 0) +
     (this->ComputeClosestCellId ? sizeof(vtkIdType) : 0) + (this->ComputeClosestFeature ? 1 : 0) +
-    (this->ComputeClosestPoint ? 12 : 0);
+    (this->ComputeClosestPoint ? 12 : 0) + (this->ComputeWindingNumber ? 4 : 0) +
+    (this->SignMode == WINDING_NUMBER || this->ComputeWindingNumber ? 1 : 0);
   if (!this->CheckMemory(samples * bytesPerSample, request.Extent))
   {
     return 0;
@@ -188,6 +191,45 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   }
   vtkdf::Finalize(sites, request, nearest, arrays, vtkdf::SMPFor);
   this->EndStage("finalize");
+  if ((this->SignMode == WINDING_NUMBER && this->ComputeDistance) || this->ComputeWindingNumber)
+  {
+    // Inside where |w| > 1/2, on the CPU on both backends (the GPU's field is read back
+    // for Finalize already).
+    vtkdf::WindingNumber winding;
+    winding.Build(conversion.Mesh.Points, conversion.Mesh.Triangles);
+    std::vector<uint8_t> inside(n);
+    vtkFloatArray* values = nullptr;
+    if (this->ComputeWindingNumber)
+    {
+      vtkNew<vtkFloatArray> a;
+      a->SetName("WindingNumber");
+      vtkdf::AllocateTuples(a, n);
+      pd->AddArray(a);
+      values = a;
+    }
+    const vtkdf::WindingSignStatistics stats = vtkdf::WindingSigns(winding,
+      request.Grid,
+      request.Extent,
+      inside.data(),
+      values ? values->GetPointer(0) : nullptr,
+      true,
+      vtkdf::SMPFor);
+    this->LastWindingBlockSamples = stats.BlockSamples;
+    if (this->SignMode == WINDING_NUMBER && arrays.Distance)
+    {
+      float* d = arrays.Distance;
+      vtkSMPTools::For(0,
+        n,
+        [d, &inside](vtkIdType begin, vtkIdType end)
+        {
+          for (vtkIdType v = begin; v < end; ++v)
+          {
+            d[v] = inside[v] ? -std::fabs(d[v]) : std::fabs(d[v]);
+          }
+        });
+    }
+    this->EndStage("sign");
+  }
   this->UpdateProgress(1.0);
   this->FinishTiming(gl);
   return 1;
@@ -196,7 +238,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
 bool vtkLinearFactorDistanceField::CheckProperties()
 {
   if (!this->Superclass::CheckProperties() ||
-    !this->CheckEnum("SignMode", this->SignMode, { "Unsigned", "PseudoNormal" }) ||
+    !this->CheckEnum("SignMode", this->SignMode, { "Unsigned", "PseudoNormal", "WindingNumber" }) ||
     !this->CheckEnum("Culling", this->Culling, { "Auto", "NonManifold", "Manifold" }))
   {
     return false;
@@ -213,7 +255,9 @@ bool vtkLinearFactorDistanceField::CheckProperties()
 void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SignMode: " << EnumName(this->SignMode, { "Unsigned", "PseudoNormal" }) << "\n";
+  os << indent
+     << "SignMode: " << EnumName(this->SignMode, { "Unsigned", "PseudoNormal", "WindingNumber" })
+     << "\n";
   os << indent << "Culling: " << EnumName(this->Culling, { "Auto", "NonManifold", "Manifold" })
      << "\n";
   os << indent << "MaximumDistance: " << this->MaximumDistance << "\n";
@@ -221,6 +265,8 @@ void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeClosestCellId: " << this->ComputeClosestCellId << "\n";
   os << indent << "ComputeClosestFeature: " << this->ComputeClosestFeature << "\n";
   os << indent << "ComputeClosestPoint: " << this->ComputeClosestPoint << "\n";
+  os << indent << "ComputeWindingNumber: " << this->ComputeWindingNumber << "\n";
   os << indent << "LastEvaluations: " << this->LastEvaluations << "\n";
+  os << indent << "LastWindingBlockSamples: " << this->LastWindingBlockSamples << "\n";
   os << indent << "LastCullingFactor: " << this->LastCullingFactor << "\n";
 }

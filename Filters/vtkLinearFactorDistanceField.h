@@ -14,8 +14,9 @@
  * points and degenerate triangles are valid input and their distances are exact.
  *
  * Output point data (each switchable): `Distance` (float; negative inside with
- * SignMode = PseudoNormal), `ClosestCellId` (input cell id), `ClosestFeature` (uint8: 0
- * vertex, 1 edge, 2 face interior), `ClosestPoint` (float x3).
+ * SignMode = PseudoNormal or WindingNumber), `ClosestCellId` (input cell id),
+ * `ClosestFeature` (uint8: 0 vertex, 1 edge, 2 face interior), `ClosestPoint` (float
+ * x3), `WindingNumber` (float).
  *
  * Domains (Culling): Auto gives every site the tightest exact domain whatever the
  * topology (edges bounded by all incident faces, vertices by the planes orthogonal to
@@ -42,16 +43,25 @@ public:
   vtkTypeMacro(vtkLinearFactorDistanceField, vtkDistanceFieldAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// How Distance is signed (negative inside). PseudoNormal: by the angle-weighted
+  /// pseudonormal of the closest feature, exact for closed manifold meshes (flipped by
+  /// the mesh's signed volume when it is oriented inward) and arbitrary elsewhere.
+  /// WindingNumber: inside where the generalized winding number has |w| > 1/2, the
+  /// intuitive sign on meshes with holes, cracks and flipped or repeated faces, and
+  /// graceful on soups (a triangle repeated with the same orientation counts once; two
+  /// copies with opposite orientations cancel, as if absent). The magnitudes are the
+  /// same in every mode.
   enum SignModeType
   {
     UNSIGNED = 0,
-    PSEUDO_NORMAL =
-      1 ///< negative inside, by the angle-weighted pseudonormal of the closest feature
+    PSEUDO_NORMAL = 1,
+    WINDING_NUMBER = 2
   };
   vtkSetMacro(SignMode, int);
   vtkGetMacro(SignMode, int);
   void SetSignModeToUnsigned() { this->SetSignMode(UNSIGNED); }
   void SetSignModeToPseudoNormal() { this->SetSignMode(PSEUDO_NORMAL); }
+  void SetSignModeToWindingNumber() { this->SetSignMode(WINDING_NUMBER); }
 
   enum CullingType
   {
@@ -88,12 +98,20 @@ public:
   vtkSetMacro(ComputeClosestPoint, bool);
   vtkGetMacro(ComputeClosestPoint, bool);
   vtkBooleanMacro(ComputeClosestPoint, bool);
+  /// `WindingNumber` (float): w at every sample, within the evaluation's error bound
+  /// (exact where the bound could not decide the sign). Off by default; any SignMode.
+  vtkSetMacro(ComputeWindingNumber, bool);
+  vtkGetMacro(ComputeWindingNumber, bool);
+  vtkBooleanMacro(ComputeWindingNumber, bool);
   ///@}
 
   /// Distance evaluations of the last run (samples covered by a domain; -1 when the
   /// GPU could not count them) and that number divided by the number of samples.
   vtkGetMacro(LastEvaluations, vtkTypeInt64);
   vtkGetMacro(LastCullingFactor, double);
+  /// Samples whose winding-number sign a block decided at once in the last run (the rest
+  /// were evaluated one by one; Filters/Core/Winding/WindingSigns.h).
+  vtkGetMacro(LastWindingBlockSamples, vtkTypeInt64);
 
 protected:
   vtkLinearFactorDistanceField();
@@ -109,8 +127,10 @@ protected:
   bool ComputeClosestCellId = true;
   bool ComputeClosestFeature = false;
   bool ComputeClosestPoint = false;
+  bool ComputeWindingNumber = false;
   vtkTypeInt64 LastEvaluations = 0;
   double LastCullingFactor = 0;
+  vtkTypeInt64 LastWindingBlockSamples = 0;
 
 private:
   vtkLinearFactorDistanceField(const vtkLinearFactorDistanceField&) = delete;

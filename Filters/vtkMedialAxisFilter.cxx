@@ -111,7 +111,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   vtkdf::SampleGrid outputGrid;
   double distanceScale = 1;
 
-  if (mesh && gl)
+  if (mesh && gl && this->SignMode == PSEUDO_NORMAL)
   {
     // The field and the medial pass, all on the GPU (only distances and cosines return).
     vtkdf::FieldRequest request;
@@ -175,7 +175,8 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   }
   else
   {
-    // The field: the input image, or the signed field of the input mesh (CPU).
+    // The field: the input image, or the signed field of the input mesh (on this
+    // filter's backend; the winding-number sign is computed on the CPU).
     vtkSmartPointer<vtkImageData> field = image;
     if (mesh)
     {
@@ -187,9 +188,11 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
       exact->SetGridOrigin(this->GridOrigin);
       exact->SetGridSpacing(this->GridSpacing);
       exact->SetGridDimensions(this->GridDimensions);
-      exact->SetBackendToCPU();
+      exact->SetBackend(gl ? BACKEND_GPU : BACKEND_CPU);
       exact->SetMemoryLimit(this->MemoryLimit);
-      exact->SetSignModeToPseudoNormal();
+      exact->SetSignMode(this->SignMode == WINDING_NUMBER
+          ? vtkLinearFactorDistanceField::WINDING_NUMBER
+          : vtkLinearFactorDistanceField::PSEUDO_NORMAL);
       // Its errors become this filter's (a caller observes this filter, not the inner one).
       std::string innerError;
       vtkNew<vtkCallbackCommand> forward;
@@ -348,7 +351,8 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
 bool vtkMedialAxisFilter::CheckProperties()
 {
   if (!this->Superclass::CheckProperties() ||
-    !this->CheckEnum("Region", this->Region, { "Inside", "Outside", "Both" }))
+    !this->CheckEnum("Region", this->Region, { "Inside", "Outside", "Both" }) ||
+    !this->CheckEnum("SignMode", this->SignMode, { "PseudoNormal", "WindingNumber" }))
   {
     return false;
   }
@@ -366,5 +370,7 @@ void vtkMedialAxisFilter::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SeparationAngle: " << this->SeparationAngle << "\n";
   os << indent << "Region: " << EnumName(this->Region, { "Inside", "Outside", "Both" }) << "\n";
+  os << indent << "SignMode: " << EnumName(this->SignMode, { "PseudoNormal", "WindingNumber" })
+     << "\n";
   os << indent << "LastMedialCount: " << this->LastMedialCount << "\n";
 }

@@ -64,6 +64,20 @@ public:
   void SetRegionToOutside() { this->SetRegion(OUTSIDE); }
   void SetRegionToBoth() { this->SetRegion(BOTH); }
 
+  /// How the field computed from a mesh input is signed (as
+  /// vtkLinearFactorDistanceField's SignMode): PseudoNormal (the default) or
+  /// WindingNumber (inside where |w| > 1/2: meshes with holes and soups). An image input
+  /// comes signed already.
+  enum SignModeType
+  {
+    PSEUDO_NORMAL = 0,
+    WINDING_NUMBER = 1
+  };
+  vtkSetMacro(SignMode, int);
+  vtkGetMacro(SignMode, int);
+  void SetSignModeToPseudoNormal() { this->SetSignMode(PSEUDO_NORMAL); }
+  void SetSignModeToWindingNumber() { this->SetSignMode(WINDING_NUMBER); }
+
   /// The medial voxels as points (output port 1).
   vtkPolyData* GetMedialPoints();
 
@@ -80,6 +94,7 @@ protected:
 
   double SeparationAngle = 90;
   int Region = INSIDE;
+  int SignMode = PSEUDO_NORMAL;
   vtkIdType LastMedialCount = 0;
 
 private:

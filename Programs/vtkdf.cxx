@@ -1,13 +1,15 @@
 // vtkdf: the command-line front end of VTK Distance Fields.
 //
-//   vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--backend auto|gpu|cpu]
-//         [--culling auto|nonmanifold|manifold] [--arrays distance,cellid,feature,point]
+//   vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--sign pseudonormal|winding]
+//         [--backend auto|gpu|cpu] [--culling auto|nonmanifold|manifold]
+//         [--arrays distance,cellid,feature,point,winding]
 //         [--max-distance D] [--png SLICE.png] [--timing]
 //   vtkdf voxelize MESH -o OUT.vti [--mode boundary|solid|both] [grid] [--backend ...]
 //         [--timing]
 //   vtkdf chamfer INPUT -o OUT.vti [--metric manhattan|chessboard18|chessboard26]
 //         [--layers M] [--signed] [grid] [--backend ...] [--timing]
-//   vtkdf medial INPUT -o OUT.vti [--angle THETA] [--region inside|outside|both] [grid]
+//   vtkdf medial INPUT -o OUT.vti [--angle THETA] [--region inside|outside|both]
+//         [--sign pseudonormal|winding] [grid]
 //         [--backend ...] [--points OUT.vtp] [--png SLICE.png] [--timing]
 //
 // grid: [--resolution N] [--padding F] [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ]
@@ -53,16 +55,17 @@ namespace
 void PrintUsage(FILE* out)
 {
   std::fprintf(out,
-    "usage: vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--backend auto|gpu|cpu]\n"
-    "             [--culling auto|nonmanifold|manifold]\n"
-    "             [--arrays distance,cellid,feature,point] [--max-distance D]\n"
+    "usage: vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--sign pseudonormal|winding]\n"
+    "             [--backend auto|gpu|cpu] [--culling auto|nonmanifold|manifold]\n"
+    "             [--arrays distance,cellid,feature,point,winding] [--max-distance D]\n"
     "             [--png SLICE.png] [--timing]\n"
     "       vtkdf voxelize MESH -o OUT.vti [--mode boundary|solid|both] [grid]\n"
     "             [--backend auto|gpu|cpu] [--timing]\n"
     "       vtkdf chamfer INPUT -o OUT.vti [--metric manhattan|chessboard18|chessboard26]\n"
     "             [--layers M] [--signed] [grid] [--backend auto|gpu|cpu] [--timing]\n"
     "       vtkdf medial INPUT -o OUT.vti [--angle THETA] [--region inside|outside|both]\n"
-    "             [grid] [--backend auto|gpu|cpu] [--points OUT.vtp] [--png SLICE.png] [--timing]\n"
+    "             [--sign pseudonormal|winding] [grid] [--backend auto|gpu|cpu]\n"
+    "             [--points OUT.vtp] [--png SLICE.png] [--timing]\n"
     "grid:  [--resolution N] [--padding F]\n"
     "       [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ]\n"
     "MESH:  .vtp .vtk .ply .stl .obj; chamfer's INPUT may also be a .vti with a Boundary mask,\n"
@@ -469,13 +472,14 @@ vtkSmartPointer<vtkDataObject> ReadMeshOrImageOrExit(const std::string& input)
 int Linfac(int argc, char* argv[])
 {
   CommonOptions common;
-  std::string png, arrays = "distance,cellid", culling = "auto";
+  std::string png, arrays = "distance,cellid", culling = "auto", sign;
   double maxDistance = 0;
   bool signedField = false;
   ParseOptions(argc,
     argv,
     common,
     { Flag("--signed", signedField),
+      Text("--sign", sign),
       Text("--culling", culling),
       Text("--arrays", arrays),
       Number("--max-distance", maxDistance),
@@ -495,8 +499,20 @@ int Linfac(int argc, char* argv[])
   {
     return Usage("--culling takes auto, nonmanifold or manifold");
   }
-  filter->SetSignMode(signedField ? vtkLinearFactorDistanceField::PSEUDO_NORMAL
-                                  : vtkLinearFactorDistanceField::UNSIGNED);
+  // --sign implies --signed; --signed alone is the pseudonormal sign.
+  if (sign == "winding")
+  {
+    filter->SetSignModeToWindingNumber();
+  }
+  else if (sign == "pseudonormal" || (sign.empty() && signedField))
+  {
+    filter->SetSignModeToPseudoNormal();
+  }
+  else if (!sign.empty())
+  {
+    return Usage("--sign takes pseudonormal or winding");
+  }
+  filter->SetComputeWindingNumber(arrays.find("winding") != std::string::npos);
   filter->SetMaximumDistance(maxDistance);
   filter->SetComputeDistance(arrays.find("distance") != std::string::npos);
   filter->SetComputeClosestCellId(arrays.find("cellid") != std::string::npos);
@@ -509,6 +525,15 @@ int Linfac(int argc, char* argv[])
     {
       char extra[64];
       std::snprintf(extra, sizeof(extra), " culling_factor=%.3f", filter->GetLastCullingFactor());
+      if (filter->GetSignMode() == vtkLinearFactorDistanceField::WINDING_NUMBER)
+      {
+        char blocks[64];
+        std::snprintf(blocks,
+          sizeof(blocks),
+          " winding_block_samples=%lld",
+          static_cast<long long>(filter->GetLastWindingBlockSamples()));
+        return std::string(extra) + blocks;
+      }
       return std::string(extra);
     });
   if (code == 0 && !png.empty() && !WriteSlicePNG(filter->GetOutput(), png))
@@ -620,13 +645,14 @@ bool WriteMedialPNG(vtkImageData* field, const std::string& path)
 int Medial(int argc, char* argv[])
 {
   CommonOptions common;
-  std::string region = "inside", points, png;
+  std::string region = "inside", points, png, sign = "pseudonormal";
   double angle = 90;
   ParseOptions(argc,
     argv,
     common,
     { Number("--angle", angle),
       Text("--region", region),
+      Text("--sign", sign),
       Text("--points", points),
       Text("--png", png) });
   vtkNew<vtkMedialAxisFilter> filter;
@@ -644,6 +670,14 @@ int Medial(int argc, char* argv[])
   else if (region != "inside")
   {
     return Usage("--region takes inside, outside or both");
+  }
+  if (sign == "winding")
+  {
+    filter->SetSignModeToWindingNumber();
+  }
+  else if (sign != "pseudonormal")
+  {
+    return Usage("--sign takes pseudonormal or winding");
   }
   int code = Finish("medial",
     filter,

@@ -64,7 +64,8 @@ def main(mesh_path, field_path):
     image = image_reader.GetOutput()
     points = vtk_to_numpy(mesh.GetPoints().GetData()).astype(np.float64)
     samples = np.array([image.GetPoint(i) for i in range(image.GetNumberOfPoints())])
-    distance = vtk_to_numpy(image.GetPointData().GetArray("Distance")).astype(np.float64)
+    # Magnitudes: a signed field (--sign) is checked for its distances, not its signs.
+    distance = np.abs(vtk_to_numpy(image.GetPointData().GetArray("Distance")).astype(np.float64))
     exact = np.full(len(samples), np.inf)
     polys = mesh.GetPolys()
     ids = vtk_to_numpy(polys.GetConnectivityArray())

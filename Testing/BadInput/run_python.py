@@ -64,6 +64,11 @@ def configure(f, sub, options):
             f.SetMaximumLayers(number(value, int))
         elif option == "--angle":
             f.SetSeparationAngle(number(value, float))
+        elif option == "--sign":
+            if value not in ("pseudonormal", "winding"):
+                raise NotPassable(f"{option} {value}")
+            getattr(f, "SetSignModeTo" + ("PseudoNormal" if value == "pseudonormal"
+                                          else "WindingNumber"))()
         elif option in enums:
             name, values = enums[option]
             if value not in values:

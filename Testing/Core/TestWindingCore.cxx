@@ -1,0 +1,334 @@
+// The fast winding number (Filters/Core/Winding/WindingNumber.h), VTK-free, against the
+// exact sum of solid angles at every query:
+// - the approximation within its error bound, at every query;
+// - Inside() equal to the exact decision wherever |w| is not within 1e-9 of 1/2;
+// - a closed sphere: w = 1 inside and 0 outside (to 1e-9 where exact); flipped: -1;
+// - an open sphere (one cap removed), random soups, a sheet folded onto itself;
+// - repeated triangles with the same orientation count once; opposite ones cancel;
+// - WindingSigns on a grid: blocks decide exactly as every sample alone, which agrees with
+//   the exact sum wherever |w| is not within 1e-9 of 1/2, and the values within their
+//   bounds; two threads.
+#include "WindingNumber.h"
+#include "WindingSigns.h"
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <thread>
+#include <vector>
+
+using namespace vtkdf;
+
+namespace
+{
+int Failures = 0;
+std::mt19937_64 Random(16);
+
+void ThreadFor(int64_t n, int64_t, const std::function<void(int64_t, int64_t)>& body)
+{
+  const int64_t half = n / 2;
+  std::thread other([&] { body(half, n); });
+  if (half > 0)
+  {
+    body(0, half);
+  }
+  other.join();
+}
+
+void Check(bool ok, const char* what, double value)
+{
+  if (!ok && ++Failures <= 20)
+  {
+    std::printf("FAIL: %s (%.17g)\n", what, value);
+  }
+}
+
+struct Mesh
+{
+  std::vector<double> Points;
+  std::vector<int64_t> Triangles;
+};
+
+/// A unit sphere: an octahedron subdivided `levels` times, projected, outward.
+Mesh Sphere(int levels)
+{
+  Mesh m;
+  m.Points = { 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1 };
+  m.Triangles = { 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5 };
+  for (int l = 0; l < levels; ++l)
+  {
+    std::vector<int64_t> next;
+    auto middle = [&](int64_t a, int64_t b)
+    {
+      double p[3], n = 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        p[c] = 0.5 * (m.Points[3 * a + c] + m.Points[3 * b + c]);
+        n += p[c] * p[c];
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        m.Points.push_back(p[c] / std::sqrt(n));
+      }
+      return static_cast<int64_t>(m.Points.size() / 3 - 1);
+    };
+    for (size_t t = 0; t < m.Triangles.size(); t += 3)
+    {
+      const int64_t a = m.Triangles[t], b = m.Triangles[t + 1], c = m.Triangles[t + 2];
+      const int64_t ab = middle(a, b), bc = middle(b, c), ca = middle(c, a);
+      next.insert(next.end(), { a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca });
+    }
+    m.Triangles = next;
+  }
+  return m;
+}
+
+double Uniform(double lo, double hi)
+{
+  return std::uniform_real_distribution<double>(lo, hi)(Random);
+}
+
+/// Checks the hierarchy against the exact sum at random queries; returns how many
+/// queries needed the exact evaluation.
+int CheckMesh(const char* name,
+  const Mesh& mesh,
+  int queries,
+  double accuracy = WindingNumber::DefaultAccuracy)
+{
+  WindingNumber w;
+  w.Build(mesh.Points, mesh.Triangles, accuracy);
+  int exactCalls = 0;
+  double worstRatio = 0;
+  for (int i = 0; i < queries; ++i)
+  {
+    const double q[3] = { Uniform(-1.6, 1.6), Uniform(-1.6, 1.6), Uniform(-1.6, 1.6) };
+    const double exact = w.Exact(q);
+    const WindingValue fast = w.Evaluate(q);
+    const double error = std::fabs(fast.Value - exact);
+    Check(error <= fast.Bound + 1e-12, "the approximation is outside its bound", error);
+    if (fast.Bound > 0)
+    {
+      worstRatio = std::max(worstRatio, error / fast.Bound);
+    }
+    double used = 0;
+    bool wasExact = false;
+    const bool inside = w.Inside(q, &used, &wasExact);
+    exactCalls += wasExact;
+    if (std::fabs(std::fabs(exact) - 0.5) > 1e-9)
+    {
+      Check(inside == (std::fabs(exact) > 0.5), "Inside() differs from the exact sign", exact);
+    }
+  }
+  std::printf("%-22s %7lld triangles: %d queries, error at most %.2f of its bound, %d "
+              "evaluated exactly\n",
+    name,
+    static_cast<long long>(w.TriangleCount()),
+    queries,
+    worstRatio,
+    exactCalls);
+  return exactCalls;
+}
+} // namespace
+
+int main()
+{
+  const Mesh sphere = Sphere(4); // 2048 triangles
+  {
+    WindingNumber w;
+    w.Build(sphere.Points, sphere.Triangles);
+    double worst = 0;
+    for (int i = 0; i < 2000; ++i)
+    {
+      const double q[3] = { Uniform(-1.5, 1.5), Uniform(-1.5, 1.5), Uniform(-1.5, 1.5) };
+      const double r = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+      if (std::fabs(r - 1) < 0.05)
+      {
+        continue; // near the polyhedron's surface, which is not the unit sphere's
+      }
+      worst = std::max(worst, std::fabs(w.Exact(q) - (r < 1 ? 1 : 0)));
+    }
+    std::printf("closed sphere: exact w within %.2g of 1 inside and 0 outside\n", worst);
+    Check(worst <= 1e-9, "a closed sphere's w is not 1 inside and 0 outside", worst);
+  }
+  CheckMesh("closed sphere", sphere, 3000);
+  CheckMesh("closed sphere, accuracy 2", sphere, 300, 2);
+  {
+    Mesh flipped = sphere;
+    for (size_t t = 0; t < flipped.Triangles.size(); t += 3)
+    {
+      std::swap(flipped.Triangles[t + 1], flipped.Triangles[t + 2]);
+    }
+    WindingNumber w;
+    w.Build(flipped.Points, flipped.Triangles);
+    const double centre[3] = { 0.1, -0.2, 0.05 };
+    std::printf("flipped sphere: w = %.12f at the centre\n", w.Exact(centre));
+    Check(std::fabs(w.Exact(centre) + 1) <= 1e-9 && w.Inside(centre),
+      "a flipped sphere is not w = -1, inside",
+      w.Exact(centre));
+    CheckMesh("flipped sphere", flipped, 1000);
+
+    // Opposite copies cancel; repeated ones count once.
+    Mesh both = sphere, twice = sphere;
+    const int64_t offset = static_cast<int64_t>(sphere.Points.size() / 3);
+    both.Points.insert(both.Points.end(), flipped.Points.begin(), flipped.Points.end());
+    twice.Points.insert(twice.Points.end(), sphere.Points.begin(), sphere.Points.end());
+    for (size_t t = 0; t < sphere.Triangles.size(); ++t)
+    {
+      both.Triangles.push_back(flipped.Triangles[t] + offset);
+      // The same triangle from another corner: the same cyclic order.
+      twice.Triangles.push_back(sphere.Triangles[t - t % 3 + (t % 3 + 1) % 3] + offset);
+    }
+    WindingNumber wb, wt;
+    wb.Build(both.Points, both.Triangles);
+    wt.Build(twice.Points, twice.Triangles);
+    std::printf("sphere + flipped copy: w = %.2g; sphere twice: %lld triangles kept, w = %.12f\n",
+      wb.Exact(centre),
+      static_cast<long long>(wt.TriangleCount()),
+      wt.Exact(centre));
+    Check(std::fabs(wb.Exact(centre)) <= 1e-9, "opposite copies do not cancel", wb.Exact(centre));
+    Check(wt.TriangleCount() == static_cast<int64_t>(sphere.Triangles.size() / 3),
+      "repeated triangles are not kept once",
+      static_cast<double>(wt.TriangleCount()));
+    Check(
+      std::fabs(wt.Exact(centre) - 1) <= 1e-9, "a repeated sphere is not w = 1", wt.Exact(centre));
+  }
+  {
+    // An open sphere: the triangles above z = 0.7 removed.
+    Mesh open;
+    open.Points = sphere.Points;
+    for (size_t t = 0; t < sphere.Triangles.size(); t += 3)
+    {
+      double z = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        z += sphere.Points[3 * sphere.Triangles[t + k] + 2] / 3;
+      }
+      if (z < 0.7)
+      {
+        open.Triangles.insert(
+          open.Triangles.end(), sphere.Triangles.begin() + t, sphere.Triangles.begin() + t + 3);
+      }
+    }
+    CheckMesh("open sphere", open, 3000);
+  }
+  {
+    // A soup: random triangles, some large, some tiny, some degenerate.
+    Mesh soup;
+    for (int t = 0; t < 3000; ++t)
+    {
+      const double size = t % 3 == 0 ? 0.8 : 0.05;
+      const double c[3] = { Uniform(-1, 1), Uniform(-1, 1), Uniform(-1, 1) };
+      for (int k = 0; k < 3; ++k)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          soup.Points.push_back(t % 97 == 0 && k == 2 ? soup.Points[soup.Points.size() - 3]
+                                                      : c[a] + size * Uniform(-1, 1));
+        }
+        soup.Triangles.push_back(3 * t + k);
+      }
+    }
+    CheckMesh("soup", soup, 2000);
+  }
+  {
+    // A sheet folded onto itself: two coincident squares with opposite orientations,
+    // whose vector areas cancel in every node (the bound must not).
+    Mesh folded;
+    const int n = 24;
+    for (int side = 0; side < 2; ++side)
+    {
+      const int64_t base = static_cast<int64_t>(folded.Points.size() / 3);
+      for (int j = 0; j <= n; ++j)
+      {
+        for (int i = 0; i <= n; ++i)
+        {
+          folded.Points.insert(
+            folded.Points.end(), { -1 + 2.0 * i / n, -1 + 2.0 * j / n, side * 1e-3 });
+        }
+      }
+      for (int j = 0; j < n; ++j)
+      {
+        for (int i = 0; i < n; ++i)
+        {
+          const int64_t a = base + j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+          if (side == 0)
+          {
+            folded.Triangles.insert(folded.Triangles.end(), { a, b, d, a, d, c });
+          }
+          else
+          {
+            folded.Triangles.insert(folded.Triangles.end(), { a, d, b, a, c, d });
+          }
+        }
+      }
+    }
+    CheckMesh("folded sheet", folded, 2000);
+  }
+  {
+    // WindingSigns on a 32^3 grid around the closed and the open sphere.
+    Mesh open;
+    open.Points = sphere.Points;
+    for (size_t t = 0; t < sphere.Triangles.size(); t += 3)
+    {
+      if (sphere.Points[3 * sphere.Triangles[t] + 2] < 0.6)
+      {
+        open.Triangles.insert(
+          open.Triangles.end(), sphere.Triangles.begin() + t, sphere.Triangles.begin() + t + 3);
+      }
+    }
+    for (const Mesh* mesh : std::vector<const Mesh*>{ &sphere, &open })
+    {
+      WindingNumber w;
+      w.Build(mesh->Points, mesh->Triangles);
+      SampleGrid grid;
+      grid.Origin = { -1.3, -1.3, -1.3 };
+      grid.Spacing = { 2.6 / 31, 2.6 / 31, 2.6 / 31 };
+      grid.Whole.Lo = { 0, 0, 0 };
+      grid.Whole.Hi = { 31, 31, 31 };
+      const int64_t n = grid.Whole.Count();
+      std::vector<uint8_t> blocked(n), alone(n), valued(n);
+      std::vector<float> values(n);
+      const WindingSignStatistics a =
+        WindingSigns(w, grid, grid.Whole, blocked.data(), nullptr, true, ThreadFor);
+      const WindingSignStatistics b =
+        WindingSigns(w, grid, grid.Whole, alone.data(), nullptr, false, ThreadFor);
+      WindingSigns(w, grid, grid.Whole, valued.data(), values.data(), true, ThreadFor);
+      int64_t wrong = 0, differ = 0, outOfBound = 0;
+      for (int64_t v = 0; v < n; ++v)
+      {
+        const double q[3] = { grid.Coordinate(0, v % 32),
+          grid.Coordinate(1, (v / 32) % 32),
+          grid.Coordinate(2, v / 1024) };
+        const double exact = w.Exact(q);
+        differ += blocked[v] != alone[v] || valued[v] != alone[v];
+        if (std::fabs(std::fabs(exact) - 0.5) > 1e-9)
+        {
+          wrong += alone[v] != (std::fabs(exact) > 0.5);
+        }
+        const WindingValue fast = w.Evaluate(q);
+        const double used =
+          std::fabs(std::fabs(fast.Value) - 0.5) > fast.Bound ? fast.Value : exact;
+        outOfBound += std::fabs(values[v] - used) > 1e-6 * std::max(1.0, std::fabs(used));
+      }
+      std::printf("%s on 32^3: blocks decided %lld samples, %lld alone (%lld exact); every "
+                  "sample alone: %lld exact; %lld differ, %lld wrong, %lld values off\n",
+        mesh == &sphere ? "closed sphere" : "open sphere",
+        static_cast<long long>(a.BlockSamples),
+        static_cast<long long>(a.Evaluated),
+        static_cast<long long>(a.Exact),
+        static_cast<long long>(b.Exact),
+        static_cast<long long>(differ),
+        static_cast<long long>(wrong),
+        static_cast<long long>(outOfBound));
+      Check(differ == 0, "blocks and single samples decide differently", double(differ));
+      Check(wrong == 0, "a sign differs from the exact sum's", double(wrong));
+      Check(outOfBound == 0, "a written value is not the evaluation's", double(outOfBound));
+      Check(a.BlockSamples + a.Evaluated == n && b.Evaluated == n,
+        "samples missed",
+        double(a.BlockSamples + a.Evaluated));
+    }
+  }
+  std::printf("%d failures\n", Failures);
+  return Failures ? 1 : 0;
+}
