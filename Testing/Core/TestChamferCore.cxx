@@ -4,6 +4,7 @@
 // every metric, with and without a maximum number of layers (3: within the first block
 // of eight layers, 11: within the second), unsigned and signed.
 #include "ChamferTransform.h"
+#include "ThreadFor.h"
 
 #include <cstdio>
 #include <deque>
@@ -18,17 +19,6 @@ using namespace vtkdf;
 namespace
 {
 int Failures = 0;
-
-void ThreadFor(int64_t n, int64_t, const std::function<void(int64_t, int64_t)>& body)
-{
-  const int64_t half = n / 2;
-  std::thread other([&] { body(half, n); });
-  if (half > 0)
-  {
-    body(0, half);
-  }
-  other.join();
-}
 
 /// Layer index of every voxel by breadth-first search from the set voxels.
 std::vector<int32_t> Reference(const BitVolume& zero,

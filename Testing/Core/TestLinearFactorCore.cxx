@@ -3,6 +3,7 @@
 #include "ExactDistance.h"
 #include "LinearFactorField.h"
 #include "SliceDomain.h"
+#include "ThreadFor.h"
 
 #include <cmath>
 #include <cstdio>
@@ -24,24 +25,6 @@ void Check(bool ok, const std::string& what)
   {
     std::printf("FAIL: %s\n", what.c_str());
     ++Failures;
-  }
-}
-
-void ThreadFor(int64_t n, int64_t, const std::function<void(int64_t, int64_t)>& body)
-{
-  const int threads = 2;
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-  {
-    const int64_t b = n * t / threads, e = n * (t + 1) / threads;
-    if (e > b)
-    {
-      pool.emplace_back([=, &body]() { body(b, e); });
-    }
-  }
-  for (auto& th : pool)
-  {
-    th.join();
   }
 }
 

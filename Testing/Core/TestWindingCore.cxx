@@ -8,6 +8,7 @@
 // - WindingSigns on a grid: blocks decide exactly as every sample alone, which agrees with
 //   the exact sum wherever |w| is not within 1e-9 of 1/2, and the values within their
 //   bounds; two threads.
+#include "ThreadFor.h"
 #include "WindingNumber.h"
 #include "WindingSigns.h"
 
@@ -24,17 +25,6 @@ namespace
 {
 int Failures = 0;
 std::mt19937_64 Random(16);
-
-void ThreadFor(int64_t n, int64_t, const std::function<void(int64_t, int64_t)>& body)
-{
-  const int64_t half = n / 2;
-  std::thread other([&] { body(half, n); });
-  if (half > 0)
-  {
-    body(0, half);
-  }
-  other.join();
-}
 
 void Check(bool ok, const char* what, double value)
 {
