@@ -91,11 +91,30 @@ void WindingNumber::Build(const std::vector<double>& points,
     this->BuildNode(order, 0, kept, corners, centroids);
   }
   this->Corners.resize(9 * kept);
+  this->Balls.resize(4 * kept);
+  this->Areas.resize(kept);
   for (int64_t t = 0; t < kept; ++t)
   {
-    std::copy(corners.begin() + 9 * order[t],
-      corners.begin() + 9 * order[t] + 9,
-      this->Corners.begin() + 9 * t);
+    double* p = this->Corners.data() + 9 * t;
+    std::copy(corners.begin() + 9 * order[t], corners.begin() + 9 * order[t] + 9, p);
+    double* ball = this->Balls.data() + 4 * t;
+    double reach2 = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      ball[a] = centroids[3 * order[t] + a];
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const double e[3] = { p[3 * k] - ball[0], p[3 * k + 1] - ball[1], p[3 * k + 2] - ball[2] };
+      reach2 = std::max(reach2, Dot(e, e));
+    }
+    ball[3] = std::sqrt(reach2);
+    const double e[3] = { p[3] - p[0], p[4] - p[1], p[5] - p[2] };
+    const double f[3] = { p[6] - p[0], p[7] - p[1], p[8] - p[2] };
+    const double m[3] = {
+      e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]
+    };
+    this->Areas[t] = 0.5 * std::sqrt(Dot(m, m));
   }
 }
 
@@ -240,32 +259,14 @@ double WindingNumber::GradientBound(const double c[3], double radius) const
       // Each triangle from the ball around its centroid through its farthest corner.
       for (int64_t t = node.First; t < node.First + node.Count; ++t)
       {
-        const double* p = this->Corners.data() + 9 * t;
-        double centroid[3], area, reach2 = 0;
-        for (int a = 0; a < 3; ++a)
-        {
-          centroid[a] = (p[a] + p[3 + a] + p[6 + a]) / 3;
-        }
-        for (int k = 0; k < 3; ++k)
-        {
-          const double e[3] = {
-            p[3 * k] - centroid[0], p[3 * k + 1] - centroid[1], p[3 * k + 2] - centroid[2]
-          };
-          reach2 = std::max(reach2, Dot(e, e));
-        }
-        const double e[3] = { p[3] - p[0], p[4] - p[1], p[5] - p[2] };
-        const double f[3] = { p[6] - p[0], p[7] - p[1], p[8] - p[2] };
-        const double m[3] = {
-          e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0]
-        };
-        area = 0.5 * std::sqrt(Dot(m, m));
-        const double to[3] = { centroid[0] - c[0], centroid[1] - c[1], centroid[2] - c[2] };
-        const double g = std::sqrt(Dot(to, to)) - std::sqrt(reach2) - radius;
+        const double* ball = this->Balls.data() + 4 * t;
+        const double to[3] = { ball[0] - c[0], ball[1] - c[1], ball[2] - c[2] };
+        const double g = std::sqrt(Dot(to, to)) - ball[3] - radius;
         if (!(g > 0))
         {
           return HUGE_VAL;
         }
-        bound += area / (2 * M_PI * g * g * g);
+        bound += this->Areas[t] / (2 * M_PI * g * g * g);
       }
     }
     else

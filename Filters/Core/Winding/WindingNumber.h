@@ -89,6 +89,10 @@ private:
 
   std::vector<Node> Nodes;
   std::vector<double> Corners; // 9 per triangle, in the hierarchy's order
+  // Per triangle, in the same order, for GradientBound: the ball around its centroid
+  // through its farthest corner (centre, radius) and its area.
+  std::vector<double> Balls; // 4 per triangle
+  std::vector<double> Areas;
   double Accuracy = DefaultAccuracy;
 };
 
