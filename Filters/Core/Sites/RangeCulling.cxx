@@ -258,9 +258,11 @@ void RangeCulling::Build(const MeshSites& sites,
     int64_t id = 0, stride = 1;
     for (int a = 0; a < 3; ++a)
     {
+      // Clamped before the conversion: an anchor far outside an explicit grid is
+      // beyond int's range in blocks.
       const double x = (sites.Sites[s].Anchor[a] - grid.Origin[a]) / grid.Spacing[a];
-      int blk = static_cast<int>(std::floor((x - extent.Lo[a]) / b));
-      blk = std::min(std::max(blk, 0), nb[a] - 1);
+      const double at = std::floor((x - extent.Lo[a]) / b);
+      const int blk = static_cast<int>(std::min(std::max(at, 0.0), double(nb[a] - 1)));
       id += blk * stride;
       stride *= nb[a];
     }

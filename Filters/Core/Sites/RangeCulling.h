@@ -15,6 +15,7 @@
 #include "Parallel.h"
 #include "SampleGrid.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -85,7 +86,10 @@ public:
   int BlockOf(int a, double index) const
   {
     // floor without a library call: the argument may be negative.
-    const double x = (index - this->BlockExtent.Lo[a] + 0.5) * (1.0 / BlockSize);
+    // Clamped first, so that an index far outside the extent converts to int safely.
+    const double x =
+      std::min(std::max((index - this->BlockExtent.Lo[a] + 0.5) * (1.0 / BlockSize), -1.0),
+        double(this->BlockCounts[a]));
     int blk = static_cast<int>(x);
     blk -= blk > x;
     return blk < 0 ? 0 : (blk >= this->BlockCounts[a] ? this->BlockCounts[a] - 1 : blk);
