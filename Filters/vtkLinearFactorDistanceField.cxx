@@ -207,14 +207,15 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
       pd->AddArray(a);
       values = a;
     }
-    const vtkdf::WindingSignStatistics stats = vtkdf::WindingSigns(winding,
-      request.Grid,
-      request.Extent,
-      inside.data(),
-      values ? values->GetPointer(0) : nullptr,
-      true,
-      vtkdf::SMPFor);
+    vtkdf::WindingSignOptions options;
+    options.Value = values ? values->GetPointer(0) : nullptr;
+    // Unsigned still, in world units: blocks near the surface split without trying.
+    options.Distance = arrays.Distance;
+    options.DistanceScale = 1 / conversion.Frame.Scale;
+    const vtkdf::WindingSignStatistics stats = vtkdf::WindingSigns(
+      winding, request.Grid, request.Extent, inside.data(), options, vtkdf::SMPFor);
     this->LastWindingBlockSamples = stats.BlockSamples;
+    this->LastWindingExactSamples = stats.Exact;
     if (this->SignMode == WINDING_NUMBER && arrays.Distance)
     {
       float* d = arrays.Distance;
@@ -268,5 +269,6 @@ void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeWindingNumber: " << this->ComputeWindingNumber << "\n";
   os << indent << "LastEvaluations: " << this->LastEvaluations << "\n";
   os << indent << "LastWindingBlockSamples: " << this->LastWindingBlockSamples << "\n";
+  os << indent << "LastWindingExactSamples: " << this->LastWindingExactSamples << "\n";
   os << indent << "LastCullingFactor: " << this->LastCullingFactor << "\n";
 }

@@ -112,6 +112,9 @@ public:
   /// Samples whose winding-number sign a block decided at once in the last run (the rest
   /// were evaluated one by one; Filters/Core/Winding/WindingSigns.h).
   vtkGetMacro(LastWindingBlockSamples, vtkTypeInt64);
+  /// Samples whose winding number the last run had to sum exactly, triangle by triangle
+  /// (the hierarchy's error bound reached |w| = 1/2).
+  vtkGetMacro(LastWindingExactSamples, vtkTypeInt64);
 
 protected:
   vtkLinearFactorDistanceField();
@@ -131,6 +134,7 @@ protected:
   vtkTypeInt64 LastEvaluations = 0;
   double LastCullingFactor = 0;
   vtkTypeInt64 LastWindingBlockSamples = 0;
+  vtkTypeInt64 LastWindingExactSamples = 0;
 
 private:
   vtkLinearFactorDistanceField(const vtkLinearFactorDistanceField&) = delete;

@@ -527,11 +527,12 @@ int Linfac(int argc, char* argv[])
       std::snprintf(extra, sizeof(extra), " culling_factor=%.3f", filter->GetLastCullingFactor());
       if (filter->GetSignMode() == vtkLinearFactorDistanceField::WINDING_NUMBER)
       {
-        char blocks[64];
+        char blocks[96];
         std::snprintf(blocks,
           sizeof(blocks),
-          " winding_block_samples=%lld",
-          static_cast<long long>(filter->GetLastWindingBlockSamples()));
+          " winding_block_samples=%lld winding_exact_samples=%lld",
+          static_cast<long long>(filter->GetLastWindingBlockSamples()),
+          static_cast<long long>(filter->GetLastWindingExactSamples()));
         return std::string(extra) + blocks;
       }
       return std::string(extra);

@@ -1,13 +1,15 @@
 // The fast winding number (Filters/Core/Winding/WindingNumber.h), VTK-free, against the
 // exact sum of solid angles at every query:
-// - the approximation within its error bound, at every query;
+// - the approximation within its error bound, at every query, and its gradient within
+//   its own; the exact gradient against central differences; the first-order Taylor
+//   remainder within HessianBound;
 // - Inside() equal to the exact decision wherever |w| is not within 1e-9 of 1/2;
 // - a closed sphere: w = 1 inside and 0 outside (to 1e-9 where exact); flipped: -1;
 // - an open sphere (one cap removed), random soups, a sheet folded onto itself;
 // - repeated triangles with the same orientation count once; opposite ones cancel;
 // - WindingSigns on a grid: blocks decide exactly as every sample alone, which agrees with
 //   the exact sum wherever |w| is not within 1e-9 of 1/2, and the values within their
-//   bounds; two threads.
+//   bounds; the same with distances that skip blocks near the surface; two threads.
 #include "ThreadFor.h"
 #include "WindingNumber.h"
 #include "WindingSigns.h"
@@ -89,7 +91,7 @@ int CheckMesh(const char* name,
   WindingNumber w;
   w.Build(mesh.Points, mesh.Triangles, accuracy);
   int exactCalls = 0;
-  double worstRatio = 0;
+  double worstRatio = 0, worstGradientRatio = 0, worstHessianRatio = 0;
   for (int i = 0; i < queries; ++i)
   {
     const double q[3] = { Uniform(-1.6, 1.6), Uniform(-1.6, 1.6), Uniform(-1.6, 1.6) };
@@ -104,18 +106,105 @@ int CheckMesh(const char* name,
     double used = 0;
     bool wasExact = false;
     const bool inside = w.Inside(q, &used, &wasExact);
+    const bool insideAlone = w.Inside(q); // the coarse-then-fine path
     exactCalls += wasExact;
     if (std::fabs(std::fabs(exact) - 0.5) > 1e-9)
     {
       Check(inside == (std::fabs(exact) > 0.5), "Inside() differs from the exact sign", exact);
+      Check(insideAlone == (std::fabs(exact) > 0.5),
+        "Inside() without a value differs from the exact sign",
+        exact);
+    }
+
+    // The gradient: the exact one against central differences of the exact sum, the
+    // hierarchy's within its bound of it.
+    double exactGradient[3] = { 0, 0, 0 };
+    for (size_t t = 0; t < mesh.Triangles.size(); t += 3)
+    {
+      double g[3];
+      TriangleSolidAngleGradient(&mesh.Points[3 * mesh.Triangles[t]],
+        &mesh.Points[3 * mesh.Triangles[t + 1]],
+        &mesh.Points[3 * mesh.Triangles[t + 2]],
+        q,
+        g);
+      for (int a = 0; a < 3; ++a)
+      {
+        exactGradient[a] += g[a] / (4 * M_PI);
+      }
+    }
+    const WindingGradient fastGradient = w.EvaluateWithGradient(q);
+    Check(std::fabs(fastGradient.Value - exact) <= fastGradient.Bound + 1e-12,
+      "EvaluateWithGradient's value is outside its bound",
+      fastGradient.Value - exact);
+    double gradientError = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double e = fastGradient.Gradient[a] - exactGradient[a];
+      gradientError += e * e;
+    }
+    Check(std::sqrt(gradientError) <= fastGradient.GradientBound + 1e-9,
+      "the gradient is outside its bound",
+      std::sqrt(gradientError));
+    if (fastGradient.GradientBound > 0)
+    {
+      worstGradientRatio =
+        std::max(worstGradientRatio, std::sqrt(gradientError) / fastGradient.GradientBound);
+    }
+    if (i % 10 == 0)
+    {
+      // Central differences, where the step stays clear of the surface (HessianBound
+      // finite over the step's ball) and the triangles are not repeated (w.Exact sums
+      // the kept ones, the gradient above every one given).
+      const double step = 1e-5;
+      if (w.HessianBound(q, 2 * step) < HUGE_VAL &&
+        w.TriangleCount() * 3 == int64_t(mesh.Triangles.size()))
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          double plus[3] = { q[0], q[1], q[2] }, minus[3] = { q[0], q[1], q[2] };
+          plus[a] += step;
+          minus[a] -= step;
+          const double difference = (w.Exact(plus) - w.Exact(minus)) / (2 * step);
+          Check(std::fabs(difference - exactGradient[a]) <= 1e-5 * (1 + std::fabs(difference)),
+            "the exact gradient differs from central differences",
+            difference - exactGradient[a]);
+        }
+      }
+      // The Hessian bound: the first-order Taylor remainder over a ball.
+      const double radius = Uniform(0.01, 0.3);
+      const double hessian = w.HessianBound(q, radius);
+      if (hessian < HUGE_VAL)
+      {
+        for (int s = 0; s < 5; ++s)
+        {
+          double y[3], r2 = 0, linear = exact;
+          for (int a = 0; a < 3; ++a)
+          {
+            const double o = Uniform(-radius, radius) / std::sqrt(3.0);
+            y[a] = q[a] + o;
+            r2 += o * o;
+            linear += exactGradient[a] * o;
+          }
+          const double remainder = std::fabs(w.Exact(y) - linear);
+          Check(remainder <= 0.5 * r2 * hessian + 1e-12,
+            "the first-order remainder exceeds the Hessian bound",
+            remainder);
+          if (remainder > 1e-12)
+          {
+            worstHessianRatio = std::max(worstHessianRatio, remainder / (0.5 * r2 * hessian));
+          }
+        }
+      }
     }
   }
-  std::printf("%-22s %7lld triangles: %d queries, error at most %.2f of its bound, %d "
-              "evaluated exactly\n",
+  std::printf("%-22s %7lld triangles: %d queries, error at most %.2f of its bound (gradient "
+              "%.2f, first-order remainder %.2f), %d evaluated exactly\n",
     name,
     static_cast<long long>(w.TriangleCount()),
     queries,
     worstRatio,
+    worstGradientRatio,
+    worstHessianRatio,
     exactCalls);
   return exactCalls;
 }
@@ -277,13 +366,29 @@ int main()
       grid.Whole.Lo = { 0, 0, 0 };
       grid.Whole.Hi = { 31, 31, 31 };
       const int64_t n = grid.Whole.Count();
-      std::vector<uint8_t> blocked(n), alone(n), valued(n);
-      std::vector<float> values(n);
+      std::vector<uint8_t> blocked(n), alone(n), valued(n), skipping(n);
+      std::vector<float> values(n), distance(n);
+      for (int64_t v = 0; v < n; ++v)
+      {
+        // Distance to the unit sphere, which the mesh approximates: WindingSigns uses it
+        // only to skip attempts, so an approximation must not change any sign.
+        const double q[3] = { grid.Coordinate(0, v % 32),
+          grid.Coordinate(1, (v / 32) % 32),
+          grid.Coordinate(2, v / 1024) };
+        distance[v] =
+          static_cast<float>(std::fabs(std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) - 1));
+      }
+      WindingSignOptions blocks, single, near, valuesToo;
+      single.Blocks = false;
+      near.Distance = distance.data();
+      valuesToo.Value = values.data();
       const WindingSignStatistics a =
-        WindingSigns(w, grid, grid.Whole, blocked.data(), nullptr, true, ThreadFor);
+        WindingSigns(w, grid, grid.Whole, blocked.data(), blocks, ThreadFor);
       const WindingSignStatistics b =
-        WindingSigns(w, grid, grid.Whole, alone.data(), nullptr, false, ThreadFor);
-      WindingSigns(w, grid, grid.Whole, valued.data(), values.data(), true, ThreadFor);
+        WindingSigns(w, grid, grid.Whole, alone.data(), single, ThreadFor);
+      const WindingSignStatistics c =
+        WindingSigns(w, grid, grid.Whole, skipping.data(), near, ThreadFor);
+      WindingSigns(w, grid, grid.Whole, valued.data(), valuesToo, ThreadFor);
       int64_t wrong = 0, differ = 0, outOfBound = 0;
       for (int64_t v = 0; v < n; ++v)
       {
@@ -291,22 +396,25 @@ int main()
           grid.Coordinate(1, (v / 32) % 32),
           grid.Coordinate(2, v / 1024) };
         const double exact = w.Exact(q);
-        differ += blocked[v] != alone[v] || valued[v] != alone[v];
+        differ += blocked[v] != alone[v] || valued[v] != alone[v] || skipping[v] != alone[v];
         if (std::fabs(std::fabs(exact) - 0.5) > 1e-9)
         {
           wrong += alone[v] != (std::fabs(exact) > 0.5);
         }
-        const WindingValue fast = w.Evaluate(q);
+        const WindingValue fast = w.Evaluate(q, WindingNumber::ValueAccuracy);
         const double used =
           std::fabs(std::fabs(fast.Value) - 0.5) > fast.Bound ? fast.Value : exact;
         outOfBound += std::fabs(values[v] - used) > 1e-6 * std::max(1.0, std::fabs(used));
       }
-      std::printf("%s on 32^3: blocks decided %lld samples, %lld alone (%lld exact); every "
-                  "sample alone: %lld exact; %lld differ, %lld wrong, %lld values off\n",
+      std::printf("%s on 32^3: blocks decided %lld samples, %lld alone (%lld exact); with "
+                  "distances %lld and %lld; every sample alone: %lld exact; %lld differ, %lld "
+                  "wrong, %lld values off\n",
         mesh == &sphere ? "closed sphere" : "open sphere",
         static_cast<long long>(a.BlockSamples),
         static_cast<long long>(a.Evaluated),
         static_cast<long long>(a.Exact),
+        static_cast<long long>(c.BlockSamples),
+        static_cast<long long>(c.Evaluated),
         static_cast<long long>(b.Exact),
         static_cast<long long>(differ),
         static_cast<long long>(wrong),
@@ -314,7 +422,8 @@ int main()
       Check(differ == 0, "blocks and single samples decide differently", double(differ));
       Check(wrong == 0, "a sign differs from the exact sum's", double(wrong));
       Check(outOfBound == 0, "a written value is not the evaluation's", double(outOfBound));
-      Check(a.BlockSamples + a.Evaluated == n && b.Evaluated == n,
+      Check(
+        a.BlockSamples + a.Evaluated == n && b.Evaluated == n && c.BlockSamples + c.Evaluated == n,
         "samples missed",
         double(a.BlockSamples + a.Evaluated));
     }

@@ -34,6 +34,35 @@ double TriangleSolidAngle(const double a[3],
   return 2 * std::atan2(det, den);
 }
 
+void TriangleSolidAngleGradient(const double a[3],
+  const double b[3],
+  const double c[3],
+  const double q[3],
+  double gradient[3])
+{
+  // The field of a unit current around the triangle's edges (Biot-Savart), edge by edge:
+  // (u x v) (|u| + |v|) / (|u| |v| (|u| |v| + u . v)), u and v the edge's ends from q.
+  const double* corner[3] = { a, b, c };
+  gradient[0] = gradient[1] = gradient[2] = 0;
+  for (int e = 0; e < 3; ++e)
+  {
+    const double* p0 = corner[e];
+    const double* p1 = corner[(e + 1) % 3];
+    const double u[3] = { p0[0] - q[0], p0[1] - q[1], p0[2] - q[2] };
+    const double v[3] = { p1[0] - q[0], p1[1] - q[1], p1[2] - q[2] };
+    const double lu = std::sqrt(Dot(u, u)), lv = std::sqrt(Dot(v, v));
+    const double den = lu * lv * (lu * lv + Dot(u, v));
+    if (!(den > 0))
+    {
+      continue; // q on the edge's line outside it: no field from it
+    }
+    const double f = (lu + lv) / den;
+    gradient[0] += f * (u[1] * v[2] - u[2] * v[1]);
+    gradient[1] += f * (u[2] * v[0] - u[0] * v[2]);
+    gradient[2] += f * (u[0] * v[1] - u[1] * v[0]);
+  }
+}
+
 void WindingNumber::Build(const std::vector<double>& points,
   const std::vector<int64_t>& triangles,
   double accuracy)
@@ -158,6 +187,39 @@ int32_t WindingNumber::BuildNode(std::vector<int64_t>& order,
     node.Centre[c] = area > 0 ? weighted[c] / area : 0.5 * (lo[c] + hi[c]);
   }
   node.Area = area;
+  // First-order tensor T_ij = sum of m_i (g - c)_j (m the vector area, g the centroid:
+  // exact for flat triangles) and the second moment of area about the centre, the sum of
+  // a (|g - c|^2 + sum_k |p_k - g|^2 / 12) (a triangle's moment about its centroid is a/12
+  // times its corners' squared distances from it).
+  std::fill(node.Tensor, node.Tensor + 9, 0.0);
+  double second = 0;
+  for (int64_t i = first; i < first + count; ++i)
+  {
+    const double* p = corners.data() + 9 * order[i];
+    const double* g = centroids.data() + 3 * order[i];
+    const double e[3] = { p[3] - p[0], p[4] - p[1], p[5] - p[2] };
+    const double f[3] = { p[6] - p[0], p[7] - p[1], p[8] - p[2] };
+    const double m[3] = { 0.5 * (e[1] * f[2] - e[2] * f[1]),
+      0.5 * (e[2] * f[0] - e[0] * f[2]),
+      0.5 * (e[0] * f[1] - e[1] * f[0]) };
+    const double s[3] = { g[0] - node.Centre[0], g[1] - node.Centre[1], g[2] - node.Centre[2] };
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        node.Tensor[3 * a + b] += m[a] * s[b];
+      }
+    }
+    double spread = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double v[3] = { p[3 * k] - g[0], p[3 * k + 1] - g[1], p[3 * k + 2] - g[2] };
+      spread += Dot(v, v);
+    }
+    second += std::sqrt(Dot(m, m)) * (Dot(s, s) + spread / 12);
+  }
+  // Rounding can only make the bound a little small; the factor covers it.
+  node.Second = second * (1 + 1e-12);
   double radius2 = 0;
   for (int64_t i = first; i < first + count; ++i)
   {
@@ -194,7 +256,34 @@ int32_t WindingNumber::BuildNode(std::vector<int64_t>& order,
   return index;
 }
 
+bool WindingNumber::FarTerm(const Node& node, const double q[3], double& term, double& bound) const
+{
+  const double d[3] = { node.Centre[0] - q[0], node.Centre[1] - q[1], node.Centre[2] - q[2] };
+  const double r2 = Dot(d, d);
+  const double r = std::sqrt(r2);
+  const double gap = r - node.Radius;
+  if (!(gap > 0))
+  {
+    return false;
+  }
+  // Order 1 (WindingNumber.h): M . d / r^3 + (tr T - 3 d.T.d / r^2) / r^3.
+  const double* t = node.Tensor;
+  const double td[3] = { t[0] * d[0] + t[1] * d[1] + t[2] * d[2],
+    t[3] * d[0] + t[4] * d[1] + t[5] * d[2],
+    t[6] * d[0] + t[7] * d[1] + t[8] * d[2] };
+  const double r3 = r2 * r;
+  term = (Dot(node.Moment, d) + t[0] + t[4] + t[8] - 3 * Dot(d, td) / r2) / (FourPi * r3);
+  const double gap2 = gap * gap;
+  bound = 3 * node.Second / (FourPi * gap2 * gap2);
+  return true;
+}
+
 WindingValue WindingNumber::Evaluate(const double q[3]) const
+{
+  return this->Evaluate(q, this->Accuracy);
+}
+
+WindingValue WindingNumber::Evaluate(const double q[3], double accuracy) const
 {
   WindingValue result;
   if (this->Nodes.empty())
@@ -209,21 +298,16 @@ WindingValue WindingNumber::Evaluate(const double q[3]) const
   {
     const Node& node = this->Nodes[stack[--depth]];
     const double d[3] = { node.Centre[0] - q[0], node.Centre[1] - q[1], node.Centre[2] - q[2] };
-    const double r = std::sqrt(Dot(d, d));
-    if (r > this->Accuracy * node.Radius)
+    double term, bound;
+    if (Dot(d, d) > accuracy * accuracy * node.Radius * node.Radius &&
+      this->FarTerm(node, q, term, bound))
     {
-      // Far: the dipole term, and its error bound (WindingNumber.h).
-      result.Value += Dot(node.Moment, d) / (FourPi * r * r * r);
-      const double gap = r - node.Radius;
-      result.Bound += node.Area * node.Radius / (2 * M_PI * gap * gap * gap);
+      result.Value += term;
+      result.Bound += bound;
     }
     else if (node.Children[0] < 0)
     {
-      for (int64_t t = node.First; t < node.First + node.Count; ++t)
-      {
-        const double* p = this->Corners.data() + 9 * t;
-        angle += TriangleSolidAngle(p, p + 3, p + 6, q);
-      }
+      angle += this->LeafAngle(node, q);
     }
     else
     {
@@ -235,8 +319,94 @@ WindingValue WindingNumber::Evaluate(const double q[3]) const
   return result;
 }
 
-double WindingNumber::GradientBound(const double c[3], double radius) const
+double WindingNumber::LeafAngle(const Node& node, const double q[3]) const
 {
+  double angle = 0;
+  for (int64_t t = node.First; t < node.First + node.Count; ++t)
+  {
+    const double* p = this->Corners.data() + 9 * t;
+    angle += TriangleSolidAngle(p, p + 3, p + 6, q);
+  }
+  return angle;
+}
+
+WindingGradient WindingNumber::EvaluateWithGradient(const double q[3]) const
+{
+  WindingGradient result;
+  if (this->Nodes.empty())
+  {
+    return result;
+  }
+  double angle = 0, angleGradient[3] = { 0, 0, 0 };
+  int32_t stack[128];
+  int depth = 0;
+  stack[depth++] = 0;
+  while (depth > 0)
+  {
+    const Node& node = this->Nodes[stack[--depth]];
+    const double d[3] = { node.Centre[0] - q[0], node.Centre[1] - q[1], node.Centre[2] - q[2] };
+    const double r2 = Dot(d, d);
+    double term, bound;
+    if (r2 > this->Accuracy * this->Accuracy * node.Radius * node.Radius &&
+      this->FarTerm(node, q, term, bound))
+    {
+      result.Value += term;
+      result.Bound += bound;
+      // The order-1 term's gradient in q (= minus its gradient in d):
+      // f(d) = M.d / r^3 + tr T / r^3 - 3 d.T.d / r^5.
+      const double* t = node.Tensor;
+      const double td[3] = { t[0] * d[0] + t[1] * d[1] + t[2] * d[2],
+        t[3] * d[0] + t[4] * d[1] + t[5] * d[2],
+        t[6] * d[0] + t[7] * d[1] + t[8] * d[2] };
+      const double dt[3] = { t[0] * d[0] + t[3] * d[1] + t[6] * d[2],
+        t[1] * d[0] + t[4] * d[1] + t[7] * d[2],
+        t[2] * d[0] + t[5] * d[1] + t[8] * d[2] };
+      const double r = std::sqrt(r2);
+      const double r3 = r2 * r, r5 = r3 * r2;
+      const double md = Dot(node.Moment, d), trace = t[0] + t[4] + t[8], dtd = Dot(d, td);
+      for (int a = 0; a < 3; ++a)
+      {
+        const double df = node.Moment[a] / r3 - 3 * (md + trace) * d[a] / r5 -
+          3 * (td[a] + dt[a]) / r5 + 15 * dtd * d[a] / (r5 * r2);
+        result.Gradient[a] -= df / FourPi;
+      }
+      // Its error: half the third derivative of G (norm <= 4!/g^5) times the second
+      // moment, over 4 pi.
+      const double gap = r - node.Radius, gap2 = gap * gap;
+      result.GradientBound += 3 * node.Second / (M_PI * gap2 * gap2 * gap);
+    }
+    else if (node.Children[0] < 0)
+    {
+      for (int64_t t = node.First; t < node.First + node.Count; ++t)
+      {
+        const double* p = this->Corners.data() + 9 * t;
+        angle += TriangleSolidAngle(p, p + 3, p + 6, q);
+        double g[3];
+        TriangleSolidAngleGradient(p, p + 3, p + 6, q, g);
+        for (int a = 0; a < 3; ++a)
+        {
+          angleGradient[a] += g[a];
+        }
+      }
+    }
+    else
+    {
+      stack[depth++] = node.Children[0];
+      stack[depth++] = node.Children[1];
+    }
+  }
+  result.Value += angle / FourPi;
+  for (int a = 0; a < 3; ++a)
+  {
+    result.Gradient[a] += angleGradient[a] / FourPi;
+  }
+  return result;
+}
+
+double WindingNumber::HessianBound(const double c[3], double radius) const
+{
+  // A triangle's term has a Hessian of norm at most its area times |D^3 (1/|x|)| / 4 pi
+  // <= 6 / (4 pi g^4), g its distance from the point: 3 A / (2 pi g^4) per node.
   double bound = 0;
   if (this->Nodes.empty())
   {
@@ -252,7 +422,8 @@ double WindingNumber::GradientBound(const double c[3], double radius) const
     const double gap = std::sqrt(Dot(d, d)) - node.Radius - radius;
     if (gap > node.Radius + radius)
     {
-      bound += node.Area / (2 * M_PI * gap * gap * gap);
+      const double gap2 = gap * gap;
+      bound += 3 * node.Area / (2 * M_PI * gap2 * gap2);
     }
     else if (node.Children[0] < 0)
     {
@@ -266,7 +437,8 @@ double WindingNumber::GradientBound(const double c[3], double radius) const
         {
           return HUGE_VAL;
         }
-        bound += this->Areas[t] / (2 * M_PI * g * g * g);
+        const double g2 = g * g;
+        bound += 3 * this->Areas[t] / (2 * M_PI * g2 * g2);
       }
     }
     else
@@ -291,18 +463,36 @@ double WindingNumber::Exact(const double q[3]) const
 
 bool WindingNumber::Inside(const double q[3], double* value, bool* exact) const
 {
-  const WindingValue w = this->Evaluate(q);
-  const bool decided = std::fabs(std::fabs(w.Value) - 0.5) > w.Bound;
-  const double used = decided ? w.Value : this->Exact(q);
   if (value)
   {
-    *value = used;
+    // w wanted as well: to the hierarchy's accuracy, exact where that cannot decide.
+    const WindingValue w = this->Evaluate(q, std::max(this->Accuracy, ValueAccuracy));
+    const bool decided = std::fabs(std::fabs(w.Value) - 0.5) > w.Bound;
+    *value = decided ? w.Value : this->Exact(q);
+    if (exact)
+    {
+      *exact = !decided;
+    }
+    return std::fabs(*value) > 0.5;
+  }
+  // Cheap first: a coarse accuracy decides most samples; then the fine one; then exact.
+  for (const double accuracy : { std::min(CoarseAccuracy, this->Accuracy), this->Accuracy })
+  {
+    const WindingValue w = this->Evaluate(q, accuracy);
+    if (std::fabs(std::fabs(w.Value) - 0.5) > w.Bound)
+    {
+      if (exact)
+      {
+        *exact = false;
+      }
+      return std::fabs(w.Value) > 0.5;
+    }
   }
   if (exact)
   {
-    *exact = !decided;
+    *exact = true;
   }
-  return std::fabs(used) > 0.5;
+  return std::fabs(this->Exact(q)) > 0.5;
 }
 
 } // namespace vtkdf

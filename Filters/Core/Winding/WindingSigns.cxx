@@ -10,6 +10,9 @@ namespace vtkdf
 namespace
 {
 constexpr int TopBlock = 8;
+// Covers the rounding of the first-order prediction (its terms are at most a few units).
+constexpr double RoundingSlack = 1e-12;
+constexpr double SkipFactor = 2;
 
 struct Decider
 {
@@ -18,6 +21,8 @@ struct Decider
   const IndexBox& Extent;
   uint8_t* Inside;
   float* Value;
+  const float* Distance;
+  double DistanceScale;
   int64_t Stride[3];
   WindingSignStatistics Stats;
 
@@ -33,7 +38,8 @@ struct Decider
     double w = 0;
     bool exact = false;
     const int64_t at = this->Index(i, j, k);
-    this->Inside[at] = this->Winding.Inside(q, &w, &exact) ? 1 : 0;
+    // Without values, Inside refines only as far as the sign needs.
+    this->Inside[at] = this->Winding.Inside(q, this->Value ? &w : nullptr, &exact) ? 1 : 0;
     if (this->Value)
     {
       this->Value[at] = static_cast<float>(w);
@@ -59,27 +65,73 @@ struct Decider
       radius2 += half * half;
     }
     const double radius = std::sqrt(radius2);
-    const WindingValue w = this->Winding.Evaluate(c);
-    const double margin = std::fabs(std::fabs(w.Value) - 0.5);
-    if (margin > w.Bound)
+    if (this->Distance && this->NearSurface(lo, hi, radius))
     {
-      const double gradient = this->Winding.GradientBound(c, radius);
-      if (margin > w.Bound + radius * gradient)
+      this->Split(lo, hi);
+      return;
+    }
+    // First order about the centre: every sample y has w(y) within Bound +
+    // |y - c| GradientBound + |y - c|^2 H / 2 of w(c) + grad w(c) . (y - c).
+    const double hessian = this->Winding.HessianBound(c, radius);
+    if (hessian < HUGE_VAL)
+    {
+      const WindingGradient w = this->Winding.EvaluateWithGradient(c);
+      bool decided = true;
+      for (int k = lo[2]; k <= hi[2] && decided; ++k)
       {
-        const uint8_t answer = std::fabs(w.Value) > 0.5 ? 1 : 0;
-        for (int k = lo[2]; k <= hi[2]; ++k)
+        for (int j = lo[1]; j <= hi[1] && decided; ++j)
         {
-          for (int j = lo[1]; j <= hi[1]; ++j)
+          for (int i = lo[0]; i <= hi[0] && decided; ++i)
           {
-            uint8_t* row = this->Inside + this->Index(lo[0], j, k);
-            std::fill(row, row + (hi[0] - lo[0] + 1), answer);
+            const double y[3] = { this->Grid.Coordinate(0, i) - c[0],
+              this->Grid.Coordinate(1, j) - c[1],
+              this->Grid.Coordinate(2, k) - c[2] };
+            const double r2 = y[0] * y[0] + y[1] * y[1] + y[2] * y[2];
+            const double predicted =
+              w.Value + w.Gradient[0] * y[0] + w.Gradient[1] * y[1] + w.Gradient[2] * y[2];
+            const double uncertainty =
+              w.Bound + std::sqrt(r2) * w.GradientBound + 0.5 * r2 * hessian + RoundingSlack;
+            const bool in = std::fabs(predicted) > 0.5;
+            decided = std::fabs(std::fabs(predicted) - 0.5) > uncertainty;
+            this->Inside[this->Index(i, j, k)] = in ? 1 : 0;
           }
         }
+      }
+      if (decided)
+      {
         this->Stats.BlockSamples += count;
         return;
       }
     }
-    // Eight halves (or fewer along axes of one sample).
+    this->Split(lo, hi);
+  }
+
+  /// Whether the surface comes so near the block (a sample of it closer than
+  /// SkipFactor x its radius) that the Hessian bound cannot decide it: then the block splits
+  /// without trying. This choice affects the work only, never a sign.
+  bool NearSurface(const int lo[3], const int hi[3], double radius) const
+  {
+    const float limit = static_cast<float>(SkipFactor * radius / this->DistanceScale);
+    for (int k = lo[2]; k <= hi[2]; ++k)
+    {
+      for (int j = lo[1]; j <= hi[1]; ++j)
+      {
+        const float* row = this->Distance + this->Index(lo[0], j, k);
+        for (int i = 0; i <= hi[0] - lo[0]; ++i)
+        {
+          if (std::fabs(row[i]) < limit)
+          {
+            return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+  /// Eight halves (or fewer along axes of one sample).
+  void Split(const int lo[3], const int hi[3])
+  {
     int mid[3];
     for (int a = 0; a < 3; ++a)
     {
@@ -109,23 +161,28 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
   const SampleGrid& grid,
   const IndexBox& extent,
   uint8_t* inside,
-  float* value,
-  bool blocks,
+  const WindingSignOptions& options,
   const ParallelFor& parallelFor)
 {
   const int n[3] = { extent.Size(0), extent.Size(1), extent.Size(2) };
   const int64_t stride[3] = { 1, n[0], int64_t(n[0]) * n[1] };
   // With values wanted, or no blocks, every sample alone.
-  const int size = value || !blocks ? 1 : TopBlock;
+  const int size = options.Value || !options.Blocks ? 1 : TopBlock;
   const int b[3] = { (n[0] + size - 1) / size, (n[1] + size - 1) / size, (n[2] + size - 1) / size };
   std::atomic<int64_t> blockSamples{ 0 }, evaluated{ 0 }, exact{ 0 };
   parallelFor(int64_t(b[0]) * b[1] * b[2],
     size == 1 ? 256 : 1,
     [&](int64_t begin, int64_t end)
     {
-      Decider decider{
-        winding, grid, extent, inside, value, { stride[0], stride[1], stride[2] }, {}
-      };
+      Decider decider{ winding,
+        grid,
+        extent,
+        inside,
+        options.Value,
+        options.Distance,
+        options.DistanceScale,
+        { stride[0], stride[1], stride[2] },
+        {} };
       for (int64_t t = begin; t < end; ++t)
       {
         const int bi[3] = { static_cast<int>(t % b[0]),

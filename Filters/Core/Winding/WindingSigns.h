@@ -2,13 +2,16 @@
 // without evaluating w at every sample where a bound proves the answer for a block.
 //
 // w is harmonic off the surface. For a block of samples with centre c and half-diagonal
-// r, every sample y of it has |w(y) - w(c)| <= r G, G = WindingNumber::GradientBound(c, r)
-// (a bound of |grad w| over the block's ball, from the triangles' areas and distances).
-// So when ||w(c)| - 1/2| exceeds the evaluation's error bound plus r G, the whole block
-// takes c's answer; otherwise it splits in eight, down to single samples, which
+// r, w at c, its gradient (each within its error bound) and H, a bound of the norm of
+// w's Hessian over the block's ball (WindingNumber::HessianBound, from the triangles'
+// areas and distances), give every sample y of the block w(y) within
+//   Bound + |y - c| GradientBound + |y - c|^2 H / 2
+// of w(c) + grad w(c) . (y - c). Where that decides every sample of the block, the
+// block is done; otherwise it splits in eight, down to single samples, which
 // WindingNumber::Inside decides (exactly where the approximation cannot). The answer is
 // the same as deciding every sample alone; only the work differs. Blocks start at 8^3
-// samples; the ones within a few samples of the surface end as single samples.
+// samples; the first-order test decides blocks down to about three spacings from the
+// surface (H grows as 1/g^4 near it), where the blocks end as single samples.
 #ifndef vtkdf_WindingSigns_h
 #define vtkdf_WindingSigns_h
 
@@ -28,15 +31,27 @@ struct WindingSignStatistics
   int64_t Exact = 0;        // of those, decided by the exact sum
 };
 
+/// What WindingSigns writes besides the signs, and what it may use.
+struct WindingSignOptions
+{
+  /// When set, w at every sample (every sample is then evaluated alone).
+  float* Value = nullptr;
+  /// Optional, the layout of the signs: each sample's distance to the surface (or a lower
+  /// bound of it) times DistanceScale, in the grid's units. Blocks that it shows near
+  /// the surface split without trying: less work, the same answer.
+  const float* Distance = nullptr;
+  double DistanceScale = 1;
+  /// Off: every sample decided alone (the reference for the blocks).
+  bool Blocks = true;
+};
+
 /// Writes inside[v] (1 or 0) for every sample v of `extent` on `grid` (x fastest, from
-/// extent.Lo). With `value`, also w at every sample (every sample is then evaluated
-/// alone). With `blocks` off, every sample is decided alone (the reference).
+/// extent.Lo).
 WindingSignStatistics WindingSigns(const WindingNumber& winding,
   const SampleGrid& grid,
   const IndexBox& extent,
   uint8_t* inside,
-  float* value,
-  bool blocks,
+  const WindingSignOptions& options,
   const ParallelFor& parallelFor);
 
 } // namespace vtkdf
