@@ -20,6 +20,7 @@
 #include "LinearFactorField.h"
 #include "LinearFactorGPU.h"
 #include "WindingSigns.h"
+#include "WindingSignsGPU.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <cmath>
@@ -193,8 +194,8 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   this->EndStage("finalize");
   if ((this->SignMode == WINDING_NUMBER && this->ComputeDistance) || this->ComputeWindingNumber)
   {
-    // Inside where |w| > 1/2, on the CPU on both backends (the GPU's field is read back
-    // for Finalize already).
+    // Inside where |w| > 1/2, on the filter's backend: the GPU decides every sample in a
+    // compute shader and returns only the answers (and w when asked for).
     vtkdf::WindingNumber winding;
     winding.Build(conversion.Mesh.Points, conversion.Mesh.Triangles);
     std::vector<uint8_t> inside(n);
@@ -212,8 +213,22 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     // Unsigned still, in world units: blocks near the surface split without trying.
     options.Distance = arrays.Distance;
     options.DistanceScale = 1 / conversion.Frame.Scale;
-    const vtkdf::WindingSignStatistics stats = vtkdf::WindingSigns(
-      winding, request.Grid, request.Extent, inside.data(), options, vtkdf::SMPFor);
+    vtkdf::WindingSignStatistics stats;
+    if (gl)
+    {
+      if (!vtkdf::WindingSignsGPU(
+            *gl, winding, request.Grid, request.Extent, inside.data(), options, stats, error))
+      {
+        vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error);
+        output->Initialize();
+        return 0;
+      }
+    }
+    else
+    {
+      stats = vtkdf::WindingSigns(
+        winding, request.Grid, request.Extent, inside.data(), options, vtkdf::SMPFor);
+    }
     this->LastWindingBlockSamples = stats.BlockSamples;
     this->LastWindingExactSamples = stats.Exact;
     if (this->SignMode == WINDING_NUMBER && arrays.Distance)

@@ -9,15 +9,19 @@
 // - repeated triangles with the same orientation count once; opposite ones cancel;
 // - WindingSigns on a grid: blocks decide exactly as every sample alone, which agrees with
 //   the exact sum wherever |w| is not within 1e-9 of 1/2, and the values within their
-//   bounds; the same with distances that skip blocks near the surface; two threads.
+//   bounds; the same with distances that skip blocks near the surface; two threads;
+// - with the argument gpu: WindingSignsGPU against WindingSigns (CheckGPU).
+#include "HeadlessGL.h"
 #include "ThreadFor.h"
 #include "WindingNumber.h"
 #include "WindingSigns.h"
+#include "WindingSignsGPU.h"
 
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -208,10 +212,118 @@ int CheckMesh(const char* name,
     exactCalls);
   return exactCalls;
 }
+/// WindingSignsGPU against WindingSigns deciding every sample alone, on a grid around the
+/// mesh whose samples fall on some of its planes (z = 0, x = 0): the signs equal but for
+/// samples whose exact |w| is within 1e-9 of 1/2, the values within 1e-5 (the GPU takes
+/// arg() in single precision). With accuracy 1.01 nearly every sample goes to the
+/// exact sum, the GPU's product of complex numbers with its count of turns.
+void CheckGPU(HeadlessGL& gl, const char* name, const Mesh& mesh, double accuracy)
+{
+  WindingNumber w;
+  w.Build(mesh.Points, mesh.Triangles, accuracy);
+  SampleGrid grid;
+  grid.Origin = { -1.25, -1.25, -1.25 };
+  grid.Spacing = { 0.125, 0.125, 0.125 };
+  grid.Whole.Lo = { 0, 0, 0 };
+  grid.Whole.Hi = { 20, 20, 20 };
+  const int64_t n = grid.Whole.Count();
+  for (const bool values : { false, true })
+  {
+    std::vector<uint8_t> cpu(n), gpu(n);
+    std::vector<float> cpuValues(n), gpuValues(n);
+    WindingSignOptions single;
+    single.Blocks = false;
+    WindingSignOptions gpuOptions;
+    if (values)
+    {
+      single.Value = cpuValues.data();
+      gpuOptions.Value = gpuValues.data();
+    }
+    const WindingSignStatistics a =
+      WindingSigns(w, grid, grid.Whole, cpu.data(), single, ThreadFor);
+    WindingSignStatistics b;
+    std::string error;
+    if (!WindingSignsGPU(gl, w, grid, grid.Whole, gpu.data(), gpuOptions, b, error))
+    {
+      Check(false, ("the GPU pass failed: " + error).c_str(), 0);
+      return;
+    }
+    int64_t differ = 0, valuesOff = 0;
+    double worst = 0;
+    for (int64_t v = 0; v < n; ++v)
+    {
+      const double q[3] = {
+        grid.Coordinate(0, v % 21), grid.Coordinate(1, (v / 21) % 21), grid.Coordinate(2, v / 441)
+      };
+      if (cpu[v] != gpu[v] && std::fabs(std::fabs(w.Exact(q)) - 0.5) > 1e-9)
+      {
+        ++differ;
+      }
+      if (values)
+      {
+        worst = std::max(worst, double(std::fabs(cpuValues[v] - gpuValues[v])));
+        valuesOff += !(std::fabs(cpuValues[v] - gpuValues[v]) <= 1e-5);
+      }
+    }
+    std::printf("%-22s GPU at accuracy %.2f%s: %lld samples, %lld (CPU) and %lld (GPU) exact; "
+                "%lld signs differ; values within %.2g\n",
+      name,
+      accuracy,
+      values ? " with values" : "",
+      static_cast<long long>(n),
+      static_cast<long long>(a.Exact),
+      static_cast<long long>(b.Exact),
+      static_cast<long long>(differ),
+      worst);
+    Check(differ == 0, "the GPU's signs differ from the CPU's", double(differ));
+    Check(valuesOff == 0, "the GPU's values differ from the CPU's", double(valuesOff));
+    Check(b.Evaluated == n, "the GPU missed samples", double(b.Evaluated));
+  }
+}
+
+Mesh OpenSphere(const Mesh& sphere)
+{
+  Mesh open;
+  open.Points = sphere.Points;
+  for (size_t t = 0; t < sphere.Triangles.size(); t += 3)
+  {
+    if (sphere.Points[3 * sphere.Triangles[t] + 2] < 0.6)
+    {
+      open.Triangles.insert(
+        open.Triangles.end(), sphere.Triangles.begin() + t, sphere.Triangles.begin() + t + 3);
+    }
+  }
+  return open;
+}
 } // namespace
 
-int main()
+int main(int argc, char* argv[])
 {
+  if (argc > 1 && std::string(argv[1]) == "gpu")
+  {
+    std::string error;
+    HeadlessGL* gl = HeadlessGL::Get(error);
+    if (!gl)
+    {
+      std::printf("FAIL: no OpenGL 4.5 context: %s\n", error.c_str());
+      return 1;
+    }
+    const Mesh sphere = Sphere(3); // 512 triangles
+    Mesh flipped = sphere;
+    for (size_t t = 0; t < flipped.Triangles.size(); t += 3)
+    {
+      std::swap(flipped.Triangles[t + 1], flipped.Triangles[t + 2]);
+    }
+    for (const double accuracy : { WindingNumber::DefaultAccuracy, 1.01 })
+    {
+      CheckGPU(*gl, "closed sphere", sphere, accuracy);
+      CheckGPU(*gl, "flipped sphere", flipped, accuracy);
+      CheckGPU(*gl, "open sphere", OpenSphere(sphere), accuracy);
+    }
+    std::printf("%d failures\n", Failures);
+    return Failures ? 1 : 0;
+  }
+
   const Mesh sphere = Sphere(4); // 2048 triangles
   {
     WindingNumber w;
@@ -346,16 +458,7 @@ int main()
   }
   {
     // WindingSigns on a 32^3 grid around the closed and the open sphere.
-    Mesh open;
-    open.Points = sphere.Points;
-    for (size_t t = 0; t < sphere.Triangles.size(); t += 3)
-    {
-      if (sphere.Points[3 * sphere.Triangles[t] + 2] < 0.6)
-      {
-        open.Triangles.insert(
-          open.Triangles.end(), sphere.Triangles.begin() + t, sphere.Triangles.begin() + t + 3);
-      }
-    }
+    const Mesh open = OpenSphere(sphere);
     for (const Mesh* mesh : std::vector<const Mesh*>{ &sphere, &open })
     {
       WindingNumber w;

@@ -450,6 +450,27 @@ double WindingNumber::HessianBound(const double c[3], double radius) const
   return bound;
 }
 
+void WindingNumber::Flatten(std::vector<double>& nodes, std::vector<int32_t>& links) const
+{
+  nodes.clear();
+  links.clear();
+  nodes.reserve(NodeDoubles * this->Nodes.size());
+  links.reserve(4 * this->Nodes.size());
+  for (const Node& node : this->Nodes)
+  {
+    nodes.insert(nodes.end(), node.Centre, node.Centre + 3);
+    nodes.push_back(node.Radius);
+    nodes.insert(nodes.end(), node.Moment, node.Moment + 3);
+    nodes.insert(nodes.end(), node.Tensor, node.Tensor + 9);
+    nodes.push_back(node.Second);
+    links.insert(links.end(),
+      { static_cast<int32_t>(node.First),
+        static_cast<int32_t>(node.Count),
+        node.Children[0],
+        node.Children[1] });
+  }
+}
+
 double WindingNumber::Exact(const double q[3]) const
 {
   double angle = 0;

@@ -99,6 +99,15 @@ public:
   /// node whose ball is g from B(c, radius) adds at most 3 A / (2 pi g^4).
   double HessianBound(const double c[3], double radius) const;
 
+  /// The hierarchy flattened for the GPU (Shaders/WindingNumber.comp.glsl): per node,
+  /// NodeDoubles doubles (centre, radius, moment, tensor row by row, second moment) and
+  /// 4 ints (first triangle, count, children or -1 for a leaf).
+  static constexpr int NodeDoubles = 17;
+  void Flatten(std::vector<double>& nodes, std::vector<int32_t>& links) const;
+  /// The kept triangles' corners, 9 doubles each, in the hierarchy's order.
+  const std::vector<double>& TriangleCorners() const { return this->Corners; }
+  double GetAccuracy() const { return this->Accuracy; }
+
   /// The triangles kept (repeated ones once).
   int64_t TriangleCount() const { return static_cast<int64_t>(this->Corners.size() / 9); }
 
