@@ -246,7 +246,8 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     if (this->Region == INSIDE && distance->GetRange()[0] >= 0)
     {
       vtkErrorMacro("Region is Inside but the field is unsigned (no negative Distance): compute "
-                    "it with SignMode PseudoNormal, or use Region Outside or Both.");
+                    "it with SignMode PseudoNormal or WindingNumber, or use Region Outside or "
+                    "Both.");
       return 0;
     }
     // Cosines (double), the output arrays.

@@ -37,6 +37,7 @@ uniform int TriangleCount;
 uniform double CoarseAccuracy, Accuracy, ValueAccuracy;
 uniform int WantValues;
 
+const double Pi = 3.141592653589793LF;
 const double TwoPi = 6.283185307179586LF;
 const double FourPi = 12.566370614359172LF;
 // Single-precision atan errs by far less than 1e-5 rad; in w that is 1e-5 / 2 pi.
@@ -80,9 +81,16 @@ void AddTriangle(int t, dvec3 q)
   MultiplyAngle(dvec2(den, det));
 }
 
+// arg(Product) in (-pi, pi], an imaginary part of 0 counting as the upper side (as the
+// turns count it), also where single precision rounds a tiny one to 0.
 double Angle()
 {
-  return double(atan(float(Product.y), float(Product.x)));
+  float y = float(Product.y), x = float(Product.x);
+  if (y == 0.0)
+  {
+    return Product.x >= 0.0LF ? 0.0LF : (Product.y >= 0.0LF ? Pi : -Pi);
+  }
+  return double(atan(y, x));
 }
 
 // The approximation at `accuracy`: returns w, with its bound in `bound`.

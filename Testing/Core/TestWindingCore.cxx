@@ -1,5 +1,5 @@
 // The fast winding number (Filters/Core/Winding/WindingNumber.h), VTK-free, against the
-// exact sum of solid angles at every query:
+// exact sum of solid angles at every query (itself against a plain sum of atan2's):
 // - the approximation within its error bound, at every query, and its gradient within
 //   its own; the exact gradient against central differences; the first-order Taylor
 //   remainder within HessianBound;
@@ -135,6 +135,37 @@ int CheckMesh(const char* name,
       {
         exactGradient[a] += g[a] / (4 * M_PI);
       }
+    }
+    if (w.TriangleCount() * 3 == int64_t(mesh.Triangles.size()))
+    {
+      // Exact() (a product of complex numbers with a count of turns) against a plain sum
+      // of atan2's.
+      double sum = 0;
+      for (size_t t = 0; t < mesh.Triangles.size(); t += 3)
+      {
+        double p[3][3];
+        for (int k = 0; k < 3; ++k)
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            p[k][a] = mesh.Points[3 * mesh.Triangles[t + k] + a] - q[a];
+          }
+        }
+        const double l[3] = { std::sqrt(p[0][0] * p[0][0] + p[0][1] * p[0][1] + p[0][2] * p[0][2]),
+          std::sqrt(p[1][0] * p[1][0] + p[1][1] * p[1][1] + p[1][2] * p[1][2]),
+          std::sqrt(p[2][0] * p[2][0] + p[2][1] * p[2][1] + p[2][2] * p[2][2]) };
+        auto dot = [&](int i, int j)
+        { return p[i][0] * p[j][0] + p[i][1] * p[j][1] + p[i][2] * p[j][2]; };
+        const double det = p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) +
+          p[0][1] * (p[1][2] * p[2][0] - p[1][0] * p[2][2]) +
+          p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]);
+        sum += 2 *
+          std::atan2(
+            det, l[0] * l[1] * l[2] + dot(0, 1) * l[2] + dot(0, 2) * l[1] + dot(1, 2) * l[0]);
+      }
+      Check(std::fabs(sum / (4 * M_PI) - exact) <= 1e-12,
+        "Exact() differs from the sum of atan2's",
+        sum / (4 * M_PI) - exact);
     }
     const WindingGradient fastGradient = w.EvaluateWithGradient(q);
     Check(std::fabs(fastGradient.Value - exact) <= fastGradient.Bound + 1e-12,

@@ -19,10 +19,7 @@ double Dot(const double* a, const double* b)
 }
 } // namespace
 
-double TriangleSolidAngle(const double a[3],
-  const double b[3],
-  const double c[3],
-  const double q[3])
+void AngleProduct::Add(const double a[3], const double b[3], const double c[3], const double q[3])
 {
   const double u[3] = { a[0] - q[0], a[1] - q[1], a[2] - q[2] };
   const double v[3] = { b[0] - q[0], b[1] - q[1], b[2] - q[2] };
@@ -31,7 +28,55 @@ double TriangleSolidAngle(const double a[3],
   const double det = u[0] * (v[1] * w[2] - v[2] * w[1]) + u[1] * (v[2] * w[0] - v[0] * w[2]) +
     u[2] * (v[0] * w[1] - v[1] * w[0]);
   const double den = lu * lv * lw + Dot(u, v) * lw + Dot(u, w) * lv + Dot(v, w) * lu;
-  return 2 * std::atan2(det, den);
+  this->Multiply(den, det);
+}
+
+void AngleProduct::Multiply(double re, double im)
+{
+  if (re == 0 && im == 0)
+  {
+    return; // q at a corner: atan2(0, 0) = 0
+  }
+  const double pr = this->Re * re - this->Im * im, pi = this->Re * im + this->Im * re;
+  // Arguments in (-pi, pi] (an imaginary part of 0, either sign, counts as the upper
+  // side): the sum wrapped when both lie on one side and the product on the other.
+  if (this->Im >= 0 && im >= 0)
+  {
+    this->Turns += pi < 0 || (pi == 0 && pr > 0 && this->Re < 0 && re < 0);
+  }
+  else if (this->Im < 0 && im < 0 && pi >= 0)
+  {
+    --this->Turns;
+  }
+  this->Re = pr;
+  this->Im = pi;
+  // Kept near 1 by powers of two, which change no bit of the argument.
+  const double m = std::max(std::fabs(pr), std::fabs(pi));
+  if (m > 0x1p+100 || m < 0x1p-100)
+  {
+    int e = 0;
+    std::frexp(m, &e);
+    this->Re = std::ldexp(this->Re, -e);
+    this->Im = std::ldexp(this->Im, -e);
+  }
+}
+
+double AngleProduct::Argument() const
+{
+  // +0 for either zero, as the turns count it.
+  return std::atan2(this->Im == 0 ? 0.0 : this->Im, this->Re);
+}
+
+double AngleProduct::Winding() const
+{
+  return static_cast<double>(this->Turns) + this->Argument() / (2 * M_PI);
+}
+
+bool AngleProduct::Inside() const
+{
+  // Winding() is Turns + a fraction in (-1/2, 1/2]: |w| > 1/2 exactly when Turns is not
+  // 0, but for w = -1/2.
+  return this->Turns != 0 && !(this->Turns == -1 && this->Im == 0 && this->Re < 0);
 }
 
 void TriangleSolidAngleGradient(const double a[3],
@@ -290,7 +335,7 @@ WindingValue WindingNumber::Evaluate(const double q[3], double accuracy) const
   {
     return result;
   }
-  double angle = 0; // the exact part, as a solid angle
+  AngleProduct angles; // the exact part
   int32_t stack[128];
   int depth = 0;
   stack[depth++] = 0;
@@ -307,7 +352,7 @@ WindingValue WindingNumber::Evaluate(const double q[3], double accuracy) const
     }
     else if (node.Children[0] < 0)
     {
-      angle += this->LeafAngle(node, q);
+      this->AddLeaf(node, q, angles);
     }
     else
     {
@@ -315,19 +360,17 @@ WindingValue WindingNumber::Evaluate(const double q[3], double accuracy) const
       stack[depth++] = node.Children[1];
     }
   }
-  result.Value += angle / FourPi;
+  result.Value += angles.Winding();
   return result;
 }
 
-double WindingNumber::LeafAngle(const Node& node, const double q[3]) const
+void WindingNumber::AddLeaf(const Node& node, const double q[3], AngleProduct& angles) const
 {
-  double angle = 0;
   for (int64_t t = node.First; t < node.First + node.Count; ++t)
   {
     const double* p = this->Corners.data() + 9 * t;
-    angle += TriangleSolidAngle(p, p + 3, p + 6, q);
+    angles.Add(p, p + 3, p + 6, q);
   }
-  return angle;
 }
 
 WindingGradient WindingNumber::EvaluateWithGradient(const double q[3]) const
@@ -337,7 +380,8 @@ WindingGradient WindingNumber::EvaluateWithGradient(const double q[3]) const
   {
     return result;
   }
-  double angle = 0, angleGradient[3] = { 0, 0, 0 };
+  AngleProduct angles;
+  double angleGradient[3] = { 0, 0, 0 };
   int32_t stack[128];
   int depth = 0;
   stack[depth++] = 0;
@@ -380,7 +424,7 @@ WindingGradient WindingNumber::EvaluateWithGradient(const double q[3]) const
       for (int64_t t = node.First; t < node.First + node.Count; ++t)
       {
         const double* p = this->Corners.data() + 9 * t;
-        angle += TriangleSolidAngle(p, p + 3, p + 6, q);
+        angles.Add(p, p + 3, p + 6, q);
         double g[3];
         TriangleSolidAngleGradient(p, p + 3, p + 6, q, g);
         for (int a = 0; a < 3; ++a)
@@ -395,7 +439,7 @@ WindingGradient WindingNumber::EvaluateWithGradient(const double q[3]) const
       stack[depth++] = node.Children[1];
     }
   }
-  result.Value += angle / FourPi;
+  result.Value += angles.Winding();
   for (int a = 0; a < 3; ++a)
   {
     result.Gradient[a] += angleGradient[a] / FourPi;
@@ -471,49 +515,66 @@ void WindingNumber::Flatten(std::vector<double>& nodes, std::vector<int32_t>& li
   }
 }
 
-double WindingNumber::Exact(const double q[3]) const
+AngleProduct WindingNumber::ExactAngles(const double q[3]) const
 {
-  double angle = 0;
+  AngleProduct angles;
   for (size_t t = 0; t < this->Corners.size(); t += 9)
   {
     const double* p = this->Corners.data() + t;
-    angle += TriangleSolidAngle(p, p + 3, p + 6, q);
+    angles.Add(p, p + 3, p + 6, q);
   }
-  return angle / FourPi;
+  return angles;
+}
+
+double WindingNumber::Exact(const double q[3]) const
+{
+  return this->ExactAngles(q).Winding();
 }
 
 bool WindingNumber::Inside(const double q[3], double* value, bool* exact) const
 {
+  // A sample is decided by the approximation when its margin exceeds the bound plus what
+  // rounding may have added to w (sums of a few thousand terms of at most a few units).
+  constexpr double RoundingSlack = 1e-12;
+  auto decides = [](const WindingValue& w)
+  { return std::fabs(std::fabs(w.Value) - 0.5) > w.Bound + RoundingSlack; };
+  if (exact)
+  {
+    *exact = false;
+  }
   if (value)
   {
-    // w wanted as well: to the hierarchy's accuracy, exact where that cannot decide.
+    // w wanted as well: to ValueAccuracy at least.
     const WindingValue w = this->Evaluate(q, std::max(this->Accuracy, ValueAccuracy));
-    const bool decided = std::fabs(std::fabs(w.Value) - 0.5) > w.Bound;
-    *value = decided ? w.Value : this->Exact(q);
-    if (exact)
+    if (decides(w))
     {
-      *exact = !decided;
-    }
-    return std::fabs(*value) > 0.5;
-  }
-  // Cheap first: a coarse accuracy decides most samples; then the fine one; then exact.
-  for (const double accuracy : { std::min(CoarseAccuracy, this->Accuracy), this->Accuracy })
-  {
-    const WindingValue w = this->Evaluate(q, accuracy);
-    if (std::fabs(std::fabs(w.Value) - 0.5) > w.Bound)
-    {
-      if (exact)
-      {
-        *exact = false;
-      }
+      *value = w.Value;
       return std::fabs(w.Value) > 0.5;
     }
+  }
+  else
+  {
+    // Cheap first: a coarse accuracy decides most samples; then the fine one.
+    for (const double accuracy : { std::min(CoarseAccuracy, this->Accuracy), this->Accuracy })
+    {
+      const WindingValue w = this->Evaluate(q, accuracy);
+      if (decides(w))
+      {
+        return std::fabs(w.Value) > 0.5;
+      }
+    }
+  }
+  // The exact sum, whose sign comes from its count of turns (AngleProduct::Inside).
+  const AngleProduct angles = this->ExactAngles(q);
+  if (value)
+  {
+    *value = angles.Winding();
   }
   if (exact)
   {
     *exact = true;
   }
-  return std::fabs(this->Exact(q)) > 0.5;
+  return angles.Inside();
 }
 
 } // namespace vtkdf

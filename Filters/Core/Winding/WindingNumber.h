@@ -31,19 +31,35 @@
 namespace vtkdf
 {
 
-/// The signed solid angle of triangle (a, b, c) seen from q, in [-2 pi, 2 pi]: positive
-/// when q sees the triangle's back (its normal, by the right-hand rule, points away).
-double TriangleSolidAngle(const double a[3],
-  const double b[3],
-  const double c[3],
-  const double q[3]);
-
-/// The gradient in q of TriangleSolidAngle.
+/// The gradient in q of the signed solid angle of triangle (a, b, c) seen from q (positive
+/// when q sees the triangle's back: its normal, by the right-hand rule, points away).
 void TriangleSolidAngleGradient(const double a[3],
   const double b[3],
   const double c[3],
   const double q[3],
   double gradient[3]);
+
+/// A sum of triangles' solid angles kept as the argument of a product of complex
+/// numbers, den + i det per triangle (Van Oosterom and Strackee: the angle is twice its
+/// argument), with a count of the full turns the product makes: no atan2 per triangle,
+/// and the sign of the sum (|w| > 1/2) from the count alone. The GPU does the same
+/// (Shaders/WindingNumber.comp.glsl).
+class AngleProduct
+{
+public:
+  /// Adds triangle (a, b, c) seen from q.
+  void Add(const double a[3], const double b[3], const double c[3], const double q[3]);
+  /// The sum over 4 pi: the winding number of the triangles added.
+  double Winding() const;
+  /// Whether |Winding()| > 1/2, from the turns (no rounding of the argument).
+  bool Inside() const;
+
+private:
+  void Multiply(double re, double im);
+  double Argument() const; // in (-pi, pi]
+  double Re = 1, Im = 0;
+  int64_t Turns = 0;
+};
 
 struct WindingValue
 {
@@ -131,8 +147,10 @@ private:
 
   /// A far node's order-1 term at q and its error bound; false when q is in its ball.
   bool FarTerm(const Node& node, const double q[3], double& term, double& bound) const;
-  /// The sum of a leaf's exact solid angles at q.
-  double LeafAngle(const Node& node, const double q[3]) const;
+  /// Adds a leaf's triangles seen from q.
+  void AddLeaf(const Node& node, const double q[3], AngleProduct& angles) const;
+  /// Every triangle seen from q.
+  AngleProduct ExactAngles(const double q[3]) const;
 
   std::vector<Node> Nodes;
   std::vector<double> Corners; // 9 per triangle, in the hierarchy's order
