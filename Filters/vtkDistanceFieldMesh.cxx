@@ -1,7 +1,10 @@
 #include "vtkDistanceFieldMesh.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkArrayDispatch.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkIdList.h"
@@ -474,6 +477,35 @@ void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)
   {
     std::rethrow_exception(first);
   }
+}
+
+InnerErrors::InnerErrors(vtkAlgorithm* inner)
+{
+  this->Command = vtkSmartPointer<vtkCallbackCommand>::New();
+  this->Command->SetClientData(&this->Text);
+  this->Command->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void* callData)
+    {
+      auto* text = static_cast<std::string*>(clientData);
+      if (callData && text->empty())
+      {
+        // "ERROR: In FILE, line N\nCLASS (ADDRESS): MESSAGE\n": keep MESSAGE.
+        std::string message = static_cast<const char*>(callData);
+        const size_t start = message.find("): ");
+        message = start == std::string::npos ? message : message.substr(start + 3);
+        while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+        {
+          message.pop_back();
+        }
+        *text = message;
+      }
+    });
+  inner->AddObserver(vtkCommand::ErrorEvent, this->Command);
+}
+
+std::string InnerErrors::Message(const char* fallback) const
+{
+  return this->Text.empty() ? std::string(fallback) : this->Text;
 }
 
 } // namespace vtkdf

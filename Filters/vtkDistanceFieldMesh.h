@@ -10,12 +10,15 @@
 #include "SampleGrid.h"
 #include "Voxelizer.h"
 
+#include "vtkSmartPointer.h"
 #include "vtkType.h"
 
 #include <cstdint>
 #include <functional>
 #include <string>
 
+class vtkAlgorithm;
+class vtkCallbackCommand;
 class vtkDataArray;
 class vtkImageData;
 class vtkPolyData;
@@ -71,6 +74,20 @@ vtkDataArray* SampleArray(vtkImageData* image,
   const char* name,
   int components,
   std::string& error);
+
+/// Keeps the first error an inner filter reports (the message after "): "), so that the
+/// filter that runs it can report it as its own: a caller observes the outer filter.
+class InnerErrors
+{
+public:
+  explicit InnerErrors(vtkAlgorithm* inner);
+  /// The message, or `fallback` when there was none.
+  std::string Message(const char* fallback) const;
+
+private:
+  std::string Text;
+  vtkSmartPointer<vtkCallbackCommand> Command;
+};
 
 /// The warning for cells a voxelizer ignores (vertices, lines, unusable cells), or "".
 std::string TrianglesOnly(const MeshConversion& conversion);

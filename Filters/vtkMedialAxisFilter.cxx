@@ -1,6 +1,5 @@
 #include "vtkMedialAxisFilter.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkFloatArray.h"
@@ -194,27 +193,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
           ? vtkLinearFactorDistanceField::WINDING_NUMBER
           : vtkLinearFactorDistanceField::PSEUDO_NORMAL);
       // Its errors become this filter's (a caller observes this filter, not the inner one).
-      std::string innerError;
-      vtkNew<vtkCallbackCommand> forward;
-      forward->SetClientData(&innerError);
-      forward->SetCallback(
-        [](vtkObject*, unsigned long, void* clientData, void* callData)
-        {
-          auto* text = static_cast<std::string*>(clientData);
-          if (callData && text->empty())
-          {
-            // "ERROR: In FILE, line N\nCLASS (ADDRESS): MESSAGE\n": keep MESSAGE.
-            std::string message = static_cast<const char*>(callData);
-            const size_t start = message.find("): ");
-            message = start == std::string::npos ? message : message.substr(start + 3);
-            while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
-            {
-              message.pop_back();
-            }
-            *text = message;
-          }
-        });
-      exact->AddObserver(vtkCommand::ErrorEvent, forward);
+      const vtkdf::InnerErrors innerErrors(exact);
       exact->ComputeClosestPointOn();
       exact->ComputeClosestCellIdOff();
       exact->ComputeClosestFeatureOff();
@@ -223,7 +202,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
       if (exact->GetErrorCode() || !field || field->GetNumberOfPoints() == 0)
       {
         vtkErrorMacro("The distance field of the input mesh could not be computed: "
-          << (innerError.empty() ? std::string("no output") : innerError));
+          << innerErrors.Message("no output"));
         return 0;
       }
     }

@@ -1,0 +1,394 @@
+#include "SegmentRegions.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <unordered_map>
+
+namespace vtkdf
+{
+
+namespace
+{
+double Dot(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+void Cross(const double* a, const double* b, double* out)
+{
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/// Scales v to unit length; false (v unchanged) when it is 0.
+bool Normalize(double* v)
+{
+  const double length = std::sqrt(Dot(v, v));
+  if (!(length > 0))
+  {
+    return false;
+  }
+  v[0] /= length, v[1] /= length, v[2] /= length;
+  return true;
+}
+
+double SegmentDistance2(const double* a, const double* b, const double* c)
+{
+  const double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double f[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const double ee = Dot(e, e);
+  const double s = ee > 0 ? std::min(1.0, std::max(0.0, Dot(e, f) / ee)) : 0.0;
+  const double g[3] = { f[0] - s * e[0], f[1] - s * e[1], f[2] - s * e[2] };
+  return Dot(g, g);
+}
+
+/// How near in angle the unit direction u is to triangle f's half-plane around its edge
+/// (a, b) (unit tangent e): the cosine of the angle, in the plane across the edge.
+double EdgeWedgeCosine(const SurfacePatches& patches,
+  int64_t f,
+  int64_t ka,
+  int64_t kb,
+  const double* a,
+  const double* e,
+  const double* u)
+{
+  int third = 0;
+  while (patches.Key(f, third) == ka || patches.Key(f, third) == kb)
+  {
+    ++third;
+  }
+  const double* p = patches.Corner(f, third);
+  double inward[3] = { p[0] - a[0], p[1] - a[1], p[2] - a[2] };
+  const double along = Dot(inward, e);
+  for (int i = 0; i < 3; ++i)
+  {
+    inward[i] -= along * e[i];
+  }
+  double across[3] = { u[0], u[1], u[2] };
+  const double uAlong = Dot(u, e);
+  for (int i = 0; i < 3; ++i)
+  {
+    across[i] -= uAlong * e[i];
+  }
+  if (!Normalize(inward) || !Normalize(across))
+  {
+    return -2;
+  }
+  return Dot(across, inward);
+}
+
+/// How near in angle the unit direction u is to triangle f's corner wedge at its corner
+/// with key kv: the cosine of the angle between u and the nearest direction in the wedge.
+double VertexWedgeCosine(const SurfacePatches& patches, int64_t f, int64_t kv, const double* u)
+{
+  int k = 0;
+  while (patches.Key(f, k) != kv)
+  {
+    ++k;
+  }
+  const double* v = patches.Corner(f, k);
+  const double* p = patches.Corner(f, (k + 1) % 3);
+  const double* q = patches.Corner(f, (k + 2) % 3);
+  double e1[3] = { p[0] - v[0], p[1] - v[1], p[2] - v[2] };
+  double e2[3] = { q[0] - v[0], q[1] - v[1], q[2] - v[2] };
+  double n[3];
+  if (!Normalize(e1) || !Normalize(e2))
+  {
+    return -2;
+  }
+  Cross(e1, e2, n);
+  if (!Normalize(n))
+  {
+    return -2;
+  }
+  const double un = Dot(u, n);
+  const double projection[3] = { u[0] - un * n[0], u[1] - un * n[1], u[2] - un * n[2] };
+  double c1[3], c2[3];
+  Cross(e1, projection, c1);
+  Cross(projection, e2, c2);
+  if (Dot(c1, n) >= 0 && Dot(c2, n) >= 0)
+  {
+    return std::sqrt(std::max(0.0, 1 - un * un)); // the projection lies in the wedge
+  }
+  return std::max(Dot(u, e1), Dot(u, e2));
+}
+} // namespace
+
+int64_t SideLabel(const SurfacePatches& patches,
+  const double p[3],
+  const double c[3],
+  int64_t triangle,
+  int feature,
+  std::vector<int64_t>& scratch)
+{
+  if (triangle < 0 || triangle >= static_cast<int64_t>(patches.Patch.size()) ||
+    patches.Patch[triangle] < 0)
+  {
+    return -1;
+  }
+  double u[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
+  const bool away = Normalize(u);
+  int64_t chosen = triangle;
+  if (away && feature != 2)
+  {
+    double best = -3;
+    if (feature == 1)
+    {
+      // The triangle's edge nearest to the closest point, and every triangle on it.
+      int edge = 0;
+      double nearest = HUGE_VAL;
+      for (int k = 0; k < 3; ++k)
+      {
+        const double d2 =
+          SegmentDistance2(patches.Corner(triangle, k), patches.Corner(triangle, (k + 1) % 3), c);
+        if (d2 < nearest)
+        {
+          nearest = d2;
+          edge = k;
+        }
+      }
+      const int64_t ka = patches.Key(triangle, edge), kb = patches.Key(triangle, (edge + 1) % 3);
+      const double* a = patches.Corner(triangle, edge);
+      const double* b = patches.Corner(triangle, (edge + 1) % 3);
+      double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+      Normalize(e);
+      patches.TrianglesAtEdge(ka, kb, scratch);
+      for (const int64_t f : scratch)
+      {
+        const double cosine = EdgeWedgeCosine(patches, f, ka, kb, a, e, u);
+        if (cosine > best)
+        {
+          best = cosine;
+          chosen = f;
+        }
+      }
+    }
+    else
+    {
+      // The triangle's corner nearest to the closest point, and every triangle at it.
+      int corner = 0;
+      double nearest = HUGE_VAL;
+      for (int k = 0; k < 3; ++k)
+      {
+        const double* v = patches.Corner(triangle, k);
+        const double g[3] = { v[0] - c[0], v[1] - c[1], v[2] - c[2] };
+        if (Dot(g, g) < nearest)
+        {
+          nearest = Dot(g, g);
+          corner = k;
+        }
+      }
+      const int64_t kv = patches.Key(triangle, corner);
+      patches.TrianglesAtPoint(kv, scratch);
+      for (const int64_t f : scratch)
+      {
+        const double cosine = VertexWedgeCosine(patches, f, kv, u);
+        if (cosine > best)
+        {
+          best = cosine;
+          chosen = f;
+        }
+      }
+    }
+  }
+  double n[3];
+  patches.Normal(chosen, n);
+  // On the sheet (u = 0) or in its plane: the front, by convention.
+  const int side = away && Dot(u, n) < 0 ? 1 : 0;
+  return 2 * patches.Patch[chosen] + side;
+}
+
+void SegmentRegions(const SegmentInput& input,
+  SegmentResult& result,
+  const ParallelFor& parallelFor)
+{
+  const SampleGrid& grid = input.Grid;
+  const IndexBox& whole = grid.Whole;
+  const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
+  const int64_t count = whole.Count();
+  const int64_t stride[3] = { 1, n[0], int64_t(n[0]) * n[1] };
+  const ParallelFor run = parallelFor
+    ? parallelFor
+    : ParallelFor([](int64_t total, int64_t, const std::function<void(int64_t, int64_t)>& body)
+        { body(0, total); });
+
+  // Labels.
+  std::vector<int64_t> label(count);
+  result.Patch.assign(count, -1);
+  run(n[2],
+    1,
+    [&](int64_t k0, int64_t k1)
+    {
+      std::vector<int64_t> scratch;
+      for (int64_t k = k0; k < k1; ++k)
+      {
+        for (int j = 0; j < n[1]; ++j)
+        {
+          for (int i = 0; i < n[0]; ++i)
+          {
+            const int64_t v = i + j * stride[1] + k * stride[2];
+            const double p[3] = { grid.Coordinate(0, whole.Lo[0] + i),
+              grid.Coordinate(1, whole.Lo[1] + j),
+              grid.Coordinate(2, whole.Lo[2] + static_cast<int>(k)) };
+            label[v] = SideLabel(*input.Patches,
+              p,
+              input.ClosestPoint + 3 * v,
+              input.ClosestTriangle[v],
+              input.ClosestFeature[v],
+              scratch);
+            result.Patch[v] = label[v] < 0 ? -1 : static_cast<int32_t>(label[v] / 2);
+          }
+        }
+      }
+    });
+
+  // Support of each label pair: adjacent samples with no surface between them.
+  std::map<std::pair<int64_t, int64_t>, int64_t> support;
+  std::mutex lock;
+  run(n[2],
+    1,
+    [&](int64_t k0, int64_t k1)
+    {
+      std::unordered_map<uint64_t, int64_t> local;
+      for (int64_t k = k0; k < k1; ++k)
+      {
+        for (int j = 0; j < n[1]; ++j)
+        {
+          for (int i = 0; i < n[0]; ++i)
+          {
+            const int64_t v = i + j * stride[1] + k * stride[2];
+            const int at[3] = { i, j, static_cast<int>(k) };
+            for (int a = 0; a < 3; ++a)
+            {
+              if (at[a] + 1 >= n[a])
+              {
+                continue;
+              }
+              const int64_t w = v + stride[a];
+              if (label[v] == label[w] || label[v] < 0 || label[w] < 0 ||
+                !(double(input.Distance[v]) + input.Distance[w] > grid.Spacing[a] * (1 + 1e-5)))
+              {
+                continue;
+              }
+              const uint64_t lo = static_cast<uint64_t>(std::min(label[v], label[w]));
+              const uint64_t hi = static_cast<uint64_t>(std::max(label[v], label[w]));
+              ++local[(lo << 32) | hi];
+            }
+          }
+        }
+      }
+      std::lock_guard<std::mutex> guard(lock);
+      for (const auto& entry : local)
+      {
+        support[{ static_cast<int64_t>(entry.first >> 32),
+          static_cast<int64_t>(entry.first & 0xffffffffu) }] += entry.second;
+      }
+    });
+
+  // Canonical order: most support first, ties by the labels.
+  std::vector<std::pair<std::pair<int64_t, int64_t>, int64_t>> pairs(
+    support.begin(), support.end());
+  std::stable_sort(
+    pairs.begin(), pairs.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+
+  // Union-find over labels; each root knows the sides of the patches its set holds.
+  std::unordered_map<int64_t, int64_t> parent;
+  std::unordered_map<int64_t, std::unordered_map<int64_t, uint8_t>> sides;
+  auto find = [&](int64_t x)
+  {
+    auto it = parent.find(x);
+    if (it == parent.end())
+    {
+      parent[x] = x;
+      sides[x][x / 2] = static_cast<uint8_t>(1 << (x % 2));
+      return x;
+    }
+    int64_t root = x;
+    while (parent[root] != root)
+    {
+      root = parent[root];
+    }
+    while (parent[x] != root)
+    {
+      const int64_t next = parent[x];
+      parent[x] = root;
+      x = next;
+    }
+    return root;
+  };
+  result.Merges = result.Refused = 0;
+  for (const auto& entry : pairs)
+  {
+    int64_t a = find(entry.first.first), b = find(entry.first.second);
+    if (a == b)
+    {
+      continue;
+    }
+    auto* small = &sides[a];
+    auto* large = &sides[b];
+    if (small->size() > large->size())
+    {
+      std::swap(small, large);
+      std::swap(a, b); // a: the smaller set
+    }
+    bool conflict = false;
+    for (const auto& s : *small)
+    {
+      const auto it = large->find(s.first);
+      conflict = conflict || (it != large->end() && (it->second | s.second) == 3);
+    }
+    if (conflict)
+    {
+      ++result.Refused;
+      continue;
+    }
+    for (const auto& s : *small)
+    {
+      (*large)[s.first] |= s.second;
+    }
+    sides.erase(a);
+    parent[a] = b;
+    ++result.Merges;
+  }
+
+  // Regions numbered by their lowest label among the samples.
+  std::vector<int64_t> present;
+  for (int64_t v = 0; v < count; ++v)
+  {
+    if (label[v] >= 0)
+    {
+      present.push_back(label[v]);
+    }
+  }
+  std::sort(present.begin(), present.end());
+  present.erase(std::unique(present.begin(), present.end()), present.end());
+  std::unordered_map<int64_t, int32_t> number; // root -> region
+  std::unordered_map<int64_t, int32_t> regionOfLabel;
+  result.Sides.clear();
+  for (const int64_t l : present)
+  {
+    const int64_t root = find(l);
+    auto it = number.find(root);
+    if (it == number.end())
+    {
+      it = number.emplace(root, static_cast<int32_t>(result.Sides.size())).first;
+      result.Sides.emplace_back();
+    }
+    regionOfLabel[l] = it->second;
+    result.Sides[it->second].emplace_back(l / 2, static_cast<int>(l % 2));
+  }
+  result.RegionCount = static_cast<int32_t>(result.Sides.size());
+  result.Region.assign(count, -1);
+  for (int64_t v = 0; v < count; ++v)
+  {
+    if (label[v] >= 0)
+    {
+      result.Region[v] = regionOfLabel[label[v]];
+    }
+  }
+}
+
+} // namespace vtkdf

@@ -1,0 +1,280 @@
+#include "vtkSegmentedDistanceField.h"
+
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkLinearFactorDistanceField.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "SegmentRegions.h"
+#include "SurfacePatches.h"
+#include "vtkDistanceFieldMesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkSegmentedDistanceField);
+
+vtkSegmentedDistanceField::vtkSegmentedDistanceField()
+{
+  this->ProducesSubExtents = false; // regions are global: the whole grid
+}
+
+int vtkSegmentedDistanceField::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  this->StartTiming();
+  vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  output->Initialize();
+  this->LastRegionCount = 0;
+  this->LastPatchCount = this->LastCutEdges = this->LastRefusedMerges = 0;
+  if (!mesh || mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro("The input mesh is empty: the output is empty.");
+    return 1;
+  }
+  vtkdf::HeadlessGL* gl = nullptr;
+  if (!this->ChooseBackend(gl))
+  {
+    return 0;
+  }
+  vtkdf::SampleGrid grid;
+  vtkdf::IndexBox unused;
+  if (!GetOutputGrid(outInfo, grid, unused))
+  {
+    vtkWarningMacro("The grid is empty: the output is empty.");
+    return 1;
+  }
+  const double largest = std::max({ grid.Spacing[0], grid.Spacing[1], grid.Spacing[2] });
+  const double delta = this->Delta > 0 ? this->Delta : 2 * largest;
+  const double offset = this->RegionOffset > 0 ? this->RegionOffset : 4 * largest;
+  if (delta < largest || !(delta < offset))
+  {
+    vtkErrorMacro("Delta must be at least the largest grid spacing ("
+      << largest << ") and below RegionOffset; they are " << delta << " and " << offset << ".");
+    return 0;
+  }
+  const vtkIdType n = static_cast<vtkIdType>(grid.Whole.Count());
+  if (!this->CheckMemory(double(n) * (4 + 8 + 1 + 12 + 24 + 8 + 4 + 4 + 4 + 4 + 8), grid.Whole))
+  {
+    return 0;
+  }
+
+  // The triangles, their patches, and a copy of the mesh with only those that have one.
+  std::string error;
+  vtkdf::MeshConversion conversion;
+  if (!conversion.Run(mesh, grid, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  const auto& mi = conversion.Mesh;
+  if (!mi.Segments.empty() || !mi.Vertices.empty())
+  {
+    vtkWarningMacro("The segmented distance is that of the surface: "
+      << mi.SegmentCells.size() << " line segments and " << mi.Vertices.size()
+      << " vertices are ignored.");
+  }
+  vtkdf::SurfacePatches patches;
+  patches.Build(mi.Points, mi.Triangles);
+  this->LastPatchCount = patches.PatchCount;
+  this->LastCutEdges = patches.CutEdges;
+  std::vector<int64_t> kept;
+  vtkNew<vtkCellArray> polys;
+  for (size_t t = 0; t < patches.Patch.size(); ++t)
+  {
+    if (patches.Patch[t] >= 0)
+    {
+      kept.push_back(static_cast<int64_t>(t));
+      const vtkIdType ids[3] = {
+        mi.Triangles[3 * t], mi.Triangles[3 * t + 1], mi.Triangles[3 * t + 2]
+      };
+      polys->InsertNextCell(3, ids);
+    }
+  }
+  if (kept.empty())
+  {
+    vtkErrorMacro("The input has no triangle with an area: there is no surface to segment.");
+    return 0;
+  }
+  if (patches.CutEdges > 0)
+  {
+    vtkWarningMacro(
+      "Some patches are not orientable: they were cut along " << patches.CutEdges << " edges.");
+  }
+  this->EndStage("patches");
+
+  // The exact unsigned field with closest features, on this filter's grid and backend.
+  vtkNew<vtkPolyData> surface;
+  surface->SetPoints(mesh->GetPoints());
+  surface->SetPolys(polys);
+  vtkNew<vtkLinearFactorDistanceField> exact;
+  const vtkdf::InnerErrors innerErrors(exact);
+  exact->SetInputData(surface);
+  exact->ExplicitGridOn();
+  exact->SetGridOrigin(grid.Origin.data());
+  exact->SetGridSpacing(grid.Spacing.data());
+  exact->SetGridDimensions(grid.Whole.Size(0), grid.Whole.Size(1), grid.Whole.Size(2));
+  exact->SetBackend(gl ? BACKEND_GPU : BACKEND_CPU);
+  exact->SetMemoryLimit(this->MemoryLimit);
+  exact->SetSignModeToUnsigned();
+  exact->ComputeClosestCellIdOn();
+  exact->ComputeClosestFeatureOn();
+  exact->ComputeClosestPointOn();
+  exact->Update();
+  vtkImageData* field = exact->GetOutput();
+  if (exact->GetErrorCode() || !field || field->GetNumberOfPoints() != n)
+  {
+    vtkErrorMacro("The distance field of the input could not be computed: " << innerErrors.Message(
+                    "no output"));
+    return 0;
+  }
+  this->EndStage("field");
+  this->UpdateProgress(0.6);
+
+  // Regions, in the grid's local frame.
+  auto* distance = vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("Distance"));
+  auto* cells = vtkIdTypeArray::SafeDownCast(field->GetPointData()->GetArray("ClosestCellId"));
+  auto* features =
+    vtkUnsignedCharArray::SafeDownCast(field->GetPointData()->GetArray("ClosestFeature"));
+  auto* points = vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("ClosestPoint"));
+  if (!distance || !cells || !features || !points)
+  {
+    vtkErrorMacro("The distance field lacks its arrays.");
+    return 0;
+  }
+  std::vector<float> localDistance(n);
+  std::vector<int64_t> triangle(n);
+  std::vector<double> closest(3 * static_cast<size_t>(n));
+  const vtkdf::GridFrame& frame = conversion.Frame;
+  vtkdf::SMPFor(n,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t v = begin; v < end; ++v)
+      {
+        localDistance[v] = static_cast<float>(distance->GetValue(v) / frame.Scale);
+        const vtkIdType c = cells->GetValue(v);
+        triangle[v] = c >= 0 && c < static_cast<vtkIdType>(kept.size()) ? kept[c] : -1;
+        for (int a = 0; a < 3; ++a)
+        {
+          closest[3 * v + a] = frame.ToLocal(a, points->GetValue(3 * v + a));
+        }
+      }
+    });
+  vtkdf::SegmentInput input;
+  input.Patches = &patches;
+  input.Grid = conversion.Grid;
+  input.Distance = localDistance.data();
+  input.ClosestTriangle = triangle.data();
+  input.ClosestFeature = features->GetPointer(0);
+  input.ClosestPoint = closest.data();
+  vtkdf::SegmentResult result;
+  vtkdf::SegmentRegions(input, result, vtkdf::SMPFor);
+  this->LastRegionCount = result.RegionCount;
+  this->LastRefusedMerges = result.Refused;
+  this->EndStage("regions");
+
+  // Arrays.
+  vtkNew<vtkFloatArray> segmented;
+  segmented->SetName("SegmentedDistance");
+  vtkdf::AllocateTuples(segmented, n);
+  vtkNew<vtkIntArray> region, patch;
+  region->SetName("RegionIndex");
+  vtkdf::AllocateTuples(region, n);
+  patch->SetName("PatchId");
+  vtkdf::AllocateTuples(patch, n);
+  float* f = segmented->GetPointer(0);
+  int* r = region->GetPointer(0);
+  int* pid = patch->GetPointer(0);
+  vtkdf::SMPFor(n,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t v = begin; v < end; ++v)
+      {
+        r[v] = result.Region[v];
+        pid[v] = result.Patch[v];
+        f[v] = static_cast<float>(
+          std::min(double(distance->GetValue(v)), delta) + offset * std::max(0, r[v]));
+      }
+    });
+  SetOutputExtent(output, grid, grid.Whole);
+  output->GetPointData()->SetScalars(segmented);
+  output->GetPointData()->AddArray(region);
+  output->GetPointData()->AddArray(distance);
+  output->GetPointData()->AddArray(patch);
+  vtkFieldData* fd = output->GetFieldData();
+  auto scalar = [fd](const char* name, double value)
+  {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    fd->AddArray(a);
+  };
+  scalar("Delta", delta);
+  scalar("RegionOffset", offset);
+  scalar("RegionCount", result.RegionCount);
+  vtkNew<vtkIntArray> sides;
+  sides->SetName("RegionSides");
+  sides->SetNumberOfComponents(3);
+  for (int32_t g = 0; g < result.RegionCount; ++g)
+  {
+    for (const auto& s : result.Sides[g])
+    {
+      const int row[3] = { g, static_cast<int>(s.first), s.second };
+      sides->InsertNextTypedTuple(row);
+    }
+  }
+  fd->AddArray(sides);
+  this->UpdateProgress(1.0);
+  this->FinishTiming(gl);
+  return 1;
+}
+
+bool vtkSegmentedDistanceField::CheckProperties()
+{
+  if (!this->Superclass::CheckProperties())
+  {
+    return false;
+  }
+  if (!(this->Delta >= 0 && std::isfinite(this->Delta)) ||
+    !(this->RegionOffset >= 0 && std::isfinite(this->RegionOffset)))
+  {
+    vtkErrorMacro("Delta and RegionOffset must be finite and >= 0 (0: the default); they are "
+      << this->Delta << " and " << this->RegionOffset << ".");
+    return false;
+  }
+  if (this->Delta > 0 && this->RegionOffset > 0 && !(this->Delta < this->RegionOffset))
+  {
+    vtkErrorMacro(
+      "Delta (" << this->Delta << ") must be below RegionOffset (" << this->RegionOffset << ").");
+    return false;
+  }
+  return true;
+}
+
+void vtkSegmentedDistanceField::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Delta: " << this->Delta << "\n";
+  os << indent << "RegionOffset: " << this->RegionOffset << "\n";
+  os << indent << "LastRegionCount: " << this->LastRegionCount << "\n";
+  os << indent << "LastPatchCount: " << this->LastPatchCount << "\n";
+  os << indent << "LastCutEdges: " << this->LastCutEdges << "\n";
+  os << indent << "LastRefusedMerges: " << this->LastRefusedMerges << "\n";
+}

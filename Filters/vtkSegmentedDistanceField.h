@@ -1,0 +1,79 @@
+/**
+ * @class   vtkSegmentedDistanceField
+ * @brief   Segmented distance field of a surface that may be open or non-manifold.
+ *
+ * Implements section 3.3 of Yamazaki, Kase and Ikeuchi (paper 004): a signed distance
+ * can only represent closed 2-manifolds; the segmented distance
+ *   f(p) = min(d(p), Delta) + RegionOffset * r(p)
+ * (d the exact unsigned distance, r the region index) also represents boundaries and
+ * junctions of three or more sheets. The surface is split into patches along its
+ * junction lines and boundaries; each side of each patch starts a region; regions that
+ * meet in space merge, never the two sides of one patch. See
+ * Filters/Core/Segment/SegmentRegions.h for how each sample gets its side (the wedge
+ * nearest in angle at its closest feature, so junction sectors are right) and for the
+ * merge rule (a function of the field alone: the same for any thread count).
+ *
+ * Input: vtkPolyData of triangles and polygons (open, non-manifold, several components,
+ * soups: points at the same position are one); lines and vertices are ignored (a
+ * warning says so), as are triangles without area. The exact distance and closest
+ * features come from vtkLinearFactorDistanceField on this filter's grid and Backend; the
+ * regions are computed on the CPU (vtkSMPTools).
+ *
+ * Output: vtkImageData (the whole grid) with `SegmentedDistance` (float), `RegionIndex`
+ * (int), `Distance` (float, unsigned) and `PatchId` (int: the patch whose side the sample
+ * took); field data `Delta`, `RegionOffset`, `RegionCount` and `RegionSides` (int, 3
+ * components per row: region, patch, side 0 front or 1 back; a merged region has several
+ * rows).
+ */
+#ifndef vtkSegmentedDistanceField_h
+#define vtkSegmentedDistanceField_h
+
+#include "vtkDistanceFieldAlgorithm.h"
+#include "vtkDistanceFieldsModule.h" // For export macro
+
+class VTKDISTANCEFIELDS_EXPORT vtkSegmentedDistanceField : public vtkDistanceFieldAlgorithm
+{
+public:
+  static vtkSegmentedDistanceField* New();
+  vtkTypeMacro(vtkSegmentedDistanceField, vtkDistanceFieldAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Delta caps the distance within a region; RegionOffset (D) separates the regions'
+  /// value ranges. 0 (the defaults) means 2 and 4 times the largest grid spacing. Delta
+  /// must be at least the largest spacing (an interface needs the two distances across
+  /// a grid edge, which sum to less than a spacing) and below RegionOffset.
+  vtkSetMacro(Delta, double);
+  vtkGetMacro(Delta, double);
+  vtkSetMacro(RegionOffset, double);
+  vtkGetMacro(RegionOffset, double);
+  ///@}
+
+  /// What the last run found: regions, patches, the edges where non-orientable patches
+  /// were cut, and the region merges refused (they would have joined two sides of one
+  /// patch).
+  vtkGetMacro(LastRegionCount, int);
+  vtkGetMacro(LastPatchCount, vtkTypeInt64);
+  vtkGetMacro(LastCutEdges, vtkTypeInt64);
+  vtkGetMacro(LastRefusedMerges, vtkTypeInt64);
+
+protected:
+  vtkSegmentedDistanceField();
+  ~vtkSegmentedDistanceField() override = default;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool CheckProperties() override;
+
+  double Delta = 0;
+  double RegionOffset = 0;
+  int LastRegionCount = 0;
+  vtkTypeInt64 LastPatchCount = 0;
+  vtkTypeInt64 LastCutEdges = 0;
+  vtkTypeInt64 LastRefusedMerges = 0;
+
+private:
+  vtkSegmentedDistanceField(const vtkSegmentedDistanceField&) = delete;
+  void operator=(const vtkSegmentedDistanceField&) = delete;
+};
+
+#endif
