@@ -21,9 +21,12 @@
 #include "vtkLinearFactorDistanceField.h"
 #include "vtkMedialAxisFilter.h"
 #include "vtkPolyDataVoxelizer.h"
+#include "vtkSegmentedDistanceField.h"
 
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
@@ -66,6 +69,8 @@ void PrintUsage(FILE* out)
     "       vtkdf medial INPUT -o OUT.vti [--angle THETA] [--region inside|outside|both]\n"
     "             [--sign pseudonormal|winding] [grid] [--backend auto|gpu|cpu]\n"
     "             [--points OUT.vtp] [--png SLICE.png] [--timing]\n"
+    "       vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D]\n"
+    "             [--backend auto|gpu|cpu] [--png SLICE.png] [--timing]\n"
     "grid:  [--resolution N] [--padding F]\n"
     "       [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ]\n"
     "MESH:  .vtp .vtk .ply .stl .obj; chamfer's INPUT may also be a .vti with a Boundary mask,\n"
@@ -702,6 +707,99 @@ int Medial(int argc, char* argv[])
   }
   return code;
 }
+/// The middle z slice of a segmented field: each region in its own hue, lighter away
+/// from the surface (up to Delta), black where two regions meet across an interface
+/// (adjacent samples whose distances sum to less than their spacing), magnified.
+bool WriteRegionPNG(vtkImageData* field, double delta, const std::string& path)
+{
+  auto* region = vtkIntArray::SafeDownCast(field->GetPointData()->GetArray("RegionIndex"));
+  auto* distance = vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("Distance"));
+  if (!region || !distance)
+  {
+    return false;
+  }
+  int dims[3];
+  double spacing[3];
+  field->GetDimensions(dims);
+  field->GetSpacing(spacing);
+  const int k = dims[2] / 2;
+  const int scale = std::max(1, 512 / std::max(dims[0], dims[1]));
+  auto at = [&](int i, int j) { return i + dims[0] * (j + vtkIdType(dims[1]) * k); };
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(dims[0] * scale, dims[1] * scale, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* rgb = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int y = 0; y < dims[1] * scale; ++y)
+  {
+    for (int x = 0; x < dims[0] * scale; ++x)
+    {
+      const int i = x / scale, j = y / scale;
+      const vtkIdType v = at(i, j);
+      bool interface = false;
+      if (i + 1 < dims[0] && x % scale == scale - 1)
+      {
+        const vtkIdType w = at(i + 1, j);
+        interface = region->GetValue(v) != region->GetValue(w) &&
+          distance->GetValue(v) + distance->GetValue(w) <= spacing[0] * (1 + 1e-5);
+      }
+      if (j + 1 < dims[1] && y % scale == scale - 1)
+      {
+        const vtkIdType w = at(i, j + 1);
+        interface = interface ||
+          (region->GetValue(v) != region->GetValue(w) &&
+            distance->GetValue(v) + distance->GetValue(w) <= spacing[1] * (1 + 1e-5));
+      }
+      // Hues by the golden angle, so that neighbouring indices differ.
+      const double hue = std::fmod(0.618034 * std::max(0, region->GetValue(v)), 1.0) * 6;
+      const double light = 0.45 + 0.5 * std::min(1.0, distance->GetValue(v) / delta);
+      double c[3] = { std::fabs(hue - 3) - 1, 2 - std::fabs(hue - 2), 2 - std::fabs(hue - 4) };
+      unsigned char* pixel = rgb + 3 * (size_t(y) * dims[0] * scale + x);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        c[ch] = std::min(1.0, std::max(0.0, c[ch]));
+        pixel[ch] = interface ? 0 : static_cast<unsigned char>(255 * (0.35 * c[ch] + 0.65) * light);
+      }
+    }
+  }
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(image);
+  writer->Write();
+  return writer->GetErrorCode() == 0;
+}
+
+int Segment(int argc, char* argv[])
+{
+  CommonOptions common;
+  std::string png;
+  double delta = 0, offset = 0;
+  ParseOptions(argc,
+    argv,
+    common,
+    { Number("--delta", delta), Number("--region-offset", offset), Text("--png", png) });
+  vtkNew<vtkSegmentedDistanceField> filter;
+  filter->SetInputData(ReadMeshOrExit(argv[2]));
+  Configure(filter, common);
+  filter->SetDelta(delta);
+  filter->SetRegionOffset(offset);
+  int code = Finish("segment",
+    filter,
+    common,
+    [&]()
+    {
+      return " regions=" + std::to_string(filter->GetLastRegionCount()) +
+        " patches=" + std::to_string(filter->GetLastPatchCount()) +
+        " refused_merges=" + std::to_string(filter->GetLastRefusedMerges());
+    });
+  vtkDataArray* usedDelta = filter->GetOutput()->GetFieldData()->GetArray("Delta");
+  if (code == 0 && !png.empty() &&
+    !(usedDelta && WriteRegionPNG(filter->GetOutput(), usedDelta->GetTuple1(0), png)))
+  {
+    std::fprintf(stderr, "vtkdf: cannot write %s\n", png.c_str());
+    code = 1;
+  }
+  return code;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -734,6 +832,10 @@ int main(int argc, char* argv[])
   if (subcommand == "medial")
   {
     return Medial(argc, argv);
+  }
+  if (subcommand == "segment")
+  {
+    return Segment(argc, argv);
   }
   return Usage(("unknown subcommand " + subcommand).c_str());
 }

@@ -50,6 +50,10 @@ run voxelize "^vtkdf: voxelize dims=[0-9]+x[0-9]+x[0-9]+ $timing" "$out/voxels.v
   voxelize "$data/bunny_small.vtp" -o "$out/voxels.vti" --resolution 24 --backend cpu --timing
 run chamfer "^vtkdf: chamfer dims=[0-9]+x[0-9]+x[0-9]+ $timing layers=[1-9]" "$out/chamfer.vti" -- \
   chamfer "$out/voxels.vti" -o "$out/chamfer.vti" --metric manhattan --backend cpu --timing
+run segment "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=2 patches=[0-9]+ refused_merges=[0-9]+ stages=patches:" \
+  "$out/segment.vti" "$out/segment.png" -- \
+  segment "$data/plane.vtp" -o "$out/segment.vti" --resolution 20 --backend cpu --timing \
+  --png "$out/segment.png"
 
 # Failures: a message and a non-zero status, never a crash or a silent success.
 expect_failure() {

@@ -18,10 +18,12 @@ from vtkmodules.util.misc import calldata_type  # noqa: E402
 from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter  # noqa: E402
 from vtkdistancefields import (vtkChamferVoxelDistance, vtkLinearFactorDistanceField,  # noqa: E402
-                               vtkMedialAxisFilter, vtkPolyDataVoxelizer)
+                               vtkMedialAxisFilter, vtkPolyDataVoxelizer,
+                               vtkSegmentedDistanceField)
 
 FILTERS = {"linfac": vtkLinearFactorDistanceField, "voxelize": vtkPolyDataVoxelizer,
-           "chamfer": vtkChamferVoxelDistance, "medial": vtkMedialAxisFilter}
+           "chamfer": vtkChamferVoxelDistance, "medial": vtkMedialAxisFilter,
+           "segment": vtkSegmentedDistanceField}
 
 
 class NotPassable(Exception):
@@ -64,6 +66,10 @@ def configure(f, sub, options):
             f.SetMaximumLayers(number(value, int))
         elif option == "--angle":
             f.SetSeparationAngle(number(value, float))
+        elif option == "--delta":
+            f.SetDelta(number(value, float))
+        elif option == "--region-offset":
+            f.SetRegionOffset(number(value, float))
         elif option == "--sign":
             if value not in ("pseudonormal", "winding"):
                 raise NotPassable(f"{option} {value}")

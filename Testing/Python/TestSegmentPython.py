@@ -1,0 +1,44 @@
+"""vtkSegmentedDistanceField from Python: an open disk gives two regions (its front and
+back meet only across its boundary), the field data describes them, and
+SegmentedDistance = min(Distance, Delta) + RegionOffset * RegionIndex."""
+import sys
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkFiltersCore import vtkTriangleFilter
+from vtkmodules.vtkFiltersSources import vtkDiskSource
+
+from vtkdistancefields import vtkSegmentedDistanceField
+
+disk = vtkDiskSource()
+disk.SetInnerRadius(0.0)
+disk.SetOuterRadius(1.0)
+disk.SetCircumferentialResolution(32)
+triangles = vtkTriangleFilter()
+triangles.SetInputConnection(disk.GetOutputPort())
+
+segment = vtkSegmentedDistanceField()
+segment.SetInputConnection(triangles.GetOutputPort())
+segment.SetResolution(24)
+segment.SetBackendToCPU()
+segment.Update()
+
+image = segment.GetOutput()
+fd = image.GetFieldData()
+pd = image.GetPointData()
+f = vtk_to_numpy(pd.GetArray("SegmentedDistance"))
+r = vtk_to_numpy(pd.GetArray("RegionIndex"))
+d = vtk_to_numpy(pd.GetArray("Distance"))
+delta = fd.GetArray("Delta").GetValue(0)
+offset = fd.GetArray("RegionOffset").GetValue(0)
+sides = vtk_to_numpy(fd.GetArray("RegionSides"))
+expected = np.minimum(d.astype(np.float64), delta) + offset * r
+print(f"{segment.GetLastRegionCount()} regions, {segment.GetLastPatchCount()} patch, "
+      f"sides {sides.tolist()}, largest |f - expected| {np.abs(f - expected).max():.3g}")
+ok = (segment.GetLastRegionCount() == 2 and fd.GetArray("RegionCount").GetValue(0) == 2
+      and sides.tolist() == [[0, 0, 0], [1, 0, 1]]
+      and np.abs(f - expected).max() <= 1e-6 * (offset * 2)
+      and set(np.unique(r).tolist()) == {0, 1})
+if not ok:
+    print("FAIL")
+    sys.exit(1)
