@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 vtkStandardNewMacro(vtkSegmentedDistanceField);
@@ -188,6 +189,23 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
   this->LastRegionCount = result.RegionCount;
   this->LastRefusedMerges = result.Refused;
   this->EndStage("regions");
+  // SegmentedDistance is float: its largest value must exist, and distances near it keep
+  // what float's resolution there leaves them.
+  const double top = offset * std::max(0, result.RegionCount - 1) + delta;
+  if (!(top <= std::numeric_limits<float>::max()))
+  {
+    vtkErrorMacro("RegionOffset (" << offset << ") times the " << result.RegionCount - 1
+                                   << " regions after the first exceeds the float range of "
+                                      "SegmentedDistance.");
+    return 0;
+  }
+  const double resolution = top * std::numeric_limits<float>::epsilon();
+  if (resolution > 1e-3 * std::min({ grid.Spacing[0], grid.Spacing[1], grid.Spacing[2] }))
+  {
+    vtkWarningMacro("SegmentedDistance is float: in region "
+      << result.RegionCount - 1 << " it resolves distances only to " << resolution
+      << " (a smaller RegionOffset keeps more).");
+  }
 
   // Arrays.
   vtkNew<vtkFloatArray> segmented;

@@ -1,13 +1,14 @@
 // libFuzzer target: bytes -> a small mesh, a grid and filter properties (valid or not)
-// -> vtkLinearFactorDistanceField, vtkPolyDataVoxelizer, vtkChamferVoxelDistance and
-// vtkMedialAxisFilter on the CPU backend. Built with clang, -fsanitize=fuzzer,address,
-// undefined (Testing/run-fuzz.sh). A crash, a sanitizer report, a leak or a broken
-// invariant of a successful output (below) is a finding; an error reported by a
-// filter is the expected answer to bad input.
+// -> vtkLinearFactorDistanceField, vtkPolyDataVoxelizer, vtkChamferVoxelDistance,
+// vtkMedialAxisFilter and vtkSegmentedDistanceField on the CPU backend. Built with clang,
+// -fsanitize=fuzzer,address, undefined (Testing/run-fuzz.sh). A crash, a sanitizer report, a leak
+// or a broken invariant of a successful output (below) is a finding; an error reported by a filter
+// is the expected answer to bad input.
 #include "vtkChamferVoxelDistance.h"
 #include "vtkLinearFactorDistanceField.h"
 #include "vtkMedialAxisFilter.h"
 #include "vtkPolyDataVoxelizer.h"
+#include "vtkSegmentedDistanceField.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -19,6 +20,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -229,6 +231,33 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
       const double* range = filter->GetOutput()->GetPointData()->GetArray("Medial")->GetRange();
       Trap(range[0] >= 0 && range[1] <= 1);
       Trap(filter->GetMedialPoints()->GetNumberOfPoints() == filter->GetLastMedialCount());
+    }
+  }
+  {
+    vtkNew<vtkSegmentedDistanceField> filter;
+    Configure(filter, mesh, in);
+    const double lengths[] = { 0, 1, 0.5, 4, -1, Inf, NaN };
+    filter->SetDelta(in.Pick(lengths));
+    filter->SetRegionOffset(in.Pick(lengths));
+    if (Succeeded(filter))
+    {
+      // Every sample in a region, and f = min(d, Delta) + RegionOffset * r to float's
+      // precision.
+      vtkImageData* output = filter->GetOutput();
+      vtkPointData* pd = output->GetPointData();
+      vtkDataArray* f = pd->GetArray("SegmentedDistance");
+      vtkDataArray* r = pd->GetArray("RegionIndex");
+      vtkDataArray* d = pd->GetArray("Distance");
+      const double delta = output->GetFieldData()->GetArray("Delta")->GetTuple1(0);
+      const double offset = output->GetFieldData()->GetArray("RegionOffset")->GetTuple1(0);
+      for (vtkIdType v = 0; v < f->GetNumberOfTuples(); ++v)
+      {
+        const double region = r->GetTuple1(v);
+        Trap(region >= 0 && region < filter->GetLastRegionCount());
+        const double expected = std::min(d->GetTuple1(v), delta) + offset * region;
+        Trap(std::fabs(f->GetTuple1(v) - expected) <=
+          1e-6 * std::fabs(expected) + std::numeric_limits<float>::denorm_min());
+      }
     }
   }
   return 0;
