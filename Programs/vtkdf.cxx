@@ -18,6 +18,7 @@
 // that scripts can read:
 //   vtkdf: linfac dims=NXxNYxNZ backend=cpu renderer="cpu" time_s=0.123 ...
 #include "vtkChamferVoxelDistance.h"
+#include "vtkDistanceFieldBlend.h"
 #include "vtkLinearFactorDistanceField.h"
 #include "vtkMedialAxisFilter.h"
 #include "vtkPolyDataVoxelizer.h"
@@ -71,6 +72,8 @@ void PrintUsage(FILE* out)
     "             [--points OUT.vtp] [--png SLICE.png] [--timing]\n"
     "       vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D]\n"
     "             [--backend auto|gpu|cpu] [--png SLICE.png] [--timing]\n"
+    "       vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]\n"
+    "             (A and B from vtkdf segment on the same grid; T in [0, 1])\n"
     "grid:  [--resolution N] [--padding F]\n"
     "       [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ]\n"
     "MESH:  .vtp .vtk .ply .stl .obj; chamfer's INPUT may also be a .vti with a Boundary mask,\n"
@@ -800,6 +803,74 @@ int Segment(int argc, char* argv[])
   }
   return code;
 }
+/// vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]
+int Blend(int argc, char* argv[])
+{
+  if (argc < 4)
+  {
+    return Usage("blend takes two .vti fields");
+  }
+  double t = std::nan("");
+  std::string output, png;
+  for (int a = 4; a < argc; ++a)
+  {
+    const std::string option = argv[a];
+    if (a + 1 >= argc)
+    {
+      return Usage((option + " needs a value").c_str());
+    }
+    if (option == "-t")
+    {
+      t = ParseNumber("-t", argv[++a]);
+    }
+    else if (option == "-o")
+    {
+      output = argv[++a];
+    }
+    else if (option == "--png")
+    {
+      png = argv[++a];
+    }
+    else
+    {
+      return Usage(("unknown option " + option).c_str());
+    }
+  }
+  if (output.empty() || std::isnan(t))
+  {
+    return Usage("blend needs -t T and -o OUT.vti");
+  }
+  if (!EndsWith(argv[2], ".vti") || !EndsWith(argv[3], ".vti"))
+  {
+    return Usage("blend takes two .vti fields (from vtkdf segment)");
+  }
+  vtkNew<vtkDistanceFieldBlend> blend;
+  blend->SetInputData(0, ReadMeshOrImageOrExit(argv[2]));
+  blend->SetInputData(1, ReadMeshOrImageOrExit(argv[3]));
+  blend->SetT(t);
+  blend->Update();
+  vtkImageData* field = blend->GetOutput();
+  if (blend->GetErrorCode() || field->GetNumberOfPoints() == 0)
+  {
+    std::fprintf(stderr, "vtkdf: no output was computed\n");
+    return 1;
+  }
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName(output.c_str());
+  writer->SetInputData(field);
+  if (!writer->Write() || writer->GetErrorCode() != 0)
+  {
+    std::fprintf(stderr, "vtkdf: cannot write %s\n", output.c_str());
+    return 1;
+  }
+  vtkDataArray* delta = field->GetFieldData()->GetArray("Delta");
+  if (!png.empty() && !(delta && WriteRegionPNG(field, delta->GetTuple1(0), png)))
+  {
+    std::fprintf(stderr, "vtkdf: cannot write %s\n", png.c_str());
+    return 1;
+  }
+  return 0;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -836,6 +907,10 @@ int main(int argc, char* argv[])
   if (subcommand == "segment")
   {
     return Segment(argc, argv);
+  }
+  if (subcommand == "blend")
+  {
+    return Blend(argc, argv);
   }
   return Usage(("unknown subcommand " + subcommand).c_str());
 }

@@ -54,6 +54,13 @@ run segment "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=2 patches
   "$out/segment.vti" "$out/segment.png" -- \
   segment "$data/plane.vtp" -o "$out/segment.vti" --resolution 20 --backend cpu --timing \
   --png "$out/segment.png"
+# blend: a field with itself is itself, at any T.
+if "$vtkdf" blend "$out/segment.vti" "$out/segment.vti" -t 0.3 -o "$out/blend.vti" \
+  --png "$out/blend.png" 2>"$out/blend.err"; then
+  [ -s "$out/blend.vti" ] && [ -s "$out/blend.png" ] || fail "blend: outputs not written"
+else
+  fail "blend: exit status $? ($(head -c 300 "$out/blend.err"))"
+fi
 
 # Failures: a message and a non-zero status, never a crash or a silent success.
 expect_failure() {
@@ -69,6 +76,8 @@ expect_failure unwritable linfac "$data/bunny_small.vtp" -o /nonexistent/dir/x.v
 expect_failure badbackend linfac "$data/bunny_small.vtp" -o "$out/x.vti" --backend nope
 expect_failure missing linfac "$data/no_such_mesh.vtp" -o "$out/x.vti"
 expect_failure subcommand frobnicate
+expect_failure blendmesh blend "$data/plane.vtp" "$out/segment.vti" -t 0.5 -o "$out/x.vti"
+expect_failure blendnot blend "$out/segment.vti" "$out/segment.vti" -o "$out/x.vti"
 [ -e "$out/x.vti" ] && fail "a failed run wrote $out/x.vti"
 
 # --help (alone or after a subcommand): the usage on stdout, status 0.

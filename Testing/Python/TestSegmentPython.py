@@ -1,6 +1,7 @@
 """vtkSegmentedDistanceField from Python: an open disk gives two regions (its front and
 back meet only across its boundary), the field data describes them, and
-SegmentedDistance = min(Distance, Delta) + RegionOffset * RegionIndex."""
+SegmentedDistance = min(Distance, Delta) + RegionOffset * RegionIndex; blended with
+itself (vtkDistanceFieldBlend), the field is unchanged."""
 import sys
 
 import numpy as np
@@ -40,5 +41,21 @@ ok = (segment.GetLastRegionCount() == 2 and fd.GetArray("RegionCount").GetValue(
       and np.abs(f - expected).max() <= 1e-6 * (offset * 2)
       and set(np.unique(r).tolist()) == {0, 1})
 if not ok:
+    print("FAIL")
+    sys.exit(1)
+
+# vtkDistanceFieldBlend: a field blended with itself is itself.
+from vtkdistancefields import vtkDistanceFieldBlend  # noqa: E402
+
+blend = vtkDistanceFieldBlend()
+blend.SetInputConnection(0, segment.GetOutputPort())
+blend.SetInputConnection(1, segment.GetOutputPort())
+blend.SetT(0.4)
+blend.Update()
+blended = blend.GetOutput().GetPointData()
+same = (np.array_equal(vtk_to_numpy(blended.GetArray("RegionIndex")), r)
+        and np.abs(vtk_to_numpy(blended.GetArray("Distance")) - d).max() <= 1e-6 * delta)
+print(f"blend with itself at T = 0.4: {'the same field' if same else 'differs'}")
+if not same:
     print("FAIL")
     sys.exit(1)

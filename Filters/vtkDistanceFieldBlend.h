@@ -1,0 +1,50 @@
+/**
+ * @class   vtkDistanceFieldBlend
+ * @brief   Blends two segmented distance fields (metamorphosis, paper 004 section 5.2).
+ *
+ * Inputs: port 0 and port 1, two outputs of vtkSegmentedDistanceField on the same grid
+ * whose regions mean the same (identical `RegionSides`, `Delta` and `RegionOffset`); a
+ * signed distance field of a closed surface is the two-region case. Where both fields put
+ * a sample in the same region, the distances are blended; where they differ, the two are
+ * blended as a signed distance across that pair of regions, so that each interface moves
+ * linearly from its position in the first field (T = 0) to its position in the second
+ * (T = 1); see Filters/Core/Segment/SegmentBlend.h. T = 0 and T = 1 give the inputs
+ * exactly. T must lie in [0, 1].
+ *
+ * Output: the grid with `SegmentedDistance`, `RegionIndex` and `Distance`, and the first
+ * input's field data. Mismatched grids or region tables, or missing arrays, are errors
+ * that name what differs. Computed on the CPU (vtkSMPTools): one pass over the samples.
+ */
+#ifndef vtkDistanceFieldBlend_h
+#define vtkDistanceFieldBlend_h
+
+#include "vtkDistanceFieldsModule.h" // For export macro
+#include "vtkImageAlgorithm.h"
+
+class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldBlend : public vtkImageAlgorithm
+{
+public:
+  static vtkDistanceFieldBlend* New();
+  vtkTypeMacro(vtkDistanceFieldBlend, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The blend parameter: 0 gives the first field, 1 the second (default 0.5).
+  vtkSetMacro(T, double);
+  vtkGetMacro(T, double);
+
+protected:
+  vtkDistanceFieldBlend();
+  ~vtkDistanceFieldBlend() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double T = 0.5;
+
+private:
+  vtkDistanceFieldBlend(const vtkDistanceFieldBlend&) = delete;
+  void operator=(const vtkDistanceFieldBlend&) = delete;
+};
+
+#endif

@@ -1,0 +1,221 @@
+// vtkDistanceFieldBlend on segmented fields of concentric spheres of radii 0.5 and 0.8:
+// - T = 0 and T = 1 give the inputs exactly (every array, every sample);
+// - T = 0.25, 0.5, 0.75: the interface (eq. 6 points on grid edges between the two
+//   regions) lies within half a spacing of the sphere of radius 0.5 + 0.3 T, all around;
+// - refused, with a message naming the problem: fields of other regions (a T-junction's
+//   segmentation), other grids, missing arrays, T outside [0, 1] or NaN.
+#include "TestSupport.h"
+#include "vtkDistanceFieldBlend.h"
+#include "vtkSegmentedDistanceField.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkTriangleFilter.h"
+
+#include <cmath>
+#include <string>
+
+namespace
+{
+const double Centre[3] = { 0.03, -0.02, 0.01 };
+
+vtkSmartPointer<vtkImageData> Segmented(vtkPolyData* mesh, double spacing = 0.05)
+{
+  vtkNew<vtkSegmentedDistanceField> f;
+  f->SetInputData(mesh);
+  f->SetBackendToCPU();
+  f->ExplicitGridOn();
+  f->SetGridOrigin(-1.013, -1.007, -1.021);
+  f->SetGridSpacing(spacing, spacing, spacing);
+  const int n = static_cast<int>(std::lround(2 / spacing)) + 1;
+  f->SetGridDimensions(n, n, n);
+  f->Update();
+  return f->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> Sphere(double radius)
+{
+  vtkNew<vtkSphereSource> source;
+  source->SetCenter(Centre[0], Centre[1], Centre[2]);
+  source->SetRadius(radius);
+  source->SetThetaResolution(96);
+  source->SetPhiResolution(64);
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(source->GetOutputPort());
+  triangles->Update();
+  return triangles->GetOutput();
+}
+
+vtkSmartPointer<vtkImageData> Blend(vtkImageData* a,
+  vtkImageData* b,
+  double t,
+  std::string* errors = nullptr)
+{
+  vtkNew<vtkDistanceFieldBlend> blend;
+  testsupport::MessageRecorder recorder(blend);
+  blend->SetInputData(0, a);
+  blend->SetInputData(1, b);
+  blend->SetT(t);
+  blend->Update();
+  if (errors)
+  {
+    *errors = recorder.Errors;
+  }
+  return blend->GetOutput();
+}
+
+bool SameArray(vtkImageData* x, vtkImageData* y, const char* name)
+{
+  vtkDataArray* a = x->GetPointData()->GetArray(name);
+  vtkDataArray* b = y->GetPointData()->GetArray(name);
+  if (!a || !b || a->GetNumberOfTuples() != b->GetNumberOfTuples())
+  {
+    return false;
+  }
+  for (vtkIdType v = 0; v < a->GetNumberOfTuples(); ++v)
+  {
+    if (a->GetTuple1(v) != b->GetTuple1(v))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The radii of the interface points (eq. 6) on the grid edges between two regions.
+void InterfaceRadii(vtkImageData* field, double& lo, double& hi, long long& count)
+{
+  vtkDataArray* d = field->GetPointData()->GetArray("Distance");
+  vtkDataArray* r = field->GetPointData()->GetArray("RegionIndex");
+  int dims[3];
+  field->GetDimensions(dims);
+  const double w = field->GetSpacing()[0];
+  lo = HUGE_VAL, hi = -HUGE_VAL, count = 0;
+  for (int k = 0; k < dims[2]; ++k)
+  {
+    for (int j = 0; j < dims[1]; ++j)
+    {
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        const vtkIdType v = i + dims[0] * (j + vtkIdType(dims[1]) * k);
+        const vtkIdType step[3] = { 1, dims[0], vtkIdType(dims[0]) * dims[1] };
+        const int at[3] = { i, j, k };
+        for (int a = 0; a < 3; ++a)
+        {
+          if (at[a] + 1 >= dims[a])
+          {
+            continue;
+          }
+          const vtkIdType u = v + step[a];
+          const double du = d->GetTuple1(v), dv = d->GetTuple1(u);
+          if (r->GetTuple1(v) == r->GetTuple1(u) || du + dv > w * (1 + 1e-5))
+          {
+            continue;
+          }
+          double p[3], q[3];
+          field->GetPoint(v, p);
+          field->GetPoint(u, q);
+          const double t = du + dv > 0 ? du / (du + dv) : 0.5;
+          double r2 = 0;
+          for (int c = 0; c < 3; ++c)
+          {
+            const double x = p[c] + t * (q[c] - p[c]) - Centre[c];
+            r2 += x * x;
+          }
+          lo = std::min(lo, std::sqrt(r2));
+          hi = std::max(hi, std::sqrt(r2));
+          ++count;
+        }
+      }
+    }
+  }
+}
+} // namespace
+
+int main()
+{
+  auto small = Segmented(Sphere(0.5));
+  auto large = Segmented(Sphere(0.8));
+  CHECK(small->GetNumberOfPoints() > 0 && large->GetNumberOfPoints() > 0, "no fields");
+  for (const double t : { 0.0, 1.0 })
+  {
+    auto b = Blend(small, large, t);
+    vtkImageData* expected = t == 0 ? small : large;
+    for (const char* name : { "Distance", "RegionIndex", "SegmentedDistance" })
+    {
+      CHECK(SameArray(b, expected, name), "T = %g: %s is not the input's", t, name);
+    }
+  }
+  const double h = 0.05;
+  for (const double t : { 0.25, 0.5, 0.75 })
+  {
+    auto b = Blend(small, large, t);
+    double lo, hi;
+    long long count;
+    InterfaceRadii(b, lo, hi, count);
+    const double radius = 0.5 + 0.3 * t;
+    std::printf("T = %.2f: %lld interface points at radii %.4f to %.4f (expected %.4f, "
+                "spacing %.3f)\n",
+      t,
+      count,
+      lo,
+      hi,
+      radius,
+      h);
+    CHECK(count > 1000 && lo > radius - 0.5 * h && hi < radius + 0.5 * h,
+      "T = %g: the interface is not the sphere of radius %g",
+      t,
+      radius);
+  }
+
+  // Refusals.
+  std::string errors;
+  {
+    // A T-junction: three regions, another table.
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> polys;
+    for (int s = 0; s < 3; ++s)
+    {
+      const double a = 0.3 + 2.1 * s, c = std::cos(a), n = std::sin(a);
+      const vtkIdType o = points->InsertNextPoint(0, 0, -0.6);
+      points->InsertNextPoint(0.6 * c, 0.6 * n, -0.6);
+      points->InsertNextPoint(0.6 * c, 0.6 * n, 0.6);
+      points->InsertNextPoint(0, 0, 0.6);
+      const vtkIdType t0[3] = { o, o + 1, o + 2 }, t1[3] = { o, o + 2, o + 3 };
+      polys->InsertNextCell(3, t0);
+      polys->InsertNextCell(3, t1);
+    }
+    vtkNew<vtkPolyData> junction;
+    junction->SetPoints(points);
+    junction->SetPolys(polys);
+    auto other = Segmented(junction);
+    Blend(small, other, 0.5, &errors);
+    CHECK(errors.find("regions do not mean the same") != std::string::npos,
+      "other regions: %s",
+      errors.c_str());
+  }
+  Blend(small, Segmented(Sphere(0.8), 0.1), 0.5, &errors);
+  CHECK(errors.find("different grids") != std::string::npos, "other grid: %s", errors.c_str());
+  {
+    vtkNew<vtkImageData> bare;
+    bare->ShallowCopy(large);
+    bare->GetPointData()->RemoveArray("RegionIndex");
+    Blend(small, bare, 0.5, &errors);
+    CHECK(errors.find("no point-data array RegionIndex") != std::string::npos,
+      "missing array: %s",
+      errors.c_str());
+  }
+  for (const double t : { -0.1, 2.0, std::nan("") })
+  {
+    Blend(small, large, t, &errors);
+    CHECK(
+      errors.find("T must lie in [0, 1]") != std::string::npos, "T = %g: %s", t, errors.c_str());
+  }
+  return testsupport::Verdict();
+}
