@@ -22,6 +22,7 @@
 #include "vtkLinearFactorDistanceField.h"
 #include "vtkMedialAxisFilter.h"
 #include "vtkPolyDataVoxelizer.h"
+#include "vtkSegmentedDistanceContour.h"
 #include "vtkSegmentedDistanceField.h"
 
 #include "vtkFieldData.h"
@@ -71,7 +72,7 @@ void PrintUsage(FILE* out)
     "             [--sign pseudonormal|winding] [grid] [--backend auto|gpu|cpu]\n"
     "             [--points OUT.vtp] [--png SLICE.png] [--timing]\n"
     "       vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D]\n"
-    "             [--backend auto|gpu|cpu] [--png SLICE.png] [--timing]\n"
+    "             [--backend auto|gpu|cpu] [--surface OUT.vtp] [--png SLICE.png] [--timing]\n"
     "       vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]\n"
     "             (A and B from vtkdf segment on the same grid; T in [0, 1])\n"
     "grid:  [--resolution N] [--padding F]\n"
@@ -774,12 +775,15 @@ bool WriteRegionPNG(vtkImageData* field, double delta, const std::string& path)
 int Segment(int argc, char* argv[])
 {
   CommonOptions common;
-  std::string png;
+  std::string png, surface;
   double delta = 0, offset = 0;
   ParseOptions(argc,
     argv,
     common,
-    { Number("--delta", delta), Number("--region-offset", offset), Text("--png", png) });
+    { Number("--delta", delta),
+      Number("--region-offset", offset),
+      Text("--png", png),
+      Text("--surface", surface) });
   vtkNew<vtkSegmentedDistanceField> filter;
   filter->SetInputData(ReadMeshOrExit(argv[2]));
   Configure(filter, common);
@@ -794,6 +798,27 @@ int Segment(int argc, char* argv[])
         " patches=" + std::to_string(filter->GetLastPatchCount()) +
         " refused_merges=" + std::to_string(filter->GetLastRefusedMerges());
     });
+  if (code == 0 && !surface.empty())
+  {
+    vtkNew<vtkSegmentedDistanceContour> contour;
+    contour->SetInputData(filter->GetOutput());
+    contour->Update();
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetFileName(surface.c_str());
+    writer->SetInputData(contour->GetOutput());
+    if (contour->GetErrorCode() || !writer->Write() || writer->GetErrorCode() != 0)
+    {
+      std::fprintf(stderr, "vtkdf: cannot write %s\n", surface.c_str());
+      code = 1;
+    }
+    else if (common.Timing)
+    {
+      std::printf("vtkdf: surface triangles=%lld marching_cells=%lld other_cells=%lld\n",
+        static_cast<long long>(contour->GetOutput()->GetNumberOfCells()),
+        static_cast<long long>(contour->GetLastMarchingCells()),
+        static_cast<long long>(contour->GetLastOtherCells()));
+    }
+  }
   vtkDataArray* usedDelta = filter->GetOutput()->GetFieldData()->GetArray("Delta");
   if (code == 0 && !png.empty() &&
     !(usedDelta && WriteRegionPNG(filter->GetOutput(), usedDelta->GetTuple1(0), png)))

@@ -53,7 +53,8 @@ run chamfer "^vtkdf: chamfer dims=[0-9]+x[0-9]+x[0-9]+ $timing layers=[1-9]" "$o
 run segment "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=2 patches=[0-9]+ refused_merges=[0-9]+ stages=patches:" \
   "$out/segment.vti" "$out/segment.png" -- \
   segment "$data/plane.vtp" -o "$out/segment.vti" --resolution 20 --backend cpu --timing \
-  --png "$out/segment.png"
+  --png "$out/segment.png" --surface "$out/segment.vtp"
+[ -s "$out/segment.vtp" ] || fail "segment: $out/segment.vtp not written"
 # blend: a field with itself is itself, at any T.
 if "$vtkdf" blend "$out/segment.vti" "$out/segment.vti" -t 0.3 -o "$out/blend.vti" \
   --png "$out/blend.png" 2>"$out/blend.err"; then

@@ -59,3 +59,21 @@ print(f"blend with itself at T = 0.4: {'the same field' if same else 'differs'}"
 if not same:
     print("FAIL")
     sys.exit(1)
+
+# vtkSegmentedDistanceContour: the disk's surface, every triangle between regions 0 and 1,
+# every point on the disk's plane and within its rim.
+from vtkdistancefields import vtkSegmentedDistanceContour  # noqa: E402
+
+contour = vtkSegmentedDistanceContour()
+contour.SetInputConnection(segment.GetOutputPort())
+contour.Update()
+surface = contour.GetOutput()
+xyz = vtk_to_numpy(surface.GetPoints().GetData())
+pairs = vtk_to_numpy(surface.GetCellData().GetArray("Regions"))
+h = image.GetSpacing()[0]
+print(f"contour: {surface.GetNumberOfCells()} triangles, largest |z| {np.abs(xyz[:, 2]).max():.3g}, "
+      f"largest radius {np.hypot(xyz[:, 0], xyz[:, 1]).max():.4f}")
+if (surface.GetNumberOfCells() == 0 or not np.all(pairs == [0, 1])
+        or np.abs(xyz[:, 2]).max() > 1e-6 or np.hypot(xyz[:, 0], xyz[:, 1]).max() > 1.0 + 1e-6):
+    print("FAIL")
+    sys.exit(1)

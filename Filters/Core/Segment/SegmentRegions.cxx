@@ -82,8 +82,15 @@ double EdgeWedgeCosine(const SurfacePatches& patches,
 
 /// How near in angle the unit direction u is to triangle f's corner wedge at its corner
 /// with key kv: the cosine of the angle between u and the nearest direction in the wedge.
-double VertexWedgeCosine(const SurfacePatches& patches, int64_t f, int64_t kv, const double* u)
+/// When that direction is one of the wedge's edges, `edgeEnd` receives the key of the
+/// edge's other end (else -1).
+double VertexWedgeCosine(const SurfacePatches& patches,
+  int64_t f,
+  int64_t kv,
+  const double* u,
+  int64_t& edgeEnd)
 {
+  edgeEnd = -1;
   int k = 0;
   while (patches.Key(f, k) != kv)
   {
@@ -113,7 +120,9 @@ double VertexWedgeCosine(const SurfacePatches& patches, int64_t f, int64_t kv, c
   {
     return std::sqrt(std::max(0.0, 1 - un * un)); // the projection lies in the wedge
   }
-  return std::max(Dot(u, e1), Dot(u, e2));
+  const bool first = Dot(u, e1) >= Dot(u, e2);
+  edgeEnd = patches.Key(f, first ? (k + 1) % 3 : (k + 2) % 3);
+  return first ? Dot(u, e1) : Dot(u, e2);
 }
 } // namespace
 
@@ -132,66 +141,78 @@ int64_t SideLabel(const SurfacePatches& patches,
   double u[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
   const bool away = Normalize(u);
   int64_t chosen = triangle;
-  if (away && feature != 2)
+  // Around an edge (keys ka, kb): the triangle whose half-plane is nearest in angle.
+  auto aroundEdge = [&](int64_t ka, int64_t kb, const double* a, const double* b)
   {
+    double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    Normalize(e);
+    patches.TrianglesAtEdge(ka, kb, scratch);
     double best = -3;
-    if (feature == 1)
+    for (const int64_t f : scratch)
     {
-      // The triangle's edge nearest to the closest point, and every triangle on it.
-      int edge = 0;
-      double nearest = HUGE_VAL;
-      for (int k = 0; k < 3; ++k)
+      const double cosine = EdgeWedgeCosine(patches, f, ka, kb, a, e, u);
+      if (cosine > best)
       {
-        const double d2 =
-          SegmentDistance2(patches.Corner(triangle, k), patches.Corner(triangle, (k + 1) % 3), c);
-        if (d2 < nearest)
-        {
-          nearest = d2;
-          edge = k;
-        }
-      }
-      const int64_t ka = patches.Key(triangle, edge), kb = patches.Key(triangle, (edge + 1) % 3);
-      const double* a = patches.Corner(triangle, edge);
-      const double* b = patches.Corner(triangle, (edge + 1) % 3);
-      double e[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-      Normalize(e);
-      patches.TrianglesAtEdge(ka, kb, scratch);
-      for (const int64_t f : scratch)
-      {
-        const double cosine = EdgeWedgeCosine(patches, f, ka, kb, a, e, u);
-        if (cosine > best)
-        {
-          best = cosine;
-          chosen = f;
-        }
+        best = cosine;
+        chosen = f;
       }
     }
-    else
+  };
+  if (away && feature == 1)
+  {
+    // The triangle's edge nearest to the closest point.
+    int edge = 0;
+    double nearest = HUGE_VAL;
+    for (int k = 0; k < 3; ++k)
     {
-      // The triangle's corner nearest to the closest point, and every triangle at it.
-      int corner = 0;
-      double nearest = HUGE_VAL;
-      for (int k = 0; k < 3; ++k)
+      const double d2 =
+        SegmentDistance2(patches.Corner(triangle, k), patches.Corner(triangle, (k + 1) % 3), c);
+      if (d2 < nearest)
       {
-        const double* v = patches.Corner(triangle, k);
-        const double g[3] = { v[0] - c[0], v[1] - c[1], v[2] - c[2] };
-        if (Dot(g, g) < nearest)
-        {
-          nearest = Dot(g, g);
-          corner = k;
-        }
+        nearest = d2;
+        edge = k;
       }
-      const int64_t kv = patches.Key(triangle, corner);
-      patches.TrianglesAtPoint(kv, scratch);
-      for (const int64_t f : scratch)
+    }
+    aroundEdge(patches.Key(triangle, edge),
+      patches.Key(triangle, (edge + 1) % 3),
+      patches.Corner(triangle, edge),
+      patches.Corner(triangle, (edge + 1) % 3));
+  }
+  else if (away && feature == 0)
+  {
+    // The triangle's corner nearest to the closest point, and every triangle at it.
+    int corner = 0;
+    double nearest = HUGE_VAL;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* v = patches.Corner(triangle, k);
+      const double g[3] = { v[0] - c[0], v[1] - c[1], v[2] - c[2] };
+      if (Dot(g, g) < nearest)
       {
-        const double cosine = VertexWedgeCosine(patches, f, kv, u);
-        if (cosine > best)
-        {
-          best = cosine;
-          chosen = f;
-        }
+        nearest = Dot(g, g);
+        corner = k;
       }
+    }
+    const int64_t kv = patches.Key(triangle, corner);
+    patches.TrianglesAtPoint(kv, scratch);
+    double best = -3;
+    int64_t bestEnd = -1;
+    for (const int64_t f : scratch)
+    {
+      int64_t end = -1;
+      const double cosine = VertexWedgeCosine(patches, f, kv, u, end);
+      if (cosine > best)
+      {
+        best = cosine;
+        bestEnd = end;
+        chosen = f;
+      }
+    }
+    if (bestEnd >= 0)
+    {
+      // Nearest to an edge direction, which two or more wedges share: the triangles
+      // around that edge decide, as for an edge.
+      aroundEdge(kv, bestEnd, patches.Position(kv), patches.Position(bestEnd));
     }
   }
   double n[3];

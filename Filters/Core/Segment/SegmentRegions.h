@@ -8,9 +8,11 @@
 // wedge around it (the triangle's angle at a vertex, its half-plane at an edge) is
 // nearest in angle to the sample's direction u from the closest point. The shortest arc
 // from u to that wedge crosses no other sheet, so the sample lies in the space cell next
-// to it, on the side sign(u . n) (n in the patch's orientation). At a junction line this
-// picks the patch whose angular sector holds the sample, not the lowest index, which
-// mislabels reflex sectors.
+// to it, on the side sign(u . n) (n in the patch's orientation). Where the nearest
+// direction of a vertex's wedges is one of its edges (two wedges share it, and the planes
+// of both may disagree), the triangles around that edge decide, as for an edge feature.
+// At a junction line this picks the patch whose angular sector holds the sample, not the
+// lowest index, which mislabels reflex sectors.
 //
 // Merge: two adjacent samples a, b (along an axis, spacing w) with different labels are
 // evidence that their regions are one when d_a + d_b > w (1 + 1e-5): by the triangle

@@ -40,6 +40,8 @@ public:
   {
     return &(*this->Points)[3 * this->Ids[3 * t + k]];
   }
+  /// The position of point p (any id).
+  const double* Position(int64_t p) const { return &(*this->Points)[3 * p]; }
   /// The merged id of triangle t's corner k (equal for equal positions).
   int64_t Key(int64_t t, int k) const { return this->Keys[this->Ids[3 * t + k]]; }
 

@@ -1,0 +1,58 @@
+// SegmentContour: the interfaces of a segmented distance field as triangles (paper 004,
+// section 3.3: eqs. 5-7), keeping boundaries and junctions, without VTK types.
+//
+// A grid edge between samples a and b (spacing w) holds an interface point when their
+// regions differ and 0 < d_a + d_b <= w (1 + Tolerance) (eq. 7, the equality allowed: a
+// sheet halfway between two samples gives exactly w), at t = d_a / (d_a + d_b) from a
+// (eq. 6). Per cell of 2x2x2 samples:
+// - two regions and an interface on every edge between them: marching cubes with the
+//   caller's case table (bit v set where corner v is in the lower region), so that a
+//   closed surface (two regions) gives what marching cubes gives at 0 on its signed
+//   field;
+// - otherwise (three or more regions, a junction; or an edge suppressed by eq. 7, a
+//   boundary): a vertex at the mean of the cell's interface points, and on each face a
+//   segment between its two points when they separate the same two regions, else from
+//   each of its points to a face vertex at their mean; each segment and the cell vertex
+//   make a triangle. Junction lines are where several sheets share those vertices.
+// Every triangle separates two regions (Pairs, lower first) and faces the higher one.
+// Where a marching-cubes cell shares an ambiguous face (four points, two regions) with a
+// cell of the second kind, the two may disagree on that face: a crack of less than a
+// cell, rare (only next to a junction or a boundary).
+#ifndef vtkdf_SegmentContour_h
+#define vtkdf_SegmentContour_h
+
+#include "SampleGrid.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace vtkdf
+{
+
+struct ContourInput
+{
+  SampleGrid Grid; // the samples: Grid.Whole, x fastest
+  const float* Distance = nullptr;
+  const int32_t* Region = nullptr;
+  /// Marching cubes' triangle table: for each of the 256 cases, up to 5 triangles as
+  /// edge indices, -1 after the last. Corners 0-7 are (0,0,0) (1,0,0) (1,1,0) (0,1,0)
+  /// (0,0,1) (1,0,1) (1,1,1) (0,1,1); edges 0-11 join corners 0-1 1-2 3-2 0-3 4-5 5-6 7-6
+  /// 4-7 0-4 1-5 3-7 2-6; bit v of the case is set where corner v is above the value.
+  const int (*Cases)[16] = nullptr;
+  double Tolerance = 1e-5;
+};
+
+struct ContourResult
+{
+  std::vector<double> Points;     // xyz
+  std::vector<int64_t> Triangles; // 3 point ids each
+  std::vector<int32_t> Pairs;     // per triangle: the lower and the higher region
+  int64_t MarchingCells = 0;      // cells done by the case table
+  int64_t OtherCells = 0;         // junction and boundary cells
+};
+
+void ContourSegmented(const ContourInput& input, ContourResult& result);
+
+} // namespace vtkdf
+
+#endif

@@ -1,0 +1,132 @@
+#include "vtkSegmentedDistanceContour.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkMarchingCubesTriangleCases.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include "SegmentContour.h"
+#include "vtkDistanceFieldMesh.h"
+
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkSegmentedDistanceContour);
+
+int vtkSegmentedDistanceContour::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkImageData* field = vtkImageData::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  output->Initialize();
+  this->LastMarchingCells = this->LastOtherCells = 0;
+  std::string error;
+  vtkDataArray* values = vtkdf::SampleArray(field, "SegmentedDistance", 1, error);
+  vtkDataArray* offsetArray = field ? field->GetFieldData()->GetArray("RegionOffset") : nullptr;
+  if (!values)
+  {
+    vtkErrorMacro(<< error << " (vtkSegmentedDistanceField makes it).");
+    return 0;
+  }
+  const double offset = offsetArray ? offsetArray->GetTuple1(0) : 0;
+  if (!(offset > 0 && std::isfinite(offset)))
+  {
+    vtkErrorMacro("The input has no positive field-data RegionOffset: it is not the output of "
+                  "vtkSegmentedDistanceField.");
+    return 0;
+  }
+  const vtkIdType n = field->GetNumberOfPoints();
+  std::vector<float> distance(n);
+  std::vector<int32_t> region(n);
+  for (vtkIdType v = 0; v < n; ++v)
+  {
+    const double f = values->GetTuple1(v);
+    if (!(f >= 0 && std::isfinite(f)))
+    {
+      vtkErrorMacro("SegmentedDistance holds " << f << " at sample " << v
+                                               << ": a segmented field is finite and >= 0.");
+      return 0;
+    }
+    const double r = std::floor(f / offset);
+    region[v] = static_cast<int32_t>(r);
+    distance[v] = static_cast<float>(f - offset * r);
+  }
+
+  vtkdf::ContourInput input;
+  int dims[3], extent[6];
+  field->GetDimensions(dims);
+  field->GetExtent(extent);
+  for (int a = 0; a < 3; ++a)
+  {
+    input.Grid.Origin[a] = field->GetOrigin()[a];
+    input.Grid.Spacing[a] = field->GetSpacing()[a];
+    input.Grid.Whole.Lo[a] = extent[2 * a];
+    input.Grid.Whole.Hi[a] = extent[2 * a + 1];
+  }
+  input.Distance = distance.data();
+  input.Region = region.data();
+  // VTK's marching cubes table, as plain rows.
+  std::vector<int> table(256 * 16);
+  vtkMarchingCubesTriangleCases* cases = vtkMarchingCubesTriangleCases::GetCases();
+  for (int c = 0; c < 256; ++c)
+  {
+    std::copy(cases[c].edges, cases[c].edges + 16, table.begin() + 16 * c);
+  }
+  input.Cases = reinterpret_cast<const int(*)[16]>(table.data());
+  vtkdf::ContourResult result;
+  vtkdf::ContourSegmented(input, result);
+  this->LastMarchingCells = result.MarchingCells;
+  this->LastOtherCells = result.OtherCells;
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(result.Points.size() / 3));
+  for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p)
+  {
+    points->SetPoint(p, &result.Points[3 * p]);
+  }
+  vtkNew<vtkCellArray> triangles;
+  vtkNew<vtkIntArray> pairs;
+  pairs->SetName("Regions");
+  pairs->SetNumberOfComponents(2);
+  const vtkIdType count = static_cast<vtkIdType>(result.Triangles.size() / 3);
+  triangles->AllocateExact(count, 3 * count);
+  pairs->SetNumberOfTuples(count);
+  for (vtkIdType t = 0; t < count; ++t)
+  {
+    const vtkIdType ids[3] = {
+      result.Triangles[3 * t], result.Triangles[3 * t + 1], result.Triangles[3 * t + 2]
+    };
+    triangles->InsertNextCell(3, ids);
+    pairs->SetTypedComponent(t, 0, result.Pairs[2 * t]);
+    pairs->SetTypedComponent(t, 1, result.Pairs[2 * t + 1]);
+  }
+  output->SetPoints(points);
+  output->SetPolys(triangles);
+  output->GetCellData()->AddArray(pairs);
+  return 1;
+}
+
+void vtkSegmentedDistanceContour::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "LastMarchingCells: " << this->LastMarchingCells << "\n";
+  os << indent << "LastOtherCells: " << this->LastOtherCells << "\n";
+}

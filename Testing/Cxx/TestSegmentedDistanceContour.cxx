@@ -1,0 +1,340 @@
+// vtkSegmentedDistanceContour on segmented fields (vtkSegmentedDistanceField, CPU):
+// - closed meshes (bunny_small, a sphere): every sample's region on the pseudonormal's
+//   side, and the same surface as vtkFlyingEdges3D at 0 on the signed field (same
+//   triangle count, every point within 1e-4 spacing of one of its points and back);
+// - an open disk: no point of the surface farther than a spacing from the disk, where
+//   the signed field's zero level set (vtkLinearFactorDistanceField + vtkFlyingEdges3D,
+//   shown side by side) closes the hole with a sheet far from it; every disk vertex within
+//   a spacing and a half of the surface (its rim: the surface stops where eq. 7 says);
+// - a T-junction of three half-planes: the three region pairs present, and the junction
+//   line (points within a spacing of the axis along its length);
+// - plane, teapot, scad_back_to_back (bundled data): every surface point within a
+//   spacing of the input; the input's vertices within the bound listed per mesh (one
+//   spacing where the surface is smooth; more at sharp apices and open rims, which
+//   marching cubes rounds: the figures are printed);
+// - bad input: no SegmentedDistance, no RegionOffset: clear errors.
+//
+// usage: TestSegmentedDistanceContour DATA_DIR
+#include "TestSupport.h"
+#include "vtkLinearFactorDistanceField.h"
+#include "vtkSegmentedDistanceContour.h"
+#include "vtkSegmentedDistanceField.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkFlyingEdges3D.h"
+#include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkStaticCellLocator.h"
+#include "vtkStaticPointLocator.h"
+#include "vtkTriangleFilter.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include <cmath>
+#include <set>
+#include <string>
+
+namespace
+{
+vtkSmartPointer<vtkImageData> Segment(vtkPolyData* mesh, int resolution)
+{
+  vtkNew<vtkSegmentedDistanceField> f;
+  f->SetInputData(mesh);
+  f->SetResolution(resolution);
+  f->SetBackendToCPU();
+  f->Update();
+  return f->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> Contour(vtkImageData* field)
+{
+  vtkNew<vtkSegmentedDistanceContour> c;
+  c->SetInputData(field);
+  c->Update();
+  return c->GetOutput();
+}
+
+/// The largest distance from the points of `from` to the surface `to`, in spacings.
+double Farthest(vtkPolyData* from, vtkPolyData* to, double h, double* where = nullptr)
+{
+  if (to->GetNumberOfCells() == 0)
+  {
+    return HUGE_VAL;
+  }
+  vtkNew<vtkStaticCellLocator> locator;
+  locator->SetDataSet(to);
+  locator->BuildLocator();
+  double worst = 0;
+  for (vtkIdType p = 0; p < from->GetNumberOfPoints(); ++p)
+  {
+    double x[3], closest[3], d2;
+    vtkIdType cell;
+    int sub;
+    from->GetPoint(p, x);
+    locator->FindClosestPoint(x, closest, cell, sub, d2);
+    if (std::sqrt(d2) / h > worst)
+    {
+      worst = std::sqrt(d2) / h;
+      if (where)
+      {
+        std::copy(x, x + 3, where);
+      }
+    }
+  }
+  return worst;
+}
+
+vtkSmartPointer<vtkPolyData> Read(const std::string& path)
+{
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> Sphere()
+{
+  vtkNew<vtkSphereSource> source;
+  source->SetCenter(0.02, -0.03, 0.01);
+  source->SetThetaResolution(48);
+  source->SetPhiResolution(32);
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(source->GetOutputPort());
+  triangles->Update();
+  return triangles->GetOutput();
+}
+
+/// Against vtkFlyingEdges3D on the signed field (region 1, the inside, negative).
+void CheckClosed(const std::string& name, vtkPolyData* mesh, int resolution)
+{
+  auto field = Segment(mesh, resolution);
+  auto surface = Contour(field);
+  vtkDataArray* d = field->GetPointData()->GetArray("Distance");
+  vtkDataArray* r = field->GetPointData()->GetArray("RegionIndex");
+  vtkNew<vtkFloatArray> signedField;
+  signedField->SetName("Signed");
+  for (vtkIdType v = 0; v < d->GetNumberOfTuples(); ++v)
+  {
+    signedField->InsertNextValue(
+      static_cast<float>(r->GetTuple1(v) == 1 ? -d->GetTuple1(v) : d->GetTuple1(v)));
+  }
+  vtkNew<vtkImageData> image;
+  image->CopyStructure(field);
+  image->GetPointData()->SetScalars(signedField);
+  vtkNew<vtkFlyingEdges3D> fe;
+  fe->SetInputData(image);
+  fe->SetValue(0, 0);
+  fe->Update();
+  vtkPolyData* reference = fe->GetOutput();
+  const double h = field->GetSpacing()[0];
+  // Point sets within 1e-4 h both ways.
+  auto within = [h](vtkPolyData* a, vtkPolyData* b)
+  {
+    vtkNew<vtkStaticPointLocator> locator;
+    locator->SetDataSet(b);
+    locator->BuildLocator();
+    double worst = 0;
+    for (vtkIdType p = 0; p < a->GetNumberOfPoints(); ++p)
+    {
+      double x[3], y[3];
+      a->GetPoint(p, x);
+      const vtkIdType q = locator->FindClosestPoint(x);
+      b->GetPoint(q, y);
+      worst = std::max(worst, std::sqrt(vtkMath::Distance2BetweenPoints(x, y)) / h);
+    }
+    return worst;
+  };
+  const double ab = within(surface, reference), ba = within(reference, surface);
+  // The regions against the pseudonormal sign, exact for a closed mesh: the inside is
+  // region 1 (the back of the outward patch), at every sample.
+  vtkNew<vtkLinearFactorDistanceField> pseudo;
+  pseudo->SetInputData(mesh);
+  pseudo->SetResolution(resolution);
+  pseudo->SetSignModeToPseudoNormal();
+  pseudo->SetBackendToCPU();
+  pseudo->Update();
+  vtkDataArray* sign = pseudo->GetOutput()->GetPointData()->GetArray("Distance");
+  long long mislabelled = 0;
+  for (vtkIdType v = 0; sign && v < sign->GetNumberOfTuples(); ++v)
+  {
+    mislabelled += sign->GetTuple1(v) != 0 && (sign->GetTuple1(v) < 0) != (r->GetTuple1(v) == 1);
+  }
+  CHECK(sign && sign->GetNumberOfTuples() == r->GetNumberOfTuples() && mislabelled == 0,
+    "%s: %lld samples in the wrong region",
+    name.c_str(),
+    mislabelled);
+  std::printf("%-14s closed, %d regions, %lld samples against the pseudonormal's side: %lld "
+              "triangles (flying edges %lld), points within %.2g and %.2g spacings of each "
+              "other's\n",
+    name.c_str(),
+    static_cast<int>(field->GetFieldData()->GetArray("RegionCount")->GetTuple1(0)),
+    mislabelled,
+    static_cast<long long>(surface->GetNumberOfCells()),
+    static_cast<long long>(reference->GetNumberOfCells()),
+    ab,
+    ba);
+  CHECK(surface->GetNumberOfCells() == reference->GetNumberOfCells() && ab < 1e-4 && ba < 1e-4,
+    "%s: not the flying-edges surface",
+    name.c_str());
+}
+
+/// Surface points within a spacing of the input; input vertices within `bound`.
+void CheckOpen(const std::string& name, vtkPolyData* mesh, int resolution, double bound)
+{
+  auto field = Segment(mesh, resolution);
+  auto surface = Contour(field);
+  const double h = field->GetSpacing()[0];
+  double where[3] = { 0, 0, 0 };
+  const double out = Farthest(surface, mesh, h);
+  const double in = Farthest(mesh, surface, h, where);
+  std::printf("%-14s %lld triangles: surface to input %.3f spacings, input to surface %.3f "
+              "(at %g %g %g; bound %.2f)\n",
+    name.c_str(),
+    static_cast<long long>(surface->GetNumberOfCells()),
+    out,
+    in,
+    where[0],
+    where[1],
+    where[2],
+    bound);
+  CHECK(out <= 1, "%s: a surface point %.3f spacings from the input", name.c_str(), out);
+  CHECK(in <= bound, "%s: an input vertex %.3f spacings from the surface", name.c_str(), in);
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (!testsupport::HasArguments(argc, argv, 1, "DATA_DIR"))
+  {
+    return 2;
+  }
+  const std::string data = argv[1];
+  CheckClosed("bunny_small", Read(data + "/bunny_small.vtp"), 28);
+  CheckClosed("sphere", Sphere(), 20);
+
+  {
+    // An open disk: the segmented surface against the signed field's zero level set.
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> polys;
+    const int n = 32;
+    const vtkIdType centre = points->InsertNextPoint(0, 0, 0.013);
+    for (int k = 0; k < n; ++k)
+    {
+      points->InsertNextPoint(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n), 0.013);
+    }
+    for (int k = 0; k < n; ++k)
+    {
+      const vtkIdType t[3] = { centre, 1 + k, 1 + (k + 1) % n };
+      polys->InsertNextCell(3, t);
+    }
+    vtkNew<vtkPolyData> disk;
+    disk->SetPoints(points);
+    disk->SetPolys(polys);
+    CheckOpen("open disk", disk, 24, 1.5);
+    vtkNew<vtkLinearFactorDistanceField> signedField;
+    signedField->SetInputData(disk);
+    signedField->SetResolution(24);
+    signedField->SetSignModeToPseudoNormal();
+    signedField->SetBackendToCPU();
+    vtkNew<vtkFlyingEdges3D> fe;
+    fe->SetInputConnection(signedField->GetOutputPort());
+    fe->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Distance");
+    fe->SetValue(0, 0);
+    fe->Update();
+    const double h = signedField->GetOutput()->GetSpacing()[0];
+    const double spurious = Farthest(fe->GetOutput(), disk, h);
+    std::printf("open disk      the signed field's zero level set: a point %.2f spacings from "
+                "the disk (a spurious sheet)\n",
+      spurious);
+    CHECK(spurious > 2, "the signed field's level set shows no spurious sheet (%.2f)", spurious);
+  }
+
+  {
+    // A T-junction: three half-planes around the z axis.
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> polys;
+    for (int s = 0; s < 3; ++s)
+    {
+      const double a = 0.2 + (s == 0 ? 0 : (s == 1 ? 1.3 : 3.4));
+      const double c = std::cos(a), sn = std::sin(a);
+      const vtkIdType o = points->InsertNextPoint(0, 0, -1);
+      points->InsertNextPoint(c, sn, -1);
+      points->InsertNextPoint(c, sn, 1);
+      points->InsertNextPoint(0, 0, 1);
+      const vtkIdType t0[3] = { o, o + 1, o + 2 }, t1[3] = { o, o + 2, o + 3 };
+      polys->InsertNextCell(3, t0);
+      polys->InsertNextCell(3, t1);
+    }
+    vtkNew<vtkPolyData> junction;
+    junction->SetPoints(points);
+    junction->SetPolys(polys);
+    auto field = Segment(junction, 28);
+    auto surface = Contour(field);
+    const double h = field->GetSpacing()[0];
+    std::set<std::pair<int, int>> pairs;
+    vtkDataArray* regions = surface->GetCellData()->GetArray("Regions");
+    for (vtkIdType t = 0; regions && t < regions->GetNumberOfTuples(); ++t)
+    {
+      pairs.emplace(static_cast<int>(regions->GetComponent(t, 0)),
+        static_cast<int>(regions->GetComponent(t, 1)));
+    }
+    // The junction line: surface points near the axis at several heights.
+    int heights = 0;
+    for (const double z : { -0.6, -0.2, 0.2, 0.6 })
+    {
+      bool near = false;
+      for (vtkIdType p = 0; p < surface->GetNumberOfPoints() && !near; ++p)
+      {
+        double x[3];
+        surface->GetPoint(p, x);
+        near = std::hypot(x[0], x[1]) < h && std::fabs(x[2] - z) < h;
+      }
+      heights += near;
+    }
+    const double out = Farthest(surface, junction, h);
+    std::printf("T-junction     %lld triangles, %zu region pairs, the junction line at %d of 4 "
+                "heights, surface to input %.3f spacings\n",
+      static_cast<long long>(surface->GetNumberOfCells()),
+      pairs.size(),
+      heights,
+      out);
+    CHECK(pairs.size() == 3 && heights == 4 && out <= 1, "T-junction: sheets or junction missing");
+  }
+
+  CheckOpen("plane", Read(data + "/plane.vtp"), 32, 1.0);
+  CheckOpen("teapot", Read(data + "/teapot.vtp"), 32, 1.5);
+  CheckOpen("scad_back_to_back", Read(data + "/scad_back_to_back.vtp"), 32, 2.5);
+
+  {
+    // Bad input.
+    vtkNew<vtkImageData> bare;
+    bare->SetDimensions(4, 4, 4);
+    vtkNew<vtkSegmentedDistanceContour> c;
+    testsupport::MessageRecorder recorder(c);
+    c->SetInputData(bare);
+    c->Update();
+    CHECK(recorder.Errors.find("SegmentedDistance") != std::string::npos,
+      "no SegmentedDistance: %s",
+      recorder.Errors.c_str());
+    vtkNew<vtkFloatArray> f;
+    f->SetName("SegmentedDistance");
+    f->SetNumberOfTuples(64);
+    f->FillValue(1);
+    bare->GetPointData()->AddArray(f);
+    recorder.Errors.clear();
+    c->Modified();
+    c->Update();
+    CHECK(recorder.Errors.find("RegionOffset") != std::string::npos,
+      "no RegionOffset: %s",
+      recorder.Errors.c_str());
+  }
+  return testsupport::Verdict();
+}
