@@ -140,6 +140,16 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
   return mesh;
 }
 
+/// Writes an RGB image as PNG; false when the file cannot be written.
+bool WritePNG(vtkImageData* image, const std::string& path)
+{
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(image);
+  writer->Write();
+  return writer->GetErrorCode() == 0;
+}
+
 /// The middle z slice of Distance, coloured (blue inside, white at the surface, warm
 /// outside) with black isolines, magnified to at least 512 pixels, written as PNG.
 bool WriteSlicePNG(vtkImageData* field, const std::string& path)
@@ -231,11 +241,7 @@ bool WriteSlicePNG(vtkImageData* field, const std::string& path)
       }
     }
   }
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(image);
-  writer->Write();
-  return writer->GetErrorCode() == 0;
+  return WritePNG(image, path);
 }
 /// The options every subcommand shares: output, grid, backend, timing.
 struct CommonOptions
@@ -645,11 +651,7 @@ bool WriteMedialPNG(vtkImageData* field, const std::string& path)
       pixel[2] = medial->GetValue(v) ? 20 : grey;
     }
   }
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(image);
-  writer->Write();
-  return writer->GetErrorCode() == 0;
+  return WritePNG(image, path);
 }
 
 int Medial(int argc, char* argv[])
@@ -765,11 +767,7 @@ bool WriteRegionPNG(vtkImageData* field, double delta, const std::string& path)
       }
     }
   }
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(image);
-  writer->Write();
-  return writer->GetErrorCode() == 0;
+  return WritePNG(image, path);
 }
 
 int Segment(int argc, char* argv[])
