@@ -375,22 +375,26 @@ void SegmentRegions(const SegmentInput& input,
     ++result.Merges;
   }
 
-  // Regions numbered by their lowest label among the samples.
-  std::vector<int64_t> present;
+  // Regions numbered by their lowest label among the samples (labels are dense: below
+  // twice the patch count).
+  const int64_t labels = 2 * input.Patches->PatchCount;
+  std::vector<uint8_t> present(labels, 0);
   for (int64_t v = 0; v < count; ++v)
   {
     if (label[v] >= 0)
     {
-      present.push_back(label[v]);
+      present[label[v]] = 1;
     }
   }
-  std::sort(present.begin(), present.end());
-  present.erase(std::unique(present.begin(), present.end()), present.end());
   std::unordered_map<int64_t, int32_t> number; // root -> region
-  std::unordered_map<int64_t, int32_t> regionOfLabel;
+  std::vector<int32_t> regionOfLabel(labels, -1);
   result.Sides.clear();
-  for (const int64_t l : present)
+  for (int64_t l = 0; l < labels; ++l)
   {
+    if (!present[l])
+    {
+      continue;
+    }
     const int64_t root = find(l);
     auto it = number.find(root);
     if (it == number.end())
@@ -403,13 +407,15 @@ void SegmentRegions(const SegmentInput& input,
   }
   result.RegionCount = static_cast<int32_t>(result.Sides.size());
   result.Region.assign(count, -1);
-  for (int64_t v = 0; v < count; ++v)
-  {
-    if (label[v] >= 0)
+  run(count,
+    1 << 16,
+    [&](int64_t begin, int64_t end)
     {
-      result.Region[v] = regionOfLabel[label[v]];
-    }
-  }
+      for (int64_t v = begin; v < end; ++v)
+      {
+        result.Region[v] = label[v] >= 0 ? regionOfLabel[label[v]] : -1;
+      }
+    });
 }
 
 } // namespace vtkdf
