@@ -8,6 +8,10 @@
 //   a spacing and a half of the surface (its rim: the surface stops where eq. 7 says);
 // - a T-junction of three half-planes: the three region pairs present, and the junction
 //   line (points within a spacing of the axis along its length);
+// - max3ds_export (closed, non-manifold edges): within a cell diagonal of the middle of
+//   every such edge a surface vertex where two or more region pairs meet (a junction
+//   line; the farthest, by short edges of a small feature, are printed), and every surface
+//   point within a spacing of the input;
 // - plane, teapot, scad_back_to_back (bundled data): every surface point within a
 //   spacing of the input; the input's vertices within the bound listed per mesh (one
 //   spacing where the surface is smooth; more at sharp apices and open rims, which
@@ -26,6 +30,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkFlyingEdges3D.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkMath.h"
 #include "vtkPointData.h"
@@ -39,8 +44,10 @@
 #include "vtkXMLPolyDataReader.h"
 
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -307,6 +314,96 @@ int main(int argc, char* argv[])
       heights,
       out);
     CHECK(pairs.size() == 3 && heights == 4 && out <= 1, "T-junction: sheets or junction missing");
+  }
+
+  {
+    // max3ds_export: the junction lines where the input has edges of three or more
+    // faces: near each such edge's middle, a surface vertex joining triangles of at least
+    // two region pairs.
+    auto mesh = Read(data + "/max3ds_export.vtp");
+    auto field = Segment(mesh, 48);
+    auto surface = Contour(field);
+    const double h = field->GetSpacing()[0];
+    vtkNew<vtkStaticPointLocator> points;
+    points->SetDataSet(mesh);
+    points->BuildLocator();
+    std::map<std::pair<vtkIdType, vtkIdType>, int> uses;
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+    {
+      mesh->GetCellPoints(c, ids);
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        // Ids of the same position as one (the mesh may repeat points).
+        double x[3], y[3];
+        mesh->GetPoint(ids->GetId(k), x);
+        mesh->GetPoint(ids->GetId((k + 1) % ids->GetNumberOfIds()), y);
+        const vtkIdType a = points->FindClosestPoint(x), b = points->FindClosestPoint(y);
+        ++uses[{ std::min(a, b), std::max(a, b) }];
+      }
+    }
+    // Per surface point, the region pairs of its triangles.
+    std::vector<std::set<std::pair<int, int>>> pairsAt(surface->GetNumberOfPoints());
+    vtkDataArray* regions = surface->GetCellData()->GetArray("Regions");
+    for (vtkIdType t = 0; t < surface->GetNumberOfCells(); ++t)
+    {
+      surface->GetCellPoints(t, ids);
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        pairsAt[ids->GetId(k)].emplace(static_cast<int>(regions->GetComponent(t, 0)),
+          static_cast<int>(regions->GetComponent(t, 1)));
+      }
+    }
+    int junctions = 0, found = 0;
+    for (const auto& edge : uses)
+    {
+      if (edge.second < 3)
+      {
+        continue;
+      }
+      ++junctions;
+      double x[3], y[3], m[3];
+      mesh->GetPoint(edge.first.first, x);
+      mesh->GetPoint(edge.first.second, y);
+      for (int a = 0; a < 3; ++a)
+      {
+        m[a] = 0.5 * (x[a] + y[a]);
+      }
+      double nearest = HUGE_VAL;
+      for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p)
+      {
+        double s[3];
+        surface->GetPoint(p, s);
+        if (pairsAt[p].size() >= 2)
+        {
+          nearest = std::min(nearest, std::sqrt(vtkMath::Distance2BetweenPoints(s, m)) / h);
+        }
+      }
+      // A junction vertex is the mean of a cell's interface points: within the cell that
+      // the junction line crosses, so within a cell diagonal of the edge.
+      found += nearest < std::sqrt(3.0);
+      if (nearest >= 1)
+      {
+        std::printf("  edge of %d faces, %.2f spacings long, at %g %g %g: nearest junction "
+                    "vertex %.2f spacings away\n",
+          edge.second,
+          std::sqrt(vtkMath::Distance2BetweenPoints(x, y)) / h,
+          m[0],
+          m[1],
+          m[2],
+          nearest);
+      }
+    }
+    const double out = Farthest(surface, mesh, h);
+    std::printf("max3ds_export  %d regions, %lld triangles, surface to input %.3f spacings; a "
+                "junction vertex near %d of the %d non-manifold edges\n",
+      static_cast<int>(field->GetFieldData()->GetArray("RegionCount")->GetTuple1(0)),
+      static_cast<long long>(surface->GetNumberOfCells()),
+      out,
+      found,
+      junctions);
+    CHECK(junctions > 0 && found == junctions && out <= 1,
+      "max3ds_export: junction lines missing or a surface point off the input");
   }
 
   CheckOpen("plane", Read(data + "/plane.vtp"), 32, 1.0);
