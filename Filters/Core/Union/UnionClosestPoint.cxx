@@ -1,0 +1,544 @@
+#include "UnionClosestPoint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace vtkdf
+{
+
+namespace
+{
+double Dot(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+struct V2
+{
+  double X, Y;
+};
+
+/// a . y <= B on a face's plane (2D coordinates).
+struct HalfPlane
+{
+  double A[2];
+  double B;
+};
+
+/// A convex polygon whose edge k (corner k to k + 1) comes from constraint Source[k]
+/// (-1: the face's own edges).
+struct Polygon
+{
+  std::vector<V2> Corners;
+  std::vector<int> Source;
+};
+
+Polygon Clip(const Polygon& in, const HalfPlane& h, int id)
+{
+  Polygon out;
+  const size_t n = in.Corners.size();
+  for (size_t k = 0; k < n; ++k)
+  {
+    const V2 a = in.Corners[k], b = in.Corners[(k + 1) % n];
+    const double sa = h.A[0] * a.X + h.A[1] * a.Y - h.B;
+    const double sb = h.A[0] * b.X + h.A[1] * b.Y - h.B;
+    const V2 cut =
+      sa == sb ? a : V2{ a.X + (b.X - a.X) * sa / (sa - sb), a.Y + (b.Y - a.Y) * sa / (sa - sb) };
+    if (sa <= 0)
+    {
+      out.Corners.push_back(a);
+      out.Source.push_back(in.Source[k]);
+      if (sb > 0)
+      {
+        out.Corners.push_back(cut); // leaving: the next edge runs along the cut
+        out.Source.push_back(id);
+      }
+    }
+    else if (sb <= 0)
+    {
+      out.Corners.push_back(cut); // entering
+      out.Source.push_back(in.Source[k]);
+    }
+  }
+  if (out.Corners.size() < 3)
+  {
+    out.Corners.clear();
+    out.Source.clear();
+  }
+  return out;
+}
+
+/// The parameters t of the line p + t e where every constraint holds, as [lo, hi]
+/// (unbounded: +-HUGE_VAL; lo > hi when none). Not clipped to the segment: a covering
+/// that runs past an end must not leave that end uncovered.
+void Covered(const std::vector<HalfPlane>& constraints,
+  const V2& p,
+  const V2& e,
+  double& lo,
+  double& hi)
+{
+  lo = -HUGE_VAL, hi = HUGE_VAL;
+  for (const HalfPlane& h : constraints)
+  {
+    const double alpha = h.A[0] * e.X + h.A[1] * e.Y;
+    const double beta = h.B - (h.A[0] * p.X + h.A[1] * p.Y);
+    if (alpha > 0)
+    {
+      hi = std::min(hi, beta / alpha);
+    }
+    else if (alpha < 0)
+    {
+      lo = std::max(lo, beta / alpha);
+    }
+    else if (beta < 0)
+    {
+      lo = HUGE_VAL, hi = -HUGE_VAL;
+    }
+  }
+}
+} // namespace
+
+bool ConvexPiece::Build(const std::vector<double>& points,
+  const std::vector<std::vector<int64_t>>& faces,
+  double tolerance,
+  std::string& error)
+{
+  this->Faces.clear();
+  this->Planes.clear();
+  double centre[3] = { 0, 0, 0 };
+  int64_t count = 0;
+  std::map<std::pair<int64_t, int64_t>, int> edges;
+  for (const auto& face : faces)
+  {
+    for (size_t k = 0; k < face.size(); ++k)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        centre[a] += points[3 * face[k] + a];
+      }
+      ++count;
+      const int64_t x = face[k], y = face[(k + 1) % face.size()];
+      ++edges[{ std::min(x, y), std::max(x, y) }];
+    }
+  }
+  if (faces.size() < 4 || count == 0)
+  {
+    error = "fewer than 4 faces";
+    return false;
+  }
+  for (const auto& e : edges)
+  {
+    if (e.second != 2)
+    {
+      error = "open or non-manifold: edge " + std::to_string(e.first.first) + "-" +
+        std::to_string(e.first.second) + " is used by " + std::to_string(e.second) + " faces";
+      return false;
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    centre[a] /= count;
+    this->Lo[a] = HUGE_VAL;
+    this->Hi[a] = -HUGE_VAL;
+  }
+  for (const auto& face : faces)
+  {
+    // Newell's normal, then outward (away from the corners' centre).
+    double n[3] = { 0, 0, 0 }, mid[3] = { 0, 0, 0 };
+    for (size_t k = 0; k < face.size(); ++k)
+    {
+      const double* p = &points[3 * face[k]];
+      const double* q = &points[3 * face[(k + 1) % face.size()]];
+      n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+      n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+      n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+      for (int a = 0; a < 3; ++a)
+      {
+        mid[a] += p[a] / face.size();
+      }
+    }
+    const double length = std::sqrt(Dot(n, n));
+    if (!(length > 0))
+    {
+      error = "a face has no area";
+      return false;
+    }
+    const double out[3] = { mid[0] - centre[0], mid[1] - centre[1], mid[2] - centre[2] };
+    const double sign = Dot(n, out) < 0 ? -1 : 1;
+    std::vector<double> corners;
+    for (size_t k = 0; k < face.size(); ++k)
+    {
+      const int64_t id = sign > 0 ? face[k] : face[face.size() - 1 - k];
+      corners.insert(corners.end(), &points[3 * id], &points[3 * id] + 3);
+      for (int a = 0; a < 3; ++a)
+      {
+        this->Lo[a] = std::min(this->Lo[a], points[3 * id + a]);
+        this->Hi[a] = std::max(this->Hi[a], points[3 * id + a]);
+      }
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      n[a] *= sign / length;
+    }
+    this->Planes.insert(this->Planes.end(), { n[0], n[1], n[2], Dot(n, mid) });
+    this->Faces.push_back(corners);
+  }
+  // Convex: every corner on the inner side of every face's plane; not flat.
+  bool deep = false;
+  for (size_t f = 0; f < this->Faces.size(); ++f)
+  {
+    const double* plane = &this->Planes[4 * f];
+    for (const auto& face : this->Faces)
+    {
+      for (size_t k = 0; k < face.size(); k += 3)
+      {
+        const double s = Dot(plane, &face[k]) - plane[3];
+        if (s > tolerance)
+        {
+          error = "not convex: a corner lies " + std::to_string(s) + " outside a face's plane";
+          return false;
+        }
+        deep = deep || s < -tolerance;
+      }
+    }
+  }
+  if (!deep)
+  {
+    error = "flat: every corner lies in every face's plane";
+    return false;
+  }
+  return true;
+}
+
+bool UnionClosestPoint::Contains(const double x[3]) const
+{
+  for (const ConvexPiece& piece : this->Pieces)
+  {
+    bool in = true;
+    for (size_t f = 0; f < piece.Faces.size() && in; ++f)
+    {
+      in = Dot(&piece.Planes[4 * f], x) - piece.Planes[4 * f + 3] <= this->Tolerance;
+    }
+    if (in)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+namespace
+{
+struct Frame
+{
+  double Origin[3], U[3], V[3], N[3];
+  V2 To2D(const double x[3]) const
+  {
+    const double d[3] = { x[0] - Origin[0], x[1] - Origin[1], x[2] - Origin[2] };
+    return { Dot(d, U), Dot(d, V) };
+  }
+};
+
+/// The nearest point to p of segment a + t e, t in what is left of [0, 1] once the open
+/// intervals `removed` (any range) are taken out; false when nothing is left.
+bool NearestOnRest(const V2& a,
+  const V2& e,
+  std::vector<std::pair<double, double>> removed,
+  const V2& p,
+  double& best,
+  V2& at)
+{
+  std::sort(removed.begin(), removed.end());
+  const double ee = e.X * e.X + e.Y * e.Y;
+  const double ideal = ee > 0 ? ((p.X - a.X) * e.X + (p.Y - a.Y) * e.Y) / ee : 0;
+  bool any = false;
+  auto consider = [&](double lo, double hi)
+  {
+    const double t = std::min(hi, std::max(lo, ideal));
+    const V2 x{ a.X + t * e.X, a.Y + t * e.Y };
+    const double d2 = (x.X - p.X) * (x.X - p.X) + (x.Y - p.Y) * (x.Y - p.Y);
+    if (!any || d2 < best)
+    {
+      best = d2;
+      at = x;
+    }
+    any = true;
+  };
+  double free = 0; // the start of what is not yet known to be covered
+  for (const auto& r : removed)
+  {
+    if (!(r.first < r.second) || r.second <= free)
+    {
+      continue;
+    }
+    if (r.first > 1)
+    {
+      break;
+    }
+    if (r.first >= free)
+    {
+      consider(free, r.first); // [free, r.first]: r.first is outside the open interval
+    }
+    free = r.second;
+    if (free > 1)
+    {
+      return any;
+    }
+  }
+  consider(free, 1);
+  return true;
+}
+} // namespace
+
+UnionAnswer UnionClosestPoint::Query(const double o[3]) const
+{
+  UnionAnswer answer;
+  answer.Inside = this->Contains(o);
+  const double tol = this->Tolerance;
+  // Faces by their distance from o (a lower bound of any boundary point on them).
+  struct Candidate
+  {
+    double Bound;
+    int64_t Piece, Face;
+  };
+  std::vector<Candidate> order;
+  std::vector<Frame> frames;
+  std::vector<std::vector<V2>> outlines;
+  for (size_t i = 0; i < this->Pieces.size(); ++i)
+  {
+    const ConvexPiece& piece = this->Pieces[i];
+    for (size_t f = 0; f < piece.Faces.size(); ++f)
+    {
+      const std::vector<double>& c = piece.Faces[f];
+      Frame frame;
+      std::copy(&c[0], &c[0] + 3, frame.Origin);
+      std::copy(&piece.Planes[4 * f], &piece.Planes[4 * f] + 3, frame.N);
+      double u[3] = { c[3] - c[0], c[4] - c[1], c[5] - c[2] };
+      const double lu = std::sqrt(Dot(u, u));
+      for (int a = 0; a < 3; ++a)
+      {
+        frame.U[a] = u[a] / lu;
+      }
+      const double* n = frame.N;
+      frame.V[0] = n[1] * frame.U[2] - n[2] * frame.U[1];
+      frame.V[1] = n[2] * frame.U[0] - n[0] * frame.U[2];
+      frame.V[2] = n[0] * frame.U[1] - n[1] * frame.U[0];
+      std::vector<V2> outline;
+      for (size_t k = 0; k < c.size(); k += 3)
+      {
+        outline.push_back(frame.To2D(&c[k]));
+      }
+      // Distance from o to the face polygon.
+      const V2 p = frame.To2D(o);
+      const double h = Dot(n, o) - piece.Planes[4 * f + 3];
+      bool inside = true;
+      double best = HUGE_VAL;
+      V2 unused;
+      for (size_t k = 0; k < outline.size(); ++k)
+      {
+        const V2 a = outline[k], b = outline[(k + 1) % outline.size()];
+        const V2 e{ b.X - a.X, b.Y - a.Y };
+        inside = inside && (e.Y * (p.X - a.X) - e.X * (p.Y - a.Y)) <= 0;
+        double d2;
+        NearestOnRest(a, e, {}, p, d2, unused);
+        best = std::min(best, d2);
+      }
+      order.push_back({ std::sqrt(h * h + (inside ? 0 : best)),
+        static_cast<int64_t>(i),
+        static_cast<int64_t>(frames.size()) });
+      frames.push_back(frame);
+      outlines.push_back(outline);
+    }
+  }
+  std::vector<std::pair<int64_t, int64_t>> faceOf; // frame index -> (piece, face)
+  for (size_t i = 0; i < this->Pieces.size(); ++i)
+  {
+    for (size_t f = 0; f < this->Pieces[i].Faces.size(); ++f)
+    {
+      faceOf.emplace_back(i, f);
+    }
+  }
+  std::sort(order.begin(),
+    order.end(),
+    [](const Candidate& a, const Candidate& b)
+    { return a.Bound != b.Bound ? a.Bound < b.Bound : a.Face < b.Face; });
+
+  double best = HUGE_VAL;
+  for (const Candidate& candidate : order)
+  {
+    if (candidate.Bound >= best)
+    {
+      break;
+    }
+    ++answer.FacesVisited;
+    const int64_t i = candidate.Piece;
+    const int64_t f = faceOf[candidate.Face].second;
+    const ConvexPiece& piece = this->Pieces[i];
+    const Frame& frame = frames[candidate.Face];
+    const std::vector<V2>& outline = outlines[candidate.Face];
+    double faceLo[3], faceHi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      faceLo[a] = HUGE_VAL, faceHi[a] = -HUGE_VAL;
+      for (size_t k = 0; k < piece.Faces[f].size(); k += 3)
+      {
+        faceLo[a] = std::min(faceLo[a], piece.Faces[f][k + a]);
+        faceHi[a] = std::max(faceHi[a], piece.Faces[f][k + a]);
+      }
+    }
+    // The sections S_j that cover the face's outer side, and their parts within the face.
+    std::vector<std::vector<HalfPlane>> sections;
+    std::vector<Polygon> parts;
+    Polygon face;
+    face.Corners = outline;
+    face.Source.assign(outline.size(), -1);
+    for (size_t j = 0; j < this->Pieces.size(); ++j)
+    {
+      const ConvexPiece& other = this->Pieces[j];
+      if (j == static_cast<size_t>(i) || other.Lo[0] > faceHi[0] + tol ||
+        other.Hi[0] < faceLo[0] - tol || other.Lo[1] > faceHi[1] + tol ||
+        other.Hi[1] < faceLo[1] - tol || other.Lo[2] > faceHi[2] + tol ||
+        other.Hi[2] < faceLo[2] - tol)
+      {
+        continue;
+      }
+      std::vector<HalfPlane> section;
+      bool empty = false;
+      for (size_t k = 0; k < other.Faces.size() && !empty; ++k)
+      {
+        const double* plane = &other.Planes[4 * k];
+        const double a[2] = { Dot(plane, frame.U), Dot(plane, frame.V) };
+        const double b = plane[3] - Dot(plane, frame.Origin);
+        // Strict where the plane faces like the face (x + e n must stay inside).
+        const double slack = Dot(plane, frame.N) > 0 ? -tol : tol;
+        if (std::hypot(a[0], a[1]) < 1e-12)
+        {
+          empty = !(0 <= b + slack);
+          continue;
+        }
+        section.push_back({ { a[0], a[1] }, b + slack });
+      }
+      if (empty)
+      {
+        continue;
+      }
+      Polygon part = face;
+      for (size_t k = 0; k < section.size() && !part.Corners.empty(); ++k)
+      {
+        part = Clip(part, section[k], static_cast<int>(k));
+      }
+      if (part.Corners.empty())
+      {
+        continue;
+      }
+      sections.push_back(section);
+      parts.push_back(part);
+    }
+
+    const V2 p = frame.To2D(o);
+    const double h = Dot(frame.N, o) - piece.Planes[4 * f + 3];
+    double planar = HUGE_VAL;
+    V2 nearest{ 0, 0 };
+    // P itself, when in the face and in no section.
+    bool inFace = true;
+    for (size_t k = 0; k < outline.size(); ++k)
+    {
+      const V2 a = outline[k], b = outline[(k + 1) % outline.size()];
+      const double e[2] = { b.X - a.X, b.Y - a.Y };
+      inFace = inFace && (e[1] * (p.X - a.X) - e[0] * (p.Y - a.Y)) / std::hypot(e[0], e[1]) <= tol;
+    }
+    bool covered = false;
+    for (const auto& section : sections)
+    {
+      bool in = true;
+      for (const HalfPlane& hp : section)
+      {
+        in = in && hp.A[0] * p.X + hp.A[1] * p.Y <= hp.B;
+      }
+      covered = covered || in;
+    }
+    if (inFace && !covered)
+    {
+      planar = 0;
+      nearest = p;
+    }
+    // An edge (a, e) whose side `m` (unit, in the plane) must be free of every section
+    // but `skip`: the sections' covering intervals removed, the nearest point of the rest.
+    auto edge = [&](const V2& a, const V2& e, const double m[2], size_t skip)
+    {
+      std::vector<std::pair<double, double>> removed;
+      for (size_t s = 0; s < sections.size(); ++s)
+      {
+        if (s == skip)
+        {
+          continue;
+        }
+        std::vector<HalfPlane> sided = sections[s];
+        for (HalfPlane& hp : sided)
+        {
+          // y + e m inside: strict where m points out of the half-plane.
+          hp.B += hp.A[0] * m[0] + hp.A[1] * m[1] > 0 ? -tol : tol;
+        }
+        double lo, hi;
+        Covered(sided, a, e, lo, hi);
+        if (lo < hi)
+        {
+          removed.emplace_back(lo, hi);
+        }
+      }
+      double d2;
+      V2 at;
+      if (NearestOnRest(a, e, removed, p, d2, at) && d2 < planar)
+      {
+        planar = d2;
+        nearest = at;
+      }
+    };
+    if (planar > 0)
+    {
+      for (size_t k = 0; k < outline.size(); ++k)
+      {
+        const V2 a = outline[k], b = outline[(k + 1) % outline.size()];
+        const V2 e{ b.X - a.X, b.Y - a.Y };
+        const double length = std::hypot(e.X, e.Y);
+        const double inward[2] = { -e.Y / length, e.X / length };
+        edge(a, e, inward, sections.size());
+      }
+      for (size_t s = 0; s < parts.size(); ++s)
+      {
+        const Polygon& part = parts[s];
+        for (size_t k = 0; k < part.Corners.size(); ++k)
+        {
+          if (part.Source[k] < 0)
+          {
+            continue; // on the face's edge: done above
+          }
+          const V2 a = part.Corners[k], b = part.Corners[(k + 1) % part.Corners.size()];
+          const V2 e{ b.X - a.X, b.Y - a.Y };
+          const HalfPlane& hp = sections[s][part.Source[k]];
+          const double length = std::hypot(hp.A[0], hp.A[1]);
+          const double outward[2] = { hp.A[0] / length, hp.A[1] / length };
+          edge(a, e, outward, s);
+        }
+      }
+    }
+    if (planar < HUGE_VAL)
+    {
+      const double distance = std::sqrt(h * h + planar);
+      if (distance < best)
+      {
+        best = distance;
+        answer.Piece = i;
+        for (int a = 0; a < 3; ++a)
+        {
+          answer.Closest[a] = frame.Origin[a] + nearest.X * frame.U[a] + nearest.Y * frame.V[a];
+        }
+      }
+    }
+  }
+  answer.Distance = answer.Inside ? -best : best;
+  return answer;
+}
+
+} // namespace vtkdf
