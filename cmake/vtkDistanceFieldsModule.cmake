@@ -8,7 +8,8 @@ set(classes
   "${df_root}/Filters/vtkMedialAxisFilter"
   "${df_root}/Filters/vtkSegmentedDistanceField"
   "${df_root}/Filters/vtkDistanceFieldBlend"
-  "${df_root}/Filters/vtkSegmentedDistanceContour")
+  "${df_root}/Filters/vtkSegmentedDistanceContour"
+  "${df_root}/Filters/vtkUnionClosestPoint")
 # The VTK-free cores (Filters/Core) are compiled once, as objects, into the module.
 vtk_module_add_module(DistanceFields::vtkDistanceFields
   CLASSES ${classes}

@@ -1,0 +1,173 @@
+// vtkUnionClosestPoint (CPU, exact):
+// - two unit cubes side by side as one mesh (two connected components): from
+//   (0.9, 0.5, 0.5) the boundary is 0.5 away (inside), not 0.1; from (2.5, 0.5, 0.5), 0.5
+//   (outside); the output's first points are the queries, then their closest points, one
+//   line each, and the arrays agree (|Distance| = |ClosestPoint - query|, Direction unit);
+// - the same pieces as a vtkMultiBlockDataSet: the same answers, ClosestPiece the same;
+// - bad input: an open piece, a non-convex piece, a NaN query, no polygons: errors that
+//   name the problem, no output.
+#include "TestSupport.h"
+#include "vtkUnionClosestPoint.h"
+
+#include "vtkAppendPolyData.h"
+#include "vtkCleanPolyData.h"
+#include "vtkCubeSource.h"
+#include "vtkDataArray.h"
+#include "vtkIdList.h"
+#include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace
+{
+/// A unit cube whose faces share their corners (vtkCubeSource repeats them per face).
+vtkSmartPointer<vtkPolyData> Cube(double x)
+{
+  vtkNew<vtkCubeSource> cube;
+  cube->SetBounds(x, x + 1, 0, 1, 0, 1);
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputConnection(cube->GetOutputPort());
+  clean->Update();
+  return clean->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> Run(vtkDataObject* pieces,
+  vtkPolyData* queries,
+  std::string* errors = nullptr)
+{
+  vtkNew<vtkUnionClosestPoint> f;
+  testsupport::MessageRecorder recorder(f);
+  f->SetInputData(0, pieces);
+  f->SetQueryData(queries);
+  f->Update();
+  if (errors)
+  {
+    *errors = recorder.Errors;
+  }
+  return f->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> Queries(std::initializer_list<std::array<double, 3>> points)
+{
+  vtkNew<vtkPoints> p;
+  for (const auto& x : points)
+  {
+    p->InsertNextPoint(x.data());
+  }
+  auto q = vtkSmartPointer<vtkPolyData>::New();
+  q->SetPoints(p);
+  return q;
+}
+
+void CheckAnswers(vtkPolyData* out, const char* name)
+{
+  const double expected[2] = { -0.5, 0.5 };
+  vtkDataArray* d = out->GetPointData()->GetArray("Distance");
+  vtkDataArray* c = out->GetPointData()->GetArray("ClosestPoint");
+  vtkDataArray* dir = out->GetPointData()->GetArray("Direction");
+  vtkDataArray* in = out->GetPointData()->GetArray("Inside");
+  CHECK(d && c && dir && in && out->GetNumberOfPoints() == 4 && out->GetNumberOfLines() == 2,
+    "%s: the output's shape",
+    name);
+  if (!d || !c || !dir || !in || out->GetNumberOfPoints() != 4)
+  {
+    return;
+  }
+  for (int i = 0; i < 2; ++i)
+  {
+    double q[3], x[3], closest[3], u[3];
+    out->GetPoint(i, q);
+    out->GetPoint(i + 2, x);
+    c->GetTuple(i, closest);
+    dir->GetTuple(i, u);
+    const double length = std::sqrt(vtkMath::Distance2BetweenPoints(q, x));
+    std::printf("%s: query %d distance %.9f (inside %g), closest %g %g %g\n",
+      name,
+      i,
+      d->GetTuple1(i),
+      in->GetTuple1(i),
+      x[0],
+      x[1],
+      x[2]);
+    CHECK(std::fabs(d->GetTuple1(i) - expected[i]) < 1e-6, "%s: query %d distance", name, i);
+    CHECK(std::fabs(length - std::fabs(d->GetTuple1(i))) < 1e-6 &&
+        std::fabs(vtkMath::Norm(u) - 1) < 1e-6 &&
+        std::fabs(closest[0] - x[0]) + std::fabs(closest[1] - x[1]) + std::fabs(closest[2] - x[2]) <
+          1e-6,
+      "%s: query %d's arrays disagree",
+      name,
+      i);
+    CHECK((in->GetTuple1(i) == 1) == (i == 0), "%s: query %d's Inside", name, i);
+  }
+}
+} // namespace
+
+int main()
+{
+  auto queries = Queries({ { 0.9, 0.5, 0.5 }, { 2.5, 0.5, 0.5 } });
+  vtkNew<vtkAppendPolyData> append;
+  append->AddInputData(Cube(0));
+  append->AddInputData(Cube(1));
+  append->Update();
+  CheckAnswers(Run(append->GetOutput(), queries), "one mesh");
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, Cube(0));
+  blocks->SetBlock(1, Cube(1));
+  CheckAnswers(Run(blocks, queries), "multiblock");
+
+  std::string errors;
+  {
+    // An open cube: one face removed.
+    auto cube = Cube(0);
+    vtkNew<vtkPolyData> open;
+    open->SetPoints(cube->GetPoints());
+    vtkNew<vtkCellArray> polys;
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 1; c < cube->GetNumberOfCells(); ++c)
+    {
+      cube->GetCellPoints(c, ids);
+      polys->InsertNextCell(ids);
+    }
+    open->SetPolys(polys);
+    auto out = Run(open, queries, &errors);
+    CHECK(errors.find("Piece 0 is not a closed convex polytope") != std::string::npos &&
+        out->GetNumberOfPoints() == 0,
+      "open piece: %s",
+      errors.c_str());
+  }
+  {
+    // A non-convex piece: a cube with one corner pushed in.
+    auto cube = Cube(0);
+    vtkNew<vtkPolyData> dented;
+    dented->DeepCopy(cube);
+    double x[3];
+    dented->GetPoint(0, x);
+    for (double& v : x)
+    {
+      v = v == 0 ? 0.4 : (v == 1 ? 0.6 : v);
+    }
+    dented->GetPoints()->SetPoint(0, x);
+    Run(dented, queries, &errors);
+    CHECK(errors.find("not convex") != std::string::npos, "non-convex piece: %s", errors.c_str());
+  }
+  {
+    auto bad = Queries({ { std::numeric_limits<double>::quiet_NaN(), 0, 0 } });
+    Run(append->GetOutput(), bad, &errors);
+    CHECK(errors.find("not finite") != std::string::npos, "NaN query: %s", errors.c_str());
+  }
+  {
+    vtkNew<vtkPolyData> empty;
+    Run(empty, queries, &errors);
+    CHECK(errors.find("no polygons") != std::string::npos, "no polygons: %s", errors.c_str());
+  }
+  return testsupport::Verdict();
+}
