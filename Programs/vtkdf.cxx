@@ -24,7 +24,9 @@
 #include "vtkPolyDataVoxelizer.h"
 #include "vtkSegmentedDistanceContour.h"
 #include "vtkSegmentedDistanceField.h"
+#include "vtkUnionClosestPoint.h"
 
+#include "vtkCompositeDataSet.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -41,11 +43,13 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
+#include "vtkXMLMultiBlockDataReader.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -74,6 +78,9 @@ void PrintUsage(FILE* out)
     "       vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D]\n"
     "             [--backend auto|gpu|cpu] [--surface OUT.vtp] [--png SLICE.png] [--timing]\n"
     "       vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]\n"
+    "       vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--timing]\n"
+    "             (POLYTOPES: a mesh whose connected components are convex pieces, or a\n"
+    "             .vtm of them; POINTS: a mesh whose points are the queries)\n"
     "             (A and B from vtkdf segment on the same grid; T in [0, 1])\n"
     "grid:  [--resolution N] [--padding F]\n"
     "       [--origin X Y Z --spacing SX SY SZ --dims NX NY NZ]\n"
@@ -894,6 +901,98 @@ int Blend(int argc, char* argv[])
   }
   return 0;
 }
+/// vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--timing]
+int Union(int argc, char* argv[])
+{
+  std::string output, queriesPath;
+  double query[3] = { 0, 0, 0 };
+  bool timing = false;
+  for (int a = 3; a < argc; ++a)
+  {
+    const std::string option = argv[a];
+    if (option == "--timing")
+    {
+      timing = true;
+      continue;
+    }
+    if (option == "--query" && a + 3 < argc)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        query[c] = ParseNumber("--query", argv[++a]);
+      }
+      continue;
+    }
+    if (a + 1 >= argc)
+    {
+      return Usage((option + " needs a value").c_str());
+    }
+    if (option == "-o")
+    {
+      output = argv[++a];
+    }
+    else if (option == "--queries")
+    {
+      queriesPath = argv[++a];
+    }
+    else
+    {
+      return Usage(("unknown option " + option).c_str());
+    }
+  }
+  if (output.empty())
+  {
+    return Usage("union needs -o OUT.vtp");
+  }
+  vtkNew<vtkUnionClosestPoint> filter;
+  if (EndsWith(argv[2], ".vtm"))
+  {
+    vtkNew<vtkXMLMultiBlockDataReader> reader;
+    reader->SetFileName(argv[2]);
+    reader->Update();
+    if (reader->GetErrorCode() || !reader->GetOutput())
+    {
+      return Usage((std::string("cannot read ") + argv[2]).c_str());
+    }
+    filter->SetInputData(0, reader->GetOutput());
+  }
+  else
+  {
+    filter->SetInputData(0, ReadMeshOrExit(argv[2]));
+  }
+  if (!queriesPath.empty())
+  {
+    filter->SetQueryData(ReadMeshOrExit(queriesPath));
+  }
+  filter->SetQueryPoint(query);
+  const auto start = std::chrono::steady_clock::now();
+  filter->Update();
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  vtkPolyData* result = filter->GetOutput();
+  if (filter->GetErrorCode() || result->GetNumberOfPoints() == 0)
+  {
+    std::fprintf(stderr, "vtkdf: no output was computed\n");
+    return 1;
+  }
+  if (timing)
+  {
+    std::printf("vtkdf: union pieces=%d queries=%lld backend=cpu time_s=%.6f faces_visited=%lld\n",
+      filter->GetLastPieceCount(),
+      static_cast<long long>(result->GetNumberOfPoints() / 2),
+      seconds,
+      static_cast<long long>(filter->GetLastFacesVisited()));
+  }
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetFileName(output.c_str());
+  writer->SetInputData(result);
+  if (!writer->Write() || writer->GetErrorCode() != 0)
+  {
+    std::fprintf(stderr, "vtkdf: cannot write %s\n", output.c_str());
+    return 1;
+  }
+  return 0;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -934,6 +1033,10 @@ int main(int argc, char* argv[])
   if (subcommand == "blend")
   {
     return Blend(argc, argv);
+  }
+  if (subcommand == "union")
+  {
+    return Union(argc, argv);
   }
   return Usage(("unknown subcommand " + subcommand).c_str());
 }

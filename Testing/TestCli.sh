@@ -55,6 +55,9 @@ run segment "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=2 patches
   segment "$data/plane.vtp" -o "$out/segment.vti" --resolution 20 --backend cpu --timing \
   --png "$out/segment.png" --surface "$out/segment.vtp"
 [ -s "$out/segment.vtp" ] || fail "segment: $out/segment.vtp not written"
+run union "^vtkdf: union pieces=4 queries=1 backend=cpu time_s=[0-9.]+ faces_visited=[1-9]" \
+  "$out/union.vtp" -- \
+  union "$data/hubo_ankle_convex4.vtp" -o "$out/union.vtp" --query 0 0.01 0.01 --timing
 # blend: a field with itself is itself, at any T.
 if "$vtkdf" blend "$out/segment.vti" "$out/segment.vti" -t 0.3 -o "$out/blend.vti" \
   --png "$out/blend.png" 2>"$out/blend.err"; then
