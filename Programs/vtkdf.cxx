@@ -147,6 +147,23 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
   return mesh;
 }
 
+/// Writes `data` as a VTK XML file (`Writer`: vtkXMLImageDataWriter or
+/// vtkXMLPolyDataWriter); false, with a message, when the file cannot be written (VTK
+/// 9.1's XML writers return 1 from Write() even when the file cannot be opened).
+template<typename Writer>
+bool WriteXML(vtkDataObject* data, const std::string& path)
+{
+  vtkNew<Writer> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(data);
+  if (!writer->Write() || writer->GetErrorCode() != 0)
+  {
+    std::fprintf(stderr, "vtkdf: cannot write %s\n", path.c_str());
+    return false;
+  }
+  return true;
+}
+
 /// Writes an RGB image as PNG; false when the file cannot be written.
 bool WritePNG(vtkImageData* image, const std::string& path)
 {
@@ -447,13 +464,8 @@ int Finish(const char* subcommand,
       extra ? extra().c_str() : "",
       filter->GetLastStageTimes());
   }
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetFileName(common.Output.c_str());
-  writer->SetInputData(field);
-  // VTK 9.1's XML writers return 1 from Write() even when the file cannot be opened.
-  if (!writer->Write() || writer->GetErrorCode() != 0)
+  if (!WriteXML<vtkXMLImageDataWriter>(field, common.Output))
   {
-    std::fprintf(stderr, "vtkdf: cannot write %s\n", common.Output.c_str());
     return 1;
   }
   return 0;
@@ -704,14 +716,7 @@ int Medial(int argc, char* argv[])
     [&]() { return " medial_voxels=" + std::to_string(filter->GetLastMedialCount()); });
   if (code == 0 && !points.empty())
   {
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName(points.c_str());
-    writer->SetInputData(filter->GetMedialPoints());
-    code = writer->Write() && writer->GetErrorCode() == 0 ? 0 : 1;
-    if (code != 0)
-    {
-      std::fprintf(stderr, "vtkdf: cannot write %s\n", points.c_str());
-    }
+    code = WriteXML<vtkXMLPolyDataWriter>(filter->GetMedialPoints(), points) ? 0 : 1;
   }
   if (code == 0 && !png.empty() && !WriteMedialPNG(filter->GetOutput(), png))
   {
@@ -808,12 +813,8 @@ int Segment(int argc, char* argv[])
     vtkNew<vtkSegmentedDistanceContour> contour;
     contour->SetInputData(filter->GetOutput());
     contour->Update();
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName(surface.c_str());
-    writer->SetInputData(contour->GetOutput());
-    if (contour->GetErrorCode() || !writer->Write() || writer->GetErrorCode() != 0)
+    if (contour->GetErrorCode() || !WriteXML<vtkXMLPolyDataWriter>(contour->GetOutput(), surface))
     {
-      std::fprintf(stderr, "vtkdf: cannot write %s\n", surface.c_str());
       code = 1;
     }
     else if (common.Timing)
@@ -885,12 +886,8 @@ int Blend(int argc, char* argv[])
     std::fprintf(stderr, "vtkdf: no output was computed\n");
     return 1;
   }
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetFileName(output.c_str());
-  writer->SetInputData(field);
-  if (!writer->Write() || writer->GetErrorCode() != 0)
+  if (!WriteXML<vtkXMLImageDataWriter>(field, output))
   {
-    std::fprintf(stderr, "vtkdf: cannot write %s\n", output.c_str());
     return 1;
   }
   vtkDataArray* delta = field->GetFieldData()->GetArray("Delta");
@@ -983,15 +980,7 @@ int Union(int argc, char* argv[])
       seconds,
       static_cast<long long>(filter->GetLastFacesVisited()));
   }
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetFileName(output.c_str());
-  writer->SetInputData(result);
-  if (!writer->Write() || writer->GetErrorCode() != 0)
-  {
-    std::fprintf(stderr, "vtkdf: cannot write %s\n", output.c_str());
-    return 1;
-  }
-  return 0;
+  return WriteXML<vtkXMLPolyDataWriter>(result, output) ? 0 : 1;
 }
 } // namespace
 
@@ -1010,33 +999,19 @@ int main(int argc, char* argv[])
     return Usage();
   }
   const std::string subcommand = argv[1];
-  if (subcommand == "linfac")
+  const std::pair<const char*, int (*)(int, char*[])> subcommands[] = { { "linfac", Linfac },
+    { "voxelize", Voxelize },
+    { "chamfer", Chamfer },
+    { "medial", Medial },
+    { "segment", Segment },
+    { "blend", Blend },
+    { "union", Union } };
+  for (const auto& entry : subcommands)
   {
-    return Linfac(argc, argv);
-  }
-  if (subcommand == "voxelize")
-  {
-    return Voxelize(argc, argv);
-  }
-  if (subcommand == "chamfer")
-  {
-    return Chamfer(argc, argv);
-  }
-  if (subcommand == "medial")
-  {
-    return Medial(argc, argv);
-  }
-  if (subcommand == "segment")
-  {
-    return Segment(argc, argv);
-  }
-  if (subcommand == "blend")
-  {
-    return Blend(argc, argv);
-  }
-  if (subcommand == "union")
-  {
-    return Union(argc, argv);
+    if (subcommand == entry.first)
+    {
+      return entry.second(argc, argv);
+    }
   }
   return Usage(("unknown subcommand " + subcommand).c_str());
 }
