@@ -164,6 +164,15 @@ bool WriteXML(vtkDataObject* data, const std::string& path)
   return true;
 }
 
+/// An RGB image of w x h pixels to paint a slice on.
+vtkSmartPointer<vtkImageData> Canvas(int w, int h)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(w, h, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  return image;
+}
+
 /// Writes an RGB image as PNG; false when the file cannot be written.
 bool WritePNG(vtkImageData* image, const std::string& path)
 {
@@ -216,9 +225,7 @@ bool WriteSlicePNG(vtkImageData* field, const std::string& path)
           ty * ((1 - tx) * at(i, j1) + tx * at(i1, j1)));
     }
   }
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(w, h, 1);
-  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  vtkSmartPointer<vtkImageData> image = Canvas(w, h);
   auto* rgb = static_cast<unsigned char*>(image->GetScalarPointer());
   for (int y = 0; y < h; ++y)
   {
@@ -653,9 +660,7 @@ bool WriteMedialPNG(vtkImageData* field, const std::string& path)
   const int k = dims[2] / 2;
   const int scale = std::max(1, 512 / std::max(dims[0], dims[1]));
   const double largest = std::max(1e-30, double(radius->GetRange()[1]));
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(dims[0] * scale, dims[1] * scale, 1);
-  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  vtkSmartPointer<vtkImageData> image = Canvas(dims[0] * scale, dims[1] * scale);
   auto* rgb = static_cast<unsigned char*>(image->GetScalarPointer());
   for (int y = 0; y < dims[1] * scale; ++y)
   {
@@ -743,9 +748,7 @@ bool WriteRegionPNG(vtkImageData* field, double delta, const std::string& path)
   const int k = dims[2] / 2;
   const int scale = std::max(1, 512 / std::max(dims[0], dims[1]));
   auto at = [&](int i, int j) { return i + dims[0] * (j + vtkIdType(dims[1]) * k); };
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(dims[0] * scale, dims[1] * scale, 1);
-  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  vtkSmartPointer<vtkImageData> image = Canvas(dims[0] * scale, dims[1] * scale);
   auto* rgb = static_cast<unsigned char*>(image->GetScalarPointer());
   for (int y = 0; y < dims[1] * scale; ++y)
   {

@@ -331,35 +331,25 @@ WindingValue WindingNumber::Evaluate(const double q[3]) const
 WindingValue WindingNumber::Evaluate(const double q[3], double accuracy) const
 {
   WindingValue result;
-  if (this->Nodes.empty())
-  {
-    return result;
-  }
   AngleProduct angles; // the exact part
-  int32_t stack[128];
-  int depth = 0;
-  stack[depth++] = 0;
-  while (depth > 0)
-  {
-    const Node& node = this->Nodes[stack[--depth]];
-    const double d[3] = { node.Centre[0] - q[0], node.Centre[1] - q[1], node.Centre[2] - q[2] };
-    double term, bound;
-    if (Dot(d, d) > accuracy * accuracy * node.Radius * node.Radius &&
-      this->FarTerm(node, q, term, bound))
+  this->Walk(
+    [&](const Node& node)
     {
-      result.Value += term;
-      result.Bound += bound;
-    }
-    else if (node.Children[0] < 0)
-    {
-      this->AddLeaf(node, q, angles);
-    }
-    else
-    {
-      stack[depth++] = node.Children[0];
-      stack[depth++] = node.Children[1];
-    }
-  }
+      const double d[3] = { node.Centre[0] - q[0], node.Centre[1] - q[1], node.Centre[2] - q[2] };
+      double term, bound;
+      if (Dot(d, d) > accuracy * accuracy * node.Radius * node.Radius &&
+        this->FarTerm(node, q, term, bound))
+      {
+        result.Value += term;
+        result.Bound += bound;
+        return false;
+      }
+      if (node.Children[0] < 0)
+      {
+        this->AddLeaf(node, q, angles);
+      }
+      return true;
+    });
   result.Value += angles.Winding();
   return result;
 }
@@ -376,69 +366,59 @@ void WindingNumber::AddLeaf(const Node& node, const double q[3], AngleProduct& a
 WindingGradient WindingNumber::EvaluateWithGradient(const double q[3]) const
 {
   WindingGradient result;
-  if (this->Nodes.empty())
-  {
-    return result;
-  }
   AngleProduct angles;
   double angleGradient[3] = { 0, 0, 0 };
-  int32_t stack[128];
-  int depth = 0;
-  stack[depth++] = 0;
-  while (depth > 0)
-  {
-    const Node& node = this->Nodes[stack[--depth]];
-    const double d[3] = { node.Centre[0] - q[0], node.Centre[1] - q[1], node.Centre[2] - q[2] };
-    const double r2 = Dot(d, d);
-    double term, bound;
-    if (r2 > this->Accuracy * this->Accuracy * node.Radius * node.Radius &&
-      this->FarTerm(node, q, term, bound))
+  this->Walk(
+    [&](const Node& node)
     {
-      result.Value += term;
-      result.Bound += bound;
-      // The order-1 term's gradient in q (= minus its gradient in d):
-      // f(d) = M.d / r^3 + tr T / r^3 - 3 d.T.d / r^5.
-      const double* t = node.Tensor;
-      const double td[3] = { t[0] * d[0] + t[1] * d[1] + t[2] * d[2],
-        t[3] * d[0] + t[4] * d[1] + t[5] * d[2],
-        t[6] * d[0] + t[7] * d[1] + t[8] * d[2] };
-      const double dt[3] = { t[0] * d[0] + t[3] * d[1] + t[6] * d[2],
-        t[1] * d[0] + t[4] * d[1] + t[7] * d[2],
-        t[2] * d[0] + t[5] * d[1] + t[8] * d[2] };
-      const double r = std::sqrt(r2);
-      const double r3 = r2 * r, r5 = r3 * r2;
-      const double md = Dot(node.Moment, d), trace = t[0] + t[4] + t[8], dtd = Dot(d, td);
-      for (int a = 0; a < 3; ++a)
+      const double d[3] = { node.Centre[0] - q[0], node.Centre[1] - q[1], node.Centre[2] - q[2] };
+      const double r2 = Dot(d, d);
+      double term, bound;
+      if (r2 > this->Accuracy * this->Accuracy * node.Radius * node.Radius &&
+        this->FarTerm(node, q, term, bound))
       {
-        const double df = node.Moment[a] / r3 - 3 * (md + trace) * d[a] / r5 -
-          3 * (td[a] + dt[a]) / r5 + 15 * dtd * d[a] / (r5 * r2);
-        result.Gradient[a] -= df / FourPi;
-      }
-      // Its error: half the third derivative of G (norm <= 4!/g^5) times the second
-      // moment, over 4 pi.
-      const double gap = r - node.Radius, gap2 = gap * gap;
-      result.GradientBound += 3 * node.Second / (M_PI * gap2 * gap2 * gap);
-    }
-    else if (node.Children[0] < 0)
-    {
-      for (int64_t t = node.First; t < node.First + node.Count; ++t)
-      {
-        const double* p = this->Corners.data() + 9 * t;
-        angles.Add(p, p + 3, p + 6, q);
-        double g[3];
-        TriangleSolidAngleGradient(p, p + 3, p + 6, q, g);
+        result.Value += term;
+        result.Bound += bound;
+        // The order-1 term's gradient in q (= minus its gradient in d):
+        // f(d) = M.d / r^3 + tr T / r^3 - 3 d.T.d / r^5.
+        const double* t = node.Tensor;
+        const double td[3] = { t[0] * d[0] + t[1] * d[1] + t[2] * d[2],
+          t[3] * d[0] + t[4] * d[1] + t[5] * d[2],
+          t[6] * d[0] + t[7] * d[1] + t[8] * d[2] };
+        const double dt[3] = { t[0] * d[0] + t[3] * d[1] + t[6] * d[2],
+          t[1] * d[0] + t[4] * d[1] + t[7] * d[2],
+          t[2] * d[0] + t[5] * d[1] + t[8] * d[2] };
+        const double r = std::sqrt(r2);
+        const double r3 = r2 * r, r5 = r3 * r2;
+        const double md = Dot(node.Moment, d), trace = t[0] + t[4] + t[8], dtd = Dot(d, td);
         for (int a = 0; a < 3; ++a)
         {
-          angleGradient[a] += g[a];
+          const double df = node.Moment[a] / r3 - 3 * (md + trace) * d[a] / r5 -
+            3 * (td[a] + dt[a]) / r5 + 15 * dtd * d[a] / (r5 * r2);
+          result.Gradient[a] -= df / FourPi;
+        }
+        // Its error: half the third derivative of G (norm <= 4!/g^5) times the second
+        // moment, over 4 pi.
+        const double gap = r - node.Radius, gap2 = gap * gap;
+        result.GradientBound += 3 * node.Second / (M_PI * gap2 * gap2 * gap);
+        return false;
+      }
+      if (node.Children[0] < 0)
+      {
+        for (int64_t t = node.First; t < node.First + node.Count; ++t)
+        {
+          const double* p = this->Corners.data() + 9 * t;
+          angles.Add(p, p + 3, p + 6, q);
+          double g[3];
+          TriangleSolidAngleGradient(p, p + 3, p + 6, q, g);
+          for (int a = 0; a < 3; ++a)
+          {
+            angleGradient[a] += g[a];
+          }
         }
       }
-    }
-    else
-    {
-      stack[depth++] = node.Children[0];
-      stack[depth++] = node.Children[1];
-    }
-  }
+      return true;
+    });
   result.Value += angles.Winding();
   for (int a = 0; a < 3; ++a)
   {
@@ -452,46 +432,42 @@ double WindingNumber::HessianBound(const double c[3], double radius) const
   // A triangle's term has a Hessian of norm at most its area times |D^3 (1/|x|)| / 4 pi
   // <= 6 / (4 pi g^4), g its distance from the point: 3 A / (2 pi g^4) per node.
   double bound = 0;
-  if (this->Nodes.empty())
-  {
-    return bound;
-  }
-  int32_t stack[128];
-  int depth = 0;
-  stack[depth++] = 0;
-  while (depth > 0)
-  {
-    const Node& node = this->Nodes[stack[--depth]];
-    const double d[3] = { node.Centre[0] - c[0], node.Centre[1] - c[1], node.Centre[2] - c[2] };
-    const double gap = std::sqrt(Dot(d, d)) - node.Radius - radius;
-    if (gap > node.Radius + radius)
+  bool touching = false;
+  this->Walk(
+    [&](const Node& node)
     {
-      const double gap2 = gap * gap;
-      bound += 3 * node.Area / (2 * M_PI * gap2 * gap2);
-    }
-    else if (node.Children[0] < 0)
-    {
-      // Each triangle from the ball around its centroid through its farthest corner.
-      for (int64_t t = node.First; t < node.First + node.Count; ++t)
+      if (touching)
       {
-        const double* ball = this->Balls.data() + 4 * t;
-        const double to[3] = { ball[0] - c[0], ball[1] - c[1], ball[2] - c[2] };
-        const double g = std::sqrt(Dot(to, to)) - ball[3] - radius;
-        if (!(g > 0))
-        {
-          return HUGE_VAL;
-        }
-        const double g2 = g * g;
-        bound += 3 * this->Areas[t] / (2 * M_PI * g2 * g2);
+        return false; // the answer is known: take no more nodes
       }
-    }
-    else
-    {
-      stack[depth++] = node.Children[0];
-      stack[depth++] = node.Children[1];
-    }
-  }
-  return bound;
+      const double d[3] = { node.Centre[0] - c[0], node.Centre[1] - c[1], node.Centre[2] - c[2] };
+      const double gap = std::sqrt(Dot(d, d)) - node.Radius - radius;
+      if (gap > node.Radius + radius)
+      {
+        const double gap2 = gap * gap;
+        bound += 3 * node.Area / (2 * M_PI * gap2 * gap2);
+        return false;
+      }
+      if (node.Children[0] < 0)
+      {
+        // Each triangle from the ball around its centroid through its farthest corner.
+        for (int64_t t = node.First; t < node.First + node.Count; ++t)
+        {
+          const double* ball = this->Balls.data() + 4 * t;
+          const double to[3] = { ball[0] - c[0], ball[1] - c[1], ball[2] - c[2] };
+          const double g = std::sqrt(Dot(to, to)) - ball[3] - radius;
+          if (!(g > 0))
+          {
+            touching = true;
+            return false;
+          }
+          const double g2 = g * g;
+          bound += 3 * this->Areas[t] / (2 * M_PI * g2 * g2);
+        }
+      }
+      return true;
+    });
+  return touching ? HUGE_VAL : bound;
 }
 
 void WindingNumber::Flatten(std::vector<double>& nodes, std::vector<int32_t>& links) const

@@ -145,6 +145,29 @@ private:
     const std::vector<double>& corners,
     const std::vector<double>& centroids);
 
+  /// Visits the hierarchy depth first from the root: `visit(node)` returns true to go on
+  /// into the node's children (for a leaf, true or false alike), false when it took the
+  /// node whole.
+  template<typename Visit>
+  void Walk(Visit&& visit) const
+  {
+    if (this->Nodes.empty())
+    {
+      return;
+    }
+    int32_t stack[128]; // the median split keeps the depth near log2(triangles / 8)
+    int depth = 0;
+    stack[depth++] = 0;
+    while (depth > 0)
+    {
+      const Node& node = this->Nodes[stack[--depth]];
+      if (visit(node) && node.Children[0] >= 0)
+      {
+        stack[depth++] = node.Children[0];
+        stack[depth++] = node.Children[1];
+      }
+    }
+  }
   /// A far node's order-1 term at q and its error bound; false when q is in its ball.
   bool FarTerm(const Node& node, const double q[3], double& term, double& bound) const;
   /// Adds a leaf's triangles seen from q.
