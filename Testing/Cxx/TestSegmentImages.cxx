@@ -11,6 +11,7 @@
 //
 // usage: TestSegmentImages slice|surface -V BASELINE -T TMP
 #include "ImageTestSupport.h"
+#include "TestShapes.h"
 #include "TestSupport.h"
 #include "vtkSegmentedDistanceContour.h"
 #include "vtkSegmentedDistanceField.h"
@@ -46,43 +47,6 @@
 
 namespace
 {
-/// The box [-1, 1]^3 with a wall at x = 0.13; the right chamber (x > 0.13) has no lid.
-vtkSmartPointer<vtkPolyData> OpenWalledBox()
-{
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> polys;
-  auto quad = [&](std::initializer_list<std::array<double, 3>> corners)
-  {
-    vtkIdType ids[4], k = 0;
-    for (const auto& c : corners)
-    {
-      ids[k++] = points->InsertNextPoint(c.data());
-    }
-    const vtkIdType t0[3] = { ids[0], ids[1], ids[2] }, t1[3] = { ids[0], ids[2], ids[3] };
-    polys->InsertNextCell(3, t0);
-    polys->InsertNextCell(3, t1);
-  };
-  const double w = 0.13, xs[3] = { -1, w, 1 };
-  for (int i = 0; i < 2; ++i)
-  {
-    const double x0 = xs[i], x1 = xs[i + 1];
-    quad({ { x0, -1, -1 }, { x1, -1, -1 }, { x1, -1, 1 }, { x0, -1, 1 } });
-    quad({ { x0, 1, -1 }, { x0, 1, 1 }, { x1, 1, 1 }, { x1, 1, -1 } });
-    quad({ { x0, -1, -1 }, { x0, 1, -1 }, { x1, 1, -1 }, { x1, -1, -1 } });
-    if (i == 0)
-    {
-      quad({ { x0, -1, 1 }, { x1, -1, 1 }, { x1, 1, 1 }, { x0, 1, 1 } }); // the left lid only
-    }
-  }
-  quad({ { -1, -1, -1 }, { -1, -1, 1 }, { -1, 1, 1 }, { -1, 1, -1 } });
-  quad({ { 1, -1, -1 }, { 1, 1, -1 }, { 1, 1, 1 }, { 1, -1, 1 } });
-  quad({ { w, -1, -1 }, { w, 1, -1 }, { w, 1, 1 }, { w, -1, 1 } });
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->SetPoints(points);
-  mesh->SetPolys(polys);
-  return mesh;
-}
-
 /// A categorical colour for index i.
 void Colour(int i, double rgb[3])
 {
@@ -136,7 +100,7 @@ int main(int argc, char* argv[])
     return 2;
   }
   const std::string mode = argv[1];
-  auto mesh = OpenWalledBox();
+  auto mesh = testsupport::OpenWalledBox();
   vtkNew<vtkSegmentedDistanceField> segment;
   segment->SetInputData(mesh);
   segment->SetResolution(48);

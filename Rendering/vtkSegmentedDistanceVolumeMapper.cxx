@@ -1,0 +1,680 @@
+#include "vtkSegmentedDistanceVolumeMapper.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkOpenGLVertexBufferObject.h"
+#include "vtkPointData.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include "SegmentedVolume_frag.h"
+#include "SegmentedVolume_vert.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace
+{
+using Vec3 = std::array<double, 3>;
+
+Vec3 Sub(const Vec3& a, const Vec3& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+double Dot(const Vec3& a, const Vec3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec3 Cross(const Vec3& a, const Vec3& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+Vec3 Normalized(const Vec3& a)
+{
+  const double n = std::sqrt(Dot(a, a));
+  return n > 0 ? Vec3{ a[0] / n, a[1] / n, a[2] / n } : a;
+}
+
+/// A point through a plain (row-major, column-vector) 4x4 matrix.
+Vec3 Apply(vtkMatrix4x4* m, const Vec3& p)
+{
+  const double q[4] = { p[0], p[1], p[2], 1 };
+  double r[4];
+  m->MultiplyPoint(q, r);
+  return { r[0] / r[3], r[1] / r[3], r[2] / r[3] };
+}
+
+/// vtkShaderProgram uploads a vtkMatrix4x4's elements row by row into a GLSL
+/// (column-major) matrix, that is transposed: hand it the transpose of the plain matrix.
+void SetPlainMatrix(vtkShaderProgram* program, const char* name, const vtkMatrix4x4* plain)
+{
+  vtkNew<vtkMatrix4x4> transposed;
+  vtkMatrix4x4::Transpose(plain, transposed);
+  program->SetUniformMatrix(name, transposed);
+}
+void SetPlainMatrix(vtkShaderProgram* program, const char* name, const double plain[3][3])
+{
+  vtkNew<vtkMatrix3x3> transposed;
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      transposed->SetElement(j, i, plain[i][j]);
+    }
+  }
+  program->SetUniformMatrix(name, transposed);
+}
+
+/// The default colour of region r: a palette of distinct colours, then hues spread by
+/// the golden angle.
+void DefaultRegionColor(int region, double rgb[3])
+{
+  static const double palette[8][3] = { { 0.92, 0.90, 0.84 },
+    { 0.86, 0.38, 0.30 },
+    { 0.32, 0.56, 0.88 },
+    { 0.42, 0.76, 0.40 },
+    { 0.95, 0.76, 0.28 },
+    { 0.66, 0.46, 0.82 },
+    { 0.30, 0.76, 0.76 },
+    { 0.88, 0.56, 0.74 } };
+  if (region >= 0 && region < 8)
+  {
+    std::copy(palette[region], palette[region] + 3, rgb);
+    return;
+  }
+  const double hue = std::fmod(region * 0.618033988749895, 1.0) * 6.0;
+  const double x = 1.0 - std::abs(std::fmod(hue, 2.0) - 1.0);
+  const int sector = static_cast<int>(hue) % 6;
+  const double c[6][3] = {
+    { 1, x, 0 }, { x, 1, 0 }, { 0, 1, x }, { 0, x, 1 }, { x, 0, 1 }, { 1, 0, x }
+  };
+  for (int k = 0; k < 3; ++k)
+  {
+    rgb[k] = 0.25 + 0.65 * c[sector][k];
+  }
+}
+
+/// Reads a field into (distance, region) texels: a segmented one from f = min(d, Delta)
+/// + RegionOffset * r, a signed one from its sign. Reports a non-finite value.
+struct DecodeField
+{
+  template<typename Array>
+  void operator()(Array* array,
+    bool segmented,
+    double offset,
+    float* texels,
+    bool& finite,
+    int& regions) const
+  {
+    const auto values = vtk::DataArrayValueRange<1>(array);
+    vtkIdType i = 0;
+    int highest = 0;
+    for (const auto value : values)
+    {
+      const double f = static_cast<double>(value);
+      if (!std::isfinite(f))
+      {
+        finite = false;
+        return;
+      }
+      double distance, region;
+      if (segmented)
+      {
+        region = std::floor(f / offset);
+        distance = f - region * offset;
+      }
+      else
+      {
+        region = f < 0 ? 1 : 0;
+        distance = std::abs(f);
+      }
+      texels[2 * i] = static_cast<float>(distance);
+      texels[2 * i + 1] = static_cast<float>(region);
+      highest = std::max(highest, static_cast<int>(region));
+      ++i;
+    }
+    regions = highest + 1;
+  }
+};
+} // namespace
+
+struct vtkSegmentedDistanceVolumeMapper::Internals
+{
+  vtkNew<vtkTextureObject> Field;  // RG32F: distance, region
+  vtkNew<vtkTextureObject> Colors; // RGB32F, one texel a region
+  vtkOpenGLHelper Slices;          // program and VAO of the slice polygons
+  vtkNew<vtkOpenGLVertexBufferObject> Vertices;
+  vtkTimeStamp FieldTime;
+  vtkTimeStamp ColorsTime;
+  vtkTimeStamp ColorsModified;
+  vtkImageData* FieldImage = nullptr; // which input the texture holds (not owned)
+  std::string FieldKey;               // and which array selection
+  bool FieldValid = false;
+  int Dims[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  double IndexToPhysical[16];
+  bool Segmented = false;
+  double RegionOffset = 0;
+  int RegionCount = 0;
+  std::map<int, std::array<double, 3>> RegionColors;
+};
+
+vtkStandardNewMacro(vtkSegmentedDistanceVolumeMapper);
+
+vtkSegmentedDistanceVolumeMapper::vtkSegmentedDistanceVolumeMapper()
+  : Impl(new Internals)
+{
+}
+
+// No GL calls here: the context may be gone. ReleaseGraphicsResources() frees them.
+vtkSegmentedDistanceVolumeMapper::~vtkSegmentedDistanceVolumeMapper() = default;
+
+const char* vtkSegmentedDistanceVolumeMapper::GetInterpolationAsString()
+{
+  switch (this->Interpolation)
+  {
+    case Nearest:
+      return "Nearest";
+    case Linear:
+      return "Linear";
+    default:
+      return "RegionAware";
+  }
+}
+
+void vtkSegmentedDistanceVolumeMapper::SetRegionColor(int region, double r, double g, double b)
+{
+  if (region < 0)
+  {
+    vtkErrorMacro("SetRegionColor: region " << region << " is negative");
+    return;
+  }
+  auto& rgb = this->Impl->RegionColors[region];
+  rgb = { std::clamp(r, 0.0, 1.0), std::clamp(g, 0.0, 1.0), std::clamp(b, 0.0, 1.0) };
+  this->Impl->ColorsModified.Modified();
+  this->Modified();
+}
+
+void vtkSegmentedDistanceVolumeMapper::GetRegionColor(int region, double rgb[3])
+{
+  const auto found = this->Impl->RegionColors.find(region);
+  if (found != this->Impl->RegionColors.end())
+  {
+    std::copy(found->second.begin(), found->second.end(), rgb);
+    return;
+  }
+  DefaultRegionColor(region, rgb);
+}
+
+void vtkSegmentedDistanceVolumeMapper::RemoveAllRegionColors()
+{
+  this->Impl->RegionColors.clear();
+  this->Impl->ColorsModified.Modified();
+  this->Modified();
+}
+
+void vtkSegmentedDistanceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Interpolation: " << this->GetInterpolationAsString() << "\n";
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "NumberOfSlices: " << this->NumberOfSlices << "\n";
+  os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
+  os << indent << "RegionColors set: " << this->Impl->RegionColors.size() << "\n";
+  os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
+  os << indent << "LastRegionCount: " << this->LastRegionCount << "\n";
+  os << indent << "LastSegmented: " << this->LastSegmented << "\n";
+}
+
+void vtkSegmentedDistanceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Impl->Field->ReleaseGraphicsResources(window);
+  this->Impl->Colors->ReleaseGraphicsResources(window);
+  this->Impl->Vertices->ReleaseGraphicsResources();
+  this->Impl->Slices.ReleaseGraphicsResources(window);
+  this->Impl->FieldValid = false;
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+std::string vtkSegmentedDistanceVolumeMapper::ArraySelectionKey() const
+{
+  return std::to_string(this->ArrayAccessMode) + ":" + std::to_string(this->ArrayId) + ":" +
+    (this->ArrayName ? this->ArrayName : "");
+}
+
+bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
+{
+  Internals& impl = *this->Impl;
+  if (impl.FieldValid && impl.Field->GetHandle() && impl.FieldImage == image &&
+    impl.FieldTime > image->GetMTime() && impl.FieldKey == this->ArraySelectionKey())
+  {
+    return true;
+  }
+  impl.FieldValid = false;
+  int dims[3];
+  image->GetDimensions(dims);
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
+  {
+    vtkErrorMacro("The field is " << dims[0] << " x " << dims[1] << " x " << dims[2]
+                                  << " samples: a volume needs at least 2 on every axis");
+    return false;
+  }
+  GLint largest = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
+  if (dims[0] > largest || dims[1] > largest || dims[2] > largest)
+  {
+    vtkErrorMacro("The field is " << dims[0] << " x " << dims[1] << " x " << dims[2]
+                                  << " samples; this OpenGL takes 3D textures of at most "
+                                  << largest << " a side");
+    return false;
+  }
+
+  // The array: the one selected, else SegmentedDistance, else the active scalars.
+  vtkPointData* pd = image->GetPointData();
+  vtkDataArray* array = nullptr;
+  if (this->ArrayAccessMode == VTK_GET_ARRAY_BY_NAME && this->ArrayName && *this->ArrayName)
+  {
+    array = pd->GetArray(this->ArrayName);
+  }
+  else if (this->ArrayAccessMode == VTK_GET_ARRAY_BY_ID && this->ArrayId >= 0)
+  {
+    array = pd->GetArray(this->ArrayId);
+  }
+  else
+  {
+    array = pd->GetArray("SegmentedDistance");
+    array = array ? array : pd->GetScalars();
+  }
+  if (!array)
+  {
+    vtkErrorMacro("The field has no point array to render: neither the selected one, nor "
+                  "SegmentedDistance, nor point scalars (a signed distance field)");
+    return false;
+  }
+  if (array->GetNumberOfComponents() != 1 ||
+    array->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    vtkErrorMacro("The array " << (array->GetName() ? array->GetName() : "(unnamed)")
+                               << " must have one component per point");
+    return false;
+  }
+  bool segmented = false;
+  double offset = 0;
+  if (array->GetName() && std::string(array->GetName()) == "SegmentedDistance")
+  {
+    vtkDataArray* offsetArray = image->GetFieldData()->GetArray("RegionOffset");
+    offset =
+      offsetArray && offsetArray->GetNumberOfTuples() > 0 ? offsetArray->GetComponent(0, 0) : 0.0;
+    if (!(offset > 0) || !std::isfinite(offset))
+    {
+      vtkErrorMacro("SegmentedDistance needs a positive field-data RegionOffset (what "
+                    "vtkSegmentedDistanceField writes) to tell the regions apart");
+      return false;
+    }
+    segmented = true;
+  }
+
+  const vtkIdType count = image->GetNumberOfPoints();
+  std::vector<float> texels(2 * static_cast<size_t>(count));
+  bool finite = true;
+  int regions = 0;
+  if (!vtkArrayDispatch::Dispatch::Execute(
+        array, DecodeField{}, segmented, offset, texels.data(), finite, regions))
+  {
+    DecodeField{}(array, segmented, offset, texels.data(), finite, regions);
+  }
+  if (!finite)
+  {
+    vtkErrorMacro("The field " << array->GetName() << " holds NaN or infinite values");
+    return false;
+  }
+  if (regions > (1 << 24))
+  {
+    vtkErrorMacro("The field has " << regions << " regions; at most 2^24 can be rendered");
+    return false;
+  }
+
+  impl.Field->SetWrapS(vtkTextureObject::ClampToEdge);
+  impl.Field->SetWrapT(vtkTextureObject::ClampToEdge);
+  impl.Field->SetWrapR(vtkTextureObject::ClampToEdge);
+  impl.Field->SetMinificationFilter(vtkTextureObject::Nearest);
+  impl.Field->SetMagnificationFilter(vtkTextureObject::Nearest);
+  impl.Field->SetInternalFormat(GL_RG32F);
+  impl.Field->SetFormat(GL_RG);
+  impl.Field->SetDataType(GL_FLOAT);
+  if (!impl.Field->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
+        static_cast<unsigned int>(dims[1]),
+        static_cast<unsigned int>(dims[2]),
+        2,
+        VTK_FLOAT,
+        texels.data()))
+  {
+    vtkErrorMacro("Could not make the field's 3D texture (" << dims[0] << " x " << dims[1] << " x "
+                                                            << dims[2] << ")");
+    return false;
+  }
+  std::copy(dims, dims + 3, impl.Dims);
+  image->GetSpacing(impl.Spacing);
+  vtkImageData::ComputeIndexToPhysicalMatrix(image->GetOrigin(),
+    image->GetSpacing(),
+    image->GetDirectionMatrix()->GetData(),
+    impl.IndexToPhysical);
+  impl.Segmented = segmented;
+  impl.RegionOffset = offset;
+  impl.RegionCount = regions;
+  impl.FieldImage = image;
+  impl.FieldKey = this->ArraySelectionKey();
+  impl.FieldValid = true;
+  impl.FieldTime.Modified();
+  return true;
+}
+
+void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  vtkOpenGLClearErrorMacro();
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    vtkErrorMacro("vtkSegmentedDistanceVolumeMapper needs an OpenGL render window");
+    return;
+  }
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInput());
+  if (!image)
+  {
+    vtkErrorMacro("The input must be vtkImageData");
+    return;
+  }
+  this->GetInputAlgorithm()->UpdateWholeExtent();
+  image = vtkImageData::SafeDownCast(this->GetInput());
+  if (!image || image->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("The input field is empty");
+    return;
+  }
+  Internals& impl = *this->Impl;
+  impl.Field->SetContext(window);
+  if (!this->UpdateField(image))
+  {
+    return;
+  }
+  this->LastRegionCount = impl.RegionCount;
+  this->LastSegmented = impl.Segmented;
+
+  // Region colours: one texel per region (cycling beyond the texture's width).
+  const int colorCount = std::max(1, std::min(impl.RegionCount, 4096));
+  if (!impl.Colors->GetHandle() || impl.ColorsTime < impl.ColorsModified ||
+    impl.ColorsTime < impl.FieldTime)
+  {
+    std::vector<float> rgb(3 * static_cast<size_t>(colorCount));
+    for (int r = 0; r < colorCount; ++r)
+    {
+      double c[3];
+      this->GetRegionColor(r, c);
+      std::copy(c, c + 3, rgb.begin() + 3 * r);
+    }
+    impl.Colors->SetContext(window);
+    impl.Colors->SetMinificationFilter(vtkTextureObject::Nearest);
+    impl.Colors->SetMagnificationFilter(vtkTextureObject::Nearest);
+    impl.Colors->SetInternalFormat(GL_RGB32F);
+    impl.Colors->SetFormat(GL_RGB);
+    impl.Colors->SetDataType(GL_FLOAT);
+    impl.Colors->Create2DFromRaw(
+      static_cast<unsigned int>(colorCount), 1, 3, VTK_FLOAT, rgb.data());
+    impl.ColorsTime.Modified();
+  }
+
+  // Index space -> world: the image's index-to-physical matrix, then the volume's.
+  vtkNew<vtkMatrix4x4> indexToWorld;
+  vtkMatrix4x4::Multiply4x4(
+    volume->GetMatrix()->GetData(), impl.IndexToPhysical, indexToWorld->GetData());
+  vtkNew<vtkMatrix4x4> worldToIndex;
+  vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
+  // Gradients in index space (per index step) -> world normals: the inverse transpose of
+  // index-to-world's linear part.
+  double normalMatrix[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      normalMatrix[i][j] = worldToIndex->GetElement(j, i);
+    }
+  }
+
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const bool parallel = camera->GetParallelProjection() != 0;
+  Vec3 eye, viewDir;
+  camera->GetPosition(eye.data());
+  camera->GetDirectionOfProjection(viewDir.data());
+  viewDir = Normalized(viewDir);
+
+  // The box's corners in world space, and their depths along the view direction.
+  std::array<Vec3, 8> corners;
+  double nearest = VTK_DOUBLE_MAX, farthest = -VTK_DOUBLE_MAX;
+  for (int c = 0; c < 8; ++c)
+  {
+    const Vec3 index = { (c & 1) ? impl.Dims[0] - 1.0 : 0.0,
+      (c & 2) ? impl.Dims[1] - 1.0 : 0.0,
+      (c & 4) ? impl.Dims[2] - 1.0 : 0.0 };
+    corners[c] = Apply(indexToWorld, index);
+    const double s = Dot(Sub(corners[c], eye), viewDir);
+    nearest = std::min(nearest, s);
+    farthest = std::max(farthest, s);
+  }
+  double smallestSpacing = VTK_DOUBLE_MAX;
+  for (int a = 0; a < 3; ++a)
+  {
+    const Vec3 axis = {
+      indexToWorld->GetElement(0, a), indexToWorld->GetElement(1, a), indexToWorld->GetElement(2, a)
+    };
+    smallestSpacing = std::min(smallestSpacing, std::sqrt(Dot(axis, axis)));
+  }
+  const double depth = farthest - nearest;
+  double spacing = this->SampleDistance > 0 ? this->SampleDistance : smallestSpacing;
+  if (this->NumberOfSlices > 0)
+  {
+    spacing = depth / this->NumberOfSlices;
+  }
+  if (!(spacing > 0) || !std::isfinite(spacing))
+  {
+    vtkErrorMacro("The volume has no extent along the view direction");
+    return;
+  }
+  const double sliceCount = std::ceil(depth / spacing);
+  if (sliceCount > (1 << 20))
+  {
+    vtkErrorMacro("SampleDistance " << spacing << " makes " << sliceCount
+                                    << " slices across the volume; at most 2^20 are drawn");
+    return;
+  }
+  const int slices = std::max(1, static_cast<int>(sliceCount));
+
+  // The slice polygons, back to front: the box cut by the planes at depth s, as fans.
+  static const int edges[12][2] = { { 0, 1 },
+    { 2, 3 },
+    { 4, 5 },
+    { 6, 7 },
+    { 0, 2 },
+    { 1, 3 },
+    { 4, 6 },
+    { 5, 7 },
+    { 0, 4 },
+    { 1, 5 },
+    { 2, 6 },
+    { 3, 7 } };
+  Vec3 u = Cross(viewDir, std::abs(viewDir[0]) < 0.9 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 });
+  u = Normalized(u);
+  const Vec3 v = Cross(viewDir, u);
+  std::vector<float> triangles;
+  triangles.reserve(static_cast<size_t>(slices) * 12 * 3);
+  for (int k = slices - 1; k >= 0; --k)
+  {
+    const double s = nearest + k * spacing;
+    std::vector<Vec3> polygon;
+    for (const auto& e : edges)
+    {
+      const double s0 = Dot(Sub(corners[e[0]], eye), viewDir);
+      const double s1 = Dot(Sub(corners[e[1]], eye), viewDir);
+      if ((s0 - s) * (s1 - s) > 0 || s0 == s1)
+      {
+        continue;
+      }
+      const double t = (s - s0) / (s1 - s0);
+      const Vec3& a = corners[e[0]];
+      const Vec3& b = corners[e[1]];
+      polygon.push_back(
+        { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]) });
+    }
+    if (polygon.size() < 3)
+    {
+      continue;
+    }
+    Vec3 centre = { 0, 0, 0 };
+    for (const auto& p : polygon)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        centre[c] += p[c] / polygon.size();
+      }
+    }
+    std::sort(polygon.begin(),
+      polygon.end(),
+      [&](const Vec3& a, const Vec3& b)
+      {
+        const Vec3 da = Sub(a, centre), db = Sub(b, centre);
+        return std::atan2(Dot(da, v), Dot(da, u)) < std::atan2(Dot(db, v), Dot(db, u));
+      });
+    for (size_t i = 1; i + 1 < polygon.size(); ++i)
+    {
+      for (const Vec3* p : { &polygon[0], &polygon[i], &polygon[i + 1] })
+      {
+        triangles.insert(triangles.end(),
+          { static_cast<float>((*p)[0]),
+            static_cast<float>((*p)[1]),
+            static_cast<float>((*p)[2]) });
+      }
+    }
+  }
+  this->LastNumberOfSlices = slices;
+  if (triangles.empty() || window->CheckAbortStatus())
+  {
+    return;
+  }
+
+  // The program (through VTK's shader cache) and the vertices.
+  vtkShaderProgram* program =
+    window->GetShaderCache()->ReadyShaderProgram(SegmentedVolume_vert, SegmentedVolume_frag, "");
+  if (!program)
+  {
+    vtkErrorMacro("Could not build the slice shader program");
+    return;
+  }
+  if (program != impl.Slices.Program)
+  {
+    impl.Slices.Program = program;
+    impl.Slices.VAO->ShaderProgramChanged();
+  }
+  impl.Slices.VAO->Bind();
+  impl.Vertices->Upload(triangles, vtkOpenGLBufferObject::ArrayBuffer);
+  if (!impl.Slices.VAO->AddAttributeArray(
+        program, impl.Vertices, "vertexWC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
+  {
+    vtkErrorMacro("Could not bind the slice vertices");
+    impl.Slices.VAO->Release();
+    return;
+  }
+
+  vtkMatrix4x4 *worldToView, *viewToClip, *worldToClipT;
+  vtkMatrix3x3* normals;
+  static_cast<vtkOpenGLCamera*>(camera)->GetKeyMatrices(
+    renderer, worldToView, normals, viewToClip, worldToClipT);
+  // GetKeyMatrices hands out transposed matrices, which is what the upload wants.
+  program->SetUniformMatrix("worldToClip", worldToClipT);
+  SetPlainMatrix(program, "worldToIndex", worldToIndex);
+  SetPlainMatrix(program, "indexToWorldNormal", normalMatrix);
+  const float eyeF[3] = {
+    static_cast<float>(eye[0]), static_cast<float>(eye[1]), static_cast<float>(eye[2])
+  };
+  const float dirF[3] = {
+    static_cast<float>(viewDir[0]), static_cast<float>(viewDir[1]), static_cast<float>(viewDir[2])
+  };
+  program->SetUniform3f("eyeWC", eyeF);
+  program->SetUniform3f("viewDirWC", dirF);
+  program->SetUniformi("parallelProjection", parallel ? 1 : 0);
+  program->SetUniformf("sliceSpacing", static_cast<float>(spacing));
+  const float dimsF[3] = { static_cast<float>(impl.Dims[0]),
+    static_cast<float>(impl.Dims[1]),
+    static_cast<float>(impl.Dims[2]) };
+  program->SetUniform3f("gridSize", dimsF);
+  const float spacingF[3] = { static_cast<float>(std::abs(impl.Spacing[0])),
+    static_cast<float>(std::abs(impl.Spacing[1])),
+    static_cast<float>(std::abs(impl.Spacing[2])) };
+  program->SetUniform3f("spacing", spacingF);
+  program->SetUniformi("interpolation", this->Interpolation);
+  program->SetUniformi("segmented", impl.Segmented ? 1 : 0);
+  program->SetUniformf("regionOffset", static_cast<float>(impl.RegionOffset));
+  program->SetUniformi("regionColorCount", colorCount);
+  vtkVolumeProperty* property = volume->GetProperty();
+  program->SetUniformi("shade", property->GetShade(0) ? 1 : 0);
+  program->SetUniformf("ambient", static_cast<float>(property->GetAmbient(0)));
+  program->SetUniformf("diffuse", static_cast<float>(property->GetDiffuse(0)));
+  program->SetUniformf("specular", static_cast<float>(property->GetSpecular(0)));
+  program->SetUniformf("specularPower", static_cast<float>(property->GetSpecularPower(0)));
+  program->SetUniformf("opacity", static_cast<float>(this->SurfaceOpacity));
+
+  impl.Field->Activate();
+  impl.Colors->Activate();
+  program->SetUniformi("field", impl.Field->GetTextureUnit());
+  program->SetUniformi("regionColors", impl.Colors->GetTextureUnit());
+
+  vtkOpenGLState* state = window->GetState();
+  {
+    vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+    vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+    vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
+    vtkOpenGLState::ScopedglDepthMask depthMask(state);
+    vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+    state->vtkglEnable(GL_DEPTH_TEST);
+    state->vtkglDepthFunc(GL_LEQUAL);
+    state->vtkglDisable(GL_CULL_FACE);
+    const bool opaque = this->SurfaceOpacity >= 1.0;
+    if (opaque)
+    {
+      state->vtkglDisable(GL_BLEND);
+      state->vtkglDepthMask(GL_TRUE);
+    }
+    else
+    {
+      state->vtkglEnable(GL_BLEND);
+      state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+      state->vtkglDepthMask(GL_FALSE);
+    }
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangles.size() / 3));
+  }
+  impl.Colors->Deactivate();
+  impl.Field->Deactivate();
+  impl.Slices.VAO->Release();
+  vtkOpenGLCheckErrorMacro("failed after drawing the slices");
+}

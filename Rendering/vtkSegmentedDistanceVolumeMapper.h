@@ -1,0 +1,153 @@
+/**
+ * @class   vtkSegmentedDistanceVolumeMapper
+ * @brief   Pre-integrated slice-based rendering of segmented and signed distance fields.
+ *
+ * The renderer of paper 004 (section 4) through VTK's OpenGL layer. The volume is cut
+ * by view-aligned slices (SampleDistance apart, or NumberOfSlices of them), drawn back
+ * to front; a fragment of a slice stands for the slab between its slice and the next
+ * one along its ray. It samples the field where the ray enters and where it leaves the
+ * slab, and decides what the paper's vertex generation diagram tabulated: whether an
+ * interface lies in the slab (the two samples are in different regions and their
+ * distances add up to at most the voxel spacing, eq. 7: so open boundaries stay open),
+ * where (eq. 6: at u / (u + v) of the way), and in which colour (the region on the
+ * viewer's side). The decision is evaluated in the shader, exactly, rather than looked
+ * up in a quantized table: a table of (front, back) pairs at 8 bits was what 2002
+ * hardware could do, and it quantizes the interface position to 1/256 of a region.
+ *
+ * Input: vtkImageData with, as point scalars,
+ * - `SegmentedDistance` and the field-data `RegionOffset` (vtkSegmentedDistanceField,
+ *   vtkDistanceFieldBlend): each sample's region r and distance d are read back from
+ *   f = min(d, Delta) + RegionOffset * r;
+ * - or any one-component array of signed distances (vtkLinearFactorDistanceField): two
+ *   regions, 0 where the value is >= 0 (outside) and 1 where it is < 0.
+ * The array is `SegmentedDistance` when the input has it, else the one chosen with
+ * SelectScalarArray(), else the active point scalars.
+ *
+ * Sampling (Interpolation):
+ * - RegionAware (default): in a cell whose eight voxels are in one region, trilinear
+ *   interpolation of the distance; in a cell that holds several regions, the distance
+ *   relative to the nearest voxel's region (positive in it, negative elsewhere) is
+ *   interpolated trilinearly, which across two regions is exactly the signed field's
+ *   interpolation: so a closed surface sits where its signed field's zero level set is,
+ *   not on the voxels' Voronoi faces, and no third region is invented between two;
+ * - Nearest: the paper's nearest-voxel sampling (surfaces on the Voronoi faces, up to
+ *   half a voxel off);
+ * - Linear: trilinear interpolation of the stored value itself, for comparison (between
+ *   regions i and i+2 it invents region i+1, the paper's Fig. 7).
+ *
+ * Surfaces are lit with normals from the gradient of the distance relative to the
+ * viewer-side region (central differences) and the vtkVolumeProperty's ambient,
+ * diffuse, specular and specular power when its Shade is on (a headlight); without
+ * Shade they are flat. Each surface takes the colour of the region on the viewer's side
+ * (SetRegionColor(), distinct defaults). With SurfaceOpacity = 1 the surfaces are opaque:
+ * each fragment writes gl_FragDepth at its interface point and fragments of slabs
+ * without an interface are discarded, so the depth buffer holds the surface and opaque
+ * geometry occludes it, and it them, both ways. Below 1 the surfaces are blended back to
+ * front (premultiplied), still depth-tested at their interface points against the
+ * opaque geometry.
+ *
+ * Needs an OpenGL 3.2 core context (vtkOpenGLRenderWindow); Mesa's llvmpipe will do.
+ * All GL state changes go through vtkOpenGLState; ReleaseGraphicsResources() frees the
+ * textures, buffers and program. Cropping, clipping planes and blend modes of
+ * vtkVolumeMapper are not used.
+ */
+#ifndef vtkSegmentedDistanceVolumeMapper_h
+#define vtkSegmentedDistanceVolumeMapper_h
+
+#include "vtkDistanceFieldsRenderingModule.h" // For export macro
+#include "vtkVolumeMapper.h"
+
+#include <memory> // For std::unique_ptr
+#include <string> // For std::string
+
+class vtkImageData;
+class vtkRenderer;
+class vtkVolume;
+class vtkWindow;
+
+class VTKDISTANCEFIELDSRENDERING_EXPORT vtkSegmentedDistanceVolumeMapper : public vtkVolumeMapper
+{
+public:
+  static vtkSegmentedDistanceVolumeMapper* New();
+  vtkTypeMacro(vtkSegmentedDistanceVolumeMapper, vtkVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum InterpolationModes
+  {
+    RegionAware = 0,
+    Nearest = 1,
+    Linear = 2
+  };
+  ///@{
+  /// How the field is sampled between voxels (see the class description).
+  vtkSetClampMacro(Interpolation, int, RegionAware, Linear);
+  vtkGetMacro(Interpolation, int);
+  void SetInterpolationToRegionAware() { this->SetInterpolation(RegionAware); }
+  void SetInterpolationToNearest() { this->SetInterpolation(Nearest); }
+  void SetInterpolationToLinear() { this->SetInterpolation(Linear); }
+  const char* GetInterpolationAsString();
+  ///@}
+
+  ///@{
+  /// The distance between slices, in world units; 0 (default): the smallest voxel
+  /// spacing (one slab a voxel: interfaces between slices are found by the slab test).
+  vtkSetClampMacro(SampleDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SampleDistance, double);
+  ///@}
+
+  ///@{
+  /// The number of slices across the volume's depth; 0 (default): from SampleDistance.
+  vtkSetClampMacro(NumberOfSlices, int, 0, 1 << 20);
+  vtkGetMacro(NumberOfSlices, int);
+  ///@}
+
+  ///@{
+  /// The surfaces' opacity: 1 (default) opaque, written to the depth buffer; below 1
+  /// blended back to front.
+  vtkSetClampMacro(SurfaceOpacity, double, 0.0, 1.0);
+  vtkGetMacro(SurfaceOpacity, double);
+  ///@}
+
+  ///@{
+  /// The colour of a region's surfaces (seen from that region). Regions without one take
+  /// a default from a palette of distinct colours.
+  void SetRegionColor(int region, double r, double g, double b);
+  void GetRegionColor(int region, double rgb[3]);
+  void RemoveAllRegionColors();
+  ///@}
+
+  ///@{
+  /// What the last Render() drew: the number of slices, the number of regions of the
+  /// field, and whether it was read as a segmented field (else a signed one).
+  vtkGetMacro(LastNumberOfSlices, int);
+  vtkGetMacro(LastRegionCount, int);
+  vtkGetMacro(LastSegmented, bool);
+  ///@}
+
+  void Render(vtkRenderer* renderer, vtkVolume* volume) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkSegmentedDistanceVolumeMapper();
+  ~vtkSegmentedDistanceVolumeMapper() override;
+
+  int Interpolation = RegionAware;
+  double SampleDistance = 0.0;
+  int NumberOfSlices = 0;
+  double SurfaceOpacity = 1.0;
+  int LastNumberOfSlices = 0;
+  int LastRegionCount = 0;
+  bool LastSegmented = false;
+
+private:
+  vtkSegmentedDistanceVolumeMapper(const vtkSegmentedDistanceVolumeMapper&) = delete;
+  void operator=(const vtkSegmentedDistanceVolumeMapper&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+
+  bool UpdateField(vtkImageData* image);
+  std::string ArraySelectionKey() const;
+};
+
+#endif

@@ -1,0 +1,201 @@
+//VTK::System::Dec
+//VTK::Output::Dec
+
+// One fragment of a view-aligned slice stands for the slab between this slice and the
+// next one along its ray (paper 004, section 4). It samples the field where the ray
+// enters and leaves the slab, and decides what the paper's vertex generation diagram
+// tabulated: whether an interface lies in the slab (two regions, eq. 7), where (eq. 6)
+// and in which colour (the region on the viewer's side).
+
+in vec3 positionWC;
+
+uniform sampler3D field;          // per voxel: distance (>= 0), region index
+uniform sampler2D regionColors;   // one texel per region
+uniform int regionColorCount;
+uniform vec3 gridSize;           // samples per axis
+uniform vec3 spacing;             // voxel spacing, physical units
+uniform mat4 worldToIndex;
+uniform mat4 worldToClip;
+uniform mat3 indexToWorldNormal;
+uniform vec3 eyeWC;
+uniform vec3 viewDirWC;
+uniform int parallelProjection;
+uniform float sliceSpacing;       // world units, along viewDirWC
+uniform int interpolation;        // 0 region-aware, 1 nearest, 2 linear
+uniform int segmented;            // else a signed field: region 1 where negative
+uniform float regionOffset;
+uniform int shade;
+uniform float ambient;
+uniform float diffuse;
+uniform float specular;
+uniform float specularPower;
+uniform float opacity;
+
+ivec3 dims()
+{
+  return ivec3(gridSize + 0.5);
+}
+
+vec2 voxel(ivec3 i)
+{
+  return texelFetch(field, clamp(i, ivec3(0), dims() - 1), 0).xy;
+}
+
+// The eight voxels of the cell around index-space point p, and p's place in it.
+void cellAt(vec3 p, out vec2 c[8], out vec3 t)
+{
+  vec3 q = clamp(p, vec3(0.0), vec3(dims() - 1));
+  ivec3 b = clamp(ivec3(floor(q)), ivec3(0), max(dims() - 2, ivec3(0)));
+  t = q - vec3(b);
+  for (int k = 0; k < 8; ++k)
+  {
+    c[k] = voxel(b + ivec3(k & 1, (k >> 1) & 1, k >> 2));
+  }
+}
+
+float trilinear(float v[8], vec3 t)
+{
+  vec4 x = mix(vec4(v[0], v[2], v[4], v[6]), vec4(v[1], v[3], v[5], v[7]), t.x);
+  vec2 y = mix(x.xz, x.yw, t.y);
+  return mix(y.x, y.y, t.z);
+}
+
+// The distance relative to region r (positive in r, negative elsewhere), interpolated:
+// across two regions, the signed field's interpolation.
+float relativeTo(vec2 c[8], vec3 t, float r)
+{
+  float v[8];
+  for (int k = 0; k < 8; ++k)
+  {
+    v[k] = c[k].y == r ? c[k].x : -c[k].x;
+  }
+  return trilinear(v, t);
+}
+
+// The stored value (segmented or signed) of a voxel, and back.
+float encoded(vec2 c)
+{
+  return segmented == 1 ? c.x + regionOffset * c.y : (c.y > 0.5 ? -c.x : c.x);
+}
+vec2 decoded(float f)
+{
+  if (segmented == 1)
+  {
+    float r = floor(f / regionOffset);
+    return vec2(f - r * regionOffset, r);
+  }
+  return vec2(abs(f), f < 0.0 ? 1.0 : 0.0);
+}
+
+// (distance, region) at index-space point p.
+vec2 sampleField(vec3 p)
+{
+  vec2 c[8];
+  vec3 t;
+  cellAt(p, c, t);
+  int nearest = int(t.x > 0.5) + 2 * int(t.y > 0.5) + 4 * int(t.z > 0.5);
+  if (interpolation == 1)
+  {
+    return c[nearest];
+  }
+  if (interpolation == 2)
+  {
+    float v[8];
+    for (int k = 0; k < 8; ++k)
+    {
+      v[k] = encoded(c[k]);
+    }
+    return decoded(trilinear(v, t));
+  }
+  float r = c[nearest].y;
+  float inside = relativeTo(c, t, r);
+  if (inside >= 0.0)
+  {
+    return vec2(inside, r);
+  }
+  // p lies beyond r's interface: in the region of the nearest voxel of another region.
+  float best = 1e30;
+  float other = r;
+  for (int k = 0; k < 8; ++k)
+  {
+    vec3 corner = vec3(k & 1, (k >> 1) & 1, k >> 2);
+    float d = dot(t - corner, t - corner);
+    if (c[k].y != r && d < best)
+    {
+      best = d;
+      other = c[k].y;
+    }
+  }
+  return vec2(max(relativeTo(c, t, other), 0.0), other);
+}
+
+// The gradient (per index step) of the distance relative to region r at p.
+vec3 gradientTo(vec3 p, float r)
+{
+  vec3 g;
+  for (int a = 0; a < 3; ++a)
+  {
+    vec3 e = vec3(0.0);
+    e[a] = 0.5;
+    vec2 c[8];
+    vec3 t;
+    cellAt(p + e, c, t);
+    float ahead = relativeTo(c, t, r);
+    cellAt(p - e, c, t);
+    g[a] = ahead - relativeTo(c, t, r);
+  }
+  return g;
+}
+
+void main()
+{
+  vec3 dir = parallelProjection == 1 ? viewDirWC : normalize(positionWC - eyeWC);
+  float along = sliceSpacing / max(dot(dir, viewDirWC), 1e-6);
+  vec3 frontWC = positionWC;
+  vec3 backWC = positionWC + along * dir;
+  vec3 frontI = (worldToIndex * vec4(frontWC, 1.0)).xyz;
+  vec3 backI = (worldToIndex * vec4(backWC, 1.0)).xyz;
+  vec2 front = sampleField(frontI);
+  vec2 back = sampleField(backI);
+  if (front.y == back.y)
+  {
+    discard;
+  }
+  // Eq. 7: an interface only where the two distances add up to at most w, so that open
+  // boundaries stay open. The paper's w is the voxel spacing (here along the ray's
+  // direction in index space); interpolated samples a slab apart can differ by up to the
+  // slab's length in the L1 norm (trilinear interpolation of a 1-Lipschitz field changes
+  // by at most one spacing per voxel step on each axis), so w is at least that.
+  vec3 stepI = abs(backI - frontI);
+  float w = max(dot(stepI, spacing) / max(stepI.x + stepI.y + stepI.z, 1e-30),
+    dot(stepI, spacing));
+  float sum = front.x + back.x;
+  if (sum > w * 1.001)
+  {
+    discard;
+  }
+  // Eq. 6: the interface lies u / (u + v) of the way.
+  float t = sum > 0.0 ? front.x / sum : 0.0;
+  vec3 hitI = mix(frontI, backI, t);
+  if (any(lessThan(hitI, vec3(-1e-3))) || any(greaterThan(hitI, vec3(dims() - 1) + 1e-3)))
+  {
+    discard;
+  }
+  vec3 hitWC = mix(frontWC, backWC, t);
+  vec4 clip = worldToClip * vec4(hitWC, 1.0);
+  gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
+
+  int region = int(front.y);
+  vec3 color = texelFetch(regionColors, ivec2(region % regionColorCount, 0), 0).rgb;
+  if (shade == 1)
+  {
+    // A headlight; the normal points into the viewer's region.
+    vec3 n = indexToWorldNormal * gradientTo(hitI, front.y);
+    float len = length(n);
+    n = len > 0.0 ? n / len : -dir;
+    float facing = abs(dot(n, -dir));
+    float highlight = specular > 0.0 ? pow(facing, max(specularPower, 1.0)) : 0.0;
+    color = color * (ambient + diffuse * facing) + vec3(specular * highlight);
+  }
+  gl_FragData[0] = vec4(color * opacity, opacity);
+}

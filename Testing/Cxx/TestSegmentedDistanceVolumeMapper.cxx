@@ -1,0 +1,754 @@
+// vtkSegmentedDistanceVolumeMapper, tested by numbers read back from the window (depth
+// buffer and colours) against polygonal references drawn by VTK's own mapper with the
+// same camera:
+// - signed: bunny_small's signed field. The mapper's depth against the zero level set
+//   (vtkFlyingEdges3D) of the same field, perspective and parallel; RegionAware within a
+//   small fraction of a voxel, closer than the paper's Nearest sampling; against the mesh
+//   itself within a voxel.
+// - segmented: the open walled box (junction lines, an open chamber) against its
+//   polygonized surface (vtkSegmentedDistanceContour): depth, and every region's colour
+//   on screen where the reference shows that region's side.
+// - occlusion: a sphere actor half inside the bunny's field: the combined depth buffer is
+//   the nearer of the two drawn alone, and the colours follow, both ways.
+// - translucent: SurfaceOpacity 0.5 blends over the background and writes no depth.
+// - lifecycle: window resizes, property changes, new input data and
+//   ReleaseGraphicsResources between frames; the same pictures, no GL error.
+// - errors: bad input is reported (no scalars, NaN, a flat grid, SegmentedDistance without
+//   RegionOffset) and nothing is drawn.
+// - image: a regression image (the walled box's surfaces, lit), -V BASELINE -T TMP.
+//
+// usage: TestSegmentedDistanceVolumeMapper MODE DATA_DIR [-V BASELINE -T TMP]
+#include "TestShapes.h"
+#include "TestSupport.h"
+#include "vtkLinearFactorDistanceField.h"
+#include "vtkSegmentedDistanceContour.h"
+#include "vtkSegmentedDistanceField.h"
+#include "vtkSegmentedDistanceVolumeMapper.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCell.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkFlyingEdges3D.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRegressionTestImage.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSphereSource.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace
+{
+const int Size = 240;
+const double Background[3] = { 0.1, 0.1, 0.15 };
+
+/// A window's pixels: depth (1 = nothing) and colour, bottom row first.
+struct Frame
+{
+  std::vector<float> Depth;
+  std::vector<unsigned char> Rgb;
+  int Width = 0, Height = 0;
+  bool Covered(size_t p) const { return this->Depth[p] < 1.0f; }
+};
+
+Frame Grab(vtkRenderWindow* window)
+{
+  Frame frame;
+  const int* size = window->GetSize();
+  frame.Width = size[0];
+  frame.Height = size[1];
+  vtkNew<vtkFloatArray> depth;
+  window->GetZbufferData(0, 0, size[0] - 1, size[1] - 1, depth);
+  frame.Depth.assign(depth->GetPointer(0), depth->GetPointer(0) + size[0] * size[1]);
+  vtkNew<vtkUnsignedCharArray> rgb;
+  window->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, rgb);
+  frame.Rgb.assign(rgb->GetPointer(0), rgb->GetPointer(0) + 3 * size[0] * size[1]);
+  return frame;
+}
+
+/// The distance along the view direction of a depth-buffer value.
+double ViewDepth(float z, vtkCamera* camera)
+{
+  double range[2];
+  camera->GetClippingRange(range);
+  const double n = range[0], f = range[1];
+  if (camera->GetParallelProjection())
+  {
+    return n + z * (f - n);
+  }
+  const double ndc = 2.0 * z - 1.0;
+  return 2.0 * n * f / ((f + n) - ndc * (f - n));
+}
+
+/// How two pictures of one surface differ: the share of the pixels covered by only one,
+/// and the depth differences where both are (world units).
+struct Difference
+{
+  double Mismatch = 0, Median = 0, P90 = 0, Mean = 0;
+  size_t Both = 0;
+};
+
+Difference Compare(const Frame& a, const Frame& b, vtkCamera* camera)
+{
+  Difference d;
+  size_t either = 0, one = 0;
+  std::vector<double> errors;
+  for (size_t p = 0; p < a.Depth.size(); ++p)
+  {
+    const bool ca = a.Covered(p), cb = b.Covered(p);
+    either += (ca || cb) ? 1 : 0;
+    one += (ca != cb) ? 1 : 0;
+    if (ca && cb)
+    {
+      errors.push_back(std::abs(ViewDepth(a.Depth[p], camera) - ViewDepth(b.Depth[p], camera)));
+    }
+  }
+  d.Mismatch = either ? static_cast<double>(one) / either : 1.0;
+  d.Both = errors.size();
+  if (!errors.empty())
+  {
+    std::sort(errors.begin(), errors.end());
+    d.Median = errors[errors.size() / 2];
+    d.P90 = errors[errors.size() * 9 / 10];
+    for (double e : errors)
+    {
+      d.Mean += e / errors.size();
+    }
+  }
+  return d;
+}
+
+/// A window with one renderer and a fixed camera around `bounds`.
+struct Scene
+{
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  Scene(const double bounds[6], bool parallel, double azimuth, double elevation)
+  {
+    this->Window->SetSize(Size, Size);
+    this->Window->SetMultiSamples(0);
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->SetBackground(Background[0], Background[1], Background[2]);
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->SetParallelProjection(parallel);
+    this->Renderer->ResetCamera(bounds);
+    camera->Azimuth(azimuth);
+    camera->Elevation(elevation);
+    camera->OrthogonalizeViewUp();
+    this->Renderer->ResetCamera(bounds);
+    // The same clipping range for every picture of the scene.
+    const double centre[3] = {
+      (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2
+    };
+    const double radius = 0.5 *
+      std::sqrt(std::pow(bounds[1] - bounds[0], 2) + std::pow(bounds[3] - bounds[2], 2) +
+        std::pow(bounds[5] - bounds[4], 2));
+    double position[3];
+    camera->GetPosition(position);
+    const double distance = std::sqrt(std::pow(position[0] - centre[0], 2) +
+      std::pow(position[1] - centre[1], 2) + std::pow(position[2] - centre[2], 2));
+    camera->SetClippingRange(
+      std::max(distance - 1.5 * radius, 0.05 * distance), distance + 1.5 * radius);
+  }
+  /// Draws `props` alone and reads the window back.
+  Frame Draw(std::initializer_list<vtkProp*> props)
+  {
+    this->Renderer->RemoveAllViewProps();
+    for (vtkProp* prop : props)
+    {
+      this->Renderer->AddViewProp(prop);
+    }
+    this->Window->Render();
+    return Grab(this->Window);
+  }
+};
+
+vtkSmartPointer<vtkActor> SurfaceActor(vtkPolyData* surface, const double rgb[3])
+{
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(surface);
+  mapper->ScalarVisibilityOff();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(rgb[0], rgb[1], rgb[2]);
+  actor->GetProperty()->LightingOff();
+  return actor;
+}
+
+vtkSmartPointer<vtkVolume> FieldVolume(vtkSegmentedDistanceVolumeMapper* mapper, bool shade)
+{
+  vtkNew<vtkVolumeProperty> property;
+  property->SetShade(shade);
+  property->SetAmbient(0.25);
+  property->SetDiffuse(0.75);
+  property->SetSpecular(0.2);
+  property->SetSpecularPower(24);
+  auto volume = vtkSmartPointer<vtkVolume>::New();
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  return volume;
+}
+
+vtkSmartPointer<vtkImageData> SignedBunny(const std::string& data, double spacing[3])
+{
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName((data + "/bunny_small.vtp").c_str());
+  vtkNew<vtkLinearFactorDistanceField> field;
+  field->SetInputConnection(reader->GetOutputPort());
+  field->SetResolution(40);
+  field->SetBackendToCPU();
+  field->SetSignModeToPseudoNormal();
+  field->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->ShallowCopy(field->GetOutput());
+  image->GetSpacing(spacing);
+  return image;
+}
+
+vtkSmartPointer<vtkPolyData> ZeroLevelSet(vtkImageData* field)
+{
+  vtkNew<vtkFlyingEdges3D> contour;
+  contour->SetInputData(field);
+  contour->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Distance");
+  contour->SetValue(0, 0.0);
+  contour->ComputeNormalsOff();
+  contour->Update();
+  return contour->GetOutput();
+}
+
+bool SameColour(const unsigned char* pixel, const double rgb[3], int tolerance)
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    if (std::abs(pixel[c] - 255.0 * rgb[c]) > tolerance)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+int TestSigned(const std::string& data)
+{
+  double spacing[3];
+  auto field = SignedBunny(data, spacing);
+  const double h = spacing[0];
+  auto levelSet = ZeroLevelSet(field);
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName((data + "/bunny_small.vtp").c_str());
+  reader->Update();
+  const double white[3] = { 1, 1, 1 };
+  auto levelSetActor = SurfaceActor(levelSet, white);
+  auto meshActor = SurfaceActor(reader->GetOutput(), white);
+  vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
+  mapper->SetInputData(field);
+  auto volume = FieldVolume(mapper, false);
+  testsupport::MessageRecorder messages(mapper);
+  for (const bool parallel : { false, true })
+  {
+    Scene scene(field->GetBounds(), parallel, 35, 20);
+    vtkCamera* camera = scene.Renderer->GetActiveCamera();
+    const Frame reference = scene.Draw({ levelSetActor });
+    const Frame mesh = scene.Draw({ meshActor });
+    std::map<int, Difference> byMode;
+    for (const int mode :
+      { vtkSegmentedDistanceVolumeMapper::RegionAware, vtkSegmentedDistanceVolumeMapper::Nearest })
+    {
+      mapper->SetInterpolation(mode);
+      const Frame drawn = scene.Draw({ volume });
+      const Difference d = Compare(drawn, reference, camera);
+      const Difference m = Compare(drawn, mesh, camera);
+      byMode[mode] = d;
+      std::printf("%s %s: %d slices; against the level set: %.2f%% pixels differ, depth "
+                  "median %.3f p90 %.3f mean %.3f voxels; against the mesh: %.2f%%, median "
+                  "%.3f p90 %.3f voxels\n",
+        parallel ? "parallel" : "perspective",
+        mapper->GetInterpolationAsString(),
+        mapper->GetLastNumberOfSlices(),
+        100 * d.Mismatch,
+        d.Median / h,
+        d.P90 / h,
+        d.Mean / h,
+        100 * m.Mismatch,
+        m.Median / h,
+        m.P90 / h);
+      CHECK(d.Both > 5000, "too few pixels covered (%zu)", d.Both);
+      CHECK(mapper->GetLastRegionCount() == 2 && !mapper->GetLastSegmented(),
+        "a signed field is two regions (%d)",
+        mapper->GetLastRegionCount());
+      if (mode == vtkSegmentedDistanceVolumeMapper::RegionAware)
+      {
+        CHECK(
+          d.Mismatch < 0.02, "coverage differs from the level set's on %.2f%%", 100 * d.Mismatch);
+        CHECK(d.Median < 0.05 * h && d.P90 < 0.15 * h,
+          "depth off the level set: median %.3f p90 %.3f voxels",
+          d.Median / h,
+          d.P90 / h);
+        CHECK(m.Mismatch < 0.04 && m.P90 < 0.5 * h,
+          "depth off the mesh: %.2f%% pixels, p90 %.3f voxels",
+          100 * m.Mismatch,
+          m.P90 / h);
+      }
+    }
+    CHECK(byMode[vtkSegmentedDistanceVolumeMapper::RegionAware].Mean <
+        0.5 * byMode[vtkSegmentedDistanceVolumeMapper::Nearest].Mean,
+      "region-aware sampling is not closer than nearest sampling");
+  }
+  CHECK(messages.Errors.empty(), "errors: %s", messages.Errors.c_str());
+  return 0;
+}
+
+vtkSmartPointer<vtkImageData> WalledBoxField(int resolution, int* regions)
+{
+  vtkNew<vtkSegmentedDistanceField> segment;
+  segment->SetInputData(testsupport::OpenWalledBox());
+  segment->SetResolution(resolution);
+  segment->SetBackendToCPU();
+  segment->Update();
+  *regions = segment->GetLastRegionCount();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->ShallowCopy(segment->GetOutput());
+  return image;
+}
+
+int TestSegmented()
+{
+  int regions = 0;
+  auto field = WalledBoxField(40, &regions);
+  const double h = field->GetSpacing()[0];
+  vtkNew<vtkSegmentedDistanceContour> contour;
+  contour->SetInputData(field);
+  contour->Update();
+  vtkPolyData* surface = contour->GetOutput();
+  vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
+  mapper->SetInputData(field);
+  auto volume = FieldVolume(mapper, false);
+  testsupport::MessageRecorder messages(mapper);
+  // Seen from above the open chamber: the outside, the closed chamber's lid and the open
+  // chamber's floor and walls all show.
+  Scene scene(field->GetBounds(), false, 30, 55);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  const double white[3] = { 1, 1, 1 };
+  auto surfaceActor = SurfaceActor(surface, white);
+  const Frame reference = scene.Draw({ surfaceActor });
+  const Frame drawn = scene.Draw({ volume });
+  const Difference d = Compare(drawn, reference, camera);
+  std::printf("walled box: %d regions, %d drawn, %d slices; %.2f%% pixels differ, depth median "
+              "%.3f p90 %.3f voxels\n",
+    regions,
+    mapper->GetLastRegionCount(),
+    mapper->GetLastNumberOfSlices(),
+    100 * d.Mismatch,
+    d.Median / h,
+    d.P90 / h);
+  CHECK(mapper->GetLastSegmented() && mapper->GetLastRegionCount() == regions,
+    "read %d regions of %d",
+    mapper->GetLastRegionCount(),
+    regions);
+  CHECK(d.Mismatch < 0.03,
+    "coverage differs from the polygonized surface's on %.2f%%",
+    100 * d.Mismatch);
+  CHECK(d.Median < 0.1 * h && d.P90 < 0.5 * h, "depth off the polygonized surface");
+
+  // Colours: the reference draws each triangle in the colour of the region on the side
+  // the viewer sees (a triangle faces the higher of the two regions it separates; its
+  // back shows the lower one). Where both pictures show the same depth, the colours agree.
+  vtkDataArray* pairs = surface->GetCellData()->GetArray("Regions");
+  std::map<std::pair<int, int>, vtkSmartPointer<vtkPolyData>> byPair;
+  for (vtkIdType t = 0; t < surface->GetNumberOfCells(); ++t)
+  {
+    const auto key = std::make_pair(
+      static_cast<int>(pairs->GetComponent(t, 0)), static_cast<int>(pairs->GetComponent(t, 1)));
+    auto& part = byPair[key];
+    if (!part)
+    {
+      part = vtkSmartPointer<vtkPolyData>::New();
+      part->SetPoints(surface->GetPoints());
+      part->AllocateExact(16, 16);
+    }
+    part->InsertNextCell(VTK_TRIANGLE, surface->GetCell(t)->GetPointIds());
+  }
+  std::vector<vtkSmartPointer<vtkActor>> parts;
+  for (const auto& p : byPair)
+  {
+    double low[3], high[3];
+    mapper->GetRegionColor(p.first.first, low);
+    mapper->GetRegionColor(p.first.second, high);
+    auto actor = SurfaceActor(p.second, high);
+    vtkNew<vtkProperty> backface;
+    backface->SetColor(low);
+    backface->LightingOff();
+    actor->SetBackfaceProperty(backface);
+    parts.push_back(actor);
+  }
+  scene.Renderer->RemoveAllViewProps();
+  for (const auto& actor : parts)
+  {
+    scene.Renderer->AddActor(actor);
+  }
+  scene.Window->Render();
+  const Frame coloured = Grab(scene.Window);
+  std::map<int, size_t> shown;
+  size_t compared = 0, differ = 0;
+  for (size_t p = 0; p < drawn.Depth.size(); ++p)
+  {
+    if (!drawn.Covered(p) || !coloured.Covered(p) ||
+      std::abs(ViewDepth(drawn.Depth[p], camera) - ViewDepth(coloured.Depth[p], camera)) > 0.25 * h)
+    {
+      continue;
+    }
+    ++compared;
+    int which = -1;
+    for (int r = 0; r < regions; ++r)
+    {
+      double rgb[3];
+      mapper->GetRegionColor(r, rgb);
+      which = SameColour(&drawn.Rgb[3 * p], rgb, 3) ? r : which;
+    }
+    ++shown[which];
+    differ += (memcmp(&drawn.Rgb[3 * p], &coloured.Rgb[3 * p], 3) != 0);
+  }
+  for (const auto& r : shown)
+  {
+    std::printf("region %d: %.1f%% of the surface pixels\n", r.first, 100.0 * r.second / compared);
+  }
+  std::printf("colours differ from the reference's on %.2f%% of %zu pixels\n",
+    100.0 * differ / compared,
+    compared);
+  CHECK(shown.count(-1) == 0, "%zu pixels in no region's colour", shown[-1]);
+  CHECK(shown.size() >= 2, "fewer than two regions show");
+  CHECK(differ < 0.01 * compared, "colours differ on %zu pixels", differ);
+
+  // SetRegionColor recolours; the depth stays.
+  double rgb0[3];
+  mapper->GetRegionColor(0, rgb0);
+  mapper->SetRegionColor(0, 1.0, 0.0, 1.0);
+  const Frame recoloured = scene.Draw({ volume });
+  const double magenta[3] = { 1, 0, 1 };
+  size_t magentaPixels = 0, region0Pixels = 0;
+  for (size_t p = 0; p < recoloured.Depth.size(); ++p)
+  {
+    magentaPixels += recoloured.Covered(p) && SameColour(&recoloured.Rgb[3 * p], magenta, 3);
+    region0Pixels += drawn.Covered(p) && SameColour(&drawn.Rgb[3 * p], rgb0, 3);
+  }
+  CHECK(magentaPixels == region0Pixels && magentaPixels > 0,
+    "region 0 recoloured on %zu pixels, not %zu",
+    magentaPixels,
+    region0Pixels);
+  CHECK(recoloured.Depth == drawn.Depth, "recolouring changed the depth");
+  CHECK(messages.Errors.empty(), "errors: %s", messages.Errors.c_str());
+  return 0;
+}
+
+int TestOcclusion(const std::string& data)
+{
+  double spacing[3];
+  auto field = SignedBunny(data, spacing);
+  vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
+  mapper->SetInputData(field);
+  auto volume = FieldVolume(mapper, false);
+  // A sphere centred on the bunny's surface at its widest: half inside, half outside.
+  const double* b = field->GetBounds();
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter((b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2);
+  sphere->SetRadius(0.3 * (b[1] - b[0]));
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(48);
+  sphere->Update();
+  const double red[3] = { 0.9, 0.1, 0.1 };
+  auto sphereActor = SurfaceActor(sphere->GetOutput(), red);
+  Scene scene(b, false, 20, 10);
+  const Frame sphereAlone = scene.Draw({ sphereActor });
+  const Frame volumeAlone = scene.Draw({ volume });
+  const Frame both = scene.Draw({ sphereActor, volume });
+  double rgb0[3];
+  mapper->GetRegionColor(0, rgb0);
+  size_t sphereFront = 0, volumeFront = 0, wrongDepth = 0, wrongColour = 0;
+  for (size_t p = 0; p < both.Depth.size(); ++p)
+  {
+    const float expected = std::min(sphereAlone.Depth[p], volumeAlone.Depth[p]);
+    wrongDepth += std::abs(both.Depth[p] - expected) > 1e-6f;
+    if (!sphereAlone.Covered(p) || !volumeAlone.Covered(p) ||
+      std::abs(sphereAlone.Depth[p] - volumeAlone.Depth[p]) < 1e-3f)
+    {
+      continue;
+    }
+    const bool sphereNearer = sphereAlone.Depth[p] < volumeAlone.Depth[p];
+    (sphereNearer ? sphereFront : volumeFront) += 1;
+    wrongColour += !SameColour(&both.Rgb[3 * p], sphereNearer ? red : rgb0, 3);
+  }
+  std::printf("occlusion: sphere in front on %zu pixels, the surface on %zu; %zu depths and "
+              "%zu colours differ from the nearer one's\n",
+    sphereFront,
+    volumeFront,
+    wrongDepth,
+    wrongColour);
+  CHECK(sphereFront > 1000 && volumeFront > 1000, "the scene does not test both ways");
+  CHECK(wrongDepth == 0 && wrongColour == 0, "occlusion is wrong");
+  return 0;
+}
+
+int TestTranslucent(const std::string& data)
+{
+  double spacing[3];
+  auto field = SignedBunny(data, spacing);
+  vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
+  mapper->SetInputData(field);
+  auto volume = FieldVolume(mapper, false);
+  Scene scene(field->GetBounds(), false, 35, 20);
+  const Frame opaque = scene.Draw({ volume });
+  mapper->SetSurfaceOpacity(0.5);
+  const Frame translucent = scene.Draw({ volume });
+  double rgb0[3], rgb1[3];
+  mapper->GetRegionColor(0, rgb0);
+  mapper->GetRegionColor(1, rgb1);
+  // A ray through the bunny crosses the surface twice: outside -> inside (region 0's
+  // side) and inside -> outside (region 1's), blended back to front over the background.
+  size_t through = 0, wrong = 0, depthWritten = 0;
+  for (size_t p = 0; p < opaque.Depth.size(); ++p)
+  {
+    depthWritten += translucent.Covered(p);
+    if (!opaque.Covered(p))
+    {
+      continue;
+    }
+    double expected[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      const double back = 0.5 * rgb1[c] + 0.5 * Background[c];
+      expected[c] = 0.5 * rgb0[c] + 0.5 * back;
+    }
+    ++through;
+    wrong += !SameColour(&translucent.Rgb[3 * p], expected, 4);
+  }
+  std::printf("translucent: %zu pixels, %zu not the two-layer blend, %zu depths written\n",
+    through,
+    wrong,
+    depthWritten);
+  // Silhouette pixels may cross the surface once or more than twice.
+  CHECK(through > 5000 && wrong < 0.05 * through, "the blend is wrong on %zu pixels", wrong);
+  CHECK(depthWritten == 0, "a translucent surface wrote depth");
+  return 0;
+}
+
+int TestLifecycle(const std::string& data)
+{
+  double spacing[3];
+  auto field = SignedBunny(data, spacing);
+  vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
+  mapper->SetInputData(field);
+  auto volume = FieldVolume(mapper, true);
+  testsupport::MessageRecorder messages(mapper);
+  Scene scene(field->GetBounds(), false, 35, 20);
+  const Frame first = scene.Draw({ volume });
+  auto coverage = [](const Frame& f)
+  {
+    size_t n = 0;
+    for (size_t p = 0; p < f.Depth.size(); ++p)
+    {
+      n += f.Covered(p);
+    }
+    return static_cast<double>(n) / f.Depth.size();
+  };
+  // Resize and back.
+  scene.Window->SetSize(Size + 60, Size + 20);
+  const Frame resized = scene.Draw({ volume });
+  scene.Window->SetSize(Size, Size);
+  const Frame back = scene.Draw({ volume });
+  CHECK(resized.Width == Size + 60 && coverage(resized) > 0.5 * coverage(first),
+    "nothing after a resize");
+  CHECK(back.Depth == first.Depth, "resizing back changed the picture");
+  // Release everything, draw again.
+  mapper->ReleaseGraphicsResources(scene.Window);
+  const Frame released = scene.Draw({ volume });
+  CHECK(released.Depth == first.Depth && released.Rgb == first.Rgb,
+    "the picture after ReleaseGraphicsResources differs");
+  // Shade off then on: colours change, depth does not.
+  volume->GetProperty()->ShadeOff();
+  const Frame flat = scene.Draw({ volume });
+  CHECK(flat.Depth == first.Depth && flat.Rgb != first.Rgb, "Shade is not picked up");
+  volume->GetProperty()->ShadeOn();
+  // New input data: a shifted copy of the field moves the picture.
+  vtkNew<vtkImageData> shifted;
+  shifted->DeepCopy(field);
+  double origin[3];
+  field->GetOrigin(origin);
+  shifted->SetOrigin(origin[0] + 5 * spacing[0], origin[1], origin[2]);
+  mapper->SetInputData(shifted);
+  const Frame moved = scene.Draw({ volume });
+  CHECK(moved.Depth != first.Depth, "new input data is not picked up");
+  mapper->SetInputData(field);
+  const Frame restored = scene.Draw({ volume });
+  CHECK(restored.Depth == first.Depth, "the first input does not come back");
+  // Modified values in place.
+  vtkDataArray* values = field->GetPointData()->GetArray("Distance");
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    values->SetTuple1(i, values->GetTuple1(i) - 0.5 * spacing[0]);
+  }
+  values->Modified();
+  field->Modified();
+  const Frame grown = scene.Draw({ volume });
+  CHECK(coverage(grown) > coverage(first), "a modified array is not picked up");
+  std::printf("lifecycle: coverage %.3f, resized %.3f, grown %.3f\n",
+    coverage(first),
+    coverage(resized),
+    coverage(grown));
+  CHECK(messages.Errors.empty(), "errors: %s", messages.Errors.c_str());
+  return 0;
+}
+
+int TestErrors()
+{
+  vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
+  auto volume = FieldVolume(mapper, false);
+  const double bounds[6] = { 0, 1, 0, 1, 0, 1 };
+  Scene scene(bounds, false, 0, 0);
+  struct Case
+  {
+    const char* Name;
+    vtkSmartPointer<vtkImageData> Image;
+    const char* Expected;
+  };
+  std::vector<Case> cases;
+  auto grid = [](int nz)
+  {
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(8, 8, nz);
+    image->SetSpacing(1.0 / 7, 1.0 / 7, 1.0 / 7);
+    return image;
+  };
+  cases.push_back({ "no scalars", grid(8), "no point array" });
+  {
+    auto image = grid(8);
+    vtkNew<vtkFloatArray> values;
+    values->SetName("Distance");
+    values->SetNumberOfTuples(image->GetNumberOfPoints());
+    values->Fill(0.5);
+    values->SetValue(100, std::numeric_limits<float>::quiet_NaN());
+    image->GetPointData()->SetScalars(values);
+    cases.push_back({ "NaN", image, "NaN" });
+  }
+  {
+    auto image = grid(1);
+    vtkNew<vtkFloatArray> values;
+    values->SetNumberOfTuples(image->GetNumberOfPoints());
+    values->Fill(0.5);
+    image->GetPointData()->SetScalars(values);
+    cases.push_back({ "flat grid", image, "at least 2 on every axis" });
+  }
+  {
+    auto image = grid(8);
+    vtkNew<vtkFloatArray> values;
+    values->SetName("SegmentedDistance");
+    values->SetNumberOfTuples(image->GetNumberOfPoints());
+    values->Fill(0.5);
+    image->GetPointData()->AddArray(values);
+    cases.push_back({ "no RegionOffset", image, "RegionOffset" });
+  }
+  for (const auto& c : cases)
+  {
+    testsupport::MessageRecorder messages(mapper);
+    mapper->SetInputData(c.Image);
+    const Frame frame = scene.Draw({ volume });
+    const bool drawn =
+      std::any_of(frame.Depth.begin(), frame.Depth.end(), [](float z) { return z < 1.0f; });
+    std::printf("%s: %s", c.Name, messages.Errors.c_str());
+    CHECK(messages.Errors.find(c.Expected) != std::string::npos,
+      "%s: no error naming '%s'",
+      c.Name,
+      c.Expected);
+    CHECK(!drawn, "%s: something was drawn", c.Name);
+  }
+  return 0;
+}
+
+int TestImage(int argc, char* argv[])
+{
+  int regions = 0;
+  auto field = WalledBoxField(40, &regions);
+  vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
+  mapper->SetInputData(field);
+  auto volume = FieldVolume(mapper, true);
+  Scene scene(field->GetBounds(), false, 30, 55);
+  scene.Draw({ volume });
+  // vtkRegressionTestImage passes when the baseline is missing (it writes one): refuse.
+  std::string baseline;
+  for (int i = 1; i + 1 < argc; ++i)
+  {
+    baseline = std::string(argv[i]) == "-V" ? argv[i + 1] : baseline;
+  }
+  CHECK(!baseline.empty() && vtksys::SystemTools::FileExists(baseline),
+    "the baseline %s is missing",
+    baseline.c_str());
+  const int result = vtkRegressionTestImage(scene.Window);
+  CHECK(result == vtkRegressionTester::PASSED, "the image differs from the baseline");
+  return 0;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (!testsupport::HasArguments(argc,
+        argv,
+        2,
+        "signed|segmented|occlusion|translucent|lifecycle|errors|image DATA_DIR "
+        "[-V BASELINE -T TMP]"))
+  {
+    return 2;
+  }
+  const std::string mode = argv[1], data = argv[2];
+  if (mode == "signed")
+  {
+    TestSigned(data);
+  }
+  else if (mode == "segmented")
+  {
+    TestSegmented();
+  }
+  else if (mode == "occlusion")
+  {
+    TestOcclusion(data);
+  }
+  else if (mode == "translucent")
+  {
+    TestTranslucent(data);
+  }
+  else if (mode == "lifecycle")
+  {
+    TestLifecycle(data);
+  }
+  else if (mode == "errors")
+  {
+    TestErrors();
+  }
+  else if (mode == "image")
+  {
+    TestImage(argc, argv);
+  }
+  else
+  {
+    std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
+    return 2;
+  }
+  return testsupport::Verdict();
+}
