@@ -2,6 +2,7 @@
 
 #include "vtkArrayDispatch.h"
 #include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkFieldData.h"
@@ -11,12 +12,15 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLError.h"
+#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLHelper.h"
+#include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkOpenGLVertexBufferObject.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
@@ -25,6 +29,8 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
+#include "PreIntegratedVolume_frag.h"
+#include "PreIntegrationTable.h"
 #include "SegmentedVolume_frag.h"
 #include "SegmentedVolume_vert.h"
 
@@ -162,9 +168,30 @@ struct DecodeField
 
 struct vtkSegmentedDistanceVolumeMapper::Internals
 {
+  // Surface mode.
   vtkNew<vtkTextureObject> Field;  // RG32F: distance, region
   vtkNew<vtkTextureObject> Colors; // RGB32F, one texel a region
   vtkOpenGLHelper Slices;          // program and VAO of the slice polygons
+  // Composite mode.
+  vtkNew<vtkTextureObject> Scalars;     // R32F, linear
+  vtkNew<vtkTextureObject> Table;       // RGBA32F pre-integration table
+  vtkNew<vtkTextureObject> OpaqueDepth; // the depth buffer before the volume
+  vtkOpenGLHelper Composite;
+  // Composite slabs accumulate in a float target (an 8-bit framebuffer would round every
+  // slab's contribution: the error grows with the number of slices), then go over the
+  // window in one full-screen pass.
+  vtkNew<vtkTextureObject> Accumulation; // RGBA32F, premultiplied
+  vtkNew<vtkOpenGLFramebufferObject> Target;
+  std::unique_ptr<vtkOpenGLQuadHelper> Blend;
+  vtkTimeStamp ScalarsTime;
+  vtkTimeStamp TableTime;
+  vtkImageData* ScalarsImage = nullptr;
+  std::string ScalarsKey;
+  bool ScalarsValid = false;
+  double ScalarRange[2] = { 0, 1 };
+  std::array<double, 5> TableKey = { 0, 0, 0, 0, 0 };
+  int DepthSize[2] = { 0, 0 };
+  // Both.
   vtkNew<vtkOpenGLVertexBufferObject> Vertices;
   vtkTimeStamp FieldTime;
   vtkTimeStamp ColorsTime;
@@ -190,6 +217,11 @@ vtkSegmentedDistanceVolumeMapper::vtkSegmentedDistanceVolumeMapper()
 
 // No GL calls here: the context may be gone. ReleaseGraphicsResources() frees them.
 vtkSegmentedDistanceVolumeMapper::~vtkSegmentedDistanceVolumeMapper() = default;
+
+const char* vtkSegmentedDistanceVolumeMapper::GetModeAsString()
+{
+  return this->Mode == Composite ? "Composite" : "Surface";
+}
 
 const char* vtkSegmentedDistanceVolumeMapper::GetInterpolationAsString()
 {
@@ -238,7 +270,10 @@ void vtkSegmentedDistanceVolumeMapper::RemoveAllRegionColors()
 void vtkSegmentedDistanceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << this->GetModeAsString() << "\n";
   os << indent << "Interpolation: " << this->GetInterpolationAsString() << "\n";
+  os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
+  os << indent << "TableBuilds: " << this->TableBuilds << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "NumberOfSlices: " << this->NumberOfSlices << "\n";
   os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
@@ -250,11 +285,28 @@ void vtkSegmentedDistanceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 
 void vtkSegmentedDistanceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
-  this->Impl->Field->ReleaseGraphicsResources(window);
-  this->Impl->Colors->ReleaseGraphicsResources(window);
-  this->Impl->Vertices->ReleaseGraphicsResources();
-  this->Impl->Slices.ReleaseGraphicsResources(window);
-  this->Impl->FieldValid = false;
+  Internals& impl = *this->Impl;
+  for (vtkTextureObject* texture : { impl.Field.Get(),
+         impl.Colors.Get(),
+         impl.Scalars.Get(),
+         impl.Table.Get(),
+         impl.OpaqueDepth.Get(),
+         impl.Accumulation.Get() })
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
+  impl.Target->ReleaseGraphicsResources(window);
+  if (impl.Blend)
+  {
+    impl.Blend->ReleaseGraphicsResources(window);
+    impl.Blend.reset();
+  }
+  impl.Vertices->ReleaseGraphicsResources();
+  impl.Slices.ReleaseGraphicsResources(window);
+  impl.Composite.ReleaseGraphicsResources(window);
+  impl.FieldValid = false;
+  impl.ScalarsValid = false;
+  impl.DepthSize[0] = impl.DepthSize[1] = 0;
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -264,16 +316,28 @@ std::string vtkSegmentedDistanceVolumeMapper::ArraySelectionKey() const
     (this->ArrayName ? this->ArrayName : "");
 }
 
-bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
+bool vtkSegmentedDistanceVolumeMapper::HasArraySelection() const
 {
-  Internals& impl = *this->Impl;
-  if (impl.FieldValid && impl.Field->GetHandle() && impl.FieldImage == image &&
-    impl.FieldTime > image->GetMTime() && impl.FieldKey == this->ArraySelectionKey())
+  return (this->ArrayAccessMode == VTK_GET_ARRAY_BY_NAME && this->ArrayName && *this->ArrayName) ||
+    (this->ArrayAccessMode == VTK_GET_ARRAY_BY_ID && this->ArrayId >= 0);
+}
+
+vtkDataArray* vtkSegmentedDistanceVolumeMapper::SelectedArray(vtkImageData* image) const
+{
+  vtkPointData* pd = image->GetPointData();
+  if (this->ArrayAccessMode == VTK_GET_ARRAY_BY_NAME && this->ArrayName && *this->ArrayName)
   {
-    return true;
+    return pd->GetArray(this->ArrayName);
   }
-  impl.FieldValid = false;
-  int dims[3];
+  if (this->ArrayAccessMode == VTK_GET_ARRAY_BY_ID && this->ArrayId >= 0)
+  {
+    return pd->GetArray(this->ArrayId);
+  }
+  return nullptr;
+}
+
+bool vtkSegmentedDistanceVolumeMapper::CheckGrid(vtkImageData* image, int dims[3])
+{
   image->GetDimensions(dims);
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
   {
@@ -290,19 +354,38 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
                                   << largest << " a side");
     return false;
   }
+  return true;
+}
 
+void vtkSegmentedDistanceVolumeMapper::SetGeometry(vtkImageData* image, const int dims[3])
+{
+  Internals& impl = *this->Impl;
+  std::copy(dims, dims + 3, impl.Dims);
+  image->GetSpacing(impl.Spacing);
+  vtkImageData::ComputeIndexToPhysicalMatrix(image->GetOrigin(),
+    image->GetSpacing(),
+    image->GetDirectionMatrix()->GetData(),
+    impl.IndexToPhysical);
+}
+
+bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
+{
+  Internals& impl = *this->Impl;
+  if (impl.FieldValid && impl.Field->GetHandle() && impl.FieldImage == image &&
+    impl.FieldTime > image->GetMTime() && impl.FieldKey == this->ArraySelectionKey())
+  {
+    return true;
+  }
+  impl.FieldValid = false;
+  int dims[3];
+  if (!this->CheckGrid(image, dims))
+  {
+    return false;
+  }
   // The array: the one selected, else SegmentedDistance, else the active scalars.
   vtkPointData* pd = image->GetPointData();
-  vtkDataArray* array = nullptr;
-  if (this->ArrayAccessMode == VTK_GET_ARRAY_BY_NAME && this->ArrayName && *this->ArrayName)
-  {
-    array = pd->GetArray(this->ArrayName);
-  }
-  else if (this->ArrayAccessMode == VTK_GET_ARRAY_BY_ID && this->ArrayId >= 0)
-  {
-    array = pd->GetArray(this->ArrayId);
-  }
-  else
+  vtkDataArray* array = this->SelectedArray(image);
+  if (!array && !this->HasArraySelection())
   {
     array = pd->GetArray("SegmentedDistance");
     array = array ? array : pd->GetScalars();
@@ -375,12 +458,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
                                                             << dims[2] << ")");
     return false;
   }
-  std::copy(dims, dims + 3, impl.Dims);
-  image->GetSpacing(impl.Spacing);
-  vtkImageData::ComputeIndexToPhysicalMatrix(image->GetOrigin(),
-    image->GetSpacing(),
-    image->GetDirectionMatrix()->GetData(),
-    impl.IndexToPhysical);
+  this->SetGeometry(image, dims);
   impl.Segmented = segmented;
   impl.RegionOffset = offset;
   impl.RegionCount = regions;
@@ -388,6 +466,153 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
   impl.FieldKey = this->ArraySelectionKey();
   impl.FieldValid = true;
   impl.FieldTime.Modified();
+  return true;
+}
+
+bool vtkSegmentedDistanceVolumeMapper::UpdateScalars(vtkImageData* image)
+{
+  Internals& impl = *this->Impl;
+  if (impl.ScalarsValid && impl.Scalars->GetHandle() && impl.ScalarsImage == image &&
+    impl.ScalarsTime > image->GetMTime() && impl.ScalarsKey == this->ArraySelectionKey())
+  {
+    return true;
+  }
+  impl.ScalarsValid = false;
+  int dims[3];
+  if (!this->CheckGrid(image, dims))
+  {
+    return false;
+  }
+  // The array: the one selected, else the active scalars, else SegmentedDistance.
+  vtkPointData* pd = image->GetPointData();
+  vtkDataArray* array = this->SelectedArray(image);
+  array = array ? array : pd->GetScalars();
+  array = array ? array : pd->GetArray("SegmentedDistance");
+  if (!array || array->GetNumberOfComponents() != 1 ||
+    array->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    vtkErrorMacro("Composite needs a point array of one component (the selected one, else the "
+                  "active scalars)");
+    return false;
+  }
+  const vtkIdType count = image->GetNumberOfPoints();
+  std::vector<float> values(static_cast<size_t>(count));
+  double range[2] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const double v = array->GetComponent(i, 0);
+    if (!std::isfinite(v))
+    {
+      vtkErrorMacro("The array " << (array->GetName() ? array->GetName() : "(unnamed)")
+                                 << " holds NaN or infinite values");
+      return false;
+    }
+    values[i] = static_cast<float>(v);
+    range[0] = std::min(range[0], v);
+    range[1] = std::max(range[1], v);
+  }
+  impl.Scalars->SetWrapS(vtkTextureObject::ClampToEdge);
+  impl.Scalars->SetWrapT(vtkTextureObject::ClampToEdge);
+  impl.Scalars->SetWrapR(vtkTextureObject::ClampToEdge);
+  impl.Scalars->SetMinificationFilter(vtkTextureObject::Linear);
+  impl.Scalars->SetMagnificationFilter(vtkTextureObject::Linear);
+  impl.Scalars->SetInternalFormat(GL_R32F);
+  impl.Scalars->SetFormat(GL_RED);
+  impl.Scalars->SetDataType(GL_FLOAT);
+  if (!impl.Scalars->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
+        static_cast<unsigned int>(dims[1]),
+        static_cast<unsigned int>(dims[2]),
+        1,
+        VTK_FLOAT,
+        values.data()))
+  {
+    vtkErrorMacro("Could not make the scalars' 3D texture");
+    return false;
+  }
+  if (!(range[1] > range[0]))
+  {
+    range[1] = range[0] + 1.0;
+  }
+  std::copy(range, range + 2, impl.ScalarRange);
+  this->SetGeometry(image, dims);
+  impl.ScalarsImage = image;
+  impl.ScalarsKey = this->ArraySelectionKey();
+  impl.ScalarsValid = true;
+  impl.ScalarsTime.Modified();
+  return true;
+}
+
+bool vtkSegmentedDistanceVolumeMapper::UpdateTable(vtkVolumeProperty* property)
+{
+  Internals& impl = *this->Impl;
+  const int size = this->PreIntegrationTableSize;
+  const bool gray = property->GetColorChannels(0) == 1;
+  vtkObject* colour = gray ? static_cast<vtkObject*>(property->GetGrayTransferFunction(0))
+                           : static_cast<vtkObject*>(property->GetRGBTransferFunction(0));
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  const double unit = property->GetScalarOpacityUnitDistance(0);
+  const std::array<double, 5> key = {
+    impl.ScalarRange[0], impl.ScalarRange[1], unit, static_cast<double>(size), gray ? 1.0 : 3.0
+  };
+  if (impl.Table->GetHandle() && impl.TableKey == key && impl.TableTime > colour->GetMTime() &&
+    impl.TableTime > opacity->GetMTime())
+  {
+    return true;
+  }
+  if (!(unit > 0))
+  {
+    vtkErrorMacro("The volume property's ScalarOpacityUnitDistance must be positive");
+    return false;
+  }
+  // Sample the transfer functions; opacity per unit distance becomes extinction.
+  const int count = dfrender::PreIntegrationSamples(size);
+  dfrender::TransferSamples samples;
+  samples.Low = impl.ScalarRange[0];
+  samples.High = impl.ScalarRange[1];
+  std::vector<double> alpha(count), rgb(3 * static_cast<size_t>(count));
+  opacity->GetTable(samples.Low, samples.High, count, alpha.data());
+  if (gray)
+  {
+    std::vector<double> g(count);
+    property->GetGrayTransferFunction(0)->GetTable(samples.Low, samples.High, count, g.data());
+    for (int m = 0; m < count; ++m)
+    {
+      rgb[3 * m] = rgb[3 * m + 1] = rgb[3 * m + 2] = g[m];
+    }
+  }
+  else
+  {
+    property->GetRGBTransferFunction(0)->GetTable(samples.Low, samples.High, count, rgb.data());
+  }
+  samples.Extinction.resize(count);
+  samples.Colour.resize(count);
+  for (int m = 0; m < count; ++m)
+  {
+    // An opacity of 1 would be an infinite extinction: keep it finite and opaque.
+    const double a = std::clamp(alpha[m], 0.0, 1.0 - 1e-7);
+    samples.Extinction[m] = -std::log1p(-a) / unit;
+    samples.Colour[m] = { rgb[3 * m], rgb[3 * m + 1], rgb[3 * m + 2] };
+  }
+  const std::vector<float> table = dfrender::BuildPreIntegrationTable(samples, size);
+  impl.Table->SetWrapS(vtkTextureObject::ClampToEdge);
+  impl.Table->SetWrapT(vtkTextureObject::ClampToEdge);
+  impl.Table->SetMinificationFilter(vtkTextureObject::Linear);
+  impl.Table->SetMagnificationFilter(vtkTextureObject::Linear);
+  impl.Table->SetInternalFormat(GL_RGBA32F);
+  impl.Table->SetFormat(GL_RGBA);
+  impl.Table->SetDataType(GL_FLOAT);
+  if (!impl.Table->Create2DFromRaw(static_cast<unsigned int>(size),
+        static_cast<unsigned int>(size),
+        4,
+        VTK_FLOAT,
+        const_cast<float*>(table.data())))
+  {
+    vtkErrorMacro("Could not make the pre-integration table's texture");
+    return false;
+  }
+  impl.TableKey = key;
+  impl.TableTime.Modified();
+  ++this->TableBuilds;
   return true;
 }
 
@@ -400,49 +625,55 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
     vtkErrorMacro("vtkSegmentedDistanceVolumeMapper needs an OpenGL render window");
     return;
   }
-  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInput());
-  if (!image)
+  if (this->GetInputAlgorithm())
   {
-    vtkErrorMacro("The input must be vtkImageData");
-    return;
+    this->GetInputAlgorithm()->UpdateWholeExtent();
   }
-  this->GetInputAlgorithm()->UpdateWholeExtent();
-  image = vtkImageData::SafeDownCast(this->GetInput());
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInput());
   if (!image || image->GetNumberOfPoints() == 0)
   {
-    vtkErrorMacro("The input field is empty");
+    vtkErrorMacro("The input must be a non-empty vtkImageData");
     return;
   }
   Internals& impl = *this->Impl;
+  vtkVolumeProperty* property = volume->GetProperty();
+  const bool surface = this->Mode == Surface;
   impl.Field->SetContext(window);
-  if (!this->UpdateField(image))
+  impl.Scalars->SetContext(window);
+  impl.Table->SetContext(window);
+  impl.Colors->SetContext(window);
+  impl.OpaqueDepth->SetContext(window);
+  if (surface ? !this->UpdateField(image)
+              : !(this->UpdateScalars(image) && this->UpdateTable(property)))
   {
     return;
   }
-  this->LastRegionCount = impl.RegionCount;
-  this->LastSegmented = impl.Segmented;
-
-  // Region colours: one texel per region (cycling beyond the texture's width).
-  const int colorCount = std::max(1, std::min(impl.RegionCount, 4096));
-  if (!impl.Colors->GetHandle() || impl.ColorsTime < impl.ColorsModified ||
-    impl.ColorsTime < impl.FieldTime)
+  int colorCount = 1;
+  if (surface)
   {
-    std::vector<float> rgb(3 * static_cast<size_t>(colorCount));
-    for (int r = 0; r < colorCount; ++r)
+    this->LastRegionCount = impl.RegionCount;
+    this->LastSegmented = impl.Segmented;
+    // Region colours: one texel per region (cycling beyond the texture's width).
+    colorCount = std::max(1, std::min(impl.RegionCount, 4096));
+    if (!impl.Colors->GetHandle() || impl.ColorsTime < impl.ColorsModified ||
+      impl.ColorsTime < impl.FieldTime)
     {
-      double c[3];
-      this->GetRegionColor(r, c);
-      std::copy(c, c + 3, rgb.begin() + 3 * r);
+      std::vector<float> rgb(3 * static_cast<size_t>(colorCount));
+      for (int r = 0; r < colorCount; ++r)
+      {
+        double c[3];
+        this->GetRegionColor(r, c);
+        std::copy(c, c + 3, rgb.begin() + 3 * r);
+      }
+      impl.Colors->SetMinificationFilter(vtkTextureObject::Nearest);
+      impl.Colors->SetMagnificationFilter(vtkTextureObject::Nearest);
+      impl.Colors->SetInternalFormat(GL_RGB32F);
+      impl.Colors->SetFormat(GL_RGB);
+      impl.Colors->SetDataType(GL_FLOAT);
+      impl.Colors->Create2DFromRaw(
+        static_cast<unsigned int>(colorCount), 1, 3, VTK_FLOAT, rgb.data());
+      impl.ColorsTime.Modified();
     }
-    impl.Colors->SetContext(window);
-    impl.Colors->SetMinificationFilter(vtkTextureObject::Nearest);
-    impl.Colors->SetMagnificationFilter(vtkTextureObject::Nearest);
-    impl.Colors->SetInternalFormat(GL_RGB32F);
-    impl.Colors->SetFormat(GL_RGB);
-    impl.Colors->SetDataType(GL_FLOAT);
-    impl.Colors->Create2DFromRaw(
-      static_cast<unsigned int>(colorCount), 1, 3, VTK_FLOAT, rgb.data());
-    impl.ColorsTime.Modified();
   }
 
   // Index space -> world: the image's index-to-physical matrix, then the volume's.
@@ -468,140 +699,35 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   camera->GetPosition(eye.data());
   camera->GetDirectionOfProjection(viewDir.data());
   viewDir = Normalized(viewDir);
-
-  // The box's corners in world space, and their depths along the view direction.
-  std::array<Vec3, 8> corners;
-  double nearest = VTK_DOUBLE_MAX, farthest = -VTK_DOUBLE_MAX;
-  for (int c = 0; c < 8; ++c)
-  {
-    const Vec3 index = { (c & 1) ? impl.Dims[0] - 1.0 : 0.0,
-      (c & 2) ? impl.Dims[1] - 1.0 : 0.0,
-      (c & 4) ? impl.Dims[2] - 1.0 : 0.0 };
-    corners[c] = Apply(indexToWorld, index);
-    const double s = Dot(Sub(corners[c], eye), viewDir);
-    nearest = std::min(nearest, s);
-    farthest = std::max(farthest, s);
-  }
-  double smallestSpacing = VTK_DOUBLE_MAX;
-  for (int a = 0; a < 3; ++a)
-  {
-    const Vec3 axis = {
-      indexToWorld->GetElement(0, a), indexToWorld->GetElement(1, a), indexToWorld->GetElement(2, a)
-    };
-    smallestSpacing = std::min(smallestSpacing, std::sqrt(Dot(axis, axis)));
-  }
-  const double depth = farthest - nearest;
-  double spacing = this->SampleDistance > 0 ? this->SampleDistance : smallestSpacing;
-  if (this->NumberOfSlices > 0)
-  {
-    spacing = depth / this->NumberOfSlices;
-  }
-  if (!(spacing > 0) || !std::isfinite(spacing))
-  {
-    vtkErrorMacro("The volume has no extent along the view direction");
-    return;
-  }
-  const double sliceCount = std::ceil(depth / spacing);
-  if (sliceCount > (1 << 20))
-  {
-    vtkErrorMacro("SampleDistance " << spacing << " makes " << sliceCount
-                                    << " slices across the volume; at most 2^20 are drawn");
-    return;
-  }
-  const int slices = std::max(1, static_cast<int>(sliceCount));
-
-  // The slice polygons, back to front: the box cut by the planes at depth s, as fans.
-  static const int edges[12][2] = { { 0, 1 },
-    { 2, 3 },
-    { 4, 5 },
-    { 6, 7 },
-    { 0, 2 },
-    { 1, 3 },
-    { 4, 6 },
-    { 5, 7 },
-    { 0, 4 },
-    { 1, 5 },
-    { 2, 6 },
-    { 3, 7 } };
-  Vec3 u = Cross(viewDir, std::abs(viewDir[0]) < 0.9 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 });
-  u = Normalized(u);
-  const Vec3 v = Cross(viewDir, u);
-  std::vector<float> triangles;
-  triangles.reserve(static_cast<size_t>(slices) * 12 * 3);
-  for (int k = slices - 1; k >= 0; --k)
-  {
-    const double s = nearest + k * spacing;
-    std::vector<Vec3> polygon;
-    for (const auto& e : edges)
-    {
-      const double s0 = Dot(Sub(corners[e[0]], eye), viewDir);
-      const double s1 = Dot(Sub(corners[e[1]], eye), viewDir);
-      if ((s0 - s) * (s1 - s) > 0 || s0 == s1)
-      {
-        continue;
-      }
-      const double t = (s - s0) / (s1 - s0);
-      const Vec3& a = corners[e[0]];
-      const Vec3& b = corners[e[1]];
-      polygon.push_back(
-        { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]) });
-    }
-    if (polygon.size() < 3)
-    {
-      continue;
-    }
-    Vec3 centre = { 0, 0, 0 };
-    for (const auto& p : polygon)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        centre[c] += p[c] / polygon.size();
-      }
-    }
-    std::sort(polygon.begin(),
-      polygon.end(),
-      [&](const Vec3& a, const Vec3& b)
-      {
-        const Vec3 da = Sub(a, centre), db = Sub(b, centre);
-        return std::atan2(Dot(da, v), Dot(da, u)) < std::atan2(Dot(db, v), Dot(db, u));
-      });
-    for (size_t i = 1; i + 1 < polygon.size(); ++i)
-    {
-      for (const Vec3* p : { &polygon[0], &polygon[i], &polygon[i + 1] })
-      {
-        triangles.insert(triangles.end(),
-          { static_cast<float>((*p)[0]),
-            static_cast<float>((*p)[1]),
-            static_cast<float>((*p)[2]) });
-      }
-    }
-  }
-  this->LastNumberOfSlices = slices;
+  double spacing = 0;
+  const std::vector<float> triangles =
+    this->SlicePolygons(indexToWorld, eye.data(), viewDir.data(), spacing);
   if (triangles.empty() || window->CheckAbortStatus())
   {
     return;
   }
 
   // The program (through VTK's shader cache) and the vertices.
-  vtkShaderProgram* program =
-    window->GetShaderCache()->ReadyShaderProgram(SegmentedVolume_vert, SegmentedVolume_frag, "");
+  vtkOpenGLHelper& helper = surface ? impl.Slices : impl.Composite;
+  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
+    SegmentedVolume_vert, surface ? SegmentedVolume_frag : PreIntegratedVolume_frag, "");
   if (!program)
   {
     vtkErrorMacro("Could not build the slice shader program");
     return;
   }
-  if (program != impl.Slices.Program)
+  if (program != helper.Program)
   {
-    impl.Slices.Program = program;
-    impl.Slices.VAO->ShaderProgramChanged();
+    helper.Program = program;
+    helper.VAO->ShaderProgramChanged();
   }
-  impl.Slices.VAO->Bind();
+  helper.VAO->Bind();
   impl.Vertices->Upload(triangles, vtkOpenGLBufferObject::ArrayBuffer);
-  if (!impl.Slices.VAO->AddAttributeArray(
+  if (!helper.VAO->AddAttributeArray(
         program, impl.Vertices, "vertexWC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
   {
     vtkErrorMacro("Could not bind the slice vertices");
-    impl.Slices.VAO->Release();
+    helper.VAO->Release();
     return;
   }
 
@@ -627,28 +753,86 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
     static_cast<float>(impl.Dims[1]),
     static_cast<float>(impl.Dims[2]) };
   program->SetUniform3f("gridSize", dimsF);
-  const float spacingF[3] = { static_cast<float>(std::abs(impl.Spacing[0])),
-    static_cast<float>(std::abs(impl.Spacing[1])),
-    static_cast<float>(std::abs(impl.Spacing[2])) };
-  program->SetUniform3f("spacing", spacingF);
-  program->SetUniformi("interpolation", this->Interpolation);
-  program->SetUniformi("segmented", impl.Segmented ? 1 : 0);
-  program->SetUniformf("regionOffset", static_cast<float>(impl.RegionOffset));
-  program->SetUniformi("regionColorCount", colorCount);
-  vtkVolumeProperty* property = volume->GetProperty();
   program->SetUniformi("shade", property->GetShade(0) ? 1 : 0);
   program->SetUniformf("ambient", static_cast<float>(property->GetAmbient(0)));
   program->SetUniformf("diffuse", static_cast<float>(property->GetDiffuse(0)));
   program->SetUniformf("specular", static_cast<float>(property->GetSpecular(0)));
   program->SetUniformf("specularPower", static_cast<float>(property->GetSpecularPower(0)));
-  program->SetUniformf("opacity", static_cast<float>(this->SurfaceOpacity));
 
-  impl.Field->Activate();
-  impl.Colors->Activate();
-  program->SetUniformi("field", impl.Field->GetTextureUnit());
-  program->SetUniformi("regionColors", impl.Colors->GetTextureUnit());
+  std::vector<vtkTextureObject*> active;
+  if (surface)
+  {
+    const float spacingF[3] = { static_cast<float>(std::abs(impl.Spacing[0])),
+      static_cast<float>(std::abs(impl.Spacing[1])),
+      static_cast<float>(std::abs(impl.Spacing[2])) };
+    program->SetUniform3f("spacing", spacingF);
+    program->SetUniformi("interpolation", this->Interpolation);
+    program->SetUniformi("segmented", impl.Segmented ? 1 : 0);
+    program->SetUniformf("regionOffset", static_cast<float>(impl.RegionOffset));
+    program->SetUniformi("regionColorCount", colorCount);
+    program->SetUniformf("opacity", static_cast<float>(this->SurfaceOpacity));
+    active = { impl.Field, impl.Colors };
+    impl.Field->Activate();
+    impl.Colors->Activate();
+    program->SetUniformi("field", impl.Field->GetTextureUnit());
+    program->SetUniformi("regionColors", impl.Colors->GetTextureUnit());
+  }
+  else
+  {
+    // The opaque geometry's depth, captured before the volume is drawn, cuts the slabs.
+    int width, height, x0, y0;
+    renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+    if (!impl.OpaqueDepth->GetHandle() || impl.DepthSize[0] != width || impl.DepthSize[1] != height)
+    {
+      impl.OpaqueDepth->ReleaseGraphicsResources(window);
+      impl.OpaqueDepth->SetContext(window);
+      impl.OpaqueDepth->SetWrapS(vtkTextureObject::ClampToEdge);
+      impl.OpaqueDepth->SetWrapT(vtkTextureObject::ClampToEdge);
+      impl.OpaqueDepth->SetMinificationFilter(vtkTextureObject::Nearest);
+      impl.OpaqueDepth->SetMagnificationFilter(vtkTextureObject::Nearest);
+      impl.OpaqueDepth->AllocateDepth(static_cast<unsigned int>(width),
+        static_cast<unsigned int>(height),
+        vtkTextureObject::Float32);
+      impl.DepthSize[0] = width;
+      impl.DepthSize[1] = height;
+    }
+    impl.OpaqueDepth->CopyFromFrameBuffer(x0, y0, 0, 0, width, height);
+    if (!impl.Accumulation->GetHandle() ||
+      static_cast<int>(impl.Accumulation->GetWidth()) != width ||
+      static_cast<int>(impl.Accumulation->GetHeight()) != height)
+    {
+      impl.Accumulation->ReleaseGraphicsResources(window);
+      impl.Accumulation->SetContext(window);
+      impl.Accumulation->SetMinificationFilter(vtkTextureObject::Nearest);
+      impl.Accumulation->SetMagnificationFilter(vtkTextureObject::Nearest);
+      impl.Accumulation->SetInternalFormat(GL_RGBA32F);
+      impl.Accumulation->SetFormat(GL_RGBA);
+      impl.Accumulation->SetDataType(GL_FLOAT);
+      impl.Accumulation->Allocate2D(
+        static_cast<unsigned int>(width), static_cast<unsigned int>(height), 4, VTK_FLOAT);
+    }
+    impl.DepthSize[0] = width;
+    impl.DepthSize[1] = height;
+    // The slabs go into the float target, whose pixels start at the viewport's corner.
+    const int origin[2] = { 0, 0 };
+    program->SetUniform2i("viewportOrigin", origin);
+    program->SetUniformi("useOpaqueDepth", 1);
+    const float range[2] = { static_cast<float>(impl.ScalarRange[0]),
+      static_cast<float>(impl.ScalarRange[1]) };
+    program->SetUniform2f("scalarRange", range);
+    program->SetUniformf("tableSize", static_cast<float>(this->PreIntegrationTableSize));
+    active = { impl.Scalars, impl.Table, impl.OpaqueDepth };
+    for (vtkTextureObject* texture : active)
+    {
+      texture->Activate();
+    }
+    program->SetUniformi("scalars", impl.Scalars->GetTextureUnit());
+    program->SetUniformi("preIntegrated", impl.Table->GetTextureUnit());
+    program->SetUniformi("opaqueDepth", impl.OpaqueDepth->GetTextureUnit());
+  }
 
   vtkOpenGLState* state = window->GetState();
+  const GLsizei vertexCount = static_cast<GLsizei>(triangles.size() / 3);
   {
     vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
     vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
@@ -656,25 +840,206 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
     vtkOpenGLState::ScopedglDepthMask depthMask(state);
     vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
     vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
-    state->vtkglEnable(GL_DEPTH_TEST);
-    state->vtkglDepthFunc(GL_LEQUAL);
     state->vtkglDisable(GL_CULL_FACE);
-    const bool opaque = this->SurfaceOpacity >= 1.0;
-    if (opaque)
+    if (surface)
     {
-      state->vtkglDisable(GL_BLEND);
-      state->vtkglDepthMask(GL_TRUE);
+      state->vtkglEnable(GL_DEPTH_TEST);
+      state->vtkglDepthFunc(GL_LEQUAL);
+      if (this->SurfaceOpacity >= 1.0)
+      {
+        state->vtkglDisable(GL_BLEND);
+        state->vtkglDepthMask(GL_TRUE);
+      }
+      else
+      {
+        // Premultiplied colours, back to front, depth-tested at the interface points.
+        state->vtkglEnable(GL_BLEND);
+        state->vtkglBlendFuncSeparate(
+          GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        state->vtkglDepthMask(GL_FALSE);
+      }
+      glDrawArrays(GL_TRIANGLES, 0, vertexCount);
     }
     else
     {
+      // Slabs back to front into the float target (the shader tests them against the
+      // captured depth), ...
+      int width, height, x0, y0;
+      renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+      state->vtkglDisable(GL_DEPTH_TEST);
+      state->vtkglDepthMask(GL_FALSE);
       state->vtkglEnable(GL_BLEND);
       state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-      state->vtkglDepthMask(GL_FALSE);
+      state->PushFramebufferBindings();
+      impl.Target->SetContext(window);
+      impl.Target->Bind();
+      impl.Target->AddColorAttachment(0, impl.Accumulation);
+      impl.Target->ActivateDrawBuffer(0);
+      {
+        vtkOpenGLState::ScopedglViewport viewport(state);
+        vtkOpenGLState::ScopedglClearColor clearColor(state);
+        state->vtkglViewport(0, 0, width, height);
+        state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        state->vtkglClear(GL_COLOR_BUFFER_BIT);
+        glDrawArrays(GL_TRIANGLES, 0, vertexCount);
+      }
+      state->PopFramebufferBindings();
+      helper.VAO->Release();
+      // ... then the accumulated volume over the window, in one pass.
+      if (!impl.Blend)
+      {
+        impl.Blend.reset(new vtkOpenGLQuadHelper(window,
+          nullptr,
+          "//VTK::System::Dec\n"
+          "in vec2 texCoord;\n"
+          "uniform sampler2D accumulated;\n"
+          "//VTK::Output::Dec\n"
+          "void main() { gl_FragData[0] = texture(accumulated, texCoord); }\n",
+          ""));
+      }
+      else
+      {
+        window->GetShaderCache()->ReadyShaderProgram(impl.Blend->Program);
+      }
+      if (!impl.Blend->Program)
+      {
+        vtkErrorMacro("Could not build the compositing program");
+      }
+      else
+      {
+        impl.Accumulation->Activate();
+        impl.Blend->Program->SetUniformi("accumulated", impl.Accumulation->GetTextureUnit());
+        impl.Blend->Render();
+        impl.Accumulation->Deactivate();
+      }
     }
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangles.size() / 3));
   }
-  impl.Colors->Deactivate();
-  impl.Field->Deactivate();
-  impl.Slices.VAO->Release();
+  for (vtkTextureObject* texture : active)
+  {
+    texture->Deactivate();
+  }
+  helper.VAO->Release();
   vtkOpenGLCheckErrorMacro("failed after drawing the slices");
+}
+
+std::vector<float> vtkSegmentedDistanceVolumeMapper::SlicePolygons(vtkMatrix4x4* indexToWorld,
+  const double eyeIn[3],
+  const double viewDirIn[3],
+  double& spacing)
+{
+  const Internals& impl = *this->Impl;
+  const Vec3 eye = { eyeIn[0], eyeIn[1], eyeIn[2] };
+  const Vec3 viewDir = { viewDirIn[0], viewDirIn[1], viewDirIn[2] };
+  // The box's corners in world space, and their depths along the view direction.
+  std::array<Vec3, 8> corners;
+  std::array<double, 8> depths;
+  double nearest = VTK_DOUBLE_MAX, farthest = -VTK_DOUBLE_MAX;
+  for (int c = 0; c < 8; ++c)
+  {
+    const Vec3 index = { (c & 1) ? impl.Dims[0] - 1.0 : 0.0,
+      (c & 2) ? impl.Dims[1] - 1.0 : 0.0,
+      (c & 4) ? impl.Dims[2] - 1.0 : 0.0 };
+    corners[c] = Apply(indexToWorld, index);
+    depths[c] = Dot(Sub(corners[c], eye), viewDir);
+    nearest = std::min(nearest, depths[c]);
+    farthest = std::max(farthest, depths[c]);
+  }
+  double smallestSpacing = VTK_DOUBLE_MAX;
+  for (int a = 0; a < 3; ++a)
+  {
+    const Vec3 axis = {
+      indexToWorld->GetElement(0, a), indexToWorld->GetElement(1, a), indexToWorld->GetElement(2, a)
+    };
+    smallestSpacing = std::min(smallestSpacing, std::sqrt(Dot(axis, axis)));
+  }
+  const double depth = farthest - nearest;
+  spacing = this->SampleDistance > 0 ? this->SampleDistance : smallestSpacing;
+  if (this->NumberOfSlices > 0)
+  {
+    spacing = depth / this->NumberOfSlices;
+  }
+  this->LastNumberOfSlices = 0;
+  if (!(spacing > 0) || !std::isfinite(spacing) || !(depth > 0))
+  {
+    vtkErrorMacro("The volume has no extent along the view direction");
+    return {};
+  }
+  const double sliceCount = std::ceil(depth / spacing);
+  if (sliceCount > (1 << 20))
+  {
+    vtkErrorMacro("SampleDistance " << spacing << " makes " << sliceCount
+                                    << " slices across the volume; at most 2^20 are drawn");
+    return {};
+  }
+  const int slices = std::max(1, static_cast<int>(sliceCount));
+
+  // The slice polygons, back to front: the box cut by the planes at depth s, as fans.
+  static const int edges[12][2] = { { 0, 1 },
+    { 2, 3 },
+    { 4, 5 },
+    { 6, 7 },
+    { 0, 2 },
+    { 1, 3 },
+    { 4, 6 },
+    { 5, 7 },
+    { 0, 4 },
+    { 1, 5 },
+    { 2, 6 },
+    { 3, 7 } };
+  const Vec3 u =
+    Normalized(Cross(viewDir, std::abs(viewDir[0]) < 0.9 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 }));
+  const Vec3 v = Cross(viewDir, u);
+  std::vector<float> triangles;
+  triangles.reserve(static_cast<size_t>(slices) * 12 * 3);
+  std::vector<std::pair<double, Vec3>> polygon;
+  for (int k = slices - 1; k >= 0; --k)
+  {
+    const double s = nearest + k * spacing;
+    polygon.clear();
+    for (const auto& e : edges)
+    {
+      const double s0 = depths[e[0]], s1 = depths[e[1]];
+      if ((s0 - s) * (s1 - s) > 0 || s0 == s1)
+      {
+        continue;
+      }
+      const double t = (s - s0) / (s1 - s0);
+      const Vec3& a = corners[e[0]];
+      const Vec3& b = corners[e[1]];
+      polygon.push_back(
+        { 0.0, { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]) } });
+    }
+    if (polygon.size() < 3)
+    {
+      continue;
+    }
+    Vec3 centre = { 0, 0, 0 };
+    for (const auto& p : polygon)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        centre[c] += p.second[c] / polygon.size();
+      }
+    }
+    for (auto& p : polygon)
+    {
+      const Vec3 d = Sub(p.second, centre);
+      p.first = std::atan2(Dot(d, v), Dot(d, u));
+    }
+    std::sort(polygon.begin(),
+      polygon.end(),
+      [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (size_t i = 1; i + 1 < polygon.size(); ++i)
+    {
+      for (const Vec3* p : { &polygon[0].second, &polygon[i].second, &polygon[i + 1].second })
+      {
+        triangles.insert(triangles.end(),
+          { static_cast<float>((*p)[0]),
+            static_cast<float>((*p)[1]),
+            static_cast<float>((*p)[2]) });
+      }
+    }
+  }
+  this->LastNumberOfSlices = slices;
+  return triangles;
 }

@@ -59,8 +59,12 @@
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
+#include <vector> // For std::vector
 
+class vtkDataArray;
 class vtkImageData;
+class vtkMatrix4x4;
+class vtkVolumeProperty;
 class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
@@ -71,6 +75,32 @@ public:
   static vtkSegmentedDistanceVolumeMapper* New();
   vtkTypeMacro(vtkSegmentedDistanceVolumeMapper, vtkVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Modes
+  {
+    Surface = 0,
+    Composite = 1
+  };
+  ///@{
+  /// Surface (default): the (segmented or signed) field's surfaces. Composite:
+  /// pre-integrated rendering of any one-component scalar volume with the volume
+  /// property's colour (RGB or gray) and scalar opacity transfer functions over the
+  /// array's range, slabs cut by opaque geometry.
+  vtkSetClampMacro(Mode, int, Surface, Composite);
+  vtkGetMacro(Mode, int);
+  void SetModeToSurface() { this->SetMode(Surface); }
+  void SetModeToComposite() { this->SetMode(Composite); }
+  const char* GetModeAsString();
+  ///@}
+
+  ///@{
+  /// Composite: the pre-integration table's entries a side (default 256), over the
+  /// array's range; rebuilt only when the transfer functions, the range, the unit
+  /// distance or this change. TableBuilds counts the builds.
+  vtkSetClampMacro(PreIntegrationTableSize, int, 2, 4096);
+  vtkGetMacro(PreIntegrationTableSize, int);
+  vtkGetMacro(TableBuilds, int);
+  ///@}
 
   enum InterpolationModes
   {
@@ -131,6 +161,9 @@ protected:
   vtkSegmentedDistanceVolumeMapper();
   ~vtkSegmentedDistanceVolumeMapper() override;
 
+  int Mode = Surface;
+  int PreIntegrationTableSize = 256;
+  int TableBuilds = 0;
   int Interpolation = RegionAware;
   double SampleDistance = 0.0;
   int NumberOfSlices = 0;
@@ -147,6 +180,16 @@ private:
   std::unique_ptr<Internals> Impl;
 
   bool UpdateField(vtkImageData* image);
+  bool UpdateScalars(vtkImageData* image);
+  bool UpdateTable(vtkVolumeProperty* property);
+  bool CheckGrid(vtkImageData* image, int dims[3]);
+  void SetGeometry(vtkImageData* image, const int dims[3]);
+  bool HasArraySelection() const;
+  vtkDataArray* SelectedArray(vtkImageData* image) const;
+  std::vector<float> SlicePolygons(vtkMatrix4x4* indexToWorld,
+    const double eye[3],
+    const double viewDir[3],
+    double& spacing);
   std::string ArraySelectionKey() const;
 };
 

@@ -1,0 +1,150 @@
+//VTK::System::Dec
+//VTK::Output::Dec
+
+// Pre-integrated compositing of a scalar volume (Engel, Kraus, Ertl 2001). One fragment
+// of a view-aligned slice stands for the slab between this slice and the next one along
+// its ray, cut where the ray leaves the volume or meets opaque geometry. The table holds,
+// per (front value, back value), the slab's average extinction (a) and its
+// extinction-weighted average colour (rgb), so the slab's length enters exactly:
+// alpha = 1 - exp(-length * a).
+
+in vec3 positionWC;
+
+uniform sampler3D scalars;        // the scalar volume, linear filtering
+uniform sampler2D preIntegrated;  // RGBA: average colour, average extinction
+uniform sampler2D opaqueDepth;    // the depth buffer before the volume was drawn
+uniform int useOpaqueDepth;
+uniform ivec2 viewportOrigin;
+uniform vec3 gridSize;            // samples per axis
+uniform vec2 scalarRange;         // the table's first and last values
+uniform float tableSize;
+uniform mat4 worldToIndex;
+uniform mat4 worldToClip;
+uniform mat3 indexToWorldNormal;
+uniform vec3 eyeWC;
+uniform vec3 viewDirWC;
+uniform int parallelProjection;
+uniform float sliceSpacing;       // world units, along viewDirWC
+uniform int shade;
+uniform float ambient;
+uniform float diffuse;
+uniform float specular;
+uniform float specularPower;
+
+float valueAt(vec3 index)
+{
+  return texture(scalars, (index + 0.5) / gridSize).r;
+}
+
+// The premultiplied colour of the slab from index-space point a to b, of world length d.
+vec4 slabColor(vec3 a, vec3 b, float d, vec3 dir)
+{
+  float front = valueAt(a);
+  float back = valueAt(b);
+  vec2 table = (clamp((vec2(front, back) - scalarRange.x) / (scalarRange.y - scalarRange.x),
+                  0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
+  vec4 entry = texture(preIntegrated, table);
+  float alpha = 1.0 - exp(-d * entry.a);
+  vec3 color = entry.rgb;
+  if (shade == 1)
+  {
+    vec3 g;
+    for (int k = 0; k < 3; ++k)
+    {
+      vec3 e = vec3(0.0);
+      e[k] = 0.5;
+      g[k] = valueAt(a + e) - valueAt(a - e);
+    }
+    vec3 n = indexToWorldNormal * g;
+    float facing = length(n) > 0.0 ? abs(dot(normalize(n), dir)) : 1.0;
+    float highlight = specular > 0.0 ? pow(facing, max(specularPower, 1.0)) : 0.0;
+    color = color * (ambient + diffuse * facing) + vec3(specular * highlight);
+  }
+  return vec4(color * alpha, alpha);
+}
+
+// Where the segment from p along step (index space) enters the volume's box, as a
+// fraction of step: 0 when p is inside, > 1 when it never does.
+float entryAlong(vec3 p, vec3 step)
+{
+  vec3 last = gridSize - 1.0;
+  float enter = 0.0;
+  float leave = 1e30;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (abs(step[a]) < 1e-30)
+    {
+      if (p[a] < 0.0 || p[a] > last[a])
+      {
+        return 2.0;
+      }
+      continue;
+    }
+    float t0 = -p[a] / step[a];
+    float t1 = (last[a] - p[a]) / step[a];
+    enter = max(enter, min(t0, t1));
+    leave = min(leave, max(t0, t1));
+  }
+  return enter <= leave ? enter : 2.0;
+}
+
+// The parameter along [front, back] (clip coordinates) where the depth reaches z.
+float depthCut(vec4 front, vec4 back, float z)
+{
+  float ndc = 2.0 * z - 1.0;
+  float denominator = (back.z - front.z) - ndc * (back.w - front.w);
+  return abs(denominator) > 1e-30 ? (ndc * front.w - front.z) / denominator : 1.0;
+}
+
+void main()
+{
+  vec3 dir = parallelProjection == 1 ? viewDirWC : normalize(positionWC - eyeWC);
+  float along = sliceSpacing / max(dot(dir, viewDirWC), 1e-6);
+  vec3 frontWC = positionWC;
+  vec3 backWC = positionWC + along * dir;
+  vec3 frontI = (worldToIndex * vec4(frontWC, 1.0)).xyz;
+  vec3 backI = (worldToIndex * vec4(backWC, 1.0)).xyz;
+
+  // Cut the slab where the ray leaves the volume...
+  float cut = 1.0;
+  vec3 stepI = backI - frontI;
+  vec3 last = gridSize - 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (stepI[a] > 0.0)
+    {
+      cut = min(cut, (last[a] - frontI[a]) / stepI[a]);
+    }
+    else if (stepI[a] < 0.0)
+    {
+      cut = min(cut, -frontI[a] / stepI[a]);
+    }
+  }
+  // ... and where it meets opaque geometry.
+  if (useOpaqueDepth == 1)
+  {
+    float z = texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy) - viewportOrigin, 0).r;
+    vec4 frontClip = worldToClip * vec4(frontWC, 1.0);
+    vec4 backClip = worldToClip * vec4(backWC, 1.0);
+    if (0.5 * backClip.z / backClip.w + 0.5 > z)
+    {
+      cut = min(cut, depthCut(frontClip, backClip, z));
+    }
+  }
+  if (cut <= 0.0)
+  {
+    discard;
+  }
+  vec4 slab = slabColor(frontI, mix(frontI, backI, cut), cut * length(backWC - frontWC), dir);
+  // A ray that enters the volume through a side between the previous slice and this one
+  // has that stretch in front of this slice, which no slice covers: add it, in front.
+  vec3 previousI = frontI - stepI;
+  float enter = entryAlong(previousI, stepI);
+  if (enter > 0.0 && enter < 1.0)
+  {
+    vec4 ahead = slabColor(mix(previousI, frontI, enter), frontI,
+      (1.0 - enter) * length(backWC - frontWC), dir);
+    slab = ahead + (1.0 - ahead.a) * slab;
+  }
+  gl_FragData[0] = slab;
+}
