@@ -169,9 +169,11 @@ struct DecodeField
 struct vtkSegmentedDistanceVolumeMapper::Internals
 {
   // Surface mode.
-  vtkNew<vtkTextureObject> Field;  // RG32F: distance, region
-  vtkNew<vtkTextureObject> Colors; // RGB32F, one texel a region
-  vtkOpenGLHelper Slices;          // program and VAO of the slice polygons
+  vtkNew<vtkTextureObject> Field;         // RG32F: distance, region
+  vtkNew<vtkTextureObject> Colors;        // RGB32F, one texel a region
+  vtkNew<vtkTextureObject> ClosestPoints; // RGB32F, when the input has ClosestPoint
+  bool HasClosestPoints = false;
+  vtkOpenGLHelper Slices; // program and VAO of the slice polygons
   // Composite mode.
   vtkNew<vtkTextureObject> Scalars;     // R32F, linear
   vtkNew<vtkTextureObject> Table;       // RGBA32F pre-integration table
@@ -277,6 +279,7 @@ void vtkSegmentedDistanceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "NumberOfSlices: " << this->NumberOfSlices << "\n";
   os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
+  os << indent << "UseClosestPointNormals: " << this->UseClosestPointNormals << "\n";
   os << indent << "RegionColors set: " << this->Impl->RegionColors.size() << "\n";
   os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
   os << indent << "LastRegionCount: " << this->LastRegionCount << "\n";
@@ -457,6 +460,31 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
     vtkErrorMacro("Could not make the field's 3D texture (" << dims[0] << " x " << dims[1] << " x "
                                                             << dims[2] << ")");
     return false;
+  }
+  // Closest points (vtkLinearFactorDistanceField's ComputeClosestPoint) give the normals.
+  impl.HasClosestPoints = false;
+  vtkDataArray* closest = pd->GetArray("ClosestPoint");
+  if (closest && closest->GetNumberOfComponents() == 3 && closest->GetNumberOfTuples() == count)
+  {
+    std::vector<float> points(3 * static_cast<size_t>(count));
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        points[3 * i + c] = static_cast<float>(closest->GetComponent(i, c));
+      }
+    }
+    impl.ClosestPoints->SetMinificationFilter(vtkTextureObject::Nearest);
+    impl.ClosestPoints->SetMagnificationFilter(vtkTextureObject::Nearest);
+    impl.ClosestPoints->SetInternalFormat(GL_RGB32F);
+    impl.ClosestPoints->SetFormat(GL_RGB);
+    impl.ClosestPoints->SetDataType(GL_FLOAT);
+    impl.HasClosestPoints = impl.ClosestPoints->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
+      static_cast<unsigned int>(dims[1]),
+      static_cast<unsigned int>(dims[2]),
+      3,
+      VTK_FLOAT,
+      points.data());
   }
   this->SetGeometry(image, dims);
   impl.Segmented = segmented;
@@ -642,6 +670,7 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   impl.Scalars->SetContext(window);
   impl.Table->SetContext(window);
   impl.Colors->SetContext(window);
+  impl.ClosestPoints->SetContext(window);
   impl.OpaqueDepth->SetContext(window);
   if (surface ? !this->UpdateField(image)
               : !(this->UpdateScalars(image) && this->UpdateTable(property)))
@@ -772,10 +801,37 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
     program->SetUniformi("regionColorCount", colorCount);
     program->SetUniformf("opacity", static_cast<float>(this->SurfaceOpacity));
     active = { impl.Field, impl.Colors };
-    impl.Field->Activate();
-    impl.Colors->Activate();
+    const bool closestNormals = impl.HasClosestPoints && this->UseClosestPointNormals;
+    if (closestNormals)
+    {
+      active.push_back(impl.ClosestPoints);
+    }
+    for (vtkTextureObject* texture : active)
+    {
+      texture->Activate();
+    }
     program->SetUniformi("field", impl.Field->GetTextureUnit());
     program->SetUniformi("regionColors", impl.Colors->GetTextureUnit());
+    program->SetUniformi("useClosestPoint", closestNormals ? 1 : 0);
+    // Unused, the closest-point sampler names the field's unit (a 3D texture too; never
+    // read), so that no sampler is left on a unit of another texture type.
+    program->SetUniformi("closestPoints",
+      closestNormals ? impl.ClosestPoints->GetTextureUnit() : impl.Field->GetTextureUnit());
+    vtkNew<vtkMatrix4x4> indexToPhysical;
+    indexToPhysical->DeepCopy(impl.IndexToPhysical);
+    SetPlainMatrix(program, "indexToPhysical", indexToPhysical);
+    // Physical -> world normals: the inverse transpose of the volume matrix's linear part.
+    vtkNew<vtkMatrix4x4> worldToPhysical;
+    vtkMatrix4x4::Invert(volume->GetMatrix(), worldToPhysical);
+    double physicalNormal[3][3];
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        physicalNormal[i][j] = worldToPhysical->GetElement(j, i);
+      }
+    }
+    SetPlainMatrix(program, "physicalToWorldNormal", physicalNormal);
   }
   else
   {

@@ -30,6 +30,10 @@ uniform float diffuse;
 uniform float specular;
 uniform float specularPower;
 uniform float opacity;
+uniform int useClosestPoint;       // normals from ClosestPoint rather than the gradient
+uniform sampler3D closestPoints;   // per voxel, physical coordinates
+uniform mat4 indexToPhysical;
+uniform mat3 physicalToWorldNormal;
 
 ivec3 dims()
 {
@@ -41,12 +45,19 @@ vec2 voxel(ivec3 i)
   return texelFetch(field, clamp(i, ivec3(0), dims() - 1), 0).xy;
 }
 
-// The eight voxels of the cell around index-space point p, and p's place in it.
-void cellAt(vec3 p, out vec2 c[8], out vec3 t)
+// The cell around index-space point p: its first voxel, and p's place in it.
+ivec3 cellOf(vec3 p, out vec3 t)
 {
   vec3 q = clamp(p, vec3(0.0), vec3(dims() - 1));
   ivec3 b = clamp(ivec3(floor(q)), ivec3(0), max(dims() - 2, ivec3(0)));
   t = q - vec3(b);
+  return b;
+}
+
+// The eight voxels of the cell around index-space point p, and p's place in it.
+void cellAt(vec3 p, out vec2 c[8], out vec3 t)
+{
+  ivec3 b = cellOf(p, t);
   for (int k = 0; k < 8; ++k)
   {
     c[k] = voxel(b + ivec3(k & 1, (k >> 1) & 1, k >> 2));
@@ -147,6 +158,30 @@ vec3 gradientTo(vec3 p, float r)
   return g;
 }
 
+// The normal at p on region r's side from the voxels' closest points: the directions from
+// each voxel's closest point to the voxel (flipped for voxels of other regions), blended
+// trilinearly.
+vec3 closestPointNormal(vec3 p, float r)
+{
+  vec3 t;
+  ivec3 b = cellOf(p, t);
+  vec3 n = vec3(0.0);
+  for (int k = 0; k < 8; ++k)
+  {
+    ivec3 corner = ivec3(k & 1, (k >> 1) & 1, k >> 2);
+    ivec3 index = b + corner;
+    vec3 w3 = mix(vec3(1.0) - t, t, vec3(corner));
+    vec3 away = (indexToPhysical * vec4(vec3(index), 1.0)).xyz -
+      texelFetch(closestPoints, index, 0).xyz;
+    float len = length(away);
+    if (len > 0.0)
+    {
+      n += (voxel(index).y == r ? 1.0 : -1.0) * (w3.x * w3.y * w3.z / len) * away;
+    }
+  }
+  return physicalToWorldNormal * n;
+}
+
 void main()
 {
   vec3 dir = parallelProjection == 1 ? viewDirWC : normalize(positionWC - eyeWC);
@@ -190,7 +225,8 @@ void main()
   if (shade == 1)
   {
     // A headlight; the normal points into the viewer's region.
-    vec3 n = indexToWorldNormal * gradientTo(hitI, front.y);
+    vec3 n = useClosestPoint == 1 ? closestPointNormal(hitI, front.y)
+                                  : indexToWorldNormal * gradientTo(hitI, front.y);
     float len = length(n);
     n = len > 0.0 ? n / len : -dir;
     float facing = abs(dot(n, -dir));

@@ -18,5 +18,5 @@ cd build-sanitize
 # at exit ("Tracer caught signal 11", "LeakSanitizer has encountered a fatal error") after
 # a GPU test on llvmpipe had passed its checks (1 run in about 800; the same test passed
 # 6 runs of 6 alone). A real leak or undefined behaviour fails both runs.
-xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure -j "$(nproc)" -LE ulimit \
+xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j "$(nproc)" -LE ulimit \
   --repeat until-pass:2 "$@"
