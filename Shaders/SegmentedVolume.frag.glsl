@@ -182,6 +182,61 @@ vec3 closestPointNormal(vec3 p, float r)
   return physicalToWorldNormal * n;
 }
 
+// Where the segment from p along step (index space) enters the volume's box, as a
+// fraction of step: 0 when p is inside, > 1 when it never does.
+float entryAlong(vec3 p, vec3 step)
+{
+  vec3 last = vec3(dims() - 1);
+  float enter = 0.0;
+  float leave = 1e30;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (abs(step[a]) < 1e-30)
+    {
+      if (p[a] < 0.0 || p[a] > last[a])
+      {
+        return 2.0;
+      }
+      continue;
+    }
+    float t0 = -p[a] / step[a];
+    float t1 = (last[a] - p[a]) / step[a];
+    enter = max(enter, min(t0, t1));
+    leave = min(leave, max(t0, t1));
+  }
+  return enter <= leave ? enter : 2.0;
+}
+
+// The interface in the slab from index-space point a to b, if any: where (the fraction
+// t of the way) and the front sample (distance, region).
+bool interfaceIn(vec3 a, vec3 b, out float t, out vec2 front)
+{
+  front = sampleField(a);
+  vec2 back = sampleField(b);
+  if (front.y == back.y)
+  {
+    return false;
+  }
+  // Eq. 7: an interface only where the two distances add up to at most w, so that open
+  // boundaries stay open. The paper's w is the voxel spacing (here along the ray's
+  // direction in index space); interpolated samples a slab apart can differ by up to the
+  // slab's length in the L1 norm (trilinear interpolation of a 1-Lipschitz field changes
+  // by at most one spacing per voxel step on each axis), so w is at least that.
+  vec3 stepI = abs(b - a);
+  float w = max(dot(stepI, spacing) / max(stepI.x + stepI.y + stepI.z, 1e-30),
+    dot(stepI, spacing));
+  float sum = front.x + back.x;
+  if (sum > w * 1.001)
+  {
+    return false;
+  }
+  // Eq. 6: the interface lies u / (u + v) of the way.
+  t = sum > 0.0 ? front.x / sum : 0.0;
+  vec3 hit = mix(a, b, t);
+  return all(greaterThanEqual(hit, vec3(-1e-3))) &&
+    all(lessThanEqual(hit, vec3(dims() - 1) + 1e-3));
+}
+
 void main()
 {
   vec3 dir = parallelProjection == 1 ? viewDirWC : normalize(positionWC - eyeWC);
@@ -190,33 +245,30 @@ void main()
   vec3 backWC = positionWC + along * dir;
   vec3 frontI = (worldToIndex * vec4(frontWC, 1.0)).xyz;
   vec3 backI = (worldToIndex * vec4(backWC, 1.0)).xyz;
-  vec2 front = sampleField(frontI);
-  vec2 back = sampleField(backI);
-  if (front.y == back.y)
+  // A ray that enters the volume through a side between the previous slice and this one
+  // has that stretch in front of this slice, which no slice covers: it comes first.
+  vec3 previousI = 2.0 * frontI - backI;
+  vec3 previousWC = 2.0 * frontWC - backWC;
+  float enter = entryAlong(previousI, frontI - previousI);
+  float t;
+  vec2 front;
+  vec3 hitI;
+  vec3 hitWC;
+  if (enter > 0.0 && enter < 1.0 &&
+    interfaceIn(mix(previousI, frontI, enter), frontI, t, front))
+  {
+    hitI = mix(mix(previousI, frontI, enter), frontI, t);
+    hitWC = mix(mix(previousWC, frontWC, enter), frontWC, t);
+  }
+  else if (interfaceIn(frontI, backI, t, front))
+  {
+    hitI = mix(frontI, backI, t);
+    hitWC = mix(frontWC, backWC, t);
+  }
+  else
   {
     discard;
   }
-  // Eq. 7: an interface only where the two distances add up to at most w, so that open
-  // boundaries stay open. The paper's w is the voxel spacing (here along the ray's
-  // direction in index space); interpolated samples a slab apart can differ by up to the
-  // slab's length in the L1 norm (trilinear interpolation of a 1-Lipschitz field changes
-  // by at most one spacing per voxel step on each axis), so w is at least that.
-  vec3 stepI = abs(backI - frontI);
-  float w = max(dot(stepI, spacing) / max(stepI.x + stepI.y + stepI.z, 1e-30),
-    dot(stepI, spacing));
-  float sum = front.x + back.x;
-  if (sum > w * 1.001)
-  {
-    discard;
-  }
-  // Eq. 6: the interface lies u / (u + v) of the way.
-  float t = sum > 0.0 ? front.x / sum : 0.0;
-  vec3 hitI = mix(frontI, backI, t);
-  if (any(lessThan(hitI, vec3(-1e-3))) || any(greaterThan(hitI, vec3(dims() - 1) + 1e-3)))
-  {
-    discard;
-  }
-  vec3 hitWC = mix(frontWC, backWC, t);
   vec4 clip = worldToClip * vec4(hitWC, 1.0);
   gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
 
