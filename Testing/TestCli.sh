@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # vtkdf end to end on bundled data: every subcommand, chained as a user would (linfac's
-# field into medial, voxelize's masks into chamfer), the --timing line's format, the
+# field into medial and render, voxelize's masks into chamfer, segment's field into
+# blend and render), the --timing line's format, the
 # files written, and the failures that must give a non-zero exit status.
 # usage: TestCli.sh VTKDF DATA_DIR OUT_DIR
 set -u
@@ -65,6 +66,15 @@ if "$vtkdf" blend "$out/segment.vti" "$out/segment.vti" -t 0.3 -o "$out/blend.vt
 else
   fail "blend: exit status $? ($(head -c 300 "$out/blend.err"))"
 fi
+# render (the suite runs under Xvfb): the segmented field's surfaces, and the signed
+# field composited.
+run render "^vtkdf: render dims=[0-9]+x[0-9]+x[0-9]+ mode=surface size=96x80 slices=[1-9][0-9]* regions=2 first_frame_s=[0-9.]+ frame_s=[0-9.]+ renderer=" \
+  "$out/render.png" -- \
+  render "$out/segment.vti" -o "$out/render.png" --size 96 80 --azimuth 40 --elevation 30 --timing
+run render-composite "^vtkdf: render dims=[0-9]+x[0-9]+x[0-9]+ mode=composite size=64x64 slices=12 " \
+  "$out/composite.png" -- \
+  render "$out/linfac.vti" -o "$out/composite.png" --mode composite --size 64 64 --slices 12 \
+  --timing
 
 # Failures: a message and a non-zero status, never a crash or a silent success.
 expect_failure() {
@@ -82,7 +92,12 @@ expect_failure missing linfac "$data/no_such_mesh.vtp" -o "$out/x.vti"
 expect_failure subcommand frobnicate
 expect_failure blendmesh blend "$data/plane.vtp" "$out/segment.vti" -t 0.5 -o "$out/x.vti"
 expect_failure blendnot blend "$out/segment.vti" "$out/segment.vti" -o "$out/x.vti"
+expect_failure rendermesh render "$data/plane.vtp" -o "$out/x.png"
+expect_failure rendermode render "$out/segment.vti" -o "$out/x.png" --mode mip
+DISPLAY= expect_failure renderdisplay render "$out/segment.vti" -o "$out/x.png"
+grep -q "needs an X server" "$out/renderdisplay.out" || fail "render without DISPLAY: no message"
 [ -e "$out/x.vti" ] && fail "a failed run wrote $out/x.vti"
+[ -e "$out/x.png" ] && fail "a failed run wrote $out/x.png"
 
 # --help (alone or after a subcommand): the usage on stdout, status 0.
 for args in "--help" "-h" "medial --help"; do
