@@ -207,6 +207,30 @@ float entryAlong(vec3 p, vec3 step)
   return enter <= leave ? enter : 2.0;
 }
 
+// Eq. 7 on the cell around p: whether one of its edges joins voxels of two regions whose
+// distances add up to at most the edge's length (with a relative tolerance: a sheet on a
+// voxel plane gives exactly the length). A surface that crosses an edge always passes
+// (triangle inequality); where two regions meet beyond an open boundary, none does, so
+// open boundaries stay open, and end where the polygonizer ends them.
+bool surfaceInCell(vec3 p)
+{
+  vec2 c[8];
+  vec3 t;
+  cellAt(p, c, t);
+  for (int k = 0; k < 8; ++k)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      int m = k | (1 << a);
+      if (m != k && c[k].y != c[m].y && c[k].x + c[m].x <= spacing[a] * 1.001)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 // The interface in the slab from index-space point a to b, if any: where (the fraction
 // t of the way) and the front sample (distance, region).
 bool interfaceIn(vec3 a, vec3 b, out float t, out vec2 front)
@@ -217,24 +241,12 @@ bool interfaceIn(vec3 a, vec3 b, out float t, out vec2 front)
   {
     return false;
   }
-  // Eq. 7: an interface only where the two distances add up to at most w, so that open
-  // boundaries stay open. The paper's w is the voxel spacing (here along the ray's
-  // direction in index space); interpolated samples a slab apart can differ by up to the
-  // slab's length in the L1 norm (trilinear interpolation of a 1-Lipschitz field changes
-  // by at most one spacing per voxel step on each axis), so w is at least that.
-  vec3 stepI = abs(b - a);
-  float w = max(dot(stepI, spacing) / max(stepI.x + stepI.y + stepI.z, 1e-30),
-    dot(stepI, spacing));
   float sum = front.x + back.x;
-  if (sum > w * 1.001)
-  {
-    return false;
-  }
   // Eq. 6: the interface lies u / (u + v) of the way.
   t = sum > 0.0 ? front.x / sum : 0.0;
   vec3 hit = mix(a, b, t);
   return all(greaterThanEqual(hit, vec3(-1e-3))) &&
-    all(lessThanEqual(hit, vec3(dims() - 1) + 1e-3));
+    all(lessThanEqual(hit, vec3(dims() - 1) + 1e-3)) && surfaceInCell(hit);
 }
 
 void main()
