@@ -140,6 +140,15 @@ vec2 sampleField(vec3 p)
   return vec2(max(relativeTo(c, t, other), 0.0), other);
 }
 
+// The distance relative to region r at p, interpolated.
+float relativeAt(vec3 p, float r)
+{
+  vec2 c[8];
+  vec3 t;
+  cellAt(p, c, t);
+  return relativeTo(c, t, r);
+}
+
 // The gradient (per index step) of the distance relative to region r at p.
 vec3 gradientTo(vec3 p, float r)
 {
@@ -244,9 +253,49 @@ bool interfaceIn(vec3 a, vec3 b, out float t, out vec2 front)
   float sum = front.x + back.x;
   // Eq. 6: the interface lies u / (u + v) of the way.
   t = sum > 0.0 ? front.x / sum : 0.0;
+  if (interpolation == 0)
+  {
+    // Region-aware sampling refines it to the zero of the interpolated distance relative
+    // to the front region along the slab (regula falsi from eq. 6's estimate): the surface
+    // the interpolant describes, and a point in a cell that holds both regions.
+    float lo = 0.0;
+    float hi = 1.0;
+    float gLo = relativeAt(a, front.y);
+    float gHi = relativeAt(b, front.y);
+    if (gLo >= 0.0 && gHi < 0.0)
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        float s = clamp(lo + (hi - lo) * gLo / (gLo - gHi), lo, hi);
+        float g = relativeAt(mix(a, b, s), front.y);
+        if (g >= 0.0)
+        {
+          lo = s;
+          gLo = g;
+        }
+        else
+        {
+          hi = s;
+          gHi = g;
+        }
+      }
+      t = lo + (hi - lo) * gLo / (gLo - gHi);
+    }
+  }
   vec3 hit = mix(a, b, t);
-  return all(greaterThanEqual(hit, vec3(-1e-3))) &&
-    all(lessThanEqual(hit, vec3(dims() - 1) + 1e-3)) && surfaceInCell(hit);
+  if (any(lessThan(hit, vec3(-1e-3))) || any(greaterThan(hit, vec3(dims() - 1) + 1e-3)))
+  {
+    return false;
+  }
+  if (interpolation == 1)
+  {
+    // Nearest sampling, the paper's eq. 7 on the two voxels sampled: a surface lies
+    // between them only if their distances add up to at most their distance apart.
+    vec3 last = vec3(dims() - 1);
+    vec3 apart = (round(clamp(b, vec3(0.0), last)) - round(clamp(a, vec3(0.0), last))) * spacing;
+    return sum <= length(apart) * 1.001;
+  }
+  return surfaceInCell(hit);
 }
 
 void main()
