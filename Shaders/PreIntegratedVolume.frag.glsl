@@ -10,7 +10,7 @@
 
 in vec3 positionWC;
 
-uniform sampler3D scalars;        // the scalar volume, linear filtering
+uniform sampler3D scalars;        // the scalar volume (read with texelFetch)
 uniform sampler2D preIntegrated;  // RGBA: average colour, average extinction
 uniform sampler2D opaqueDepth;    // the depth buffer before the volume was drawn
 uniform int useOpaqueDepth;
@@ -31,9 +31,23 @@ uniform float diffuse;
 uniform float specular;
 uniform float specularPower;
 
+// Trilinear interpolation in full float precision: texture filtering's weights have a few
+// bits of precision only (8 on most hardware and llvmpipe), which bands smooth fields
+// into rings, in the values and worse in their central differences.
 float valueAt(vec3 index)
 {
-  return texture(scalars, (index + 0.5) / gridSize).r;
+  ivec3 last = ivec3(gridSize + 0.5) - 1;
+  vec3 q = clamp(index, vec3(0.0), vec3(last));
+  ivec3 b = min(ivec3(floor(q)), max(last - 1, ivec3(0)));
+  vec3 t = q - vec3(b);
+  float v[8];
+  for (int k = 0; k < 8; ++k)
+  {
+    v[k] = texelFetch(scalars, min(b + ivec3(k & 1, (k >> 1) & 1, k >> 2), last), 0).r;
+  }
+  vec4 x = mix(vec4(v[0], v[2], v[4], v[6]), vec4(v[1], v[3], v[5], v[7]), t.x);
+  vec2 y = mix(x.xz, x.yw, t.y);
+  return mix(y.x, y.y, t.z);
 }
 
 // The premultiplied colour of the slab from index-space point a to b, of world length d.
@@ -48,15 +62,22 @@ vec4 slabColor(vec3 a, vec3 b, float d, vec3 dir)
   vec3 color = entry.rgb;
   if (shade == 1)
   {
+    // The normal at the slab's midpoint, by central differences a voxel each way: over
+    // half a voxel the gradient of the trilinear interpolant shows every cell face (rings
+    // around the axes on a sphere).
+    vec3 m = 0.5 * (a + b);
     vec3 g;
     for (int k = 0; k < 3; ++k)
     {
       vec3 e = vec3(0.0);
-      e[k] = 0.5;
-      g[k] = valueAt(a + e) - valueAt(a - e);
+      e[k] = 1.0;
+      g[k] = valueAt(m + e) - valueAt(m - e);
     }
+    // Where the field is flat (under 1% of its range over two voxels) the gradient's
+    // direction is noise: no directional shading there.
     vec3 n = indexToWorldNormal * g;
-    float facing = length(n) > 0.0 ? abs(dot(normalize(n), dir)) : 1.0;
+    float flatBelow = 0.01 * (scalarRange.y - scalarRange.x);
+    float facing = length(g) > flatBelow ? abs(dot(normalize(n), dir)) : 1.0;
     float highlight = specular > 0.0 ? pow(facing, max(specularPower, 1.0)) : 0.0;
     color = color * (ambient + diffuse * facing) + vec3(specular * highlight);
   }

@@ -13,8 +13,10 @@
 
 namespace testsupport
 {
-/// The box [-1, 1]^3 with a wall at x = 0.13; the right chamber (x > 0.13) has no lid.
-inline vtkSmartPointer<vtkPolyData> OpenWalledBox()
+/// The box [-width, width] x [-1, 1] x [-1, 1] with a wall at x = `wall`; the right
+/// chamber (x > wall) has no lid when `openRight`. Built alike for every wall and width,
+/// so that the patches correspond.
+inline vtkSmartPointer<vtkPolyData> WalledBox(double wall, bool openRight, double width = 1)
 {
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> polys;
@@ -29,25 +31,31 @@ inline vtkSmartPointer<vtkPolyData> OpenWalledBox()
     polys->InsertNextCell(3, t0);
     polys->InsertNextCell(3, t1);
   };
-  const double w = 0.13, xs[3] = { -1, w, 1 };
+  const double w = wall, xs[3] = { -width, w, width };
   for (int i = 0; i < 2; ++i)
   {
     const double x0 = xs[i], x1 = xs[i + 1];
     quad({ { x0, -1, -1 }, { x1, -1, -1 }, { x1, -1, 1 }, { x0, -1, 1 } });
     quad({ { x0, 1, -1 }, { x0, 1, 1 }, { x1, 1, 1 }, { x1, 1, -1 } });
     quad({ { x0, -1, -1 }, { x0, 1, -1 }, { x1, 1, -1 }, { x1, -1, -1 } });
-    if (i == 0)
+    if (i == 0 || !openRight)
     {
-      quad({ { x0, -1, 1 }, { x1, -1, 1 }, { x1, 1, 1 }, { x0, 1, 1 } }); // the left lid only
+      quad({ { x0, -1, 1 }, { x1, -1, 1 }, { x1, 1, 1 }, { x0, 1, 1 } }); // the lids
     }
   }
-  quad({ { -1, -1, -1 }, { -1, -1, 1 }, { -1, 1, 1 }, { -1, 1, -1 } });
-  quad({ { 1, -1, -1 }, { 1, 1, -1 }, { 1, 1, 1 }, { 1, -1, 1 } });
+  quad({ { -width, -1, -1 }, { -width, -1, 1 }, { -width, 1, 1 }, { -width, 1, -1 } });
+  quad({ { width, -1, -1 }, { width, 1, -1 }, { width, 1, 1 }, { width, -1, 1 } });
   quad({ { w, -1, -1 }, { w, 1, -1 }, { w, 1, 1 }, { w, -1, 1 } });
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->SetPoints(points);
   mesh->SetPolys(polys);
   return mesh;
+}
+
+/// The box [-1, 1]^3 with a wall at x = 0.13; the right chamber (x > 0.13) has no lid.
+inline vtkSmartPointer<vtkPolyData> OpenWalledBox()
+{
+  return WalledBox(0.13, true);
 }
 
 } // namespace testsupport
