@@ -164,13 +164,71 @@ struct DecodeField
     regions = highest + 1;
   }
 };
+/// Bricks of BrickSize^3 cells: 255 (1 normalized) where a cell of the brick, or a cell next to it,
+/// holds voxels of two regions (an interface may lie there), else 0. The shader skips slabs that
+/// touch no such brick after a fetch or two, instead of sampling the field.
+constexpr int BrickSize = 4;
+std::vector<unsigned char> ActiveBricks(const float* texels, const int dims[3], int bricks[3])
+{
+  const int cells[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
+  for (int a = 0; a < 3; ++a)
+  {
+    bricks[a] = (cells[a] + BrickSize - 1) / BrickSize;
+  }
+  auto region = [&](int i, int j, int k)
+  {
+    return texels[2 * (i + static_cast<size_t>(dims[0]) * (j + static_cast<size_t>(dims[1]) * k)) +
+      1];
+  };
+  std::vector<unsigned char> active(static_cast<size_t>(bricks[0]) * bricks[1] * bricks[2], 0);
+  for (int k = 0; k < cells[2]; ++k)
+  {
+    for (int j = 0; j < cells[1]; ++j)
+    {
+      for (int i = 0; i < cells[0]; ++i)
+      {
+        const float r = region(i, j, k);
+        bool mixed = false;
+        for (int c = 1; c < 8 && !mixed; ++c)
+        {
+          mixed = region(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)) != r;
+        }
+        if (!mixed)
+        {
+          continue;
+        }
+        // Mark the bricks of this cell and of its neighbours.
+        for (int dk = -1; dk <= 1; ++dk)
+        {
+          for (int dj = -1; dj <= 1; ++dj)
+          {
+            for (int di = -1; di <= 1; ++di)
+            {
+              const int ci = i + di, cj = j + dj, ck = k + dk;
+              if (ci < 0 || cj < 0 || ck < 0 || ci >= cells[0] || cj >= cells[1] || ck >= cells[2])
+              {
+                continue;
+              }
+              active[ci / BrickSize +
+                static_cast<size_t>(bricks[0]) *
+                  (cj / BrickSize + static_cast<size_t>(bricks[1]) * (ck / BrickSize))] = 255;
+            }
+          }
+        }
+      }
+    }
+  }
+  return active;
+}
 } // namespace
 
 struct vtkSegmentedDistanceVolumeMapper::Internals
 {
   // Surface mode.
-  vtkNew<vtkTextureObject> Field;         // RG32F: distance, region
-  vtkNew<vtkTextureObject> Colors;        // RGB32F, one texel a region
+  vtkNew<vtkTextureObject> Field;  // RG32F: distance, region
+  vtkNew<vtkTextureObject> Colors; // RGB32F, one texel a region
+  vtkNew<vtkTextureObject> Bricks; // R8: bricks where an interface may lie
+  int BrickDims[3] = { 1, 1, 1 };
   vtkNew<vtkTextureObject> ClosestPoints; // RGB32F, when the input has ClosestPoint
   bool HasClosestPoints = false;
   vtkOpenGLHelper Slices; // program and VAO of the slice polygons
@@ -291,6 +349,8 @@ void vtkSegmentedDistanceVolumeMapper::ReleaseGraphicsResources(vtkWindow* windo
   Internals& impl = *this->Impl;
   for (vtkTextureObject* texture : { impl.Field.Get(),
          impl.Colors.Get(),
+         impl.Bricks.Get(),
+         impl.ClosestPoints.Get(),
          impl.Scalars.Get(),
          impl.Table.Get(),
          impl.OpaqueDepth.Get(),
@@ -459,6 +519,23 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
   {
     vtkErrorMacro("Could not make the field's 3D texture (" << dims[0] << " x " << dims[1] << " x "
                                                             << dims[2] << ")");
+    return false;
+  }
+  // Where interfaces may lie, by bricks (the shader's empty-space skipping).
+  const std::vector<unsigned char> active = ActiveBricks(texels.data(), dims, impl.BrickDims);
+  impl.Bricks->SetMinificationFilter(vtkTextureObject::Nearest);
+  impl.Bricks->SetMagnificationFilter(vtkTextureObject::Nearest);
+  impl.Bricks->SetInternalFormat(GL_R8);
+  impl.Bricks->SetFormat(GL_RED);
+  impl.Bricks->SetDataType(GL_UNSIGNED_BYTE);
+  if (!impl.Bricks->Create3DFromRaw(static_cast<unsigned int>(impl.BrickDims[0]),
+        static_cast<unsigned int>(impl.BrickDims[1]),
+        static_cast<unsigned int>(impl.BrickDims[2]),
+        1,
+        VTK_UNSIGNED_CHAR,
+        const_cast<unsigned char*>(active.data())))
+  {
+    vtkErrorMacro("Could not make the bricks' 3D texture");
     return false;
   }
   // Closest points (vtkLinearFactorDistanceField's ComputeClosestPoint) give the normals.
@@ -670,6 +747,7 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   impl.Scalars->SetContext(window);
   impl.Table->SetContext(window);
   impl.Colors->SetContext(window);
+  impl.Bricks->SetContext(window);
   impl.ClosestPoints->SetContext(window);
   impl.OpaqueDepth->SetContext(window);
   if (surface ? !this->UpdateField(image)
@@ -800,7 +878,7 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
     program->SetUniformf("regionOffset", static_cast<float>(impl.RegionOffset));
     program->SetUniformi("regionColorCount", colorCount);
     program->SetUniformf("opacity", static_cast<float>(this->SurfaceOpacity));
-    active = { impl.Field, impl.Colors };
+    active = { impl.Field, impl.Colors, impl.Bricks };
     const bool closestNormals = impl.HasClosestPoints && this->UseClosestPointNormals;
     if (closestNormals)
     {
@@ -812,6 +890,8 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
     }
     program->SetUniformi("field", impl.Field->GetTextureUnit());
     program->SetUniformi("regionColors", impl.Colors->GetTextureUnit());
+    program->SetUniformi("bricks", impl.Bricks->GetTextureUnit());
+    program->SetUniformf("brickSize", static_cast<float>(BrickSize));
     program->SetUniformi("useClosestPoint", closestNormals ? 1 : 0);
     // Unused, the closest-point sampler names the field's unit (a 3D texture too; never
     // read), so that no sampler is left on a unit of another texture type.

@@ -11,6 +11,8 @@ in vec3 positionWC;
 
 uniform sampler3D field;          // per voxel: distance (>= 0), region index
 uniform sampler2D regionColors;   // one texel per region
+uniform sampler3D bricks;         // 1 where an interface may lie (bricks of cells)
+uniform float brickSize;          // cells a brick side
 uniform int regionColorCount;
 uniform vec3 gridSize;           // samples per axis
 uniform vec3 spacing;             // voxel spacing, physical units
@@ -298,6 +300,23 @@ bool interfaceIn(vec3 a, vec3 b, out float t, out vec2 front)
   return surfaceInCell(hit);
 }
 
+// Whether the segment from a to b (index space) touches a brick where an interface may
+// lie, checked a voxel apart (bricks are marked one cell beyond their mixed cells).
+bool mayHoldInterface(vec3 a, vec3 b)
+{
+  ivec3 last = textureSize(bricks, 0) - 1;
+  int steps = int(ceil(max(max(abs(b.x - a.x), abs(b.y - a.y)), abs(b.z - a.z))));
+  for (int k = 0; k <= steps; ++k)
+  {
+    vec3 p = clamp(mix(a, b, float(k) / float(max(steps, 1))), vec3(0.0), vec3(dims() - 1));
+    if (texelFetch(bricks, min(ivec3(p / brickSize), last), 0).r > 0.5)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 void main()
 {
   vec3 dir = parallelProjection == 1 ? viewDirWC : normalize(positionWC - eyeWC);
@@ -311,6 +330,11 @@ void main()
   vec3 previousI = 2.0 * frontI - backI;
   vec3 previousWC = 2.0 * frontWC - backWC;
   float enter = entryAlong(previousI, frontI - previousI);
+  vec3 start = enter > 0.0 && enter < 1.0 ? mix(previousI, frontI, enter) : frontI;
+  if (!mayHoldInterface(start, backI))
+  {
+    discard;
+  }
   float t;
   vec2 front;
   vec3 hitI;
