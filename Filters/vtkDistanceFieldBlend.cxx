@@ -178,10 +178,16 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation*,
   a.Region = reinterpret_cast<const int32_t*>(ra->GetPointer(0));
   b.Distance = db->GetPointer(0);
   b.Region = reinterpret_cast<const int32_t*>(rb->GetPointer(0));
+  vtkdf::BlendGrid grid;
+  first->GetDimensions(grid.Dims);
+  for (int c = 0; c < 3; ++c)
+  {
+    grid.Spacing[c] = std::abs(first->GetSpacing()[c]);
+  }
   vtkdf::BlendSegmented(a,
     b,
     this->T,
-    n,
+    grid,
     distance->GetPointer(0),
     reinterpret_cast<int32_t*>(region->GetPointer(0)),
     vtkdf::SMPFor);

@@ -2,8 +2,15 @@
 // - T = 0 and T = 1 give the inputs exactly (every array, every sample);
 // - T = 0.25, 0.5, 0.75: the interface (eq. 6 points on grid edges between the two
 //   regions) lies within half a spacing of the sphere of radius 0.5 + 0.3 T, all around;
+// - a closed box with an inner wall at x = -0.3 and at x = 0.35 (three regions): at T =
+//   0.25, 0.5, 0.75 the wall (where the chambers meet along the box's axis) is at
+//   -0.3 + 0.65 T within half a spacing, and the moving chambers' other walls stay put:
+//   no sample in the band the wall sweeps is put nearer a surface than both inputs'
+//   blended distance and the moving wall's allow (the signed blend of the plain distances
+//   collapsed to 0 all along the box's faces there);
 // - refused, with a message naming the problem: fields of other regions (a T-junction's
 //   segmentation), other grids, missing arrays, T outside [0, 1] or NaN.
+#include "TestShapes.h"
 #include "TestSupport.h"
 #include "vtkDistanceFieldBlend.h"
 #include "vtkSegmentedDistanceField.h"
@@ -172,6 +179,58 @@ int main()
       "T = %g: the interface is not the sphere of radius %g",
       t,
       radius);
+  }
+
+  // A moving wall inside a closed box.
+  auto left = Segmented(testsupport::WalledBox(-0.3, false, 0.8), 0.05);
+  auto right = Segmented(testsupport::WalledBox(0.35, false, 0.8), 0.05);
+  for (const double t : { 0.25, 0.5, 0.75 })
+  {
+    auto b = Blend(left, right, t);
+    vtkDataArray* r = b->GetPointData()->GetArray("RegionIndex");
+    vtkDataArray* d = b->GetPointData()->GetArray("Distance");
+    vtkDataArray* ra = left->GetPointData()->GetArray("RegionIndex");
+    vtkDataArray* da = left->GetPointData()->GetArray("Distance");
+    vtkDataArray* db = right->GetPointData()->GetArray("Distance");
+    int dims[3];
+    b->GetDimensions(dims);
+    const double* origin = b->GetOrigin();
+    // Along the box's axis (y = z = 0): where the left chamber's region gives way.
+    const int j = static_cast<int>(std::lround((0 - origin[1]) / h));
+    const int k = static_cast<int>(std::lround((0 - origin[2]) / h));
+    const int leftChamber = static_cast<int>(ra->GetTuple1(
+      static_cast<vtkIdType>(std::lround((-0.6 - origin[0]) / h)) + dims[0] * (j + dims[1] * k)));
+    double wall = std::nan("");
+    for (int i = 0; i + 1 < dims[0]; ++i)
+    {
+      const vtkIdType p = i + dims[0] * (j + dims[1] * k), q = p + 1;
+      if (static_cast<int>(r->GetTuple1(p)) == leftChamber &&
+        static_cast<int>(r->GetTuple1(q)) != leftChamber && origin[0] + i * h > -0.7)
+      {
+        const double u = d->GetTuple1(p), v = d->GetTuple1(q);
+        wall = origin[0] + (i + u / (u + v)) * h;
+        break;
+      }
+    }
+    // No collapse: every sample's blended distance is at least the smaller of the inputs'
+    // blend and its distance to the moving wall's blended place, less a spacing.
+    const double expectedWall = -0.3 + 0.65 * t;
+    long long collapsed = 0;
+    for (vtkIdType p = 0; p < b->GetNumberOfPoints(); ++p)
+    {
+      const double x = origin[0] + (p % dims[0]) * h;
+      const double floor =
+        std::min((1 - t) * da->GetTuple1(p) + t * db->GetTuple1(p), std::abs(x - expectedWall)) - h;
+      collapsed += d->GetTuple1(p) < floor;
+    }
+    std::printf("T = %.2f: walled box, the wall at x = %.4f (expected %.4f); %lld samples "
+                "nearer a surface than they should be\n",
+      t,
+      wall,
+      expectedWall,
+      collapsed);
+    CHECK(std::abs(wall - expectedWall) < 0.5 * h, "T = %g: the wall is not where it should be", t);
+    CHECK(collapsed == 0, "T = %g: %lld samples collapsed onto a spurious surface", t, collapsed);
   }
 
   // Refusals.

@@ -2,13 +2,26 @@
 // (paper 004, section 5.2: metamorphosis by interpolating the fields), without VTK types.
 //
 // At a sample where both fields give the same region, the distances are blended; where
-// they give regions a and b, the two distances are blended as a signed distance across
-// that pair, negative on a's side: s = (1 - t)(-d_a) + t d_b, and the sample goes to a
-// (distance -s) where s < 0, else to b (distance s). So every interface moves linearly
-// from its position in the first field (t = 0) to its position in the second (t = 1);
-// for concentric spheres of radii R0 and R1 the interface is the sphere of radius
+// they give regions a (first) and b (second), the sample lies between the a|b interface's
+// place in the first field and its place in the second, and is blended as a signed
+// distance across that interface, negative on a's side: s = (1 - t)(-e_a) + t e_b, the
+// sample going to a where s < 0, else to b. So every interface moves linearly from its
+// position in the first field (t = 0) to its position in the second (t = 1): for
+// concentric spheres of radii R0 and R1 the interface is the sphere of radius
 // (1 - t) R0 + t R1. At t = 0 and t = 1 the result is the first or the second field
 // exactly.
+//
+// e_a is the sample's distance to the a|b interface in the first field. Where that
+// interface is the sample's nearest surface, it is the sample's distance d. Where
+// another surface is nearer (inside a moving chamber, next to its walls), d would make s
+// vanish all along those walls and put a spurious interface there; the distance to the
+// interface is then taken from the nearest voxel of region b in the first field (an
+// exact Euclidean distance transform of that region), less half a voxel diagonal:
+//   e_a = max(d, g_b - (sqrt(3) / 2) h),
+// which is d wherever region b lies just across the nearest surface (g_b <= d + that
+// diagonal). Likewise e_b in the second field with region a. The blended distance is
+// min(|s|, (1 - t) d_a + t d_b): the moving interface's distance, or the other surfaces'
+// where they are nearer.
 #ifndef vtkdf_SegmentBlend_h
 #define vtkdf_SegmentBlend_h
 
@@ -25,14 +38,30 @@ struct SegmentedSamples
   const int32_t* Region = nullptr;
 };
 
-/// Blends `count` samples of `first` and `second` at `t` (0 gives `first`, 1 `second`)
-/// into `distance` and `region`.
+/// The grid both fields share: samples per axis and spacing.
+struct BlendGrid
+{
+  int Dims[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+};
+
+/// Blends the samples of `first` and `second` on `grid` at `t` (0 gives `first`, 1
+/// `second`) into `distance` and `region`.
 void BlendSegmented(const SegmentedSamples& first,
   const SegmentedSamples& second,
   double t,
-  int64_t count,
+  const BlendGrid& grid,
   float* distance,
   int32_t* region,
+  const ParallelFor& parallelFor = ParallelFor());
+
+/// The exact Euclidean distance from every sample of `grid` to the nearest sample whose
+/// region is `which` (infinity when there is none), into `out` (Felzenszwalb and
+/// Huttenlocher's separable transform on squared distances).
+void RegionDistance(const int32_t* regions,
+  int32_t which,
+  const BlendGrid& grid,
+  float* out,
   const ParallelFor& parallelFor = ParallelFor());
 
 } // namespace vtkdf
