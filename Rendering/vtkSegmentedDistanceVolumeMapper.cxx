@@ -33,6 +33,7 @@
 #include "PreIntegrationTable.h"
 #include "SegmentedVolume_frag.h"
 #include "SegmentedVolume_vert.h"
+#include "SlabCommon.h"
 
 #include <algorithm>
 #include <array>
@@ -816,8 +817,11 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
 
   // The program (through VTK's shader cache) and the vertices.
   vtkOpenGLHelper& helper = surface ? impl.Slices : impl.Composite;
-  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
-    SegmentedVolume_vert, surface ? SegmentedVolume_frag : PreIntegratedVolume_frag, "");
+  // Both fragment shaders take the slab code they share in place of //DF::SlabCommon.
+  std::string fragment = surface ? SegmentedVolume_frag : PreIntegratedVolume_frag;
+  vtkShaderProgram::Substitute(fragment, "//DF::SlabCommon", SlabCommon);
+  vtkShaderProgram* program =
+    window->GetShaderCache()->ReadyShaderProgram(SegmentedVolume_vert, fragment.c_str(), "");
   if (!program)
   {
     vtkErrorMacro("Could not build the slice shader program");

@@ -1,5 +1,6 @@
 //VTK::System::Dec
 //VTK::Output::Dec
+//DF::SlabCommon
 
 // Pre-integrated compositing of a scalar volume (Engel, Kraus, Ertl 2001). One fragment
 // of a view-aligned slice stands for the slab between this slice and the next one along
@@ -8,28 +9,13 @@
 // extinction-weighted average colour (rgb), so the slab's length enters exactly:
 // alpha = 1 - exp(-length * a).
 
-in vec3 positionWC;
-
 uniform sampler3D scalars;        // the scalar volume (read with texelFetch)
 uniform sampler2D preIntegrated;  // RGBA: average colour, average extinction
 uniform sampler2D opaqueDepth;    // the depth buffer before the volume was drawn
 uniform int useOpaqueDepth;
 uniform ivec2 viewportOrigin;
-uniform vec3 gridSize;            // samples per axis
 uniform vec2 scalarRange;         // the table's first and last values
 uniform float tableSize;
-uniform mat4 worldToIndex;
-uniform mat4 worldToClip;
-uniform mat3 indexToWorldNormal;
-uniform vec3 eyeWC;
-uniform vec3 viewDirWC;
-uniform int parallelProjection;
-uniform float sliceSpacing;       // world units, along viewDirWC
-uniform int shade;
-uniform float ambient;
-uniform float diffuse;
-uniform float specular;
-uniform float specularPower;
 
 // Trilinear interpolation in full float precision: texture filtering's weights have a few
 // bits of precision only (8 on most hardware and llvmpipe), which bands smooth fields
@@ -45,9 +31,7 @@ float valueAt(vec3 index)
   {
     v[k] = texelFetch(scalars, min(b + ivec3(k & 1, (k >> 1) & 1, k >> 2), last), 0).r;
   }
-  vec4 x = mix(vec4(v[0], v[2], v[4], v[6]), vec4(v[1], v[3], v[5], v[7]), t.x);
-  vec2 y = mix(x.xz, x.yw, t.y);
-  return mix(y.x, y.y, t.z);
+  return trilinear(v, t);
 }
 
 // The premultiplied colour of the slab from index-space point a to b, of world length d.
@@ -75,38 +59,10 @@ vec4 slabColor(vec3 a, vec3 b, float d, vec3 dir)
     }
     // Where the field is flat (under 1% of its range over two voxels) the gradient's
     // direction is noise: no directional shading there.
-    vec3 n = indexToWorldNormal * g;
     float flatBelow = 0.01 * (scalarRange.y - scalarRange.x);
-    float facing = length(g) > flatBelow ? abs(dot(normalize(n), dir)) : 1.0;
-    float highlight = specular > 0.0 ? pow(facing, max(specularPower, 1.0)) : 0.0;
-    color = color * (ambient + diffuse * facing) + vec3(specular * highlight);
+    color = headlight(color, length(g) > flatBelow ? indexToWorldNormal * g : vec3(0.0), dir);
   }
   return vec4(color * alpha, alpha);
-}
-
-// Where the segment from p along step (index space) enters the volume's box, as a
-// fraction of step: 0 when p is inside, > 1 when it never does.
-float entryAlong(vec3 p, vec3 step)
-{
-  vec3 last = gridSize - 1.0;
-  float enter = 0.0;
-  float leave = 1e30;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (abs(step[a]) < 1e-30)
-    {
-      if (p[a] < 0.0 || p[a] > last[a])
-      {
-        return 2.0;
-      }
-      continue;
-    }
-    float t0 = -p[a] / step[a];
-    float t1 = (last[a] - p[a]) / step[a];
-    enter = max(enter, min(t0, t1));
-    leave = min(leave, max(t0, t1));
-  }
-  return enter <= leave ? enter : 2.0;
 }
 
 // The parameter along [front, back] (clip coordinates) where the depth reaches z.
@@ -119,12 +75,8 @@ float depthCut(vec4 front, vec4 back, float z)
 
 void main()
 {
-  vec3 dir = parallelProjection == 1 ? viewDirWC : normalize(positionWC - eyeWC);
-  float along = sliceSpacing / max(dot(dir, viewDirWC), 1e-6);
-  vec3 frontWC = positionWC;
-  vec3 backWC = positionWC + along * dir;
-  vec3 frontI = (worldToIndex * vec4(frontWC, 1.0)).xyz;
-  vec3 backI = (worldToIndex * vec4(backWC, 1.0)).xyz;
+  vec3 dir, frontWC, backWC, frontI, backI;
+  slabOfFragment(dir, frontWC, backWC, frontI, backI);
 
   // Cut the slab where the ray leaves the volume...
   float cut = 1.0;

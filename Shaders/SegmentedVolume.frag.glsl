@@ -1,5 +1,6 @@
 //VTK::System::Dec
 //VTK::Output::Dec
+//DF::SlabCommon
 
 // One fragment of a view-aligned slice stands for the slab between this slice and the
 // next one along its ray (paper 004, section 4). It samples the field where the ray
@@ -7,30 +8,15 @@
 // tabulated: whether an interface lies in the slab (two regions, eq. 7), where (eq. 6)
 // and in which colour (the region on the viewer's side).
 
-in vec3 positionWC;
-
 uniform sampler3D field;          // per voxel: distance (>= 0), region index
 uniform sampler2D regionColors;   // one texel per region
 uniform sampler3D bricks;         // 1 where an interface may lie (bricks of cells)
 uniform float brickSize;          // cells a brick side
 uniform int regionColorCount;
-uniform vec3 gridSize;           // samples per axis
 uniform vec3 spacing;             // voxel spacing, physical units
-uniform mat4 worldToIndex;
-uniform mat4 worldToClip;
-uniform mat3 indexToWorldNormal;
-uniform vec3 eyeWC;
-uniform vec3 viewDirWC;
-uniform int parallelProjection;
-uniform float sliceSpacing;       // world units, along viewDirWC
 uniform int interpolation;        // 0 region-aware, 1 nearest, 2 linear
 uniform int segmented;            // else a signed field: region 1 where negative
 uniform float regionOffset;
-uniform int shade;
-uniform float ambient;
-uniform float diffuse;
-uniform float specular;
-uniform float specularPower;
 uniform float opacity;
 uniform int useClosestPoint;       // normals from ClosestPoint rather than the gradient
 uniform sampler3D closestPoints;   // per voxel, physical coordinates
@@ -64,13 +50,6 @@ void cellAt(vec3 p, out vec2 c[8], out vec3 t)
   {
     c[k] = voxel(b + ivec3(k & 1, (k >> 1) & 1, k >> 2));
   }
-}
-
-float trilinear(float v[8], vec3 t)
-{
-  vec4 x = mix(vec4(v[0], v[2], v[4], v[6]), vec4(v[1], v[3], v[5], v[7]), t.x);
-  vec2 y = mix(x.xz, x.yw, t.y);
-  return mix(y.x, y.y, t.z);
 }
 
 // The distance relative to region r (positive in r, negative elsewhere), interpolated:
@@ -193,31 +172,6 @@ vec3 closestPointNormal(vec3 p, float r)
   return physicalToWorldNormal * n;
 }
 
-// Where the segment from p along step (index space) enters the volume's box, as a
-// fraction of step: 0 when p is inside, > 1 when it never does.
-float entryAlong(vec3 p, vec3 step)
-{
-  vec3 last = vec3(dims() - 1);
-  float enter = 0.0;
-  float leave = 1e30;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (abs(step[a]) < 1e-30)
-    {
-      if (p[a] < 0.0 || p[a] > last[a])
-      {
-        return 2.0;
-      }
-      continue;
-    }
-    float t0 = -p[a] / step[a];
-    float t1 = (last[a] - p[a]) / step[a];
-    enter = max(enter, min(t0, t1));
-    leave = min(leave, max(t0, t1));
-  }
-  return enter <= leave ? enter : 2.0;
-}
-
 // Eq. 7 on the cell around p: whether one of its edges joins voxels of two regions whose
 // distances add up to at most the edge's length (with a relative tolerance: a sheet on a
 // voxel plane gives exactly the length). A surface that crosses an edge always passes
@@ -319,12 +273,8 @@ bool mayHoldInterface(vec3 a, vec3 b)
 
 void main()
 {
-  vec3 dir = parallelProjection == 1 ? viewDirWC : normalize(positionWC - eyeWC);
-  float along = sliceSpacing / max(dot(dir, viewDirWC), 1e-6);
-  vec3 frontWC = positionWC;
-  vec3 backWC = positionWC + along * dir;
-  vec3 frontI = (worldToIndex * vec4(frontWC, 1.0)).xyz;
-  vec3 backI = (worldToIndex * vec4(backWC, 1.0)).xyz;
+  vec3 dir, frontWC, backWC, frontI, backI;
+  slabOfFragment(dir, frontWC, backWC, frontI, backI);
   // A ray that enters the volume through a side between the previous slice and this one
   // has that stretch in front of this slice, which no slice covers: it comes first.
   vec3 previousI = 2.0 * frontI - backI;
@@ -364,11 +314,7 @@ void main()
     // A headlight; the normal points into the viewer's region.
     vec3 n = useClosestPoint == 1 ? closestPointNormal(hitI, front.y)
                                   : indexToWorldNormal * gradientTo(hitI, front.y);
-    float len = length(n);
-    n = len > 0.0 ? n / len : -dir;
-    float facing = abs(dot(n, -dir));
-    float highlight = specular > 0.0 ? pow(facing, max(specularPower, 1.0)) : 0.0;
-    color = color * (ambient + diffuse * facing) + vec3(specular * highlight);
+    color = headlight(color, n, dir);
   }
   gl_FragData[0] = vec4(color * opacity, opacity);
 }
