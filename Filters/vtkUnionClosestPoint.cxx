@@ -1,9 +1,11 @@
 #include "vtkUnionClosestPoint.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
@@ -17,13 +19,16 @@
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "ConvexHull.h"
 #include "UnionClosestPoint.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <numeric>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkUnionClosestPoint);
@@ -119,6 +124,53 @@ std::vector<std::vector<std::vector<int64_t>>> Components(vtkPolyData* mesh)
   }
   return pieces;
 }
+/// The polygons of `mesh` grouped by the value of the cell-data array `ids` (pieces in the
+/// order of their lowest cell id), position-merged like Components; false with `error`
+/// when the array is missing, not one component, or not integral.
+bool PiecesByArray(vtkPolyData* mesh,
+  const std::string& name,
+  std::vector<std::vector<std::vector<int64_t>>>& pieces,
+  std::string& error)
+{
+  vtkDataArray* ids = mesh->GetCellData()->GetArray(name.c_str());
+  if (!ids || ids->GetNumberOfComponents() != 1 ||
+    ids->GetNumberOfTuples() != mesh->GetNumberOfCells())
+  {
+    error = "PieceArray '" + name + "' is not a one-component cell-data array of the input";
+    return false;
+  }
+  const std::vector<int64_t> key = SamePositions(mesh);
+  std::map<double, size_t> pieceOfId;
+  vtkNew<vtkIdList> cell;
+  for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+  {
+    const int type = mesh->GetCellType(c);
+    if (type != VTK_TRIANGLE && type != VTK_POLYGON && type != VTK_QUAD)
+    {
+      continue;
+    }
+    const double id = ids->GetTuple1(c);
+    if (!std::isfinite(id) || id != std::floor(id))
+    {
+      error = "PieceArray '" + name + "' holds a value that is not an integer (cell " +
+        std::to_string(c) + ")";
+      return false;
+    }
+    const auto found = pieceOfId.emplace(id, pieces.size());
+    if (found.second)
+    {
+      pieces.emplace_back();
+    }
+    mesh->GetCellPoints(c, cell);
+    std::vector<int64_t> polygon(cell->GetNumberOfIds());
+    for (vtkIdType k = 0; k < cell->GetNumberOfIds(); ++k)
+    {
+      polygon[k] = key[cell->GetId(k)];
+    }
+    pieces[found.first->second].push_back(std::move(polygon));
+  }
+  return true;
+}
 } // namespace
 
 vtkUnionClosestPoint::vtkUnionClosestPoint()
@@ -163,7 +215,20 @@ int vtkUnionClosestPoint::RequestData(vtkInformation*,
       vtkErrorMacro(<< error);
       return 0;
     }
-    for (auto& faces : Components(mesh))
+    std::vector<std::vector<std::vector<int64_t>>> pieces;
+    if (!this->PieceArray.empty())
+    {
+      if (!PiecesByArray(mesh, this->PieceArray, pieces, error))
+      {
+        vtkErrorMacro(<< error << ".");
+        return 0;
+      }
+    }
+    else
+    {
+      pieces = Components(mesh);
+    }
+    for (auto& faces : pieces)
     {
       cells.push_back({ mesh, std::move(faces) });
     }
@@ -229,16 +294,53 @@ int vtkUnionClosestPoint::RequestData(vtkInformation*,
     (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
   vtkdf::UnionClosestPoint query;
   query.Tolerance = 1e-9 * diagonal;
+  int hulls = 0;
   for (size_t p = 0; p < cells.size(); ++p)
   {
     vtkdf::ConvexPiece piece;
     std::string error;
-    if (!piece.Build(points[p], cells[p].Faces, query.Tolerance, error))
+    if (piece.Build(points[p], cells[p].Faces, query.Tolerance, error))
     {
-      vtkErrorMacro("Piece " << p << " is not a closed convex polytope: " << error << ".");
+      query.Pieces.push_back(std::move(piece));
+      continue;
+    }
+    if (!this->UseConvexHulls)
+    {
+      vtkErrorMacro("Piece " << p << " is not a closed convex polytope: " << error
+                             << " (UseConvexHulls would take its convex hull).");
+      return 0;
+    }
+    // Its convex hull instead: of the points its polygons use.
+    std::vector<int64_t> used;
+    for (const auto& face : cells[p].Faces)
+    {
+      used.insert(used.end(), face.begin(), face.end());
+    }
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    std::vector<double> corners;
+    for (const int64_t id : used)
+    {
+      corners.insert(corners.end(), &points[p][3 * id], &points[p][3 * id] + 3);
+    }
+    std::vector<std::vector<int64_t>> hull;
+    int64_t onHull = 0;
+    std::string hullError;
+    if (!vtkdf::ConvexHull(corners, hull, onHull, hullError) ||
+      !piece.Build(corners, hull, query.Tolerance, hullError))
+    {
+      vtkErrorMacro("Piece " << p << " is not a closed convex polytope (" << error
+                             << ") and has no convex hull: " << hullError << ".");
       return 0;
     }
     query.Pieces.push_back(std::move(piece));
+    ++hulls;
+  }
+  if (hulls > 0)
+  {
+    vtkWarningMacro("UseConvexHulls: " << hulls << " of " << cells.size()
+                                       << " pieces were not closed and convex and were "
+                                          "replaced by their convex hulls.");
   }
   this->LastPieceCount = static_cast<int>(query.Pieces.size());
 
@@ -332,6 +434,9 @@ void vtkUnionClosestPoint::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "QueryPoint: " << this->QueryPoint[0] << " " << this->QueryPoint[1] << " "
      << this->QueryPoint[2] << "\n";
+  os << indent << "PieceArray: " << (this->PieceArray.empty() ? "(none)" : this->PieceArray)
+     << "\n";
+  os << indent << "UseConvexHulls: " << this->UseConvexHulls << "\n";
   os << indent << "LastPieceCount: " << this->LastPieceCount << "\n";
   os << indent << "LastFacesVisited: " << this->LastFacesVisited << "\n";
 }

@@ -14,8 +14,11 @@
  * ids: touching pieces that repeat their shared corners stay apart) are the pieces, in
  * the order of their lowest cell id; or a vtkMultiBlockDataSet /
  * vtkPartitionedDataSetCollection / vtkPartitionedDataSet of vtkPolyData, one piece per
- * leaf, in traversal order. Each piece must be closed and convex (within a tolerance
- * relative to the pieces' size); otherwise an error names the piece.
+ * leaf, in traversal order. With PieceArray, a vtkPolyData's pieces are instead the cells
+ * sharing a value of that cell-data array, in the order of their lowest cell id. Each
+ * piece must be closed and convex (within a tolerance relative to the pieces' size);
+ * otherwise an error names the piece, unless UseConvexHulls replaces every piece by its
+ * convex hull (qhull), which a warning says.
  * Input 1 (optional): a vtkPointSet whose points are the queries; without it, the
  * QueryPoint property.
  *
@@ -30,6 +33,8 @@
 
 #include "vtkDistanceFieldsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
+
+#include <string> // For std::string
 
 class VTKDISTANCEFIELDS_EXPORT vtkUnionClosestPoint : public vtkPolyDataAlgorithm
 {
@@ -46,6 +51,23 @@ public:
   void SetQueryConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
   void SetQueryData(vtkDataObject* data) { this->SetInputData(1, data); }
 
+  ///@{
+  /// The name of a cell-data array of piece ids (integers) of a vtkPolyData input: its
+  /// pieces are the cells of one id, not its connected components. Empty (default):
+  /// connected components.
+  vtkSetStdStringFromCharMacro(PieceArray);
+  vtkGetCharFromStdStringMacro(PieceArray);
+  ///@}
+
+  ///@{
+  /// Replace each piece by its convex hull (qhull) instead of refusing non-convex or open
+  /// pieces (default off); a warning says how many pieces changed. A piece with no
+  /// three-dimensional hull (fewer than four points, flat) is still an error.
+  vtkSetMacro(UseConvexHulls, bool);
+  vtkGetMacro(UseConvexHulls, bool);
+  vtkBooleanMacro(UseConvexHulls, bool);
+  ///@}
+
   /// Pieces and faces visited by the last run, summed over the queries.
   vtkGetMacro(LastPieceCount, int);
   vtkGetMacro(LastFacesVisited, vtkTypeInt64);
@@ -58,6 +80,8 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   double QueryPoint[3] = { 0, 0, 0 };
+  std::string PieceArray;
+  bool UseConvexHulls = false;
   int LastPieceCount = 0;
   vtkTypeInt64 LastFacesVisited = 0;
 

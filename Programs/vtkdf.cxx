@@ -13,7 +13,8 @@
 //         [--backend ...] [--points OUT.vtp] [--png SLICE.png] [--timing]
 //   vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D] [--surface OUT.vtp]
 //   vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]
-//   vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--timing]
+//   vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--piece-array NAME]
+//         [--convex-hulls] [--timing]
 //   vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H] ...
 //         (vtkSegmentedDistanceVolumeMapper; needs an X server)
 //
@@ -93,7 +94,8 @@ void PrintUsage(FILE* out)
     "             [--backend auto|gpu|cpu] [--surface OUT.vtp] [--png SLICE.png] [--timing]\n"
     "       vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]\n"
     "             (A and B from vtkdf segment on the same grid; T in [0, 1])\n"
-    "       vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--timing]\n"
+    "       vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS]\n"
+    "             [--piece-array NAME] [--convex-hulls] [--timing]\n"
     "             (POLYTOPES: a mesh whose connected components are convex pieces, or a\n"
     "             .vtm of them; POINTS: a mesh whose points are the queries)\n"
     "       vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H]\n"
@@ -919,18 +921,19 @@ int Blend(int argc, char* argv[])
   }
   return 0;
 }
-/// vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--timing]
+/// vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS]
+///   [--piece-array NAME] [--convex-hulls] [--timing]
 int Union(int argc, char* argv[])
 {
-  std::string output, queriesPath;
+  std::string output, queriesPath, pieceArray;
   double query[3] = { 0, 0, 0 };
-  bool timing = false;
+  bool timing = false, hulls = false;
   for (int a = 3; a < argc; ++a)
   {
     const std::string option = argv[a];
-    if (option == "--timing")
+    if (option == "--timing" || option == "--convex-hulls")
     {
-      timing = true;
+      (option == "--timing" ? timing : hulls) = true;
       continue;
     }
     if (option == "--query" && a + 3 < argc)
@@ -952,6 +955,10 @@ int Union(int argc, char* argv[])
     else if (option == "--queries")
     {
       queriesPath = argv[++a];
+    }
+    else if (option == "--piece-array")
+    {
+      pieceArray = argv[++a];
     }
     else
     {
@@ -983,6 +990,8 @@ int Union(int argc, char* argv[])
     filter->SetQueryData(ReadMeshOrExit(queriesPath));
   }
   filter->SetQueryPoint(query);
+  filter->SetPieceArray(pieceArray.c_str());
+  filter->SetUseConvexHulls(hulls);
   const auto start = std::chrono::steady_clock::now();
   filter->Update();
   const double seconds =

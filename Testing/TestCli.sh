@@ -92,12 +92,18 @@ expect_failure missing linfac "$data/no_such_mesh.vtp" -o "$out/x.vti"
 expect_failure subcommand frobnicate
 expect_failure blendmesh blend "$data/plane.vtp" "$out/segment.vti" -t 0.5 -o "$out/x.vti"
 expect_failure blendnot blend "$out/segment.vti" "$out/segment.vti" -o "$out/x.vti"
+expect_failure unionpieces union "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp" --piece-array Nope
 expect_failure rendermesh render "$data/plane.vtp" -o "$out/x.png"
 expect_failure rendermode render "$out/segment.vti" -o "$out/x.png" --mode mip
 DISPLAY= expect_failure renderdisplay render "$out/segment.vti" -o "$out/x.png"
 grep -q "needs an X server" "$out/renderdisplay.out" || fail "render without DISPLAY: no message"
 [ -e "$out/x.vti" ] && fail "a failed run wrote $out/x.vti"
 [ -e "$out/x.png" ] && fail "a failed run wrote $out/x.png"
+[ -e "$out/x.vtp" ] && fail "a failed run wrote $out/x.vtp"
+# union --convex-hulls on convex pieces: the same answer, no warning.
+"$vtkdf" union "$data/hubo_ankle_convex4.vtp" -o "$out/union-hulls.vtp" --query 0 0.01 0.01 \
+  --convex-hulls 2>"$out/union-hulls.err" || fail "union --convex-hulls: exit status $?"
+grep -q "convex hulls" "$out/union-hulls.err" && fail "union --convex-hulls warned on convex pieces"
 
 # --help (alone or after a subcommand): the usage on stdout, status 0.
 for args in "--help" "-h" "medial --help"; do

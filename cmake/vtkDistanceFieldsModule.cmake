@@ -18,4 +18,5 @@ vtk_module_add_module(DistanceFields::vtkDistanceFields
 vtk_module_include(DistanceFields::vtkDistanceFields
   PUBLIC "$<BUILD_INTERFACE:${df_root}/Filters>"
   PRIVATE "$<TARGET_PROPERTY:vtkdf_core,INTERFACE_INCLUDE_DIRECTORIES>")
-vtk_module_link(DistanceFields::vtkDistanceFields PRIVATE PkgConfig::EPOXY ${CMAKE_DL_LIBS})
+vtk_module_link(DistanceFields::vtkDistanceFields
+  PRIVATE PkgConfig::EPOXY ${CMAKE_DL_LIBS} "${QHULL_R_LIBRARY}")

@@ -10,10 +10,13 @@
 #include "vtkUnionClosestPoint.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCleanPolyData.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkIdList.h"
+#include "vtkIntArray.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkPointData.h"
@@ -23,6 +26,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -41,18 +45,66 @@ vtkSmartPointer<vtkPolyData> Cube(double x)
 
 vtkSmartPointer<vtkPolyData> Run(vtkDataObject* pieces,
   vtkPolyData* queries,
-  std::string* errors = nullptr)
+  std::string* errors = nullptr,
+  const std::function<void(vtkUnionClosestPoint*)>& configure = {},
+  std::string* warnings = nullptr)
 {
   vtkNew<vtkUnionClosestPoint> f;
   testsupport::MessageRecorder recorder(f);
   f->SetInputData(0, pieces);
   f->SetQueryData(queries);
+  if (configure)
+  {
+    configure(f);
+  }
   f->Update();
   if (errors)
   {
     *errors = recorder.Errors;
   }
-  return f->GetOutput();
+  if (warnings)
+  {
+    *warnings = recorder.Warnings;
+  }
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(f->GetOutput());
+  return out;
+}
+
+/// The unit cube with its top face's centre pushed down to z = 0.7 (four triangles): not
+/// convex; its convex hull is the unit cube.
+vtkSmartPointer<vtkPolyData> DentedCube()
+{
+  vtkNew<vtkPoints> points;
+  for (int k = 0; k < 2; ++k)
+  {
+    for (int j = 0; j < 2; ++j)
+    {
+      for (int i = 0; i < 2; ++i)
+      {
+        points->InsertNextPoint(i, j, k);
+      }
+    }
+  }
+  const vtkIdType centre = points->InsertNextPoint(0.5, 0.5, 0.7);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType quads[5][4] = {
+    { 0, 2, 3, 1 }, { 0, 1, 5, 4 }, { 1, 3, 7, 5 }, { 3, 2, 6, 7 }, { 2, 0, 4, 6 }
+  };
+  for (const auto& q : quads)
+  {
+    polys->InsertNextCell(4, q);
+  }
+  const vtkIdType top[4] = { 4, 5, 7, 6 };
+  for (int e = 0; e < 4; ++e)
+  {
+    const vtkIdType t[3] = { top[e], top[(e + 1) % 4], centre };
+    polys->InsertNextCell(3, t);
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->SetPoints(points);
+  mesh->SetPolys(polys);
+  return mesh;
 }
 
 vtkSmartPointer<vtkPolyData> Queries(std::initializer_list<std::array<double, 3>> points)
@@ -158,6 +210,69 @@ int main()
     dented->GetPoints()->SetPoint(0, x);
     Run(dented, queries, &errors);
     CHECK(errors.find("not convex") != std::string::npos, "non-convex piece: %s", errors.c_str());
+  }
+  {
+    // PieceArray: the two cubes merged into one point set (one connected component, whose
+    // shared faces make it no closed polytope) are two pieces by a cell-data array.
+    vtkNew<vtkCleanPolyData> merged;
+    merged->SetInputConnection(append->GetOutputPort());
+    merged->Update();
+    vtkPolyData* mesh = merged->GetOutput();
+    Run(mesh, queries, &errors);
+    CHECK(errors.find("not a closed convex polytope") != std::string::npos,
+      "merged cubes as one component: %s",
+      errors.c_str());
+    vtkNew<vtkIntArray> ids;
+    ids->SetName("Piece");
+    for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+    {
+      ids->InsertNextValue(c < 6 ? 0 : 1); // the first cube's six faces, then the second's
+    }
+    mesh->GetCellData()->AddArray(ids);
+    CheckAnswers(
+      Run(mesh, queries, &errors, [](vtkUnionClosestPoint* f) { f->SetPieceArray("Piece"); }),
+      "PieceArray");
+    Run(mesh, queries, &errors, [](vtkUnionClosestPoint* f) { f->SetPieceArray("Nope"); });
+    CHECK(errors.find("PieceArray 'Nope'") != std::string::npos,
+      "missing PieceArray: %s",
+      errors.c_str());
+  }
+  {
+    // UseConvexHulls: a dented cube is refused, or replaced by its hull (the unit cube),
+    // with a warning: 1.0 from (0.5, 0.5, 2) (0.3 deeper to the dent), -0.5 from its centre.
+    auto dented = DentedCube();
+    auto probes = Queries({ { 0.5, 0.5, 2 }, { 0.5, 0.5, 0.5 } });
+    Run(dented, probes, &errors);
+    CHECK(errors.find("UseConvexHulls") != std::string::npos, "dented cube: %s", errors.c_str());
+    std::string warnings;
+    auto out = Run(
+      dented, probes, &errors, [](vtkUnionClosestPoint* f) { f->UseConvexHullsOn(); }, &warnings);
+    vtkDataArray* d = out->GetPointData()->GetArray("Distance");
+    std::printf("dented cube's hull: distances %g and %g; %s",
+      d ? d->GetTuple1(0) : NAN,
+      d ? d->GetTuple1(1) : NAN,
+      warnings.c_str());
+    CHECK(errors.empty() && d && std::fabs(d->GetTuple1(0) - 1.0) < 1e-9 &&
+        std::fabs(d->GetTuple1(1) + 0.5) < 1e-9,
+      "the hull's answers are wrong: %s",
+      errors.c_str());
+    CHECK(warnings.find("replaced by their convex hulls") != std::string::npos,
+      "no warning about the hulls");
+    // A flat piece has no hull.
+    vtkNew<vtkPolyData> square;
+    vtkNew<vtkPoints> corners;
+    for (const auto& c :
+      { std::array<double, 3>{ 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } })
+    {
+      corners->InsertNextPoint(c.data());
+    }
+    vtkNew<vtkCellArray> quad;
+    const vtkIdType q[4] = { 0, 1, 2, 3 };
+    quad->InsertNextCell(4, q);
+    square->SetPoints(corners);
+    square->SetPolys(quad);
+    Run(square, probes, &errors, [](vtkUnionClosestPoint* f) { f->UseConvexHullsOn(); });
+    CHECK(errors.find("has no convex hull") != std::string::npos, "flat piece: %s", errors.c_str());
   }
   {
     auto bad = Queries({ { std::numeric_limits<double>::quiet_NaN(), 0, 0 } });
