@@ -4,6 +4,7 @@
 #include "vtkCellData.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkErrorCode.h"
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
 #include "vtkInformation.h"
@@ -194,7 +195,23 @@ int vtkUnionClosestPoint::FillInputPortInformation(int port, vtkInformation* inf
   return 1;
 }
 
-int vtkUnionClosestPoint::RequestData(vtkInformation*,
+int vtkUnionClosestPoint::RequestData(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // A failure leaves the output empty and says so in the error code (as the module's
+  // other filters do), for callers that do not observe ErrorEvent.
+  this->SetErrorCode(vtkErrorCode::NoError);
+  const int ok = this->Compute(request, inputVector, outputVector);
+  if (!ok)
+  {
+    vtkPolyData::GetData(outputVector, 0)->Initialize();
+    this->SetErrorCode(vtkErrorCode::UserError);
+  }
+  return ok;
+}
+
+int vtkUnionClosestPoint::Compute(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {

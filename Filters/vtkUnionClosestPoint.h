@@ -78,6 +78,8 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// RequestData's work; 0 on failure.
+  int Compute(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
 
   double QueryPoint[3] = { 0, 0, 0 };
   std::string PieceArray;

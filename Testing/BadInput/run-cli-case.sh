@@ -10,6 +10,7 @@ path="$corpus/$input"
 kind=${expect%% *}
 pattern=${expect#* }
 result="$out/$sub.vti"
+[ "$sub" = union ] && result="$out/$sub.vtp"
 rm -f "$result"
 # shellcheck disable=SC2086 # the options are words
 timeout 120 "$vtkdf" "$sub" "$path" -o "$result" $options > "$out/$sub.stdout" 2> "$out/$sub.stderr"

@@ -19,11 +19,11 @@ from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter  # noqa: E402
 from vtkdistancefields import (vtkChamferVoxelDistance, vtkLinearFactorDistanceField,  # noqa: E402
                                vtkMedialAxisFilter, vtkPolyDataVoxelizer,
-                               vtkSegmentedDistanceField)
+                               vtkSegmentedDistanceField, vtkUnionClosestPoint)
 
 FILTERS = {"linfac": vtkLinearFactorDistanceField, "voxelize": vtkPolyDataVoxelizer,
            "chamfer": vtkChamferVoxelDistance, "medial": vtkMedialAxisFilter,
-           "segment": vtkSegmentedDistanceField}
+           "segment": vtkSegmentedDistanceField, "union": vtkUnionClosestPoint}
 
 
 class NotPassable(Exception):
@@ -44,6 +44,14 @@ def configure(f, sub, options):
     i = 0
     while i < len(words):
         option = words[i]
+        if option == "--query":
+            f.SetQueryPoint(*[number(w, float) for w in words[i + 1:i + 4]])
+            i += 4
+            continue
+        if option == "--convex-hulls":
+            f.UseConvexHullsOn()
+            i += 1
+            continue
         if option in ("--origin", "--spacing", "--dims"):
             kind = int if option == "--dims" else float
             grid[option] = [number(w, kind) for w in words[i + 1:i + 4]]
@@ -66,6 +74,8 @@ def configure(f, sub, options):
             f.SetMaximumLayers(number(value, int))
         elif option == "--angle":
             f.SetSeparationAngle(number(value, float))
+        elif option == "--piece-array":
+            f.SetPieceArray(value)
         elif option == "--delta":
             f.SetDelta(number(value, float))
         elif option == "--region-offset":
@@ -100,7 +110,8 @@ def read(path):
 
 def run_case(corpus, data, sub, name, path, options, kind, pattern, workdir):
     f = FILTERS[sub]()
-    f.SetBackend(f.BACKEND_CPU if sub != "voxelize" else f.BACKEND_AUTO)
+    if sub != "union":
+        f.SetBackend(f.BACKEND_CPU if sub != "voxelize" else f.BACKEND_AUTO)
     errors, warnings = [], []
 
     @calldata_type(VTK_STRING)
@@ -153,7 +164,7 @@ def main(corpus, data, sub, workdir):
         if not line.strip() or line.startswith("#"):
             continue
         name, subs, input_name, options, expect = [w.strip() for w in line.split("|", 4)]
-        if subs != "all" and sub not in subs.split():
+        if subs != "all" and sub not in subs.split() or subs == "all" and sub == "union":
             continue
         kind, _, pattern = expect.partition(" ")
         path = os.path.join(corpus, input_name)
