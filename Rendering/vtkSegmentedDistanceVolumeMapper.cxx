@@ -94,6 +94,40 @@ void SetPlainMatrix(vtkShaderProgram* program, const char* name, const double pl
   program->SetUniformMatrix(name, transposed);
 }
 
+/// A texture's sampling (clamped, `filter` both ways) and, when `internalFormat` is not 0,
+/// the GL formats its data will be created with.
+void PrepareTexture(vtkTextureObject* texture,
+  int filter,
+  unsigned int internalFormat = 0,
+  unsigned int format = 0,
+  unsigned int type = 0)
+{
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetWrapR(vtkTextureObject::ClampToEdge);
+  texture->SetMinificationFilter(filter);
+  texture->SetMagnificationFilter(filter);
+  if (internalFormat != 0)
+  {
+    texture->SetInternalFormat(internalFormat);
+    texture->SetFormat(format);
+    texture->SetDataType(type);
+  }
+}
+
+/// The inverse transpose of a 4x4 matrix's linear part, given the matrix's inverse: what
+/// turns gradients (normals) on the matrix's input side into its output side.
+void NormalMatrix(vtkMatrix4x4* inverse, double normal[3][3])
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      normal[i][j] = inverse->GetElement(j, i);
+    }
+  }
+}
+
 /// The default colour of region r: a palette of distinct colours, then hues spread by
 /// the golden angle.
 void DefaultRegionColor(int region, double rgb[3])
@@ -503,14 +537,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
     return false;
   }
 
-  impl.Field->SetWrapS(vtkTextureObject::ClampToEdge);
-  impl.Field->SetWrapT(vtkTextureObject::ClampToEdge);
-  impl.Field->SetWrapR(vtkTextureObject::ClampToEdge);
-  impl.Field->SetMinificationFilter(vtkTextureObject::Nearest);
-  impl.Field->SetMagnificationFilter(vtkTextureObject::Nearest);
-  impl.Field->SetInternalFormat(GL_RG32F);
-  impl.Field->SetFormat(GL_RG);
-  impl.Field->SetDataType(GL_FLOAT);
+  PrepareTexture(impl.Field, vtkTextureObject::Nearest, GL_RG32F, GL_RG, GL_FLOAT);
   if (!impl.Field->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
         static_cast<unsigned int>(dims[1]),
         static_cast<unsigned int>(dims[2]),
@@ -524,11 +551,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
   }
   // Where interfaces may lie, by bricks (the shader's empty-space skipping).
   const std::vector<unsigned char> active = ActiveBricks(texels.data(), dims, impl.BrickDims);
-  impl.Bricks->SetMinificationFilter(vtkTextureObject::Nearest);
-  impl.Bricks->SetMagnificationFilter(vtkTextureObject::Nearest);
-  impl.Bricks->SetInternalFormat(GL_R8);
-  impl.Bricks->SetFormat(GL_RED);
-  impl.Bricks->SetDataType(GL_UNSIGNED_BYTE);
+  PrepareTexture(impl.Bricks, vtkTextureObject::Nearest, GL_R8, GL_RED, GL_UNSIGNED_BYTE);
   if (!impl.Bricks->Create3DFromRaw(static_cast<unsigned int>(impl.BrickDims[0]),
         static_cast<unsigned int>(impl.BrickDims[1]),
         static_cast<unsigned int>(impl.BrickDims[2]),
@@ -552,11 +575,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
         points[3 * i + c] = static_cast<float>(closest->GetComponent(i, c));
       }
     }
-    impl.ClosestPoints->SetMinificationFilter(vtkTextureObject::Nearest);
-    impl.ClosestPoints->SetMagnificationFilter(vtkTextureObject::Nearest);
-    impl.ClosestPoints->SetInternalFormat(GL_RGB32F);
-    impl.ClosestPoints->SetFormat(GL_RGB);
-    impl.ClosestPoints->SetDataType(GL_FLOAT);
+    PrepareTexture(impl.ClosestPoints, vtkTextureObject::Nearest, GL_RGB32F, GL_RGB, GL_FLOAT);
     impl.HasClosestPoints = impl.ClosestPoints->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
       static_cast<unsigned int>(dims[1]),
       static_cast<unsigned int>(dims[2]),
@@ -617,14 +636,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateScalars(vtkImageData* image)
     range[0] = std::min(range[0], v);
     range[1] = std::max(range[1], v);
   }
-  impl.Scalars->SetWrapS(vtkTextureObject::ClampToEdge);
-  impl.Scalars->SetWrapT(vtkTextureObject::ClampToEdge);
-  impl.Scalars->SetWrapR(vtkTextureObject::ClampToEdge);
-  impl.Scalars->SetMinificationFilter(vtkTextureObject::Linear);
-  impl.Scalars->SetMagnificationFilter(vtkTextureObject::Linear);
-  impl.Scalars->SetInternalFormat(GL_R32F);
-  impl.Scalars->SetFormat(GL_RED);
-  impl.Scalars->SetDataType(GL_FLOAT);
+  PrepareTexture(impl.Scalars, vtkTextureObject::Nearest, GL_R32F, GL_RED, GL_FLOAT);
   if (!impl.Scalars->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
         static_cast<unsigned int>(dims[1]),
         static_cast<unsigned int>(dims[2]),
@@ -700,13 +712,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateTable(vtkVolumeProperty* property)
     samples.Colour[m] = { rgb[3 * m], rgb[3 * m + 1], rgb[3 * m + 2] };
   }
   const std::vector<float> table = dfrender::BuildPreIntegrationTable(samples, size);
-  impl.Table->SetWrapS(vtkTextureObject::ClampToEdge);
-  impl.Table->SetWrapT(vtkTextureObject::ClampToEdge);
-  impl.Table->SetMinificationFilter(vtkTextureObject::Linear);
-  impl.Table->SetMagnificationFilter(vtkTextureObject::Linear);
-  impl.Table->SetInternalFormat(GL_RGBA32F);
-  impl.Table->SetFormat(GL_RGBA);
-  impl.Table->SetDataType(GL_FLOAT);
+  PrepareTexture(impl.Table, vtkTextureObject::Linear, GL_RGBA32F, GL_RGBA, GL_FLOAT);
   if (!impl.Table->Create2DFromRaw(static_cast<unsigned int>(size),
         static_cast<unsigned int>(size),
         4,
@@ -773,11 +779,7 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
         this->GetRegionColor(r, c);
         std::copy(c, c + 3, rgb.begin() + 3 * r);
       }
-      impl.Colors->SetMinificationFilter(vtkTextureObject::Nearest);
-      impl.Colors->SetMagnificationFilter(vtkTextureObject::Nearest);
-      impl.Colors->SetInternalFormat(GL_RGB32F);
-      impl.Colors->SetFormat(GL_RGB);
-      impl.Colors->SetDataType(GL_FLOAT);
+      PrepareTexture(impl.Colors, vtkTextureObject::Nearest, GL_RGB32F, GL_RGB, GL_FLOAT);
       impl.Colors->Create2DFromRaw(
         static_cast<unsigned int>(colorCount), 1, 3, VTK_FLOAT, rgb.data());
       impl.ColorsTime.Modified();
@@ -793,13 +795,7 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   // Gradients in index space (per index step) -> world normals: the inverse transpose of
   // index-to-world's linear part.
   double normalMatrix[3][3];
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      normalMatrix[i][j] = worldToIndex->GetElement(j, i);
-    }
-  }
+  NormalMatrix(worldToIndex, normalMatrix);
 
   vtkCamera* camera = renderer->GetActiveCamera();
   const bool parallel = camera->GetParallelProjection() != 0;
@@ -908,13 +904,7 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
     vtkNew<vtkMatrix4x4> worldToPhysical;
     vtkMatrix4x4::Invert(volume->GetMatrix(), worldToPhysical);
     double physicalNormal[3][3];
-    for (int i = 0; i < 3; ++i)
-    {
-      for (int j = 0; j < 3; ++j)
-      {
-        physicalNormal[i][j] = worldToPhysical->GetElement(j, i);
-      }
-    }
+    NormalMatrix(worldToPhysical, physicalNormal);
     SetPlainMatrix(program, "physicalToWorldNormal", physicalNormal);
   }
   else
@@ -926,10 +916,7 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
     {
       impl.OpaqueDepth->ReleaseGraphicsResources(window);
       impl.OpaqueDepth->SetContext(window);
-      impl.OpaqueDepth->SetWrapS(vtkTextureObject::ClampToEdge);
-      impl.OpaqueDepth->SetWrapT(vtkTextureObject::ClampToEdge);
-      impl.OpaqueDepth->SetMinificationFilter(vtkTextureObject::Nearest);
-      impl.OpaqueDepth->SetMagnificationFilter(vtkTextureObject::Nearest);
+      PrepareTexture(impl.OpaqueDepth, vtkTextureObject::Nearest);
       impl.OpaqueDepth->AllocateDepth(static_cast<unsigned int>(width),
         static_cast<unsigned int>(height),
         vtkTextureObject::Float32);
@@ -943,11 +930,7 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
     {
       impl.Accumulation->ReleaseGraphicsResources(window);
       impl.Accumulation->SetContext(window);
-      impl.Accumulation->SetMinificationFilter(vtkTextureObject::Nearest);
-      impl.Accumulation->SetMagnificationFilter(vtkTextureObject::Nearest);
-      impl.Accumulation->SetInternalFormat(GL_RGBA32F);
-      impl.Accumulation->SetFormat(GL_RGBA);
-      impl.Accumulation->SetDataType(GL_FLOAT);
+      PrepareTexture(impl.Accumulation, vtkTextureObject::Nearest, GL_RGBA32F, GL_RGBA, GL_FLOAT);
       impl.Accumulation->Allocate2D(
         static_cast<unsigned int>(width), static_cast<unsigned int>(height), 4, VTK_FLOAT);
     }
