@@ -15,6 +15,8 @@
 //   vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]
 //   vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--piece-array NAME]
 //         [--convex-hulls] [--timing]
+//   vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls] [--timing]
+//         (penetration depth; P, Q: convex pieces in the forms union takes)
 //   vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H] ...
 //         (vtkSegmentedDistanceVolumeMapper; needs an X server)
 //
@@ -27,6 +29,7 @@
 #include "vtkDistanceFieldBlend.h"
 #include "vtkLinearFactorDistanceField.h"
 #include "vtkMedialAxisFilter.h"
+#include "vtkPenetrationDepth.h"
 #include "vtkPolyDataVoxelizer.h"
 #include "vtkSegmentedDistanceContour.h"
 #include "vtkSegmentedDistanceField.h"
@@ -98,6 +101,9 @@ void PrintUsage(FILE* out)
     "             [--piece-array NAME] [--convex-hulls] [--timing]\n"
     "             (POLYTOPES: a mesh whose connected components are convex pieces, or a\n"
     "             .vtm of them; POINTS: a mesh whose points are the queries)\n"
+    "       vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls] [--timing]\n"
+    "             (penetration depth of two solids, each convex pieces as for union;\n"
+    "             prints the depth and the direction to translate Q)\n"
     "       vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H]\n"
     "             [--azimuth A] [--elevation E] [--slices N] [--opacity O]\n"
     "             [--interpolation region-aware|nearest|linear] [--timing]\n"
@@ -509,6 +515,23 @@ vtkSmartPointer<vtkPolyData> ReadMeshOrExit(const std::string& input)
                       .c_str()));
   }
   return mesh;
+}
+
+/// Convex pieces: a .vtm (one piece per leaf) or a mesh (its connected components).
+vtkSmartPointer<vtkDataObject> ReadPolytopesOrExit(const std::string& input)
+{
+  if (!EndsWith(input, ".vtm"))
+  {
+    return ReadMeshOrExit(input);
+  }
+  vtkNew<vtkXMLMultiBlockDataReader> reader;
+  reader->SetFileName(input.c_str());
+  reader->Update();
+  if (reader->GetErrorCode() || !reader->GetOutput())
+  {
+    std::exit(Usage(("cannot read " + input).c_str()));
+  }
+  return reader->GetOutput();
 }
 
 /// A .vti (an image of masks or a field) or a mesh.
@@ -970,21 +993,7 @@ int Union(int argc, char* argv[])
     return Usage("union needs -o OUT.vtp");
   }
   vtkNew<vtkUnionClosestPoint> filter;
-  if (EndsWith(argv[2], ".vtm"))
-  {
-    vtkNew<vtkXMLMultiBlockDataReader> reader;
-    reader->SetFileName(argv[2]);
-    reader->Update();
-    if (reader->GetErrorCode() || !reader->GetOutput())
-    {
-      return Usage((std::string("cannot read ") + argv[2]).c_str());
-    }
-    filter->SetInputData(0, reader->GetOutput());
-  }
-  else
-  {
-    filter->SetInputData(0, ReadMeshOrExit(argv[2]));
-  }
+  filter->SetInputData(0, ReadPolytopesOrExit(argv[2]));
   if (!queriesPath.empty())
   {
     filter->SetQueryData(ReadMeshOrExit(queriesPath));
@@ -1011,6 +1020,77 @@ int Union(int argc, char* argv[])
       static_cast<long long>(filter->GetLastFacesVisited()));
   }
   return WriteXML<vtkXMLPolyDataWriter>(result, output) ? 0 : 1;
+}
+/// vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls] [--timing]
+int PenetrationDepth(int argc, char* argv[])
+{
+  if (argc < 4)
+  {
+    return Usage("pd needs two solids, P and Q");
+  }
+  std::string output, pieceArray;
+  bool timing = false, hulls = false;
+  for (int a = 4; a < argc; ++a)
+  {
+    const std::string option = argv[a];
+    if (option == "--timing" || option == "--convex-hulls")
+    {
+      (option == "--timing" ? timing : hulls) = true;
+      continue;
+    }
+    if (a + 1 >= argc)
+    {
+      return Usage((option + " needs a value").c_str());
+    }
+    if (option == "-o")
+    {
+      output = argv[++a];
+    }
+    else if (option == "--piece-array")
+    {
+      pieceArray = argv[++a];
+    }
+    else
+    {
+      return Usage(("unknown option " + option).c_str());
+    }
+  }
+  if (output.empty())
+  {
+    return Usage("pd needs -o OUT.vtp");
+  }
+  vtkNew<vtkPenetrationDepth> filter;
+  filter->SetSolidPData(ReadPolytopesOrExit(argv[2]));
+  filter->SetSolidQData(ReadPolytopesOrExit(argv[3]));
+  filter->SetPieceArray(pieceArray.c_str());
+  filter->SetUseConvexHulls(hulls);
+  const auto start = std::chrono::steady_clock::now();
+  filter->Update();
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (filter->GetErrorCode() || filter->GetOutput()->GetNumberOfPoints() == 0)
+  {
+    std::fprintf(stderr, "vtkdf: no output was computed\n");
+    return 1;
+  }
+  const double* n = filter->GetLastDirection();
+  std::printf("vtkdf: pd intersecting=%d penetration_depth=%.17g separation_distance=%.17g "
+              "direction=%.9f,%.9f,%.9f\n",
+    filter->GetLastIntersecting() ? 1 : 0,
+    filter->GetLastPenetrationDepth(),
+    filter->GetLastSeparationDistance(),
+    n[0],
+    n[1],
+    n[2]);
+  if (timing)
+  {
+    std::printf("vtkdf: pd pairs=%lld pairs_kept=%lld backend=cpu time_s=%.6f faces_visited=%lld\n",
+      static_cast<long long>(filter->GetLastPairsTotal()),
+      static_cast<long long>(filter->GetLastPairsKept()),
+      seconds,
+      static_cast<long long>(filter->GetLastFacesVisited()));
+  }
+  return WriteXML<vtkXMLPolyDataWriter>(filter->GetOutput(), output) ? 0 : 1;
 }
 /// vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H]
 ///   [--azimuth A] [--elevation E] [--slices N] [--interpolation region-aware|nearest|linear]
@@ -1265,6 +1345,7 @@ int main(int argc, char* argv[])
     { "segment", Segment },
     { "blend", Blend },
     { "union", Union },
+    { "pd", PenetrationDepth },
     { "render", Render } };
   for (const auto& entry : subcommands)
   {

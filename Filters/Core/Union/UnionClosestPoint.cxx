@@ -1,7 +1,9 @@
 #include "UnionClosestPoint.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 namespace vtkdf
@@ -196,7 +198,13 @@ bool ConvexPiece::Build(const std::vector<double>& points,
         const double s = Dot(plane, &face[k]) - plane[3];
         if (s > tolerance)
         {
-          error = "not convex: a corner lies " + std::to_string(s) + " outside a face's plane";
+          char text[160];
+          std::snprintf(text,
+            sizeof(text),
+            "not convex: a corner lies %.3g outside a face's plane (tolerance %.3g)",
+            s,
+            tolerance);
+          error = text;
           return false;
         }
         deep = deep || s < -tolerance;
@@ -209,6 +217,26 @@ bool ConvexPiece::Build(const std::vector<double>& points,
     return false;
   }
   return true;
+}
+
+std::vector<double> ConvexPiece::Corners() const
+{
+  std::vector<std::array<double, 3>> corners;
+  for (const auto& face : this->Faces)
+  {
+    for (size_t k = 0; k < face.size(); k += 3)
+    {
+      corners.push_back({ face[k], face[k + 1], face[k + 2] });
+    }
+  }
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  std::vector<double> xyz;
+  for (const auto& c : corners)
+  {
+    xyz.insert(xyz.end(), c.begin(), c.end());
+  }
+  return xyz;
 }
 
 bool UnionClosestPoint::Contains(const double x[3]) const

@@ -43,6 +43,9 @@ struct ConvexPiece
     const std::vector<std::vector<int64_t>>& faces,
     double tolerance,
     std::string& error);
+
+  /// The distinct corners (xyz triples, sorted).
+  std::vector<double> Corners() const;
 };
 
 struct UnionAnswer

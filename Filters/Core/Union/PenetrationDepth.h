@@ -1,0 +1,75 @@
+// PenetrationDepth: the penetration depth of two solids given as unions of convex pieces
+// (paper 003, Algorithm 3.1), without VTK types.
+//
+// P and Q intersect when 0 is in P - Q = {p - q}, and translating Q by t separates them
+// (up to touching) exactly when t is outside the interior of P - Q: the penetration depth
+// is the distance from the origin to the boundary of P - Q, and the translation is the
+// closest boundary point. For P = union of P_i and Q = union of Q_j, P - Q is the union of
+// the convex sums P_i - Q_j, each the convex hull (qhull) of its corners' differences, so
+// the answer is UnionClosestPoint's query at the origin. When P and Q do not intersect,
+// the same query gives their separation distance, and the translation that brings Q into
+// contact.
+//
+// Pairs whose sums cannot reach the answer are skipped before their hulls are built: any
+// bound U of the answer (the distance from the origin to the boundary of the box holding
+// every sum when the origin is inside the union; else the farthest corner of a sum's box)
+// makes a sum whose box lies farther than U irrelevant, as it cannot meet the ball of
+// radius U around the origin, where the boundary point lies.
+#ifndef vtkdf_PenetrationDepth_h
+#define vtkdf_PenetrationDepth_h
+
+#include "Parallel.h"
+#include "UnionClosestPoint.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vtkdf
+{
+
+struct PenetrationAnswer
+{
+  bool Intersecting = false;
+  /// The distance from the origin to the boundary of P - Q: the penetration depth when
+  /// intersecting, the separation distance otherwise.
+  double Distance = 0;
+  /// The translation of Q: to separate (intersecting) or to touch (not intersecting).
+  double Translation[3] = { 0, 0, 0 };
+  /// The pair (i of P, j of Q) whose sum holds the closest boundary point.
+  int64_t PieceP = -1, PieceQ = -1;
+  int64_t PairsTotal = 0, PairsKept = 0;
+  int64_t FacesVisited = 0;
+};
+
+class PenetrationDepth
+{
+public:
+  /// Tolerance (absolute) for the sums' convexity and for what touches.
+  double Tolerance = 1e-9;
+  /// The parallel loop over pairs for their hulls (serial when empty).
+  ParallelFor For;
+
+  /// The sums P_i - Q_j that can matter, as pieces of a union, with their pairs; the
+  /// query origin is `origin` (O_Q - O_P; the origin when P and Q share a frame). False
+  /// and `error` when a sum has no three-dimensional hull (cannot happen for
+  /// three-dimensional pieces) or qhull fails.
+  bool BuildSums(const std::vector<ConvexPiece>& p,
+    const std::vector<ConvexPiece>& q,
+    const double origin[3],
+    UnionClosestPoint& sums,
+    std::vector<std::pair<int64_t, int64_t>>& pairs,
+    int64_t& total,
+    std::string& error) const;
+
+  /// The answer for P and Q (convex pieces each), from `origin`.
+  bool Compute(const std::vector<ConvexPiece>& p,
+    const std::vector<ConvexPiece>& q,
+    const double origin[3],
+    PenetrationAnswer& answer,
+    std::string& error) const;
+};
+
+} // namespace vtkdf
+
+#endif
