@@ -17,6 +17,7 @@
 
 #include "UnionClosestPoint.h"
 #include "vtkConvexPieces.h"
+#include "vtkDistanceFieldMesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -115,6 +116,12 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
   }
   const vtkIdType n = static_cast<vtkIdType>(o.size() / 3);
   std::vector<vtkdf::UnionAnswer> answers(n);
+  // Parallel over the queries, or over each query's faces when there are too few queries
+  // to keep the threads busy.
+  if (n < 4 * vtkSMPTools::GetEstimatedNumberOfThreads())
+  {
+    query.For = vtkdf::SMPFor;
+  }
   vtkSMPTools::For(0,
     n,
     [&](vtkIdType begin, vtkIdType end)

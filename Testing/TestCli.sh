@@ -62,6 +62,12 @@ run segment "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=2 patches
 run union "^vtkdf: union pieces=4 queries=1 backend=cpu time_s=[0-9.]+ faces_visited=[1-9]" \
   "$out/union.vtp" -- \
   union "$data/hubo_ankle_convex4.vtp" -o "$out/union.vtp" --query 0 0.01 0.01 --timing
+# pd: a solid against itself intersects, by every pair.
+run pd "^vtkdf: pd pairs=16 pairs_kept=[1-9][0-9]* backend=cpu time_s=[0-9.]+ faces_visited=[1-9]" \
+  "$out/pd.vtp" -- \
+  pd "$data/hubo_ankle_convex4.vtp" "$data/hubo_ankle_convex4.vtp" -o "$out/pd.vtp" --timing
+grep -Eq "intersecting=1 penetration_depth=0\.[0-9]+ " <<<"$("$vtkdf" pd "$data/hubo_ankle_convex4.vtp" \
+  "$data/hubo_ankle_convex4.vtp" -o "$out/pd.vtp")" || fail "pd: a solid does not intersect itself"
 # blend: a field with itself is itself, at any T.
 if "$vtkdf" blend "$out/segment.vti" "$out/segment.vti" -t 0.3 -o "$out/blend.vti" \
   --png "$out/blend.png" 2>"$out/blend.err"; then
@@ -95,6 +101,7 @@ expect_failure missing linfac "$data/no_such_mesh.vtp" -o "$out/x.vti"
 expect_failure subcommand frobnicate
 expect_failure blendmesh blend "$data/plane.vtp" "$out/segment.vti" -t 0.5 -o "$out/x.vti"
 expect_failure blendnot blend "$out/segment.vti" "$out/segment.vti" -o "$out/x.vti"
+expect_failure pdone pd "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp"
 expect_failure unionpieces union "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp" --piece-array Nope
 expect_failure rendermesh render "$data/plane.vtp" -o "$out/x.png"
 expect_failure rendermode render "$out/segment.vti" -o "$out/x.png" --mode mip

@@ -19,11 +19,13 @@ from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter  # noqa: E402
 from vtkdistancefields import (vtkChamferVoxelDistance, vtkLinearFactorDistanceField,  # noqa: E402
                                vtkMedialAxisFilter, vtkPolyDataVoxelizer,
-                               vtkSegmentedDistanceField, vtkUnionClosestPoint)
+                               vtkPenetrationDepth, vtkSegmentedDistanceField,
+                               vtkUnionClosestPoint)
 
 FILTERS = {"linfac": vtkLinearFactorDistanceField, "voxelize": vtkPolyDataVoxelizer,
            "chamfer": vtkChamferVoxelDistance, "medial": vtkMedialAxisFilter,
-           "segment": vtkSegmentedDistanceField, "union": vtkUnionClosestPoint}
+           "segment": vtkSegmentedDistanceField, "union": vtkUnionClosestPoint,
+           "pd": vtkPenetrationDepth}
 
 
 class NotPassable(Exception):
@@ -110,7 +112,7 @@ def read(path):
 
 def run_case(corpus, data, sub, name, path, options, kind, pattern, workdir):
     f = FILTERS[sub]()
-    if sub != "union":
+    if sub not in ("union", "pd"):
         f.SetBackend(f.BACKEND_CPU if sub != "voxelize" else f.BACKEND_AUTO)
     errors, warnings = [], []
 
@@ -134,7 +136,9 @@ def run_case(corpus, data, sub, name, path, options, kind, pattern, workdir):
         configure(f, sub, options)
     except (NotPassable, TypeError, OverflowError, ValueError) as refused:
         return kind == "usage", f"not passable ({refused})"
-    f.SetInputData(read(path))
+    f.SetInputData(0, read(path))
+    if sub == "pd":  # the bad input is P; Q is a good solid
+        f.SetInputData(1, read(os.path.join(data, "hubo_ankle_convex4.vtp")))
     f.Update()
     output = f.GetOutput()
     empty = output.GetNumberOfPoints() == 0
@@ -164,7 +168,7 @@ def main(corpus, data, sub, workdir):
         if not line.strip() or line.startswith("#"):
             continue
         name, subs, input_name, options, expect = [w.strip() for w in line.split("|", 4)]
-        if subs != "all" and sub not in subs.split() or subs == "all" and sub == "union":
+        if subs != "all" and sub not in subs.split() or subs == "all" and sub in ("union", "pd"):
             continue
         kind, _, pattern = expect.partition(" ")
         path = os.path.join(corpus, input_name)

@@ -2,19 +2,20 @@
 components) and queries on port 1: from (0.9, 0.5, 0.5) the union's boundary is 0.5 away
 (not 0.1: the shared face is not boundary), from (2.5, 0.5, 0.5) 0.5 outside; the
 bundled hubo_ankle_convex4 (4 overlapping convex pieces) from inside: the closest point
-at |Distance| and inside the bounds."""
+at |Distance| and inside the bounds. vtkPenetrationDepth: a unit cube against one shifted
+by 0.7 along x: depth 0.3, translate Q along +x, in the field data too."""
 import os
 import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonCore import vtkIntArray, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkCleanPolyData
 from vtkmodules.vtkFiltersSources import vtkCubeSource
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 
-from vtkdistancefields import vtkUnionClosestPoint
+from vtkdistancefields import vtkPenetrationDepth, vtkUnionClosestPoint
 
 
 def cube(x):
@@ -56,6 +57,35 @@ gap = np.linalg.norm(np.array(h.GetPoint(1)) - np.array(h.GetPoint(0)))
 print(f"hubo_ankle_convex4: {hubo.GetLastPieceCount()} pieces, distance {d:.6f}, "
       f"|closest - query| {gap:.6f}")
 ok = ok and hubo.GetLastPieceCount() == 4 and d < 0 and abs(gap + d) < 1e-6
+
+shifted = vtkCubeSource()
+shifted.SetBounds(0.7, 1.7, 0.2, 0.8, 0.2, 0.8)
+shifted.Update()
+
+
+def one_piece(mesh):
+    """vtkCubeSource repeats its corners per face, so its faces are six connected
+    components: a cell-data array of piece ids (PieceArray, for both solids) makes one."""
+    ids = vtkIntArray()
+    ids.SetName("Piece")
+    for _ in range(mesh.GetNumberOfCells()):
+        ids.InsertNextValue(7)
+    mesh.GetCellData().AddArray(ids)
+    return mesh
+
+
+pd = vtkPenetrationDepth()
+pd.SetSolidPData(one_piece(cube(0)))
+pd.SetSolidQData(one_piece(shifted.GetOutput()))
+pd.SetPieceArray("Piece")
+pd.Update()
+fields = pd.GetOutput().GetFieldData()
+depth = fields.GetArray("PenetrationDepth").GetValue(0)
+direction = fields.GetArray("Direction").GetTuple3(0)
+print(f"penetration depth of two cubes: {depth:.7f} along {direction}, "
+      f"intersecting {pd.GetLastIntersecting()}")
+ok = ok and pd.GetLastIntersecting() and abs(depth - 0.3) < 1e-6 and \
+    np.allclose(direction, [1, 0, 0]) and abs(pd.GetLastPenetrationDepth() - depth) == 0
 if not ok:
     print("FAIL")
     sys.exit(1)

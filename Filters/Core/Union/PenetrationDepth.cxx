@@ -155,6 +155,7 @@ bool PenetrationDepth::Compute(const std::vector<ConvexPiece>& p,
     return false;
   }
   answer.PairsKept = static_cast<int64_t>(pairs.size());
+  sums.For = this->For; // one query: parallel over its faces
   const UnionAnswer closest = sums.Query(origin);
   answer.Intersecting = closest.Inside;
   answer.Distance = std::fabs(closest.Distance);

@@ -392,14 +392,15 @@ UnionAnswer UnionClosestPoint::Query(const double o[3]) const
     [](const Candidate& a, const Candidate& b)
     { return a.Bound != b.Bound ? a.Bound < b.Bound : a.Face < b.Face; });
 
-  double best = HUGE_VAL;
-  for (const Candidate& candidate : order)
+  // The nearest boundary point of one face: its squared planar distance (HUGE_VAL when
+  // none), the point and the height above the face's plane.
+  struct FaceResult
   {
-    if (candidate.Bound >= best)
-    {
-      break;
-    }
-    ++answer.FacesVisited;
+    double Distance = HUGE_VAL;
+    double Closest[3] = { 0, 0, 0 };
+  };
+  auto visit = [&](const Candidate& candidate, FaceResult& result)
+  {
     const int64_t i = candidate.Piece;
     const int64_t f = faceOf[candidate.Face].second;
     const ConvexPiece& piece = this->Pieces[i];
@@ -415,6 +416,21 @@ UnionAnswer UnionClosestPoint::Query(const double o[3]) const
         faceHi[a] = std::max(faceHi[a], piece.Faces[f][k + a]);
       }
     }
+    double faceCentre[3] = { 0, 0, 0 }, faceRadius = 0;
+    const size_t corners = piece.Faces[f].size() / 3;
+    for (size_t k = 0; k < 3 * corners; ++k)
+    {
+      faceCentre[k % 3] += piece.Faces[f][k] / corners;
+    }
+    for (size_t k = 0; k < 3 * corners; k += 3)
+    {
+      const double* c = &piece.Faces[f][k];
+      faceRadius = std::max(faceRadius,
+        std::sqrt((c[0] - faceCentre[0]) * (c[0] - faceCentre[0]) +
+          (c[1] - faceCentre[1]) * (c[1] - faceCentre[1]) +
+          (c[2] - faceCentre[2]) * (c[2] - faceCentre[2])));
+    }
+    faceRadius *= 1 + 1e-12; // rounding: the sphere must hold every corner
     // The sections S_j that cover the face's outer side, and their parts within the face.
     std::vector<std::vector<HalfPlane>> sections;
     std::vector<Polygon> parts;
@@ -436,13 +452,44 @@ UnionAnswer UnionClosestPoint::Query(const double o[3]) const
       for (size_t k = 0; k < other.Faces.size() && !empty; ++k)
       {
         const double* plane = &other.Planes[4 * k];
+        // First by the face's bounding sphere: most planes are far from the face.
+        const double centreSide = Dot(plane, faceCentre) - plane[3];
+        if (centreSide + faceRadius < -tol)
+        {
+          continue;
+        }
+        if (centreSide - faceRadius > tol)
+        {
+          empty = true;
+          continue;
+        }
         const double a[2] = { Dot(plane, frame.U), Dot(plane, frame.V) };
         const double b = plane[3] - Dot(plane, frame.Origin);
         // Strict where the plane faces like the face (x + e n must stay inside).
         const double slack = Dot(plane, frame.N) > 0 ? -tol : tol;
-        if (std::hypot(a[0], a[1]) < 1e-12)
+        if (a[0] * a[0] + a[1] * a[1] < 1e-24) // the plane is parallel to the face
         {
           empty = !(0 <= b + slack);
+          continue;
+        }
+        // Only the planes that cut the face matter (most of a large piece's do not): one
+        // that holds every corner even with the strict slack holds on the whole face and
+        // just beyond it; one that no corner meets even with the loose slack leaves the
+        // face uncovered by this piece.
+        double most = -HUGE_VAL, least = HUGE_VAL;
+        for (const V2& c : outline)
+        {
+          const double value = a[0] * c.X + a[1] * c.Y;
+          most = std::max(most, value);
+          least = std::min(least, value);
+        }
+        if (most < b - tol)
+        {
+          continue;
+        }
+        if (least > b + tol)
+        {
+          empty = true;
           continue;
         }
         section.push_back({ { a[0], a[1] }, b + slack });
@@ -553,15 +600,51 @@ UnionAnswer UnionClosestPoint::Query(const double o[3]) const
     }
     if (planar < HUGE_VAL)
     {
-      const double distance = std::sqrt(h * h + planar);
-      if (distance < best)
+      result.Distance = std::sqrt(h * h + planar);
+      for (int a = 0; a < 3; ++a)
       {
-        best = distance;
-        answer.Piece = i;
-        for (int a = 0; a < 3; ++a)
-        {
-          answer.Closest[a] = frame.Origin[a] + nearest.X * frame.U[a] + nearest.Y * frame.V[a];
-        }
+        result.Closest[a] = frame.Origin[a] + nearest.X * frame.U[a] + nearest.Y * frame.V[a];
+      }
+    }
+  };
+
+  // Faces in order, a chunk at a time (in parallel when For is set): the best answer so
+  // far bounds which faces of the next chunk are visited. The chunks do not depend on the
+  // threads, so neither do the answer and the count.
+  double best = HUGE_VAL;
+  const size_t chunk = this->For ? 64 : 1;
+  std::vector<FaceResult> results;
+  for (size_t begin = 0; begin < order.size() && order[begin].Bound < best; begin += chunk)
+  {
+    size_t end = std::min(order.size(), begin + chunk);
+    while (end > begin && order[end - 1].Bound >= best)
+    {
+      --end; // sorted: the rest of the chunk is farther too
+    }
+    results.assign(end - begin, FaceResult());
+    auto work = [&](int64_t first, int64_t last)
+    {
+      for (int64_t k = first; k < last; ++k)
+      {
+        visit(order[begin + k], results[k]);
+      }
+    };
+    if (this->For && end - begin > 1)
+    {
+      this->For(static_cast<int64_t>(end - begin), 4, work);
+    }
+    else
+    {
+      work(0, static_cast<int64_t>(end - begin));
+    }
+    answer.FacesVisited += static_cast<int64_t>(end - begin);
+    for (size_t k = 0; k < results.size(); ++k)
+    {
+      if (results[k].Distance < best)
+      {
+        best = results[k].Distance;
+        answer.Piece = order[begin + k].Piece;
+        std::copy(results[k].Closest, results[k].Closest + 3, answer.Closest);
       }
     }
   }

@@ -20,6 +20,8 @@
 #ifndef vtkdf_UnionClosestPoint_h
 #define vtkdf_UnionClosestPoint_h
 
+#include "Parallel.h"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -62,6 +64,9 @@ class UnionClosestPoint
 public:
   std::vector<ConvexPiece> Pieces;
   double Tolerance = 1e-9;
+  /// A parallel loop over a query's faces (serial when empty: the caller may already run
+  /// queries in parallel).
+  ParallelFor For;
 
   /// The closest point on the union's boundary to `o`.
   UnionAnswer Query(const double o[3]) const;
