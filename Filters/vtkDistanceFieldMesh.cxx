@@ -508,4 +508,22 @@ std::string InnerErrors::Message(const char* fallback) const
   return this->Text.empty() ? std::string(fallback) : this->Text;
 }
 
+bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error)
+{
+  gl = nullptr;
+  if (backend == 2)
+  {
+    return true;
+  }
+  std::string why;
+  HeadlessGL* context = HeadlessGL::Get(why);
+  if (backend == 1 && !context)
+  {
+    error = "Backend is GPU but " + why;
+    return false;
+  }
+  gl = backend == 1 || (context && !context->IsSoftware()) ? context : nullptr;
+  return true;
+}
+
 } // namespace vtkdf

@@ -115,6 +115,11 @@ void BitsToMask(const BitVolume& bits,
 /// them (it then reports and leaves the array short, which must not be written).
 void AllocateTuples(vtkDataArray* array, vtkIdType tuples);
 
+/// The GPU context for a filter's Backend (0 Auto, 1 GPU, 2 CPU): `gl` is the context
+/// (Backend GPU: any, even a software rasterizer; Auto: a hardware-accelerated one) or
+/// null for the CPU. False, with `error`, when Backend is GPU and there is no context.
+bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error);
+
 /// vtkSMPTools::For behind the cores' ParallelFor hook. An exception thrown by `body`
 /// (std::bad_alloc) stops the remaining chunks and is rethrown here, on the calling
 /// thread, whatever the SMP backend (a std::thread backend would otherwise terminate).

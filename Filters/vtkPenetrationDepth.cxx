@@ -57,6 +57,10 @@ int vtkPenetrationDepth::Compute(vtkInformationVector** inputVector,
   this->LastPenetrationDepth = this->LastSeparationDistance = 0;
   this->LastDirection[0] = this->LastDirection[1] = this->LastDirection[2] = 0;
   this->LastIntersecting = false;
+  this->LastErrorBound = 0;
+  this->LastBackend = BACKEND_CPU;
+  this->LastRenderer.clear();
+  this->LastPasses = 0;
   this->LastPairsTotal = this->LastPairsKept = this->LastFacesVisited = 0;
 
   vtkdf::ConvexPieceInput solids[2];
@@ -85,11 +89,24 @@ int vtkPenetrationDepth::Compute(vtkInformationVector** inputVector,
   const double origin[3] = { 0, 0, 0 };
   vtkdf::PenetrationAnswer answer;
   std::string error;
-  if (!depth.Compute(solids[0].Pieces, solids[1].Pieces, origin, answer, error))
+  vtkdf::HeadlessGL* gl = nullptr;
+  if (!vtkdf::ChooseContext(this->Backend, gl, error))
   {
-    vtkErrorMacro("No Minkowski sum: " << error << ".");
+    vtkErrorMacro(<< error << ".");
     return 0;
   }
+  vtkdf::UnionGPUSettings settings;
+  settings.Resolution = this->ViewResolution;
+  settings.Certify = this->Certify;
+  if (!depth.Compute(solids[0].Pieces, solids[1].Pieces, origin, answer, error, gl, settings))
+  {
+    vtkErrorMacro(<< (gl ? "The GPU query failed: " : "No Minkowski sum: ") << error << ".");
+    return 0;
+  }
+  this->LastBackend = gl ? BACKEND_GPU : BACKEND_CPU;
+  this->LastRenderer = gl ? gl->Renderer() : "cpu";
+  this->LastPasses = answer.Passes;
+  this->LastErrorBound = answer.ErrorBound;
   this->UpdateProgress(0.9);
 
   const double length = answer.Distance;
@@ -144,7 +161,8 @@ int vtkPenetrationDepth::Compute(vtkInformationVector** inputVector,
     fields->AddArray(array);
   };
   scalar("PenetrationDepth", this->LastPenetrationDepth);
-  scalar("ErrorBound", 0);
+  scalar("ErrorBound", answer.ErrorBound);
+  scalar("Certified", answer.Certified ? 1 : 0);
   if (!answer.Intersecting)
   {
     scalar("SeparationDistance", this->LastSeparationDistance);
@@ -174,6 +192,13 @@ void vtkPenetrationDepth::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PieceArray: " << (this->PieceArray.empty() ? "(none)" : this->PieceArray)
      << "\n";
   os << indent << "UseConvexHulls: " << this->UseConvexHulls << "\n";
+  os << indent << "Backend: " << this->Backend << "\n";
+  os << indent << "ViewResolution: " << this->ViewResolution << "\n";
+  os << indent << "Certify: " << this->Certify << "\n";
+  os << indent << "LastBackend: " << this->LastBackend << "\n";
+  os << indent << "LastRenderer: " << this->LastRenderer << "\n";
+  os << indent << "LastPasses: " << this->LastPasses << "\n";
+  os << indent << "LastErrorBound: " << this->LastErrorBound << "\n";
   os << indent << "LastPenetrationDepth: " << this->LastPenetrationDepth << "\n";
   os << indent << "LastSeparationDistance: " << this->LastSeparationDistance << "\n";
   os << indent << "LastDirection: " << this->LastDirection[0] << " " << this->LastDirection[1]

@@ -16,7 +16,9 @@
  * vtkUnionClosestPoint (Algorithm 3.1 of the paper) without building the union. Unlike a
  * per-pair depth (FCL, Bullet, libccd), it is the global one: the deepest pair is only a
  * lower bound. Pairs whose sums cannot reach the answer are skipped before their hulls
- * are built. P and Q are in one frame.
+ * are built. P and Q are in one frame. Backend, ViewResolution and Certify choose where the
+ * query runs, as for vtkUnionClosestPoint: the CPU (exact), or the GPU's six views
+ * certified on the CPU (exact) or not (ErrorBound then holds the image-space estimate).
  *
  * Output: vtkPolyData with the minimum translation vector as a line (from the point of Q
  * farthest against Direction, the one that leaves P last, to that point translated), and
@@ -63,13 +65,43 @@ public:
   vtkBooleanMacro(UseConvexHulls, bool);
   ///@}
 
+  enum BackendType
+  {
+    BACKEND_AUTO = 0, ///< the GPU when a hardware-accelerated context exists, else the CPU
+    BACKEND_GPU = 1,  ///< the GPU, even a software rasterizer; an error when there is none
+    BACKEND_CPU = 2   ///< exact, on the CPU
+  };
+  ///@{
+  /// Where the union query runs (default Auto).
+  vtkSetClampMacro(Backend, int, BACKEND_AUTO, BACKEND_CPU);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAuto() { this->SetBackend(BACKEND_AUTO); }
+  void SetBackendToGPU() { this->SetBackend(BACKEND_GPU); }
+  void SetBackendToCPU() { this->SetBackend(BACKEND_CPU); }
+  ///@}
+
+  ///@{
+  /// GPU: pixels a side of the six views (default 256) and certification (default on).
+  vtkSetMacro(ViewResolution, int);
+  vtkGetMacro(ViewResolution, int);
+  vtkSetMacro(Certify, bool);
+  vtkGetMacro(Certify, bool);
+  vtkBooleanMacro(Certify, bool);
+  ///@}
+
   ///@{
   /// The last run's answer.
   vtkGetMacro(LastPenetrationDepth, double);
   vtkGetMacro(LastSeparationDistance, double);
   vtkGetVector3Macro(LastDirection, double);
   vtkGetMacro(LastIntersecting, bool);
+  vtkGetMacro(LastErrorBound, double);
   ///@}
+
+  /// The backend the last run used (BACKEND_GPU or BACKEND_CPU), its renderer and passes.
+  vtkGetMacro(LastBackend, int);
+  const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
+  vtkGetMacro(LastPasses, int);
 
   ///@{
   /// The last run's work: pairs of pieces, those whose sums were built, and the faces
@@ -94,6 +126,13 @@ protected:
   double LastSeparationDistance = 0;
   double LastDirection[3] = { 0, 0, 0 };
   bool LastIntersecting = false;
+  double LastErrorBound = 0;
+  int Backend = BACKEND_AUTO;
+  int ViewResolution = 256;
+  bool Certify = true;
+  int LastBackend = BACKEND_CPU;
+  std::string LastRenderer;
+  int LastPasses = 0;
   vtkTypeInt64 LastPairsTotal = 0;
   vtkTypeInt64 LastPairsKept = 0;
   vtkTypeInt64 LastFacesVisited = 0;

@@ -1,13 +1,17 @@
 #include "vtkUnionClosestPoint.h"
 
 #include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkErrorCode.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSet.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
@@ -16,6 +20,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "UnionClosestPoint.h"
+#include "UnionClosestPointGPU.h"
 #include "vtkConvexPieces.h"
 #include "vtkDistanceFieldMesh.h"
 
@@ -29,6 +34,59 @@ vtkStandardNewMacro(vtkUnionClosestPoint);
 vtkUnionClosestPoint::vtkUnionClosestPoint()
 {
   this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(2);
+}
+
+int vtkUnionClosestPoint::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkPartitionedDataSet");
+    return 1;
+  }
+  return this->Superclass::FillOutputPortInformation(port, info);
+}
+
+void vtkUnionClosestPoint::WriteViewImages(const std::vector<float>& images,
+  const std::vector<double>& frames,
+  const double query[3],
+  vtkInformationVector* outputVector)
+{
+  auto* views = vtkPartitionedDataSet::GetData(outputVector, 1);
+  if (!views)
+  {
+    return;
+  }
+  const int n = this->ViewResolution;
+  views->SetNumberOfPartitions(6);
+  for (int v = 0; v < 6; ++v)
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(n, n, 1);
+    image->SetOrigin(-1 + 1.0 / n, -1 + 1.0 / n, 0);
+    image->SetSpacing(2.0 / n, 2.0 / n, 1);
+    vtkNew<vtkFloatArray> distance;
+    distance->SetName("Distance");
+    distance->SetNumberOfTuples(static_cast<vtkIdType>(n) * n);
+    std::copy(images.begin() + static_cast<size_t>(v) * n * n,
+      images.begin() + static_cast<size_t>(v + 1) * n * n,
+      distance->GetPointer(0));
+    image->GetPointData()->SetScalars(distance);
+    vtkNew<vtkDoubleArray> frame;
+    frame->SetName("ViewFrame");
+    frame->SetNumberOfComponents(3);
+    for (int k = 0; k < 3; ++k)
+    {
+      frame->InsertNextTuple(&frames[9 * v + 3 * k]);
+    }
+    image->GetFieldData()->AddArray(frame);
+    vtkNew<vtkDoubleArray> origin;
+    origin->SetName("QueryPoint");
+    origin->SetNumberOfComponents(3);
+    origin->InsertNextTuple(query);
+    image->GetFieldData()->AddArray(origin);
+    views->SetPartition(v, image);
+  }
 }
 
 int vtkUnionClosestPoint::FillInputPortInformation(int port, vtkInformation* info)
@@ -71,6 +129,13 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
   output->Initialize();
   this->LastPieceCount = 0;
   this->LastFacesVisited = 0;
+  this->LastPasses = 0;
+  this->LastBackend = BACKEND_CPU;
+  this->LastRenderer.clear();
+  if (auto* views = vtkPartitionedDataSet::GetData(outputVector, 1))
+  {
+    views->Initialize();
+  }
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
 
   // The pieces, checked (or replaced by their hulls).
@@ -115,30 +180,83 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
     }
   }
   const vtkIdType n = static_cast<vtkIdType>(o.size() / 3);
-  std::vector<vtkdf::UnionAnswer> answers(n);
-  // Parallel over the queries, or over each query's faces when there are too few queries
-  // to keep the threads busy.
-  if (n < 4 * vtkSMPTools::GetEstimatedNumberOfThreads())
+  vtkdf::HeadlessGL* gl = nullptr;
+  if (!vtkdf::ChooseContext(this->Backend, gl, error))
   {
-    query.For = vtkdf::SMPFor;
+    vtkErrorMacro(<< error << ".");
+    return 0;
   }
-  vtkSMPTools::For(0,
-    n,
-    [&](vtkIdType begin, vtkIdType end)
+  if (this->GenerateViewImages && !gl)
+  {
+    vtkWarningMacro("GenerateViewImages: the views come from the GPU backend, which this run "
+                    "does not use (Backend "
+      << (this->Backend == BACKEND_CPU ? "CPU" : "Auto without a hardware GPU")
+      << "): output 1 is empty.");
+  }
+  std::vector<vtkdf::UnionGPUAnswer> answers(n);
+  this->UpdateProgress(0.1);
+  if (gl)
+  {
+    vtkdf::UnionGPUSettings settings;
+    settings.Resolution = this->ViewResolution;
+    settings.Certify = this->Certify;
+    std::vector<float> images;
+    std::vector<double> frames;
+    const bool views = this->GenerateViewImages && n > 0;
+    if (!vtkdf::QueryUnionGPU(*gl,
+          query,
+          o,
+          settings,
+          answers,
+          error,
+          views ? &images : nullptr,
+          views ? &frames : nullptr))
     {
-      for (vtkIdType i = begin; i < end; ++i)
+      vtkErrorMacro("The GPU query failed: " << error << ".");
+      return 0;
+    }
+    this->LastBackend = BACKEND_GPU;
+    this->LastRenderer = gl->Renderer();
+    for (const auto& answer : answers)
+    {
+      this->LastPasses += answer.Passes;
+    }
+    if (views)
+    {
+      this->WriteViewImages(images, frames, &o[3 * (n - 1)], outputVector);
+    }
+  }
+  else
+  {
+    // Parallel over the queries, or over each query's faces when there are too few
+    // queries to keep the threads busy.
+    if (n < 4 * vtkSMPTools::GetEstimatedNumberOfThreads())
+    {
+      query.For = vtkdf::SMPFor;
+    }
+    vtkSMPTools::For(0,
+      n,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        answers[i] = query.Query(&o[3 * i]);
-      }
-    });
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          answers[i].Answer = query.Query(&o[3 * i]);
+          answers[i].Certified = true;
+        }
+      });
+    this->LastBackend = BACKEND_CPU;
+    this->LastRenderer = "cpu";
+  }
+  this->UpdateProgress(0.9);
 
   vtkNew<vtkPoints> out;
   out->SetDataTypeToDouble();
   out->SetNumberOfPoints(2 * n);
   vtkNew<vtkCellArray> lines;
   vtkNew<vtkFloatArray> distance, closest, direction, bound;
-  vtkNew<vtkUnsignedCharArray> inside;
+  vtkNew<vtkUnsignedCharArray> inside, certified;
   vtkNew<vtkIntArray> piece;
+  certified->SetName("Certified");
   distance->SetName("Distance");
   closest->SetName("ClosestPoint");
   closest->SetNumberOfComponents(3);
@@ -150,7 +268,7 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
   for (vtkIdType k = 0; k < 2 * n; ++k)
   {
     const vtkIdType i = k % n;
-    const vtkdf::UnionAnswer& a = answers[i];
+    const vtkdf::UnionAnswer& a = answers[i].Answer;
     out->SetPoint(k, k < n ? &o[3 * i] : a.Closest);
     const double length = std::fabs(a.Distance);
     double d[3];
@@ -161,7 +279,8 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
     distance->InsertNextValue(static_cast<float>(a.Distance));
     closest->InsertNextTuple(a.Closest);
     direction->InsertNextTuple(d);
-    bound->InsertNextValue(0);
+    bound->InsertNextValue(static_cast<float>(answers[i].ErrorBound));
+    certified->InsertNextValue(answers[i].Certified ? 1 : 0);
     inside->InsertNextValue(a.Inside ? 1 : 0);
     piece->InsertNextValue(static_cast<int>(a.Piece));
     if (k < n)
@@ -180,6 +299,8 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
   pd->AddArray(inside);
   pd->AddArray(piece);
   pd->AddArray(bound);
+  pd->AddArray(certified);
+  this->UpdateProgress(1.0);
   return 1;
 }
 
@@ -191,6 +312,13 @@ void vtkUnionClosestPoint::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PieceArray: " << (this->PieceArray.empty() ? "(none)" : this->PieceArray)
      << "\n";
   os << indent << "UseConvexHulls: " << this->UseConvexHulls << "\n";
+  os << indent << "Backend: " << this->Backend << "\n";
+  os << indent << "ViewResolution: " << this->ViewResolution << "\n";
+  os << indent << "Certify: " << this->Certify << "\n";
+  os << indent << "GenerateViewImages: " << this->GenerateViewImages << "\n";
+  os << indent << "LastBackend: " << this->LastBackend << "\n";
+  os << indent << "LastRenderer: " << this->LastRenderer << "\n";
+  os << indent << "LastPasses: " << this->LastPasses << "\n";
   os << indent << "LastPieceCount: " << this->LastPieceCount << "\n";
   os << indent << "LastFacesVisited: " << this->LastFacesVisited << "\n";
 }

@@ -14,8 +14,9 @@
 //   vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D] [--surface OUT.vtp]
 //   vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]
 //   vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--piece-array NAME]
-//         [--convex-hulls] [--timing]
-//   vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls] [--timing]
+//         [--convex-hulls] [--backend ...] [--pixels N] [--uncertified] [--timing]
+//   vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls] [--backend ...]
+//         [--pixels N] [--uncertified] [--timing]
 //         (penetration depth; P, Q: convex pieces in the forms union takes)
 //   vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H] ...
 //         (vtkSegmentedDistanceVolumeMapper; needs an X server)
@@ -98,10 +99,12 @@ void PrintUsage(FILE* out)
     "       vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]\n"
     "             (A and B from vtkdf segment on the same grid; T in [0, 1])\n"
     "       vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS]\n"
-    "             [--piece-array NAME] [--convex-hulls] [--timing]\n"
+    "             [--piece-array NAME] [--convex-hulls] [--backend auto|gpu|cpu]\n"
+    "             [--pixels N] [--uncertified] [--timing]\n"
     "             (POLYTOPES: a mesh whose connected components are convex pieces, or a\n"
     "             .vtm of them; POINTS: a mesh whose points are the queries)\n"
-    "       vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls] [--timing]\n"
+    "       vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls]\n"
+    "             [--backend auto|gpu|cpu] [--pixels N] [--uncertified] [--timing]\n"
     "             (penetration depth of two solids, each convex pieces as for union;\n"
     "             prints the depth and the direction to translate Q)\n"
     "       vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H]\n"
@@ -944,6 +947,57 @@ int Blend(int argc, char* argv[])
   }
   return 0;
 }
+/// The options vtkdf union and vtkdf pd share: where the union query runs.
+struct QueryOptions
+{
+  std::string Backend = "auto";
+  int Pixels = 256;
+  bool Uncertified = false;
+
+  /// Consumes argv[a] (and its value) when it is one of these options.
+  bool Parse(int argc, char* argv[], int& a)
+  {
+    const std::string option = argv[a];
+    if (option == "--uncertified")
+    {
+      this->Uncertified = true;
+      return true;
+    }
+    if ((option == "--backend" || option == "--pixels") && a + 1 < argc)
+    {
+      if (option == "--backend")
+      {
+        this->Backend = argv[++a];
+      }
+      else
+      {
+        this->Pixels = ParseInt("--pixels", argv[++a]);
+      }
+      return true;
+    }
+    return false;
+  }
+
+  template<typename Filter>
+  void Apply(Filter* filter) const
+  {
+    if (this->Backend == "gpu")
+    {
+      filter->SetBackendToGPU();
+    }
+    else if (this->Backend == "cpu")
+    {
+      filter->SetBackendToCPU();
+    }
+    else if (this->Backend != "auto")
+    {
+      std::exit(Usage("--backend takes auto, gpu or cpu"));
+    }
+    filter->SetViewResolution(this->Pixels);
+    filter->SetCertify(!this->Uncertified);
+  }
+};
+
 /// vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS]
 ///   [--piece-array NAME] [--convex-hulls] [--timing]
 int Union(int argc, char* argv[])
@@ -951,9 +1005,14 @@ int Union(int argc, char* argv[])
   std::string output, queriesPath, pieceArray;
   double query[3] = { 0, 0, 0 };
   bool timing = false, hulls = false;
+  QueryOptions where;
   for (int a = 3; a < argc; ++a)
   {
     const std::string option = argv[a];
+    if (where.Parse(argc, argv, a))
+    {
+      continue;
+    }
     if (option == "--timing" || option == "--convex-hulls")
     {
       (option == "--timing" ? timing : hulls) = true;
@@ -1001,6 +1060,7 @@ int Union(int argc, char* argv[])
   filter->SetQueryPoint(query);
   filter->SetPieceArray(pieceArray.c_str());
   filter->SetUseConvexHulls(hulls);
+  where.Apply(filter.Get());
   const auto start = std::chrono::steady_clock::now();
   filter->Update();
   const double seconds =
@@ -1013,11 +1073,15 @@ int Union(int argc, char* argv[])
   }
   if (timing)
   {
-    std::printf("vtkdf: union pieces=%d queries=%lld backend=cpu time_s=%.6f faces_visited=%lld\n",
+    std::printf("vtkdf: union pieces=%d queries=%lld backend=%s renderer=\"%s\" time_s=%.6f "
+                "faces_visited=%lld passes=%lld\n",
       filter->GetLastPieceCount(),
       static_cast<long long>(result->GetNumberOfPoints() / 2),
+      filter->GetLastBackend() == vtkUnionClosestPoint::BACKEND_GPU ? "gpu" : "cpu",
+      filter->GetLastRenderer(),
       seconds,
-      static_cast<long long>(filter->GetLastFacesVisited()));
+      static_cast<long long>(filter->GetLastFacesVisited()),
+      static_cast<long long>(filter->GetLastPasses()));
   }
   return WriteXML<vtkXMLPolyDataWriter>(result, output) ? 0 : 1;
 }
@@ -1030,9 +1094,14 @@ int PenetrationDepth(int argc, char* argv[])
   }
   std::string output, pieceArray;
   bool timing = false, hulls = false;
+  QueryOptions where;
   for (int a = 4; a < argc; ++a)
   {
     const std::string option = argv[a];
+    if (where.Parse(argc, argv, a))
+    {
+      continue;
+    }
     if (option == "--timing" || option == "--convex-hulls")
     {
       (option == "--timing" ? timing : hulls) = true;
@@ -1064,6 +1133,7 @@ int PenetrationDepth(int argc, char* argv[])
   filter->SetSolidQData(ReadPolytopesOrExit(argv[3]));
   filter->SetPieceArray(pieceArray.c_str());
   filter->SetUseConvexHulls(hulls);
+  where.Apply(filter.Get());
   const auto start = std::chrono::steady_clock::now();
   filter->Update();
   const double seconds =
@@ -1075,20 +1145,25 @@ int PenetrationDepth(int argc, char* argv[])
   }
   const double* n = filter->GetLastDirection();
   std::printf("vtkdf: pd intersecting=%d penetration_depth=%.17g separation_distance=%.17g "
-              "direction=%.9f,%.9f,%.9f\n",
+              "direction=%.9f,%.9f,%.9f error_bound=%.3g\n",
     filter->GetLastIntersecting() ? 1 : 0,
     filter->GetLastPenetrationDepth(),
     filter->GetLastSeparationDistance(),
     n[0],
     n[1],
-    n[2]);
+    n[2],
+    filter->GetLastErrorBound());
   if (timing)
   {
-    std::printf("vtkdf: pd pairs=%lld pairs_kept=%lld backend=cpu time_s=%.6f faces_visited=%lld\n",
+    std::printf("vtkdf: pd pairs=%lld pairs_kept=%lld backend=%s renderer=\"%s\" time_s=%.6f "
+                "faces_visited=%lld passes=%d\n",
       static_cast<long long>(filter->GetLastPairsTotal()),
       static_cast<long long>(filter->GetLastPairsKept()),
+      filter->GetLastBackend() == vtkPenetrationDepth::BACKEND_GPU ? "gpu" : "cpu",
+      filter->GetLastRenderer(),
       seconds,
-      static_cast<long long>(filter->GetLastFacesVisited()));
+      static_cast<long long>(filter->GetLastFacesVisited()),
+      filter->GetLastPasses());
   }
   return WriteXML<vtkXMLPolyDataWriter>(filter->GetOutput(), output) ? 0 : 1;
 }

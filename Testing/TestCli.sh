@@ -59,15 +59,23 @@ run segment "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=2 patches
   segment "$data/plane.vtp" -o "$out/segment.vti" --resolution 20 --backend cpu --timing \
   --png "$out/segment.png" --surface "$out/segment.vtp"
 [ -s "$out/segment.vtp" ] || fail "segment: $out/segment.vtp not written"
-run union "^vtkdf: union pieces=4 queries=1 backend=cpu time_s=[0-9.]+ faces_visited=[1-9]" \
+run union "^vtkdf: union pieces=4 queries=1 $timing faces_visited=[1-9][0-9]* passes=0" \
   "$out/union.vtp" -- \
   union "$data/hubo_ankle_convex4.vtp" -o "$out/union.vtp" --query 0 0.01 0.01 --timing
+run union-gpu "^vtkdf: union pieces=4 queries=1 backend=gpu renderer=\"[^\"]+\" time_s=[0-9.]+ faces_visited=[1-9][0-9]* passes=[1-9]" \
+  "$out/union-gpu.vtp" -- \
+  union "$data/hubo_ankle_convex4.vtp" -o "$out/union-gpu.vtp" --query 0 0.01 0.01 --backend gpu \
+  --pixels 64 --timing
 # pd: a solid against itself intersects, by every pair.
-run pd "^vtkdf: pd pairs=16 pairs_kept=[1-9][0-9]* backend=cpu time_s=[0-9.]+ faces_visited=[1-9]" \
+run pd "^vtkdf: pd pairs=16 pairs_kept=[1-9][0-9]* $timing faces_visited=[1-9][0-9]* passes=0" \
   "$out/pd.vtp" -- \
   pd "$data/hubo_ankle_convex4.vtp" "$data/hubo_ankle_convex4.vtp" -o "$out/pd.vtp" --timing
 grep -Eq "intersecting=1 penetration_depth=0\.[0-9]+ " <<<"$("$vtkdf" pd "$data/hubo_ankle_convex4.vtp" \
   "$data/hubo_ankle_convex4.vtp" -o "$out/pd.vtp")" || fail "pd: a solid does not intersect itself"
+# pd on the GPU, not certified: flagged by a positive error bound.
+grep -Eq "intersecting=1 penetration_depth=0\.[0-9]+ .* error_bound=(0\.0*)?[1-9]" <<<"$("$vtkdf" pd \
+  "$data/hubo_ankle_convex4.vtp" "$data/hubo_ankle_convex4.vtp" -o "$out/pd-gpu.vtp" \
+  --backend gpu --pixels 64 --uncertified)" || fail "pd --backend gpu --uncertified"
 # blend: a field with itself is itself, at any T.
 if "$vtkdf" blend "$out/segment.vti" "$out/segment.vti" -t 0.3 -o "$out/blend.vti" \
   --png "$out/blend.png" 2>"$out/blend.err"; then
@@ -101,6 +109,9 @@ expect_failure missing linfac "$data/no_such_mesh.vtp" -o "$out/x.vti"
 expect_failure subcommand frobnicate
 expect_failure blendmesh blend "$data/plane.vtp" "$out/segment.vti" -t 0.5 -o "$out/x.vti"
 expect_failure blendnot blend "$out/segment.vti" "$out/segment.vti" -o "$out/x.vti"
+VTKDF_GL_PLATFORM=none expect_failure uniongpu union "$data/hubo_ankle_convex4.vtp" \
+  -o "$out/x.vtp" --backend gpu
+grep -q "Backend is GPU but" "$out/uniongpu.out" || fail "union --backend gpu without a GPU: no message"
 expect_failure pdone pd "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp"
 expect_failure unionpieces union "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp" --piece-array Nope
 expect_failure rendermesh render "$data/plane.vtp" -o "$out/x.png"

@@ -7,6 +7,8 @@
 //   box through it: the same answer from one mesh and from a vtkMultiBlockDataSet of its
 //   pieces, never below the deepest pair's depth (each pair run alone), and Q moved by it
 //   touches P;
+// - with the argument gpu, the same on the GPU (certified: exact), and uncertified: never
+//   below the exact depth, flagged;
 // - bad input: a non-convex piece (and UseConvexHulls taking its hull), an open piece, no
 //   polygons, a NaN point: errors that name the solid and the problem, no output.
 #include "TestSupport.h"
@@ -67,6 +69,9 @@ struct Result
   vtkSmartPointer<vtkPolyData> Output;
 };
 
+/// The backend of this run (the test's second argument: cpu or gpu).
+int Backend = vtkPenetrationDepth::BACKEND_CPU;
+
 Result Run(vtkDataObject* p,
   vtkDataObject* q,
   const std::function<void(vtkPenetrationDepth*)>& configure = {})
@@ -75,6 +80,8 @@ Result Run(vtkDataObject* p,
   testsupport::MessageRecorder recorder(f);
   f->SetSolidPData(p);
   f->SetSolidQData(q);
+  f->SetBackend(Backend);
+  f->SetViewResolution(64);
   if (configure)
   {
     configure(f);
@@ -102,10 +109,12 @@ double FieldValue(vtkPolyData* out, const char* name, int component = 0)
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 1, "DATA_DIR"))
+  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
   {
     return 2;
   }
+  Backend = std::string(argv[2]) == "gpu" ? vtkPenetrationDepth::BACKEND_GPU
+                                          : vtkPenetrationDepth::BACKEND_CPU;
   // Two cubes overlapping by 0.3.
   auto p = Box(0, 1, 0, 1, 0, 1);
   {
@@ -121,7 +130,7 @@ int main(int argc, char* argv[])
     CHECK(FieldValue(r.Output, "PenetrationDepth") == r.Depth &&
         FieldValue(r.Output, "Direction", 0) == r.Direction[0] &&
         FieldValue(r.Output, "Intersecting") == 1 && FieldValue(r.Output, "ErrorBound") == 0 &&
-        FieldValue(r.Output, "WitnessPieces", 0) == 0 &&
+        FieldValue(r.Output, "Certified") == 1 && FieldValue(r.Output, "WitnessPieces", 0) == 0 &&
         FieldValue(r.Output, "WitnessPieces", 1) == 0 &&
         !r.Output->GetFieldData()->GetArray("SeparationDistance") &&
         r.Output->GetNumberOfLines() == 1,
@@ -220,6 +229,18 @@ int main(int argc, char* argv[])
       "hubo: Q moved by the answer touches P (depth %g, separation %g)",
       touching.Depth,
       touching.Separation);
+  }
+
+  if (Backend == vtkPenetrationDepth::BACKEND_GPU)
+  {
+    // Uncertified: the image-space depth, flagged, never below the exact one.
+    Result r = Run(hubo, box, [](vtkPenetrationDepth* f) { f->CertifyOff(); });
+    CHECK(r.Ok && FieldValue(r.Output, "Certified") == 0 &&
+        FieldValue(r.Output, "ErrorBound") > 0 && r.Depth >= global.Depth - 1e-9 * diagonal,
+      "GPU uncertified: %.9g (exact %.9g), error bound %g",
+      r.Depth,
+      global.Depth,
+      FieldValue(r.Output, "ErrorBound"));
   }
 
   // Bad input.

@@ -15,10 +15,13 @@
 #include "vtkCleanPolyData.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkIdList.h"
+#include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
+#include "vtkPartitionedDataSet.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -43,6 +46,9 @@ vtkSmartPointer<vtkPolyData> Cube(double x)
   return clean->GetOutput();
 }
 
+/// The backend of this run (the test's argument: cpu or gpu).
+int Backend = vtkUnionClosestPoint::BACKEND_CPU;
+
 vtkSmartPointer<vtkPolyData> Run(vtkDataObject* pieces,
   vtkPolyData* queries,
   std::string* errors = nullptr,
@@ -53,6 +59,8 @@ vtkSmartPointer<vtkPolyData> Run(vtkDataObject* pieces,
   testsupport::MessageRecorder recorder(f);
   f->SetInputData(0, pieces);
   f->SetQueryData(queries);
+  f->SetBackend(Backend);
+  f->SetViewResolution(64);
   if (configure)
   {
     configure(f);
@@ -162,8 +170,14 @@ void CheckAnswers(vtkPolyData* out, const char* name)
 }
 } // namespace
 
-int main()
+int main(int argc, char* argv[])
 {
+  if (!testsupport::HasArguments(argc, argv, 1, "cpu|gpu"))
+  {
+    return 2;
+  }
+  Backend = std::string(argv[1]) == "gpu" ? vtkUnionClosestPoint::BACKEND_GPU
+                                          : vtkUnionClosestPoint::BACKEND_CPU;
   auto queries = Queries({ { 0.9, 0.5, 0.5 }, { 2.5, 0.5, 0.5 } });
   vtkNew<vtkAppendPolyData> append;
   append->AddInputData(Cube(0));
@@ -175,6 +189,70 @@ int main()
   blocks->SetBlock(0, Cube(0));
   blocks->SetBlock(1, Cube(1));
   CheckAnswers(Run(blocks, queries), "multiblock");
+  if (Backend == vtkUnionClosestPoint::BACKEND_GPU)
+  {
+    // Certified: exact, and said so; the GPU ran.
+    vtkNew<vtkUnionClosestPoint> f;
+    f->SetInputData(0, append->GetOutput());
+    f->SetQueryData(queries);
+    f->SetBackendToGPU();
+    f->SetViewResolution(64);
+    f->GenerateViewImagesOn();
+    f->Update();
+    vtkDataArray* certified = f->GetOutput()->GetPointData()->GetArray("Certified");
+    CHECK(f->GetLastBackend() == vtkUnionClosestPoint::BACKEND_GPU && f->GetLastPasses() >= 2 &&
+        certified && certified->GetRange()[0] == 1,
+      "GPU: certified, %lld passes, renderer %s",
+      static_cast<long long>(f->GetLastPasses()),
+      f->GetLastRenderer());
+    // The six views of the last query (outside, 0.5 from the second cube): 64 x 64 each,
+    // the smallest distance 0.5 up to a pixel.
+    auto* views = vtkPartitionedDataSet::SafeDownCast(f->GetOutputDataObject(1));
+    double smallest = HUGE_VAL;
+    for (unsigned v = 0; views && v < views->GetNumberOfPartitions(); ++v)
+    {
+      auto* image = vtkImageData::SafeDownCast(views->GetPartition(v));
+      vtkDataArray* distance = image ? image->GetPointData()->GetArray("Distance") : nullptr;
+      CHECK(image && distance && image->GetNumberOfPoints() == 64 * 64 &&
+          image->GetFieldData()->GetArray("ViewFrame"),
+        "GPU: view %u's image",
+        v);
+      for (vtkIdType p = 0; distance && p < distance->GetNumberOfTuples(); ++p)
+      {
+        const double d = distance->GetTuple1(p);
+        smallest = std::isnan(d) ? smallest : std::min(smallest, d);
+      }
+    }
+    CHECK(views && views->GetNumberOfPartitions() == 6 && smallest >= 0.5 - 1e-6 &&
+        smallest < 0.5 * (1 + 2.0 / 64),
+      "GPU: six views, the smallest distance %g (0.5)",
+      smallest);
+    // Uncertified: the image-space answer, flagged, never below the exact one.
+    f->CertifyOff();
+    f->Update();
+    vtkDataArray* d = f->GetOutput()->GetPointData()->GetArray("Distance");
+    vtkDataArray* bound = f->GetOutput()->GetPointData()->GetArray("ErrorBound");
+    certified = f->GetOutput()->GetPointData()->GetArray("Certified");
+    CHECK(d && bound && certified && certified->GetRange()[1] == 0 && bound->GetRange()[0] > 0 &&
+        std::fabs(d->GetTuple1(0)) >= 0.5 - 1e-6 && std::fabs(d->GetTuple1(0)) < 0.5 * 1.05 &&
+        d->GetTuple1(1) >= 0.5 - 1e-6,
+      "GPU uncertified: %g and %g, flagged, not below 0.5",
+      d ? d->GetTuple1(0) : 0,
+      d ? d->GetTuple1(1) : 0);
+  }
+  else
+  {
+    // Views come from the GPU only: a warning, an empty output 1.
+    std::string warnings;
+    Run(
+      append->GetOutput(),
+      queries,
+      nullptr,
+      [](vtkUnionClosestPoint* f) { f->GenerateViewImagesOn(); },
+      &warnings);
+    CHECK(
+      warnings.find("GenerateViewImages") != std::string::npos, "CPU views: %s", warnings.c_str());
+  }
 
   std::string errors;
   {

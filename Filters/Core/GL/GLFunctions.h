@@ -88,7 +88,17 @@ namespace vtkdf
   X(PFNGLUNIFORM3FPROC, Uniform3f)                                                                 \
   X(PFNGLUSEPROGRAMPROC, UseProgram)                                                               \
   X(PFNGLVERTEXATTRIBIPOINTERPROC, VertexAttribIPointer)                                           \
-  X(PFNGLVIEWPORTPROC, Viewport)
+  X(PFNGLVIEWPORTPROC, Viewport)                                                                   \
+  X(PFNGLCLEARBUFFERFIPROC, ClearBufferfi)                                                         \
+  X(PFNGLCOLORMASKPROC, ColorMask)                                                                 \
+  X(PFNGLCULLFACEPROC, CullFace)                                                                   \
+  X(PFNGLDEPTHMASKPROC, DepthMask)                                                                 \
+  X(PFNGLDRAWBUFFERPROC, DrawBuffer)                                                               \
+  X(PFNGLREADBUFFERPROC, ReadBuffer)                                                               \
+  X(PFNGLSTENCILFUNCPROC, StencilFunc)                                                             \
+  X(PFNGLSTENCILOPPROC, StencilOp)                                                                 \
+  X(PFNGLUNIFORMMATRIX3FVPROC, UniformMatrix3fv)                                                   \
+  X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)
 
 struct GLFunctions
 {

@@ -145,7 +145,9 @@ bool PenetrationDepth::Compute(const std::vector<ConvexPiece>& p,
   const std::vector<ConvexPiece>& q,
   const double origin[3],
   PenetrationAnswer& answer,
-  std::string& error) const
+  std::string& error,
+  HeadlessGL* gl,
+  const UnionGPUSettings& settings) const
 {
   answer = PenetrationAnswer();
   UnionClosestPoint sums;
@@ -156,7 +158,23 @@ bool PenetrationDepth::Compute(const std::vector<ConvexPiece>& p,
   }
   answer.PairsKept = static_cast<int64_t>(pairs.size());
   sums.For = this->For; // one query: parallel over its faces
-  const UnionAnswer closest = sums.Query(origin);
+  UnionAnswer closest;
+  if (gl)
+  {
+    std::vector<UnionGPUAnswer> gpu;
+    if (!QueryUnionGPU(*gl, sums, std::vector<double>(origin, origin + 3), settings, gpu, error))
+    {
+      return false;
+    }
+    closest = gpu[0].Answer;
+    answer.ErrorBound = gpu[0].ErrorBound;
+    answer.Certified = gpu[0].Certified;
+    answer.Passes = gpu[0].Passes;
+  }
+  else
+  {
+    closest = sums.Query(origin);
+  }
   answer.Intersecting = closest.Inside;
   answer.Distance = std::fabs(closest.Distance);
   answer.FacesVisited = closest.FacesVisited;

@@ -20,6 +20,7 @@
 
 #include "Parallel.h"
 #include "UnionClosestPoint.h"
+#include "UnionClosestPointGPU.h"
 
 #include <cstdint>
 #include <string>
@@ -40,6 +41,10 @@ struct PenetrationAnswer
   int64_t PieceP = -1, PieceQ = -1;
   int64_t PairsTotal = 0, PairsKept = 0;
   int64_t FacesVisited = 0;
+  /// 0 when exact (the CPU, or the GPU certified); else the image-space estimate.
+  double ErrorBound = 0;
+  bool Certified = true;
+  int Passes = 0; // the GPU's rendering rounds
 };
 
 class PenetrationDepth
@@ -62,12 +67,15 @@ public:
     int64_t& total,
     std::string& error) const;
 
-  /// The answer for P and Q (convex pieces each), from `origin`.
+  /// The answer for P and Q (convex pieces each), from `origin`: on the CPU, or with `gl`
+  /// on the GPU (QueryUnionGPU with `settings`).
   bool Compute(const std::vector<ConvexPiece>& p,
     const std::vector<ConvexPiece>& q,
     const double origin[3],
     PenetrationAnswer& answer,
-    std::string& error) const;
+    std::string& error,
+    HeadlessGL* gl = nullptr,
+    const UnionGPUSettings& settings = UnionGPUSettings()) const;
 };
 
 } // namespace vtkdf

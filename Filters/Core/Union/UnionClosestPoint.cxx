@@ -239,16 +239,24 @@ std::vector<double> ConvexPiece::Corners() const
   return xyz;
 }
 
+bool UnionClosestPoint::PieceContains(size_t i, const double x[3]) const
+{
+  const ConvexPiece& piece = this->Pieces[i];
+  for (size_t f = 0; f < piece.Faces.size(); ++f)
+  {
+    if (Dot(&piece.Planes[4 * f], x) - piece.Planes[4 * f + 3] > this->Tolerance)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 bool UnionClosestPoint::Contains(const double x[3]) const
 {
-  for (const ConvexPiece& piece : this->Pieces)
+  for (size_t i = 0; i < this->Pieces.size(); ++i)
   {
-    bool in = true;
-    for (size_t f = 0; f < piece.Faces.size() && in; ++f)
-    {
-      in = Dot(&piece.Planes[4 * f], x) - piece.Planes[4 * f + 3] <= this->Tolerance;
-    }
-    if (in)
+    if (this->PieceContains(i, x))
     {
       return true;
     }
@@ -319,7 +327,7 @@ bool NearestOnRest(const V2& a,
 }
 } // namespace
 
-UnionAnswer UnionClosestPoint::Query(const double o[3]) const
+UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
 {
   UnionAnswer answer;
   answer.Inside = this->Contains(o);
@@ -611,7 +619,7 @@ UnionAnswer UnionClosestPoint::Query(const double o[3]) const
   // Faces in order, a chunk at a time (in parallel when For is set): the best answer so
   // far bounds which faces of the next chunk are visited. The chunks do not depend on the
   // threads, so neither do the answer and the count.
-  double best = HUGE_VAL;
+  double best = bound;
   const size_t chunk = this->For ? 64 : 1;
   std::vector<FaceResult> results;
   for (size_t begin = 0; begin < order.size() && order[begin].Bound < best; begin += chunk)

@@ -22,6 +22,7 @@
 
 #include "Parallel.h"
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -68,8 +69,11 @@ public:
   /// queries in parallel).
   ParallelFor For;
 
-  /// The closest point on the union's boundary to `o`.
-  UnionAnswer Query(const double o[3]) const;
+  /// The closest point on the union's boundary to `o`. With a `bound`, only faces nearer
+  /// than it are searched: when no boundary point is nearer, the answer has Piece -1.
+  UnionAnswer Query(const double o[3], double bound = HUGE_VAL) const;
+  /// Whether piece `i` holds `x` (closed, within Tolerance).
+  bool PieceContains(size_t i, const double x[3]) const;
   /// Whether `x` lies in the union (closed, within Tolerance).
   bool Contains(const double x[3]) const;
 };
