@@ -200,6 +200,16 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
     vtkdf::UnionGPUSettings settings;
     settings.Resolution = this->ViewResolution;
     settings.Certify = this->Certify;
+    // Certification over the queries in parallel, or over each query's faces when there
+    // are few queries.
+    if (n < 4 * vtkSMPTools::GetEstimatedNumberOfThreads())
+    {
+      query.For = vtkdf::SMPFor;
+    }
+    else
+    {
+      settings.For = vtkdf::SMPFor;
+    }
     std::vector<float> images;
     std::vector<double> frames;
     const bool views = this->GenerateViewImages && n > 0;

@@ -4,7 +4,8 @@
 // - random unions (seeded) of 5 to 70 convex pieces of 8 to 40 faces (hulls of random
 //   points on ellipsoids), queries inside and outside: the certified GPU answer equals the
 //   CPU answer within 1e-6 of the pieces' box diagonal, and the uncertified U is never
-//   below it (it is a point of the boundary);
+//   below it (it is a point of the boundary); a batch of queries gives the same images
+//   as one query a batch;
 // - the paper's hard cases: touching cubes (the shared face is not boundary: 0.5, not
 //   0.1; U too), blocks of 27 and 125 touching or overlapping cubes (one and two hops), O
 //   exactly on a shared face and on an outer face, a sub-pixel slot of free space pointing
@@ -198,6 +199,25 @@ void RandomUnions(HeadlessGL& gl)
         u,
         queries,
         "random union " + std::to_string(trial) + " (" + std::to_string(m) + " pieces)");
+      if (trial == 2)
+      {
+        // One query a batch: the same images, so the same U.
+        UnionGPUSettings settings;
+        settings.Resolution = 64;
+        settings.Certify = false;
+        std::vector<UnionGPUAnswer> together, apart;
+        std::string error;
+        Check(QueryUnionGPU(gl, u, queries, settings, together, error), "batched: " + error, 0);
+        settings.BatchBytes = 1;
+        Check(QueryUnionGPU(gl, u, queries, settings, apart, error), "one a batch: " + error, 0);
+        Check(together.size() == apart.size() && !apart.empty(), "batched and alone: answers", 0);
+        for (size_t q = 0; q < together.size() && together.size() == apart.size(); ++q)
+        {
+          Check(together[q].Estimate == apart[q].Estimate,
+            "batched and alone: the same U",
+            together[q].Estimate - apart[q].Estimate);
+        }
+      }
     }
   }
 }

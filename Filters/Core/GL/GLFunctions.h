@@ -56,6 +56,7 @@ namespace vtkdf
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                                                 \
   X(PFNGLDISABLEPROC, Disable)                                                                     \
   X(PFNGLDRAWARRAYSPROC, DrawArrays)                                                               \
+  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)                                             \
   X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                                                             \
   X(PFNGLENABLEPROC, Enable)                                                                       \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)                                     \

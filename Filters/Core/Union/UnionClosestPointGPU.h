@@ -3,7 +3,8 @@
 //
 // Six 90-degree views on the faces of a cube around O, rendered at once into the layers
 // of a depth-stencil texture array (a geometry shader sends each triangle to the six
-// layers). The depth written is the Euclidean distance |x - O| over Far, monotone along
+// layers), for a batch of queries per draw (instance k draws query k's six layers): the
+// draws do not grow with the number of queries. The depth written is the Euclidean distance |x - O| over Far, monotone along
 // each ray, so the depth tests compare distances and no 1/cos conversion is needed.
 // - O outside the union: one pass with the less test gives the nearest surface.
 // - O inside: the pieces that contain O (found exactly on the CPU) draw their back faces
@@ -12,7 +13,7 @@
 //   brought nearer by a small bias so that touching pieces join), which opens a stencil
 //   window, and its back faces into that window with the greater test, closing it. An
 //   occlusion query per piece tells whether a round changed any pixel; the rounds stop at
-//   the first that changes none.
+//   the first that changes none. Queries inside and outside are batched apart.
 // The smallest distance in the six images is a point of the boundary, an upper bound U of
 // the answer; a gap of free space narrower than a pixel's angle can be missed, so no
 // image-space bound is guaranteed. Certification runs the exact CPU query
@@ -23,6 +24,7 @@
 #define vtkdf_UnionClosestPointGPU_h
 
 #include "HeadlessGL.h"
+#include "Parallel.h"
 #include "UnionClosestPoint.h"
 
 #include <cstdint>
@@ -40,13 +42,18 @@ struct UnionGPUAnswer
   /// diagonal at the view's centre (plus the float depth's rounding): not guaranteed.
   double ErrorBound = 0;
   bool Certified = false;
-  int Passes = 0; // rendering rounds (1 from outside; the zero-hop pass not counted)
+  int Passes = 0; // rendering rounds of its batch (1 from outside; zero hops not counted)
 };
 
 struct UnionGPUSettings
 {
   int Resolution = 256; // pixels a side of each cube-face view
   bool Certify = true;
+  /// The most GPU memory for the views of one batch of queries (8 bytes a pixel, 6
+  /// views a query; at least one query a batch).
+  int64_t BatchBytes = int64_t(256) << 20;
+  /// A parallel loop for the certification, over the queries (serial when empty).
+  ParallelFor For;
   /// The front faces' bias, relative to Far: how close a piece must come to the current
   /// boundary to join it.
   double TouchBias = 1e-6;
