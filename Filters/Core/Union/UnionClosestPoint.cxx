@@ -71,34 +71,6 @@ Polygon Clip(const Polygon& in, const HalfPlane& h, int id)
   return out;
 }
 
-/// The parameters t of the line p + t e where every constraint holds, as [lo, hi]
-/// (unbounded: +-HUGE_VAL; lo > hi when none). Not clipped to the segment: a covering
-/// that runs past an end must not leave that end uncovered.
-void Covered(const std::vector<HalfPlane>& constraints,
-  const V2& p,
-  const V2& e,
-  double& lo,
-  double& hi)
-{
-  lo = -HUGE_VAL, hi = HUGE_VAL;
-  for (const HalfPlane& h : constraints)
-  {
-    const double alpha = h.A[0] * e.X + h.A[1] * e.Y;
-    const double beta = h.B - (h.A[0] * p.X + h.A[1] * p.Y);
-    if (alpha > 0)
-    {
-      hi = std::min(hi, beta / alpha);
-    }
-    else if (alpha < 0)
-    {
-      lo = std::max(lo, beta / alpha);
-    }
-    else if (beta < 0)
-    {
-      lo = HUGE_VAL, hi = -HUGE_VAL;
-    }
-  }
-}
 } // namespace
 
 bool ConvexPiece::Build(const std::vector<double>& points,
@@ -216,6 +188,22 @@ bool ConvexPiece::Build(const std::vector<double>& points,
     error = "flat: every corner lies in every face's plane";
     return false;
   }
+  const std::vector<double> corners = this->Corners();
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Centre[a] = 0;
+    for (size_t k = a; k < corners.size(); k += 3)
+    {
+      this->Centre[a] += corners[k] / (corners.size() / 3);
+    }
+  }
+  this->InnerRadius = HUGE_VAL;
+  for (size_t f = 0; f < this->Faces.size(); ++f)
+  {
+    this->InnerRadius = std::min(
+      this->InnerRadius, this->Planes[4 * f + 3] - Dot(&this->Planes[4 * f], this->Centre));
+  }
+  this->InnerRadius = std::max(0.0, this->InnerRadius);
   return true;
 }
 
@@ -407,39 +395,63 @@ UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
     double Distance = HUGE_VAL;
     double Closest[3] = { 0, 0, 0 };
   };
-  auto visit = [&](const Candidate& candidate, FaceResult& result)
+  auto visit = [&](const Candidate& candidate, FaceResult& result, double limit)
   {
     const int64_t i = candidate.Piece;
     const int64_t f = faceOf[candidate.Face].second;
     const ConvexPiece& piece = this->Pieces[i];
     const Frame& frame = frames[candidate.Face];
-    const std::vector<V2>& outline = outlines[candidate.Face];
-    double faceLo[3], faceHi[3];
-    for (int a = 0; a < 3; ++a)
+    const V2 p = frame.To2D(o);
+    const double h = Dot(frame.N, o) - piece.Planes[4 * f + 3];
+    // Only the face's points nearer than `limit` can improve the answer: the face is cut
+    // to the square around O's projection that holds them (exact: the nearest point of
+    // what is left within that disk is the same, and the cut's new edges are farther).
+    std::vector<V2> outline = outlines[candidate.Face];
+    if (limit < HUGE_VAL)
     {
-      faceLo[a] = HUGE_VAL, faceHi[a] = -HUGE_VAL;
-      for (size_t k = 0; k < piece.Faces[f].size(); k += 3)
+      const double r = std::sqrt(std::max(0.0, limit * limit - h * h)) * (1 + 1e-9) + tol;
+      Polygon cut;
+      cut.Corners = outline;
+      cut.Source.assign(outline.size(), -1);
+      const HalfPlane square[4] = { { { 1, 0 }, p.X + r }, { { -1, 0 }, -(p.X - r) },
+        { { 0, 1 }, p.Y + r }, { { 0, -1 }, -(p.Y - r) } };
+      for (const HalfPlane& side : square)
       {
-        faceLo[a] = std::min(faceLo[a], piece.Faces[f][k + a]);
-        faceHi[a] = std::max(faceHi[a], piece.Faces[f][k + a]);
+        cut = Clip(cut, side, -1);
+        if (cut.Corners.empty())
+        {
+          return;
+        }
       }
+      outline = cut.Corners;
     }
+    // The (cut) face's box and bounding sphere, in 3D.
+    double faceLo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL },
+           faceHi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
     double faceCentre[3] = { 0, 0, 0 }, faceRadius = 0;
-    const size_t corners = piece.Faces[f].size() / 3;
-    for (size_t k = 0; k < 3 * corners; ++k)
+    std::vector<std::array<double, 3>> corners3;
+    for (const V2& c : outline)
     {
-      faceCentre[k % 3] += piece.Faces[f][k] / corners;
+      std::array<double, 3> x;
+      for (int a = 0; a < 3; ++a)
+      {
+        x[a] = frame.Origin[a] + c.X * frame.U[a] + c.Y * frame.V[a];
+        faceLo[a] = std::min(faceLo[a], x[a]);
+        faceHi[a] = std::max(faceHi[a], x[a]);
+        faceCentre[a] += x[a] / outline.size();
+      }
+      corners3.push_back(x);
     }
-    for (size_t k = 0; k < 3 * corners; k += 3)
+    for (const auto& c : corners3)
     {
-      const double* c = &piece.Faces[f][k];
       faceRadius = std::max(faceRadius,
         std::sqrt((c[0] - faceCentre[0]) * (c[0] - faceCentre[0]) +
           (c[1] - faceCentre[1]) * (c[1] - faceCentre[1]) +
           (c[2] - faceCentre[2]) * (c[2] - faceCentre[2])));
     }
-    faceRadius *= 1 + 1e-12; // rounding: the sphere must hold every corner
+    faceRadius = faceRadius * (1 + 1e-12) + tol * 1e-3; // the sphere must hold every corner
     // The sections S_j that cover the face's outer side, and their parts within the face.
+    bool wholeFaceCovered = false;
     std::vector<std::vector<HalfPlane>> sections;
     std::vector<Polygon> parts;
     Polygon face;
@@ -454,6 +466,16 @@ UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
         other.Hi[2] < faceLo[2] - tol)
       {
         continue;
+      }
+      // The face inside the piece's inner ball: covered whole, no plane needed.
+      const double toCentre =
+        std::sqrt((faceCentre[0] - other.Centre[0]) * (faceCentre[0] - other.Centre[0]) +
+          (faceCentre[1] - other.Centre[1]) * (faceCentre[1] - other.Centre[1]) +
+          (faceCentre[2] - other.Centre[2]) * (faceCentre[2] - other.Centre[2]));
+      if (toCentre + faceRadius < other.InnerRadius - 2 * tol)
+      {
+        wholeFaceCovered = true;
+        break;
       }
       std::vector<HalfPlane> section;
       bool empty = false;
@@ -506,6 +528,13 @@ UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
       {
         continue;
       }
+      if (section.empty())
+      {
+        // Every plane holds on the whole face: this piece covers all of it, and the face
+        // has no boundary point (common deep inside many overlapping pieces).
+        wholeFaceCovered = true;
+        break;
+      }
       Polygon part = face;
       for (size_t k = 0; k < section.size() && !part.Corners.empty(); ++k)
       {
@@ -518,9 +547,11 @@ UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
       sections.push_back(section);
       parts.push_back(part);
     }
+    if (wholeFaceCovered)
+    {
+      return;
+    }
 
-    const V2 p = frame.To2D(o);
-    const double h = Dot(frame.N, o) - piece.Planes[4 * f + 3];
     double planar = HUGE_VAL;
     V2 nearest{ 0, 0 };
     // P itself, when in the face and in no section.
@@ -548,30 +579,81 @@ UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
     }
     // An edge (a, e) whose side `m` (unit, in the plane) must be free of every section
     // but `skip`: the sections' covering intervals removed, the nearest point of the rest.
+    // The parts' boxes, grown by what the slacks can move their edges, so that a section
+    // whose part is far from an edge is not asked about it.
+    std::vector<std::array<double, 4>> boxes(parts.size());
+    for (size_t s = 0; s < parts.size(); ++s)
+    {
+      double margin = tol;
+      for (const HalfPlane& hp : sections[s])
+      {
+        margin = std::max(margin, 8 * tol / std::sqrt(hp.A[0] * hp.A[0] + hp.A[1] * hp.A[1]));
+      }
+      std::array<double, 4>& box = boxes[s];
+      box = { HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+      for (const V2& c : parts[s].Corners)
+      {
+        box = {
+          std::min(box[0], c.X), std::min(box[1], c.Y), std::max(box[2], c.X), std::max(box[3], c.Y)
+        };
+      }
+      box = { box[0] - margin, box[1] - margin, box[2] + margin, box[3] + margin };
+    }
+    // An edge (a, e) whose side `m` (unit, in the plane) must be free of every section
+    // but `skip`: the sections' covering intervals removed, the nearest point of the rest.
+    std::vector<std::pair<double, double>> removed;
     auto edge = [&](const V2& a, const V2& e, const double m[2], size_t skip)
     {
-      std::vector<std::pair<double, double>> removed;
+      // No point of the edge can beat the best of this face: skip it.
+      double unused;
+      V2 at;
+      if (NearestOnRest(a, e, {}, p, unused, at) && unused >= planar)
+      {
+        return;
+      }
+      const double edgeBox[4] = { std::min(a.X, a.X + e.X),
+        std::min(a.Y, a.Y + e.Y),
+        std::max(a.X, a.X + e.X),
+        std::max(a.Y, a.Y + e.Y) };
+      removed.clear();
       for (size_t s = 0; s < sections.size(); ++s)
       {
-        if (s == skip)
+        const std::array<double, 4>& box = boxes[s];
+        if (s == skip || box[0] > edgeBox[2] || box[2] < edgeBox[0] || box[1] > edgeBox[3] ||
+          box[3] < edgeBox[1])
         {
           continue;
         }
-        std::vector<HalfPlane> sided = sections[s];
-        for (HalfPlane& hp : sided)
+        // Covered(), with y + e m inside: strict where m points out of the half-plane.
+        double lo = -HUGE_VAL, hi = HUGE_VAL;
+        for (const HalfPlane& hp : sections[s])
         {
-          // y + e m inside: strict where m points out of the half-plane.
-          hp.B += hp.A[0] * m[0] + hp.A[1] * m[1] > 0 ? -tol : tol;
+          const double bound = hp.B + (hp.A[0] * m[0] + hp.A[1] * m[1] > 0 ? -tol : tol);
+          const double alpha = hp.A[0] * e.X + hp.A[1] * e.Y;
+          const double beta = bound - (hp.A[0] * a.X + hp.A[1] * a.Y);
+          if (alpha > 0)
+          {
+            hi = std::min(hi, beta / alpha);
+          }
+          else if (alpha < 0)
+          {
+            lo = std::max(lo, beta / alpha);
+          }
+          else if (beta < 0)
+          {
+            lo = HUGE_VAL, hi = -HUGE_VAL;
+          }
+          if (!(lo < hi))
+          {
+            break;
+          }
         }
-        double lo, hi;
-        Covered(sided, a, e, lo, hi);
         if (lo < hi)
         {
           removed.emplace_back(lo, hi);
         }
       }
       double d2;
-      V2 at;
       if (NearestOnRest(a, e, removed, p, d2, at) && d2 < planar)
       {
         planar = d2;
@@ -630,11 +712,12 @@ UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
       --end; // sorted: the rest of the chunk is farther too
     }
     results.assign(end - begin, FaceResult());
+    const double limit = best;
     auto work = [&](int64_t first, int64_t last)
     {
       for (int64_t k = first; k < last; ++k)
       {
-        visit(order[begin + k], results[k]);
+        visit(order[begin + k], results[k], limit);
       }
     };
     if (this->For && end - begin > 1)

@@ -37,6 +37,10 @@ struct ConvexPiece
   std::vector<std::vector<double>> Faces; // xyz of each face's corners
   std::vector<double> Planes;             // nx ny nz d per face
   double Lo[3] = { 0, 0, 0 }, Hi[3] = { 0, 0, 0 };
+  /// A ball inside the piece: its corners' centroid and the distance to the nearest face
+  /// plane (a quick test that a face lies inside the piece).
+  double Centre[3] = { 0, 0, 0 };
+  double InnerRadius = 0;
 
   /// From points and faces (point ids per face, any orientation): orients each face
   /// outward, computes planes and bounds; false and `error` when the piece is not
