@@ -10,7 +10,9 @@
 //   never below the largest per-pair depth, Q translated by it touches P without any pair
 //   overlapping, 99.9 % of it still overlaps, and no direction of 4000 leaves the union
 //   of the sums sooner (each ray's intervals by the separating axes of each pair);
-// - the pairs skipped by the box bound change nothing (the same answer with every pair).
+// - the pairs skipped by the box bound change nothing (the same answer with every pair);
+// - with the argument gpu, all of it with the union query on the GPU, certified (and the
+//   tori's image-only depth never below the exact one).
 #include "ConvexHull.h"
 #include "PenetrationDepth.h"
 
@@ -27,6 +29,14 @@ using namespace vtkdf;
 namespace
 {
 int Failures = 0;
+/// With the argument gpu: the union query on the GPU, certified (64 pixels a side).
+HeadlessGL* GPU = nullptr;
+UnionGPUSettings Settings()
+{
+  UnionGPUSettings settings;
+  settings.Resolution = 64;
+  return settings;
+}
 
 void Check(bool ok, const std::string& what, double value)
 {
@@ -269,7 +279,10 @@ void ConvexPairs()
     const double origin[3] = { 0, 0, 0 };
     PenetrationAnswer answer;
     std::string error;
-    Check(depth.Compute(p, q, origin, answer, error), "a convex pair: " + error, trial);
+    Check(depth.Compute(p, q, origin, answer, error, GPU, Settings()),
+      "a convex pair: " + error,
+      trial);
+    Check(answer.Certified && answer.ErrorBound == 0, "a convex pair: certified", trial);
     const double reference = AxisDepth(p[0], q[0]);
     const std::string name = "pair " + std::to_string(trial);
     if (std::fabs(reference) < 1e-6)
@@ -318,7 +331,23 @@ void Tori()
   const double origin[3] = { 0, 0, 0 };
   PenetrationAnswer answer;
   std::string error;
-  Check(depth.Compute(p, q, origin, answer, error), "tori: " + error, 0);
+  Check(depth.Compute(p, q, origin, answer, error, GPU, Settings()), "tori: " + error, 0);
+  if (GPU)
+  {
+    // Not certified: the image's depth, never below the exact one.
+    UnionGPUSettings image = Settings();
+    image.Certify = false;
+    PenetrationAnswer estimate;
+    Check(depth.Compute(p, q, origin, estimate, error, GPU, image), "tori: " + error, 0);
+    std::printf("tori on the GPU: certified %.9f, image %.9f (error bound %.3g, %d passes)\n",
+      answer.Distance,
+      estimate.Distance,
+      estimate.ErrorBound,
+      estimate.Passes);
+    Check(!estimate.Certified && estimate.Distance >= answer.Distance - 1e-9,
+      "tori: the image's depth is never below the exact one",
+      estimate.Distance);
+  }
   Check(answer.Intersecting, "tori intersect", answer.Distance);
   double pairMax = 0;
   std::vector<std::vector<std::array<double, 3>>> axes;
@@ -444,8 +473,18 @@ void Tori()
 }
 } // namespace
 
-int main()
+int main(int argc, char* argv[])
 {
+  if (argc > 1 && std::string(argv[1]) == "gpu")
+  {
+    std::string error;
+    GPU = HeadlessGL::Get(error);
+    if (!GPU)
+    {
+      std::printf("FAIL: no OpenGL 4.5 context: %s\n", error.c_str());
+      return 1;
+    }
+  }
   ConvexPairs();
   Tori();
   if (Failures > 0)

@@ -1,9 +1,12 @@
-// vtkUnionClosestPoint (CPU, exact):
+// vtkUnionClosestPoint, on the backend of the argument (cpu, or gpu: certified, so exact):
 // - two unit cubes side by side as one mesh (two connected components): from
 //   (0.9, 0.5, 0.5) the boundary is 0.5 away (inside), not 0.1; from (2.5, 0.5, 0.5), 0.5
 //   (outside); the output's first points are the queries, then their closest points, one
 //   line each, and the arrays agree (|Distance| = |ClosestPoint - query|, Direction unit);
 // - the same pieces as a vtkMultiBlockDataSet: the same answers, ClosestPiece the same;
+// - a query far outside (1e6 away): exact;
+// - with the argument gpu: certified and said so, the six views of output 1, and not
+//   certified: flagged, never below; with cpu, views asked for: a warning;
 // - bad input: an open piece, a non-convex piece, a NaN query, no polygons: errors that
 //   name the problem, no output.
 #include "TestSupport.h"
@@ -189,6 +192,23 @@ int main(int argc, char* argv[])
   blocks->SetBlock(0, Cube(0));
   blocks->SetBlock(1, Cube(1));
   CheckAnswers(Run(blocks, queries), "multiblock");
+  {
+    // A query far outside: the pieces are a speck seen from it, and the answer is still
+    // exact (the nearest corner region of the second cube, 1e6 - 2 along x).
+    auto far = Run(append->GetOutput(), Queries({ { 1e6, 0.5, 0.5 } }));
+    vtkDataArray* d = far->GetPointData()->GetArray("Distance");
+    double x[3] = { 0, 0, 0 };
+    if (far->GetNumberOfPoints() == 2)
+    {
+      far->GetPoint(1, x);
+    }
+    CHECK(d && std::fabs(d->GetTuple1(0) - (1e6 - 2)) < 1e-3 && std::fabs(x[0] - 2) < 1e-9,
+      "a query far outside: %.17g (%g %g %g)",
+      d ? d->GetTuple1(0) : 0,
+      x[0],
+      x[1],
+      x[2]);
+  }
   if (Backend == vtkUnionClosestPoint::BACKEND_GPU)
   {
     // Certified: exact, and said so; the GPU ran.
