@@ -4,9 +4,10 @@
 //     GeForce 3): one query from inside (the median of repeats), and many queries at once
 //     (queries per second);
 //   - the penetration depth of two linked tori of 67 pieces each, and of a CAD-like pair
-//     of 425 pieces (two perforated plates of boxes and pins; the paper: 0.2 s and 2 s).
+//     of 425 pieces (a plate of boxes and the pins through it; the paper: 0.2 s and 2 s).
 // Usage: BenchUnion [--backends cpu,gpu] [--pixels 256] [--queries 1000]
 //          [--write DIR]   (the PD inputs as OBJ files, for `peers pd DIR/tori.obj`)
+//          [--only 45x40|70x30|tori|plates]
 // Prints one line per measurement. Not a test.
 #include "ConvexHull.h"
 #include "PenetrationDepth.h"
@@ -84,8 +85,9 @@ std::vector<ConvexPiece> Blob(int m, int corners, unsigned seed)
   for (int i = 0; i < m; ++i)
   {
     const double c[3] = { spread * unit(random), spread * unit(random), spread * unit(random) };
-    const double r[3] = { 0.5 + 0.25 * unit(random), 0.5 + 0.25 * unit(random),
-      0.5 + 0.25 * unit(random) };
+    const double r[3] = {
+      0.5 + 0.25 * unit(random), 0.5 + 0.25 * unit(random), 0.5 + 0.25 * unit(random)
+    };
     std::vector<double> points;
     for (int k = 0; k < corners; ++k)
     {
@@ -161,9 +163,8 @@ std::vector<ConvexPiece> Torus(const double c[3], int axis, double R, double r, 
   return pieces;
 }
 
-/// A CAD-like pair: P a plate of rows x columns slightly overlapping boxes with a square
-/// hole every fourth box (212 pieces), Q a comb of 213 hexagonal pins through a bar, set
-/// into P at an angle.
+/// A CAD-like pair: P a plate of 212 slightly overlapping boxes (16 x 14, 0.6 thick), Q
+/// 213 hexagonal pins through it, one per box, leaning by 0.1.
 void Plates(std::vector<ConvexPiece>& p, std::vector<ConvexPiece>& q)
 {
   for (int x = 0; x < 16; ++x)
@@ -220,11 +221,12 @@ void WriteOBJ(const std::string& path, const std::vector<const std::vector<Conve
         for (size_t k = 0; k < face.size(); k += 3)
         {
           // The corner's index among the sorted distinct corners.
-          const auto it = std::lower_bound(
-            reinterpret_cast<const std::array<double, 3>*>(corners.data()),
-            reinterpret_cast<const std::array<double, 3>*>(corners.data() + corners.size()),
-            std::array<double, 3>{ face[k], face[k + 1], face[k + 2] });
-          out << " " << base + (it - reinterpret_cast<const std::array<double, 3>*>(corners.data()));
+          const auto it =
+            std::lower_bound(reinterpret_cast<const std::array<double, 3>*>(corners.data()),
+              reinterpret_cast<const std::array<double, 3>*>(corners.data() + corners.size()),
+              std::array<double, 3>{ face[k], face[k + 1], face[k + 2] });
+          out << " "
+              << base + (it - reinterpret_cast<const std::array<double, 3>*>(corners.data()));
         }
         out << "\n";
       }
@@ -248,7 +250,7 @@ int main(int argc, char* argv[])
 {
   std::vector<std::string> backends = { "cpu", "gpu" };
   int pixels = 256, manyQueries = 1000;
-  std::string write;
+  std::string write, only;
   for (int a = 1; a + 1 < argc; a += 2)
   {
     const std::string option = argv[a];
@@ -275,6 +277,10 @@ int main(int argc, char* argv[])
     {
       write = argv[a + 1];
     }
+    else if (option == "--only")
+    {
+      only = argv[a + 1]; // a scene: 45x40, 70x30, tori, plates
+    }
   }
   HeadlessGL* gl = nullptr;
   if (std::find(backends.begin(), backends.end(), "gpu") != backends.end())
@@ -298,6 +304,10 @@ int main(int argc, char* argv[])
   };
   for (const Scene scene : { Scene{ "45x40", 45, 22 }, Scene{ "70x30", 70, 17 } })
   {
+    if (!only.empty() && only != scene.Name)
+    {
+      continue;
+    }
     UnionClosestPoint u;
     u.Pieces = Blob(scene.Pieces, scene.Corners, 2026);
     u.Tolerance = 1e-9;
@@ -336,7 +346,9 @@ int main(int argc, char* argv[])
         {
           continue;
         }
-        const std::string label = backend == "cpu" ? "cpu" : certify ? "gpu certified" : "gpu image";
+        const std::string label = backend == "cpu" ? "cpu"
+          : certify                                ? "gpu certified"
+                                                   : "gpu image";
         // One query: the median of 7.
         std::vector<double> times;
         double answer = 0;
@@ -358,7 +370,8 @@ int main(int argc, char* argv[])
             settings.For = HardwareFor;
             std::vector<UnionGPUAnswer> answers;
             std::string error;
-            if (!QueryUnionGPU(*gl, u, std::vector<double>(origin, origin + 3), settings, answers, error))
+            if (!QueryUnionGPU(
+                  *gl, u, std::vector<double>(origin, origin + 3), settings, answers, error))
             {
               std::fprintf(stderr, "BenchUnion: %s\n", error.c_str());
               return 1;
@@ -428,8 +441,13 @@ int main(int argc, char* argv[])
     const std::vector<ConvexPiece>* P;
     const std::vector<ConvexPiece>* Q;
   };
-  for (const Pair pair : { Pair{ "tori 67+67", &torusP, &torusQ }, Pair{ "plates 212+213", &plateP, &plateQ } })
+  for (const Pair pair :
+    { Pair{ "tori 67+67", &torusP, &torusQ }, Pair{ "plates 212+213", &plateP, &plateQ } })
   {
+    if (!only.empty() && std::string(pair.Name).find(only) != 0)
+    {
+      continue;
+    }
     for (const std::string& backend : backends)
     {
       for (const bool certify : { true, false })
@@ -454,13 +472,16 @@ int main(int argc, char* argv[])
         depth.BuildSums(*pair.P, *pair.Q, origin, sums, kept, total, error);
         const double hulls = Now() - hullStart;
         const double start = Now();
-        if (!depth.Compute(*pair.P, *pair.Q, origin, answer, error, backend == "gpu" ? gl : nullptr, settings))
+        if (!depth.Compute(
+              *pair.P, *pair.Q, origin, answer, error, backend == "gpu" ? gl : nullptr, settings))
         {
           std::fprintf(stderr, "BenchUnion: %s\n", error.c_str());
           return 1;
         }
         const double seconds = Now() - start;
-        const std::string label = backend == "cpu" ? "cpu" : certify ? "gpu certified" : "gpu image";
+        const std::string label = backend == "cpu" ? "cpu"
+          : certify                                ? "gpu certified"
+                                                   : "gpu image";
         std::printf("pd %s %-14s: %.3f s (of which sums' hulls ~%.3f s): depth %.9f, pairs %lld of "
                     "%lld kept, sums' faces %d, faces visited %lld, passes %d, error bound %.3g\n",
           pair.Name,

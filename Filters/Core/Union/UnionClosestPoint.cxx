@@ -413,8 +413,10 @@ UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
       Polygon cut;
       cut.Corners = outline;
       cut.Source.assign(outline.size(), -1);
-      const HalfPlane square[4] = { { { 1, 0 }, p.X + r }, { { -1, 0 }, -(p.X - r) },
-        { { 0, 1 }, p.Y + r }, { { 0, -1 }, -(p.Y - r) } };
+      const HalfPlane square[4] = { { { 1, 0 }, p.X + r },
+        { { -1, 0 }, -(p.X - r) },
+        { { 0, 1 }, p.Y + r },
+        { { 0, -1 }, -(p.Y - r) } };
       for (const HalfPlane& side : square)
       {
         cut = Clip(cut, side, -1);
@@ -450,6 +452,85 @@ UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
           (c[2] - faceCentre[2]) * (c[2] - faceCentre[2])));
     }
     faceRadius = faceRadius * (1 + 1e-12) + tol * 1e-3; // the sphere must hold every corner
+    // Whether piece j covers the whole (cut) face: every plane of it holds on every corner
+    // with the strict slack (the same rule as the sections below, which then keep none).
+    auto coversFace = [&](size_t j)
+    {
+      const ConvexPiece& other = this->Pieces[j];
+      for (size_t k = 0; k < other.Faces.size(); ++k)
+      {
+        const double* plane = &other.Planes[4 * k];
+        if (Dot(plane, faceCentre) - plane[3] + faceRadius < -tol)
+        {
+          continue;
+        }
+        const double a[2] = { Dot(plane, frame.U), Dot(plane, frame.V) };
+        const double b = plane[3] - Dot(plane, frame.Origin);
+        if (a[0] * a[0] + a[1] * a[1] < 1e-24)
+        {
+          if (!(0 <= b + (Dot(plane, frame.N) > 0 ? -tol : tol)))
+          {
+            return false;
+          }
+          continue;
+        }
+        for (const V2& c : outline)
+        {
+          if (!(a[0] * c.X + a[1] * c.Y < b - tol))
+          {
+            return false;
+          }
+        }
+      }
+      return true;
+    };
+    // Deep inside many overlapping pieces most faces are covered whole by one piece, often
+    // the one that covered the faces visited just before on this thread: those first.
+    thread_local std::vector<size_t> recent;
+    thread_local const UnionClosestPoint* recentOwner = nullptr;
+    if (recentOwner != this)
+    {
+      recent.clear();
+      recentOwner = this;
+    }
+    for (size_t r = 0; r < recent.size(); ++r)
+    {
+      const size_t j = recent[r];
+      if (j != static_cast<size_t>(i) && j < this->Pieces.size() && coversFace(j))
+      {
+        std::rotate(recent.begin(), recent.begin() + r, recent.begin() + r + 1);
+        return;
+      }
+    }
+    // Then every piece, by the same test (which a piece that does not cover the face
+    // fails at its first plane that cuts it), before any section is built.
+    for (size_t j = 0; j < this->Pieces.size(); ++j)
+    {
+      const ConvexPiece& other = this->Pieces[j];
+      if (j == static_cast<size_t>(i) || other.Lo[0] > faceLo[0] || other.Hi[0] < faceHi[0] ||
+        other.Lo[1] > faceLo[1] || other.Hi[1] < faceHi[1] || other.Lo[2] > faceLo[2] ||
+        other.Hi[2] < faceHi[2])
+      {
+        continue; // its box does not hold the face's
+      }
+      if (coversFace(j))
+      {
+        recent.insert(recent.begin(), j);
+        if (recent.size() > 8)
+        {
+          recent.pop_back();
+        }
+        return;
+      }
+    }
+    auto remember = [&](size_t j)
+    {
+      recent.insert(recent.begin(), j);
+      if (recent.size() > 8)
+      {
+        recent.pop_back();
+      }
+    };
     // The sections S_j that cover the face's outer side, and their parts within the face.
     bool wholeFaceCovered = false;
     std::vector<std::vector<HalfPlane>> sections;
@@ -533,6 +614,7 @@ UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
         // Every plane holds on the whole face: this piece covers all of it, and the face
         // has no boundary point (common deep inside many overlapping pieces).
         wholeFaceCovered = true;
+        remember(j);
         break;
       }
       Polygon part = face;
@@ -647,6 +729,10 @@ UnionAnswer UnionClosestPoint::Query(const double o[3], double bound) const
           {
             break;
           }
+        }
+        if (lo < 0 && hi > 1)
+        {
+          return; // one section covers the whole edge
         }
         if (lo < hi)
         {
