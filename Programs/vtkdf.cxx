@@ -947,20 +947,44 @@ int Blend(int argc, char* argv[])
   }
   return 0;
 }
-/// The options vtkdf union and vtkdf pd share: where the union query runs.
+/// The options vtkdf union and vtkdf pd share: the output, the pieces, where the union
+/// query runs, --timing.
 struct QueryOptions
 {
+  std::string Output, PieceArray;
+  bool Timing = false, Hulls = false;
   std::string Backend = "auto";
   int Pixels = 256;
   bool Uncertified = false;
+
+  /// The usage error for an option Parse did not take: a value missing, or unknown.
+  static std::string Refuse(const std::string& option)
+  {
+    for (const char* valued :
+      { "-o", "--piece-array", "--backend", "--pixels", "--query", "--queries" })
+    {
+      if (option == valued)
+      {
+        return option + (option == "--query" ? " needs three numbers" : " needs a value");
+      }
+    }
+    return "unknown option " + option;
+  }
 
   /// Consumes argv[a] (and its value) when it is one of these options.
   bool Parse(int argc, char* argv[], int& a)
   {
     const std::string option = argv[a];
-    if (option == "--uncertified")
+    if (option == "--uncertified" || option == "--timing" || option == "--convex-hulls")
     {
-      this->Uncertified = true;
+      (option == "--uncertified" ? this->Uncertified
+          : option == "--timing" ? this->Timing
+                                 : this->Hulls) = true;
+      return true;
+    }
+    if ((option == "-o" || option == "--piece-array") && a + 1 < argc)
+    {
+      (option == "-o" ? this->Output : this->PieceArray) = argv[++a];
       return true;
     }
     if ((option == "--backend" || option == "--pixels") && a + 1 < argc)
@@ -995,6 +1019,8 @@ struct QueryOptions
     }
     filter->SetViewResolution(this->Pixels);
     filter->SetCertify(!this->Uncertified);
+    filter->SetPieceArray(this->PieceArray.c_str());
+    filter->SetUseConvexHulls(this->Hulls);
   }
 };
 
@@ -1002,20 +1028,14 @@ struct QueryOptions
 ///   [--piece-array NAME] [--convex-hulls] [--timing]
 int Union(int argc, char* argv[])
 {
-  std::string output, queriesPath, pieceArray;
+  std::string queriesPath;
   double query[3] = { 0, 0, 0 };
-  bool timing = false, hulls = false;
   QueryOptions where;
   for (int a = 3; a < argc; ++a)
   {
     const std::string option = argv[a];
     if (where.Parse(argc, argv, a))
     {
-      continue;
-    }
-    if (option == "--timing" || option == "--convex-hulls")
-    {
-      (option == "--timing" ? timing : hulls) = true;
       continue;
     }
     if (option == "--query" && a + 3 < argc)
@@ -1026,28 +1046,14 @@ int Union(int argc, char* argv[])
       }
       continue;
     }
-    if (a + 1 >= argc)
-    {
-      return Usage((option + " needs a value").c_str());
-    }
-    if (option == "-o")
-    {
-      output = argv[++a];
-    }
-    else if (option == "--queries")
+    if (option == "--queries" && a + 1 < argc)
     {
       queriesPath = argv[++a];
+      continue;
     }
-    else if (option == "--piece-array")
-    {
-      pieceArray = argv[++a];
-    }
-    else
-    {
-      return Usage(("unknown option " + option).c_str());
-    }
+    return Usage(QueryOptions::Refuse(option).c_str());
   }
-  if (output.empty())
+  if (where.Output.empty())
   {
     return Usage("union needs -o OUT.vtp");
   }
@@ -1058,8 +1064,6 @@ int Union(int argc, char* argv[])
     filter->SetQueryData(ReadMeshOrExit(queriesPath));
   }
   filter->SetQueryPoint(query);
-  filter->SetPieceArray(pieceArray.c_str());
-  filter->SetUseConvexHulls(hulls);
   where.Apply(filter.Get());
   const auto start = std::chrono::steady_clock::now();
   filter->Update();
@@ -1071,7 +1075,7 @@ int Union(int argc, char* argv[])
     std::fprintf(stderr, "vtkdf: no output was computed\n");
     return 1;
   }
-  if (timing)
+  if (where.Timing)
   {
     std::printf("vtkdf: union pieces=%d queries=%lld backend=%s renderer=\"%s\" time_s=%.6f "
                 "faces_visited=%lld passes=%lld\n",
@@ -1083,7 +1087,7 @@ int Union(int argc, char* argv[])
       static_cast<long long>(filter->GetLastFacesVisited()),
       static_cast<long long>(filter->GetLastPasses()));
   }
-  return WriteXML<vtkXMLPolyDataWriter>(result, output) ? 0 : 1;
+  return WriteXML<vtkXMLPolyDataWriter>(result, where.Output) ? 0 : 1;
 }
 /// vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls] [--timing]
 int PenetrationDepth(int argc, char* argv[])
@@ -1092,47 +1096,22 @@ int PenetrationDepth(int argc, char* argv[])
   {
     return Usage("pd needs two solids, P and Q");
   }
-  std::string output, pieceArray;
-  bool timing = false, hulls = false;
   QueryOptions where;
   for (int a = 4; a < argc; ++a)
   {
     const std::string option = argv[a];
-    if (where.Parse(argc, argv, a))
+    if (!where.Parse(argc, argv, a))
     {
-      continue;
-    }
-    if (option == "--timing" || option == "--convex-hulls")
-    {
-      (option == "--timing" ? timing : hulls) = true;
-      continue;
-    }
-    if (a + 1 >= argc)
-    {
-      return Usage((option + " needs a value").c_str());
-    }
-    if (option == "-o")
-    {
-      output = argv[++a];
-    }
-    else if (option == "--piece-array")
-    {
-      pieceArray = argv[++a];
-    }
-    else
-    {
-      return Usage(("unknown option " + option).c_str());
+      return Usage(QueryOptions::Refuse(option).c_str());
     }
   }
-  if (output.empty())
+  if (where.Output.empty())
   {
     return Usage("pd needs -o OUT.vtp");
   }
   vtkNew<vtkPenetrationDepth> filter;
   filter->SetSolidPData(ReadPolytopesOrExit(argv[2]));
   filter->SetSolidQData(ReadPolytopesOrExit(argv[3]));
-  filter->SetPieceArray(pieceArray.c_str());
-  filter->SetUseConvexHulls(hulls);
   where.Apply(filter.Get());
   const auto start = std::chrono::steady_clock::now();
   filter->Update();
@@ -1153,7 +1132,7 @@ int PenetrationDepth(int argc, char* argv[])
     n[1],
     n[2],
     filter->GetLastErrorBound());
-  if (timing)
+  if (where.Timing)
   {
     std::printf("vtkdf: pd pairs=%lld pairs_kept=%lld backend=%s renderer=\"%s\" time_s=%.6f "
                 "faces_visited=%lld passes=%d\n",
@@ -1165,7 +1144,7 @@ int PenetrationDepth(int argc, char* argv[])
       static_cast<long long>(filter->GetLastFacesVisited()),
       filter->GetLastPasses());
   }
-  return WriteXML<vtkXMLPolyDataWriter>(filter->GetOutput(), output) ? 0 : 1;
+  return WriteXML<vtkXMLPolyDataWriter>(filter->GetOutput(), where.Output) ? 0 : 1;
 }
 /// vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H]
 ///   [--azimuth A] [--elevation E] [--slices N] [--interpolation region-aware|nearest|linear]
