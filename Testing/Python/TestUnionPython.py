@@ -2,7 +2,7 @@
 components) and queries on port 1: from (0.9, 0.5, 0.5) the union's boundary is 0.5 away
 (not 0.1: the shared face is not boundary), from (2.5, 0.5, 0.5) 0.5 outside; the
 bundled hubo_ankle_convex4 (4 overlapping convex pieces) from inside: the closest point
-at |Distance| and inside the bounds. vtkPenetrationDepth: a unit cube against one shifted
+at |Distance| and inside the bounds, the same on the GPU (certified). vtkPenetrationDepth: a unit cube against one shifted
 by 0.7 along x: depth 0.3, translate Q along +x, in the field data too."""
 import os
 import sys
@@ -57,6 +57,19 @@ gap = np.linalg.norm(np.array(h.GetPoint(1)) - np.array(h.GetPoint(0)))
 print(f"hubo_ankle_convex4: {hubo.GetLastPieceCount()} pieces, distance {d:.6f}, "
       f"|closest - query| {gap:.6f}")
 ok = ok and hubo.GetLastPieceCount() == 4 and d < 0 and abs(gap + d) < 1e-6
+
+# The same query on the GPU (llvmpipe without one), certified: the same answer.
+gpu = vtkUnionClosestPoint()
+gpu.SetInputConnection(reader.GetOutputPort())
+gpu.SetQueryPoint(0, 0.01, 0.01)
+gpu.SetBackendToGPU()
+gpu.SetViewResolution(64)
+gpu.Update()
+g = gpu.GetOutput().GetPointData()
+print(f"on the GPU ({gpu.GetLastRenderer()}): distance {g.GetArray('Distance').GetValue(0):.6f}, "
+      f"{gpu.GetLastPasses()} passes, certified {g.GetArray('Certified').GetValue(0)}")
+ok = ok and abs(g.GetArray("Distance").GetValue(0) - d) < 1e-6 and \
+    g.GetArray("Certified").GetValue(0) == 1 and gpu.GetLastPasses() >= 1
 
 shifted = vtkCubeSource()
 shifted.SetBounds(0.7, 1.7, 0.2, 0.8, 0.2, 0.8)
