@@ -210,6 +210,11 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
     {
       settings.For = vtkdf::SMPFor;
     }
+    settings.Progress = [this](double fraction)
+    {
+      this->UpdateProgress(0.1 + 0.8 * fraction);
+      return !this->GetAbortExecute();
+    };
     std::vector<float> images;
     std::vector<double> frames;
     const bool views = this->GenerateViewImages && n > 0;
@@ -222,6 +227,10 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
           views ? &images : nullptr,
           views ? &frames : nullptr))
     {
+      if (this->GetAbortExecute())
+      {
+        return 1; // aborted: an empty output, no error
+      }
       vtkErrorMacro("The GPU query failed: " << error << ".");
       return 0;
     }
@@ -244,16 +253,26 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
     {
       query.For = vtkdf::SMPFor;
     }
-    vtkSMPTools::For(0,
-      n,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType i = begin; i < end; ++i)
+    // In twenty blocks, between which progress is told and an abort heard.
+    const vtkIdType block = std::max<vtkIdType>(1, (n + 19) / 20);
+    for (vtkIdType first = 0; first < n; first += block)
+    {
+      vtkSMPTools::For(first,
+        std::min(n, first + block),
+        [&](vtkIdType begin, vtkIdType end)
         {
-          answers[i].Answer = query.Query(&o[3 * i]);
-          answers[i].Certified = true;
-        }
-      });
+          for (vtkIdType i = begin; i < end; ++i)
+          {
+            answers[i].Answer = query.Query(&o[3 * i]);
+            answers[i].Certified = true;
+          }
+        });
+      this->UpdateProgress(0.1 + 0.8 * std::min(n, first + block) / n);
+      if (this->GetAbortExecute())
+      {
+        return 1; // aborted: an empty output, no error
+      }
+    }
     this->LastBackend = BACKEND_CPU;
     this->LastRenderer = "cpu";
   }

@@ -5,6 +5,7 @@
 //   line each, and the arrays agree (|Distance| = |ClosestPoint - query|, Direction unit);
 // - the same pieces as a vtkMultiBlockDataSet: the same answers, ClosestPiece the same;
 // - a query far outside (1e6 away): exact;
+// - progress and abort at 30 % (an empty output, no error; then a complete run);
 // - with the argument gpu: certified and said so, the six views of output 1, and not
 //   certified: flagged, never below; with cpu, views asked for: a warning;
 // - bad input: an open piece, a non-convex piece, a NaN query, no polygons: errors that
@@ -13,9 +14,11 @@
 #include "vtkUnionClosestPoint.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCleanPolyData.h"
+#include "vtkCommand.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -208,6 +211,70 @@ int main(int argc, char* argv[])
       x[0],
       x[1],
       x[2]);
+  }
+  {
+    // Progress and abort: 3000 queries, aborted at 30 %: the run stops within a block
+    // (a twentieth of the queries on the CPU; a batch or 64 certified queries on the GPU)
+    // with an empty output and no error; asked again, it runs to the end.
+    std::vector<std::array<double, 3>> points;
+    for (int k = 0; k < 3000; ++k)
+    {
+      points.push_back(
+        { -0.5 + 3.0 * (k % 17) / 16, -0.5 + 2.0 * (k % 13) / 12, -0.5 + 2.0 * (k % 11) / 10 });
+    }
+    vtkNew<vtkPoints> p;
+    for (const auto& x : points)
+    {
+      p->InsertNextPoint(x.data());
+    }
+    vtkNew<vtkPolyData> many;
+    many->SetPoints(p);
+    vtkNew<vtkUnionClosestPoint> f;
+    f->SetInputData(0, append->GetOutput());
+    f->SetQueryData(many);
+    f->SetBackend(Backend);
+    f->SetViewResolution(16);
+    struct Progress
+    {
+      vtkUnionClosestPoint* Filter;
+      std::vector<double> Values;
+      double AbortedAt = -1;
+    } progress{ f, {}, -1 };
+    vtkNew<vtkCallbackCommand> observer;
+    observer->SetClientData(&progress);
+    observer->SetCallback(
+      [](vtkObject*, unsigned long, void* client, void* call)
+      {
+        auto* r = static_cast<Progress*>(client);
+        const double value = *static_cast<double*>(call);
+        r->Values.push_back(value);
+        if (r->AbortedAt < 0 && value >= 0.3)
+        {
+          r->AbortedAt = value;
+          r->Filter->SetAbortExecute(1);
+        }
+      });
+    f->AddObserver(vtkCommand::ProgressEvent, observer);
+    testsupport::MessageRecorder recorder(f);
+    f->Update();
+    const double last = progress.Values.empty() ? -1 : progress.Values.back();
+    std::printf("abort: %zu progress values, aborted at %.3f, last %.3f, %lld output points\n",
+      progress.Values.size(),
+      progress.AbortedAt,
+      last,
+      static_cast<long long>(f->GetOutput()->GetNumberOfPoints()));
+    CHECK(progress.AbortedAt >= 0.3 && progress.AbortedAt < 0.6 && last < 0.7 &&
+        f->GetOutput()->GetNumberOfPoints() == 0 && recorder.Errors.empty() &&
+        f->GetErrorCode() == 0,
+      "abort at 30 %%: aborted at %g, last progress %g, errors: %s",
+      progress.AbortedAt,
+      last,
+      recorder.Errors.c_str());
+    f->RemoveObserver(observer);
+    f->SetAbortExecute(0);
+    f->Modified();
+    f->Update();
+    CHECK(f->GetOutput()->GetNumberOfPoints() == 6000, "after the abort, the run completes");
   }
   if (Backend == vtkUnionClosestPoint::BACKEND_GPU)
   {

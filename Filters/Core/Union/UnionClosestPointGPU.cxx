@@ -22,6 +22,16 @@ struct Objects
   }
   ~Objects()
   {
+    // The state the views change, back to the defaults the other GPU passes expect,
+    // however the run ended (an error, an abort).
+    this->GL.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    this->GL.BindVertexArray(0);
+    this->GL.UseProgram(0);
+    this->GL.Disable(GL_DEPTH_TEST);
+    this->GL.Disable(GL_STENCIL_TEST);
+    this->GL.Disable(GL_CULL_FACE);
+    this->GL.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    this->GL.DepthMask(GL_TRUE);
     this->GL.DeleteBuffers(1, &this->Buffer);
     this->GL.DeleteBuffers(2, this->Storage);
     this->GL.DeleteVertexArrays(1, &this->VAO);
@@ -231,6 +241,7 @@ bool QueryUnionGPU(HeadlessGL& context,
   }
 
   std::vector<float> depth(static_cast<size_t>(n) * n * 6 * batch);
+  size_t rendered = 0;
   for (const bool fromInside : { true, false })
   {
     const std::vector<size_t>& group = fromInside ? inside : outside;
@@ -403,10 +414,17 @@ bool QueryUnionGPU(HeadlessGL& context,
           }
         }
       }
+      rendered += size;
+      if (settings.Progress && !settings.Progress(0.5 * rendered / std::max<size_t>(1, count)))
+      {
+        error = "aborted";
+        return false;
+      }
     }
   }
 
-  // Certification (exact, over the queries in parallel), or the image-space answer.
+  // Certification (exact, over the queries in parallel), or the image-space answer, in
+  // blocks of queries between which progress is told.
   auto finish = [&](int64_t begin, int64_t end)
   {
     for (int64_t q = begin; q < end; ++q)
@@ -458,25 +476,28 @@ bool QueryUnionGPU(HeadlessGL& context,
       result.Certified = false;
     }
   };
-  if (settings.For)
+  const int64_t block = 64;
+  for (int64_t begin = 0; begin < static_cast<int64_t>(count); begin += block)
   {
-    settings.For(static_cast<int64_t>(count), 1, finish);
-  }
-  else
-  {
-    finish(0, static_cast<int64_t>(count));
+    const int64_t end = std::min<int64_t>(count, begin + block);
+    if (settings.For)
+    {
+      settings.For(end - begin, 1, [&](int64_t b, int64_t e) { finish(begin + b, begin + e); });
+    }
+    else
+    {
+      finish(begin, end);
+    }
+    if (settings.Progress && !settings.Progress(0.5 + 0.5 * end / count))
+    {
+      error = "aborted";
+      return false;
+    }
   }
   if (frames)
   {
     frames->assign(&frame[0][0], &frame[0][0] + 54);
   }
-  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl.BindVertexArray(0);
-  gl.UseProgram(0);
-  gl.Disable(GL_STENCIL_TEST);
-  gl.Disable(GL_CULL_FACE);
-  gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  gl.DepthMask(GL_TRUE);
   return NoGLError(gl, "after the union views", error);
 }
 

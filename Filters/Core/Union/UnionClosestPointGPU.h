@@ -54,6 +54,10 @@ struct UnionGPUSettings
   int64_t BatchBytes = int64_t(256) << 20;
   /// A parallel loop for the certification, over the queries (serial when empty).
   ParallelFor For;
+  /// Told the fraction done after each batch rendered and each block of certified
+  /// queries; returning false stops the run (QueryUnionGPU then returns false, with
+  /// `error` "aborted").
+  ProgressCallback Progress;
   /// The front faces' bias, relative to Far: how close a piece must come to the current
   /// boundary to join it.
   double TouchBias = 1e-6;
