@@ -10,6 +10,8 @@
  *
  * Backend CPU: exact, in double precision (vtkSMPTools over the queries, or over each
  * query's faces when there are few); see Filters/Core/Union/UnionClosestPoint.h.
+ * Progress is reported, and an abort heard, per twentieth of the queries (CPU) or per
+ * batch and per 64 certified queries (GPU); an aborted run leaves an empty output.
  * Backend GPU: the paper's Algorithm 2.1 on six cube-face views of ViewResolution pixels
  * around each query (stencil windows, the Euclidean distance as the depth, rounds until
  * one changes nothing; Filters/Core/Union/UnionClosestPointGPU.h), whose smallest distance
@@ -25,9 +27,10 @@
  * vtkPartitionedDataSetCollection / vtkPartitionedDataSet of vtkPolyData, one piece per
  * leaf, in traversal order. With PieceArray, a vtkPolyData's pieces are instead the cells
  * sharing a value of that cell-data array, in the order of their lowest cell id. Each
- * piece must be closed and convex (within a tolerance relative to the pieces' size);
- * otherwise an error names the piece, unless UseConvexHulls replaces every piece by its
- * convex hull (qhull), which a warning says.
+ * piece must be closed and convex (within a tolerance relative to the pieces' size: 1e-6
+ * of their box's diagonal for float points, 1e-9 for double); otherwise an error names the
+ * piece, unless UseConvexHulls replaces each such piece by its convex hull (qhull), which a
+ * warning says.
  * Input 1 (optional): a vtkPointSet whose points are the queries; without it, the
  * QueryPoint property.
  *
