@@ -15,6 +15,7 @@
 //   tori's image-only depth never below the exact one).
 #include "ConvexHull.h"
 #include "PenetrationDepth.h"
+#include "RaySpans.h"
 
 #include <algorithm>
 #include <array>
@@ -408,38 +409,14 @@ void Tori()
     std::vector<std::pair<double, double>> spans;
     for (size_t s = 0; s < axes.size(); ++s)
     {
-      double lo = -HUGE_VAL, hi = HUGE_VAL;
-      for (size_t c = 0; c < axes[s].size() && lo <= hi; ++c)
+      RaySpan span;
+      for (size_t c = 0; c < axes[s].size() && !span.Empty(); ++c)
       {
-        const double a = Dot(axes[s][c].data(), u), b = supports[s][c];
-        if (a > 0)
-        {
-          hi = std::min(hi, b / a);
-        }
-        else if (a < 0)
-        {
-          lo = std::max(lo, b / a);
-        }
-        else if (b < 0)
-        {
-          lo = HUGE_VAL;
-        }
+        span.Constrain(Dot(axes[s][c].data(), u), supports[s][c]);
       }
-      if (lo <= hi && hi >= 0)
-      {
-        spans.emplace_back(std::max(lo, 0.0), hi);
-      }
+      span.AddTo(spans);
     }
-    std::sort(spans.begin(), spans.end());
-    double reach = 0;
-    for (const auto& span : spans)
-    {
-      if (span.first > reach + 1e-12)
-      {
-        break;
-      }
-      reach = std::max(reach, span.second);
-    }
+    const double reach = FirstExit(spans);
     soonest = std::min(soonest, reach);
   }
   std::printf("tori: the soonest exit of 4000 rays %.9f\n", soonest);

@@ -14,6 +14,7 @@
 //   the ray through it leaving (or entering) the union there;
 // - ConvexPiece::Build refuses an open, a non-manifold, a flat and a non-convex piece.
 #include "ConvexHull.h"
+#include "RaySpans.h"
 #include "UnionClosestPoint.h"
 
 #include <algorithm>
@@ -120,45 +121,16 @@ double RayEvent(const UnionClosestPoint& u,
   std::vector<std::pair<double, double>> spans;
   for (const ConvexPiece& piece : u.Pieces)
   {
-    double lo = -HUGE_VAL, hi = HUGE_VAL;
+    RaySpan span;
     for (size_t f = 0; f < piece.Faces.size(); ++f)
     {
       const double* p = &piece.Planes[4 * f];
-      const double a = p[0] * d[0] + p[1] * d[1] + p[2] * d[2];
-      const double b = p[3] + slack - (p[0] * o[0] + p[1] * o[1] + p[2] * o[2]);
-      if (a > 0)
-      {
-        hi = std::min(hi, b / a);
-      }
-      else if (a < 0)
-      {
-        lo = std::max(lo, b / a);
-      }
-      else if (b < 0)
-      {
-        lo = HUGE_VAL;
-      }
+      span.Constrain(p[0] * d[0] + p[1] * d[1] + p[2] * d[2],
+        p[3] + slack - (p[0] * o[0] + p[1] * o[1] + p[2] * o[2]));
     }
-    if (lo <= hi && hi >= 0)
-    {
-      spans.emplace_back(std::max(lo, 0.0), hi);
-    }
+    span.AddTo(spans);
   }
-  std::sort(spans.begin(), spans.end());
-  if (!inside)
-  {
-    return spans.empty() ? HUGE_VAL : spans.front().first;
-  }
-  double reach = 0;
-  for (const auto& s : spans)
-  {
-    if (s.first > reach + 1e-12)
-    {
-      break;
-    }
-    reach = std::max(reach, s.second);
-  }
-  return reach;
+  return inside ? FirstExit(spans) : FirstEntry(spans);
 }
 
 /// The distance from x to triangle (a, b, c), by projection or the edges.
