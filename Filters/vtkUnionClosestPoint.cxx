@@ -195,18 +195,19 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
   }
   std::vector<vtkdf::UnionGPUAnswer> answers(n);
   this->UpdateProgress(0.1);
+  // Parallel over the queries (or their certification), or over each query's faces when
+  // there are too few queries to keep the threads busy.
+  const bool fewQueries = n < 4 * vtkSMPTools::GetEstimatedNumberOfThreads();
+  if (fewQueries)
+  {
+    query.For = vtkdf::SMPFor;
+  }
   if (gl)
   {
     vtkdf::UnionGPUSettings settings;
     settings.Resolution = this->ViewResolution;
     settings.Certify = this->Certify;
-    // Certification over the queries in parallel, or over each query's faces when there
-    // are few queries.
-    if (n < 4 * vtkSMPTools::GetEstimatedNumberOfThreads())
-    {
-      query.For = vtkdf::SMPFor;
-    }
-    else
+    if (!fewQueries)
     {
       settings.For = vtkdf::SMPFor;
     }
@@ -247,12 +248,6 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
   }
   else
   {
-    // Parallel over the queries, or over each query's faces when there are too few
-    // queries to keep the threads busy.
-    if (n < 4 * vtkSMPTools::GetEstimatedNumberOfThreads())
-    {
-      query.For = vtkdf::SMPFor;
-    }
     // In twenty blocks, between which progress is told and an abort heard.
     const vtkIdType block = std::max<vtkIdType>(1, (n + 19) / 20);
     for (vtkIdType first = 0; first < n; first += block)

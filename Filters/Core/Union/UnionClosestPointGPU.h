@@ -4,8 +4,9 @@
 // Six 90-degree views on the faces of a cube around O, rendered at once into the layers
 // of a depth-stencil texture array (a geometry shader sends each triangle to the six
 // layers), for a batch of queries per draw (instance k draws query k's six layers): the
-// draws do not grow with the number of queries. The depth written is the Euclidean distance |x - O| over Far, monotone along
-// each ray, so the depth tests compare distances and no 1/cos conversion is needed.
+// draws do not grow with the number of queries. The depth written is the Euclidean
+// distance |x - O| over Far, monotone along each ray, so the depth tests compare
+// distances and no 1/cos conversion is needed.
 // - O outside the union: one pass with the less test gives the nearest surface.
 // - O inside: the pieces that contain O (found exactly on the CPU) draw their back faces
 //   once with the greater test; then, round after round, every other piece draws its front
