@@ -349,6 +349,21 @@ int main(int argc, char* argv[])
         const std::string label = backend == "cpu" ? "cpu"
           : certify                                ? "gpu certified"
                                                    : "gpu image";
+        // The GPU query of `queries`; false, said on stderr, when it fails.
+        auto onGPU = [&](const std::vector<double>& queries, std::vector<UnionGPUAnswer>& answers)
+        {
+          UnionGPUSettings settings;
+          settings.Resolution = pixels;
+          settings.Certify = certify;
+          settings.For = HardwareFor;
+          std::string error;
+          const bool ok = QueryUnionGPU(*gl, u, queries, settings, answers, error);
+          if (!ok)
+          {
+            std::fprintf(stderr, "BenchUnion: %s\n", error.c_str());
+          }
+          return ok;
+        };
         // One query: the median of 7.
         std::vector<double> times;
         double answer = 0;
@@ -364,16 +379,9 @@ int main(int argc, char* argv[])
           }
           else
           {
-            UnionGPUSettings settings;
-            settings.Resolution = pixels;
-            settings.Certify = certify;
-            settings.For = HardwareFor;
             std::vector<UnionGPUAnswer> answers;
-            std::string error;
-            if (!QueryUnionGPU(
-                  *gl, u, std::vector<double>(origin, origin + 3), settings, answers, error))
+            if (!onGPU(std::vector<double>(origin, origin + 3), answers))
             {
-              std::fprintf(stderr, "BenchUnion: %s\n", error.c_str());
               return 1;
             }
             answer = answers[0].Answer.Distance;
@@ -399,13 +407,11 @@ int main(int argc, char* argv[])
         }
         else
         {
-          UnionGPUSettings settings;
-          settings.Resolution = pixels;
-          settings.Certify = certify;
-          settings.For = HardwareFor;
           std::vector<UnionGPUAnswer> answers;
-          std::string error;
-          QueryUnionGPU(*gl, u, many, settings, answers, error);
+          if (!onGPU(many, answers))
+          {
+            return 1;
+          }
         }
         const double seconds = Now() - start;
         std::printf("union %s %-14s pixels=%d one query: %.4f s (distance %.9f, passes %d); "
