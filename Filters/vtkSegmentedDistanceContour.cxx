@@ -36,7 +36,12 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
   vtkImageData* field = vtkImageData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   output->Initialize();
-  this->LastMarchingCells = this->LastOtherCells = 0;
+  this->LastMarchingCells = this->LastFeatureCells = this->LastOtherCells = 0;
+  if (!(this->FeatureAngle > 0 && this->FeatureAngle <= 180))
+  {
+    vtkErrorMacro("FeatureAngle must be in (0, 180] degrees; it is " << this->FeatureAngle << ".");
+    return 0;
+  }
   std::string error;
   vtkDataArray* values = vtkdf::SampleArray(field, "SegmentedDistance", 1, error);
   vtkDataArray* offsetArray = field ? field->GetFieldData()->GetArray("RegionOffset") : nullptr;
@@ -82,6 +87,26 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
   }
   input.Distance = distance.data();
   input.Region = region.data();
+  // The closest points, when there and wanted, in double.
+  std::vector<double> closest;
+  vtkDataArray* closestArray = field->GetPointData()->GetArray("ClosestPoint");
+  if (this->UseClosestPoints && closestArray)
+  {
+    if (closestArray->GetNumberOfComponents() != 3 || closestArray->GetNumberOfTuples() != n)
+    {
+      vtkErrorMacro("ClosestPoint must have 3 components per sample; it has "
+        << closestArray->GetNumberOfComponents() << " and " << closestArray->GetNumberOfTuples()
+        << " tuples for " << n << " samples.");
+      return 0;
+    }
+    closest.resize(3 * static_cast<size_t>(n));
+    for (vtkIdType v = 0; v < n; ++v)
+    {
+      closestArray->GetTuple(v, &closest[3 * v]);
+    }
+    input.ClosestPoint = closest.data();
+    input.FeatureAngle = this->FeatureAngle;
+  }
   // VTK's marching cubes table, as plain rows.
   std::vector<int> table(256 * 16);
   vtkMarchingCubesTriangleCases* cases = vtkMarchingCubesTriangleCases::GetCases();
@@ -94,6 +119,7 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
   vtkdf::ContourSegmented(input, result);
   this->LastMarchingCells = result.MarchingCells;
   this->LastOtherCells = result.OtherCells;
+  this->LastFeatureCells = result.FeatureCells;
 
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -127,6 +153,9 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
 void vtkSegmentedDistanceContour::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "UseClosestPoints: " << this->UseClosestPoints << "\n";
+  os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
   os << indent << "LastMarchingCells: " << this->LastMarchingCells << "\n";
+  os << indent << "LastFeatureCells: " << this->LastFeatureCells << "\n";
   os << indent << "LastOtherCells: " << this->LastOtherCells << "\n";
 }

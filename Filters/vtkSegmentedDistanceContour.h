@@ -14,7 +14,15 @@
  *
  * Input: vtkImageData with `SegmentedDistance` and the field-data `RegionOffset` (what
  * vtkSegmentedDistanceField makes); each sample's region and distance are read back
- * from f = min(d, Delta) + RegionOffset * r. Output: vtkPolyData of triangles with the
+ * from f = min(d, Delta) + RegionOffset * r. When the input also has `ClosestPoint` (the
+ * samples' closest points on the surface, which vtkSegmentedDistanceField writes by
+ * default) and UseClosestPoints is on, vertices follow the surface's features: the
+ * vertex of a junction or boundary cell goes onto the junction line or the open rim, and
+ * a marching-cubes cell whose tangent planes differ by more than FeatureAngle (an apex,
+ * a crease) is fanned around its feature point, as in extended marching cubes (see
+ * SegmentContour.h). Marching cubes then no longer rounds sharp apices and rims; with
+ * UseClosestPoints off the surface is the paper's, and a closed smooth surface is
+ * exactly vtkFlyingEdges3D's. Output: vtkPolyData of triangles with the
  * cell array `Regions` (int, 2 components: the lower and the higher region the triangle
  * separates; it faces the higher). CPU.
  */
@@ -31,9 +39,21 @@ public:
   vtkTypeMacro(vtkSegmentedDistanceContour, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Cells of the last run done by marching cubes, and around a cell vertex (junctions
-  /// and boundaries).
+  ///@{
+  /// Vertices from the input's ClosestPoint array when it has one (default on), and the
+  /// angle between tangent planes (degrees, in (0, 180]; default 30) above which a
+  /// marching-cubes cell holds a feature.
+  vtkSetMacro(UseClosestPoints, bool);
+  vtkGetMacro(UseClosestPoints, bool);
+  vtkBooleanMacro(UseClosestPoints, bool);
+  vtkSetMacro(FeatureAngle, double);
+  vtkGetMacro(FeatureAngle, double);
+  ///@}
+
+  /// Cells of the last run done by marching cubes (of which FeatureCells fanned around a
+  /// feature point), and around a cell vertex (junctions and boundaries).
   vtkGetMacro(LastMarchingCells, vtkTypeInt64);
+  vtkGetMacro(LastFeatureCells, vtkTypeInt64);
   vtkGetMacro(LastOtherCells, vtkTypeInt64);
 
 protected:
@@ -43,7 +63,10 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  bool UseClosestPoints = true;
+  double FeatureAngle = 30;
   vtkTypeInt64 LastMarchingCells = 0;
+  vtkTypeInt64 LastFeatureCells = 0;
   vtkTypeInt64 LastOtherCells = 0;
 
 private:

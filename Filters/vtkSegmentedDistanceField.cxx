@@ -236,6 +236,10 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
   output->GetPointData()->AddArray(region);
   output->GetPointData()->AddArray(distance);
   output->GetPointData()->AddArray(patch);
+  if (this->ComputeClosestPoint)
+  {
+    output->GetPointData()->AddArray(points);
+  }
   vtkFieldData* fd = output->GetFieldData();
   auto scalar = [fd](const char* name, double value)
   {
@@ -291,6 +295,7 @@ void vtkSegmentedDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Delta: " << this->Delta << "\n";
   os << indent << "RegionOffset: " << this->RegionOffset << "\n";
+  os << indent << "ComputeClosestPoint: " << this->ComputeClosestPoint << "\n";
   os << indent << "LastRegionCount: " << this->LastRegionCount << "\n";
   os << indent << "LastPatchCount: " << this->LastPatchCount << "\n";
   os << indent << "LastCutEdges: " << this->LastCutEdges << "\n";

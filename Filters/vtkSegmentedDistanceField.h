@@ -20,10 +20,12 @@
  * regions are computed on the CPU (vtkSMPTools).
  *
  * Output: vtkImageData (the whole grid) with `SegmentedDistance` (float), `RegionIndex`
- * (int), `Distance` (float, unsigned) and `PatchId` (int: the patch whose side the sample
- * took); field data `Delta`, `RegionOffset`, `RegionCount` and `RegionSides` (int, 3
- * components per row: region, patch, side 0 front or 1 back; a merged region has several
- * rows).
+ * (int), `Distance` (float, unsigned), `PatchId` (int: the patch whose side the sample
+ * took) and, with ComputeClosestPoint (default on), `ClosestPoint` (float, 3 components:
+ * each sample's closest point on the surface, which vtkSegmentedDistanceContour uses to
+ * keep apices, rims and junction lines); field data `Delta`, `RegionOffset`, `RegionCount` and
+ * `RegionSides` (int, 3 components per row: region, patch, side 0 front or 1 back; a merged region
+ * has several rows).
  */
 #ifndef vtkSegmentedDistanceField_h
 #define vtkSegmentedDistanceField_h
@@ -49,6 +51,11 @@ public:
   vtkGetMacro(RegionOffset, double);
   ///@}
 
+  /// Whether the output has ClosestPoint (default on).
+  vtkSetMacro(ComputeClosestPoint, bool);
+  vtkGetMacro(ComputeClosestPoint, bool);
+  vtkBooleanMacro(ComputeClosestPoint, bool);
+
   /// What the last run found: regions, patches, the edges where non-orientable patches
   /// were cut, and the region merges refused (they would have joined two sides of one
   /// patch).
@@ -66,6 +73,7 @@ protected:
 
   double Delta = 0;
   double RegionOffset = 0;
+  bool ComputeClosestPoint = true;
   int LastRegionCount = 0;
   vtkTypeInt64 LastPatchCount = 0;
   vtkTypeInt64 LastCutEdges = 0;

@@ -868,9 +868,11 @@ int Segment(int argc, char* argv[])
     }
     else if (common.Timing)
     {
-      std::printf("vtkdf: surface triangles=%lld marching_cells=%lld other_cells=%lld\n",
+      std::printf("vtkdf: surface triangles=%lld marching_cells=%lld feature_cells=%lld "
+                  "other_cells=%lld\n",
         static_cast<long long>(contour->GetOutput()->GetNumberOfCells()),
         static_cast<long long>(contour->GetLastMarchingCells()),
+        static_cast<long long>(contour->GetLastFeatureCells()),
         static_cast<long long>(contour->GetLastOtherCells()));
     }
   }

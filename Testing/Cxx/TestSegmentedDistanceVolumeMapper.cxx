@@ -410,6 +410,7 @@ int TestSegmented()
   const double h = field->GetSpacing()[0];
   vtkNew<vtkSegmentedDistanceContour> contour;
   contour->SetInputData(field);
+  contour->UseClosestPointsOff(); // the paper's vertices, as the mapper draws them
   contour->Update();
   vtkPolyData* surface = contour->GetOutput();
   vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
@@ -1054,8 +1055,11 @@ int TestAccuracy(const std::string& data, const std::string& name)
   segment->Update();
   vtkImageData* field = segment->GetOutput();
   const double h = field->GetSpacing()[0];
+  // The paper's polygonization (vertices on the interpolated field, as the mapper draws
+  // it), not the closest points' feature vertices.
   vtkNew<vtkSegmentedDistanceContour> contour;
   contour->SetInputData(field);
+  contour->UseClosestPointsOff();
   contour->Update();
   auto contourActor = SurfaceActor(contour->GetOutput(), white);
   vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;

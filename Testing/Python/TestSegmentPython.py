@@ -61,7 +61,8 @@ if not same:
     sys.exit(1)
 
 # vtkSegmentedDistanceContour: the disk's surface, every triangle between regions 0 and 1,
-# every point on the disk's plane and within its rim.
+# every point on the disk's plane (within 2% of a spacing: the rim's vertices are the
+# least-squares points of the tangent planes around a polygonal rim) and within its rim.
 from vtkdistancefields import vtkSegmentedDistanceContour  # noqa: E402
 
 contour = vtkSegmentedDistanceContour()
@@ -74,6 +75,6 @@ h = image.GetSpacing()[0]
 print(f"contour: {surface.GetNumberOfCells()} triangles, largest |z| {np.abs(xyz[:, 2]).max():.3g}, "
       f"largest radius {np.hypot(xyz[:, 0], xyz[:, 1]).max():.4f}")
 if (surface.GetNumberOfCells() == 0 or not np.all(pairs == [0, 1])
-        or np.abs(xyz[:, 2]).max() > 1e-6 or np.hypot(xyz[:, 0], xyz[:, 1]).max() > 1.0 + 1e-6):
+        or np.abs(xyz[:, 2]).max() > 0.02 * h or np.hypot(xyz[:, 0], xyz[:, 1]).max() > 1.0 + 1e-6):
     print("FAIL")
     sys.exit(1)

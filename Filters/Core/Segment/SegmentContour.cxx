@@ -1,5 +1,7 @@
 #include "SegmentContour.h"
 
+#include "VoxelizerRules.h" // SquaredDistanceToTriangle
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
@@ -40,6 +42,9 @@ constexpr int FaceEdges[6][4] = { { 0, 1, 2, 3 },
   { 1, 11, 5, 9 } };
 constexpr int FaceAxis[6] = { 2, 2, 1, 1, 0, 0 };
 constexpr int FaceCorner[6] = { 0, 4, 0, 3, 0, 1 };
+
+// The volume spanned by three unit normals above which a feature is a corner.
+constexpr double CornerSpread = 0.1;
 
 struct Builder
 {
@@ -112,6 +117,316 @@ struct Builder
     this->Out.Pairs.insert(this->Out.Pairs.end(), { lo, hi });
   }
 
+  /// The tangent planes at the cell's corners: each corner's closest point and the unit
+  /// direction from it to the corner. None for a corner on the surface (no direction)
+  /// or farther than a cell diagonal from it (its plane touches the surface elsewhere).
+  int TangentPlanes(const int64_t corner[8],
+    double point[8][3],
+    double normal[8][3],
+    int which[8]) const
+  {
+    const double* h = this->In.Grid.Spacing.data();
+    const double smallest = std::min({ h[0], h[1], h[2] });
+    const double diagonal = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    int count = 0;
+    for (int c = 0; c < 8; ++c)
+    {
+      double p[3];
+      this->Position(corner[c], p);
+      const double* q = this->In.ClosestPoint + 3 * corner[c];
+      const double d = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+        (p[2] - q[2]) * (p[2] - q[2]));
+      if (!(d > 1e-6 * smallest && d <= diagonal))
+      {
+        continue;
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        point[count][a] = q[a];
+        normal[count][a] = (p[a] - q[a]) / d;
+      }
+      which[count++] = c;
+    }
+    return count;
+  }
+
+  /// The point nearest the planes in the least-squares sense, pulled towards x0 with a
+  /// weight of 2% of a plane's (so it stays at x0 along directions the planes leave
+  /// free: along a crease, across a flat piece). False (x unset) when that point is
+  /// outside the cell of lowest sample v0 grown by one spacing, or cannot be on the
+  /// surface: inside a corner's empty ball (radius its distance) by more than a quarter
+  /// spacing, as where the planes of two nearby sheets meet between them.
+  bool FeaturePoint(int count,
+    const double point[][3],
+    const double normal[][3],
+    const double x0[3],
+    int64_t v0,
+    const int64_t corner[8],
+    double x[3]) const
+  {
+    double m[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } }, b[3] = { 0, 0, 0 };
+    for (int i = 0; i < count; ++i)
+    {
+      const double* n = normal[i];
+      const double offset = n[0] * point[i][0] + n[1] * point[i][1] + n[2] * point[i][2];
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          m[r][c] += n[r] * n[c];
+        }
+        b[r] += n[r] * offset;
+      }
+    }
+    const double pull = 0.02 * std::max(count, 1);
+    for (int r = 0; r < 3; ++r)
+    {
+      m[r][r] += pull;
+      b[r] += pull * x0[r];
+    }
+    // Cramer's rule: m is symmetric positive definite.
+    auto det = [](const double a[3][3])
+    {
+      return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+        a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+        a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    };
+    const double whole = det(m);
+    double lo[3], solution[3];
+    this->Position(v0, lo);
+    for (int a = 0; a < 3; ++a)
+    {
+      double column[3][3];
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          column[r][c] = c == a ? b[r] : m[r][c];
+        }
+      }
+      const double value = whole > 0 ? det(column) / whole : x0[a];
+      const double h = this->In.Grid.Spacing[a];
+      if (!(value >= lo[a] - 2 * h && value <= lo[a] + 3 * h))
+      {
+        return false; // farther: the planes meet away from this cell's piece of surface
+      }
+      solution[a] = value;
+    }
+    const double* h = this->In.Grid.Spacing.data();
+    const double quarter = 0.25 * std::min({ h[0], h[1], h[2] });
+    // A surface point within half a spacing: the closest point of a sample within two
+    // spacings of the cell (an apex is the closest point of the samples past it). Where
+    // the planes meet beyond the end of a thin part, or between two sheets, none is.
+    if (!this->NearClosestPoint(v0, solution, 2 * quarter))
+    {
+      return false;
+    }
+    for (int c = 0; c < 8; ++c)
+    {
+      double p[3];
+      this->Position(corner[c], p);
+      const double* q = this->In.ClosestPoint + 3 * corner[c];
+      const double d = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+        (p[2] - q[2]) * (p[2] - q[2]));
+      const double e = std::sqrt((p[0] - solution[0]) * (p[0] - solution[0]) +
+        (p[1] - solution[1]) * (p[1] - solution[1]) + (p[2] - solution[2]) * (p[2] - solution[2]));
+      if (d - e > quarter)
+      {
+        return false;
+      }
+    }
+    std::copy(solution, solution + 3, x);
+    return true;
+  }
+
+  /// Whether a sample within two spacings of the cell of lowest sample v0 has its
+  /// closest point within `radius` of x.
+  bool NearClosestPoint(int64_t v0, const double x[3], double radius) const
+  {
+    const int64_t ijk[3] = {
+      v0 % this->N[0], (v0 / this->N[0]) % this->N[1], v0 / this->Stride[2]
+    };
+    int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::max<int64_t>(ijk[a] - 2, 0);
+      hi[a] = std::min<int64_t>(ijk[a] + 3, this->N[a] - 1);
+    }
+    for (int64_t k = lo[2]; k <= hi[2]; ++k)
+    {
+      for (int64_t j = lo[1]; j <= hi[1]; ++j)
+      {
+        for (int64_t i = lo[0]; i <= hi[0]; ++i)
+        {
+          const double* q =
+            this->In.ClosestPoint + 3 * (i + j * this->Stride[1] + k * this->Stride[2]);
+          const double d2 = (q[0] - x[0]) * (q[0] - x[0]) + (q[1] - x[1]) * (q[1] - x[1]) +
+            (q[2] - x[2]) * (q[2] - x[2]);
+          if (d2 <= radius * radius)
+          {
+            return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+  /// Extended marching cubes: when the cell's surface is one piece whose tangent planes
+  /// differ by more than FeatureAngle, that piece as a fan around the feature point with
+  /// the same border (the border's points are shared with the neighbours). The case's
+  /// triangles are `edges` (edge indices, -1 after the last).
+  bool FeatureFan(const int64_t corner[8],
+    const int32_t region[8],
+    int32_t lo,
+    int32_t hi,
+    const int* edges,
+    const int64_t start[12],
+    const int axis[12],
+    int64_t v0)
+  {
+    double point[8][3], normal[8][3];
+    int which[8];
+    const int count = this->TangentPlanes(corner, point, normal, which);
+    if (count < 2)
+    {
+      return false;
+    }
+    // The planes' normals, each turned towards the higher region, against each other.
+    const double limit = std::cos(this->In.FeatureAngle * M_PI / 180);
+    double oriented[8][3];
+    bool feature = false;
+    for (int i = 0; i < count; ++i)
+    {
+      const double s = region[which[i]] == hi ? 1 : -1;
+      for (int a = 0; a < 3; ++a)
+      {
+        oriented[i][a] = s * normal[i][a];
+      }
+      for (int j = 0; j < i && !feature; ++j)
+      {
+        feature = oriented[i][0] * oriented[j][0] + oriented[i][1] * oriented[j][1] +
+            oriented[i][2] * oriented[j][2] <
+          limit;
+      }
+    }
+    // A corner (an apex, the tip of a thin part): the normals span space. Along a
+    // crease they lie in one plane, and fans there would set a row of teeth along it
+    // (extended marching cubes flips edges to join them); marching cubes' chamfer of a
+    // crease stays within a cell.
+    double spread = 0;
+    for (int i = 0; i < count && feature; ++i)
+    {
+      for (int j = 0; j < i; ++j)
+      {
+        const double* u = oriented[i];
+        const double* w = oriented[j];
+        const double c[3] = {
+          u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]
+        };
+        for (int k = 0; k < j; ++k)
+        {
+          spread = std::max(spread,
+            std::fabs(c[0] * oriented[k][0] + c[1] * oriented[k][1] + c[2] * oriented[k][2]));
+        }
+      }
+    }
+    if (!feature || spread < CornerSpread)
+    {
+      return false;
+    }
+    // One piece only: its triangles joined through shared edges.
+    int parent[12];
+    for (int e = 0; e < 12; ++e)
+    {
+      parent[e] = e;
+    }
+    auto find = [&parent](int e)
+    {
+      while (parent[e] != e)
+      {
+        e = parent[e] = parent[parent[e]];
+      }
+      return e;
+    };
+    int triangles = 0;
+    for (; triangles < 5 && edges[3 * triangles] >= 0; ++triangles)
+    {
+      const int* t = edges + 3 * triangles;
+      parent[find(t[1])] = find(t[0]);
+      parent[find(t[2])] = find(t[0]);
+    }
+    for (int i = 1; i < 3 * triangles; ++i)
+    {
+      if (find(edges[i]) != find(edges[0]))
+      {
+        return false;
+      }
+    }
+    double x0[3] = { 0, 0, 0 };
+    bool used[12] = { false };
+    int points = 0;
+    for (int i = 0; i < 3 * triangles; ++i)
+    {
+      if (!used[edges[i]])
+      {
+        used[edges[i]] = true;
+        const double* p = &this->Out.Points[3 * this->EdgePoint(start[edges[i]], axis[edges[i]])];
+        for (int a = 0; a < 3; ++a)
+        {
+          x0[a] += p[a];
+        }
+        ++points;
+      }
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      x0[a] /= points;
+    }
+    double x[3];
+    if (!this->FeaturePoint(count, point, normal, x0, v0, corner, x))
+    {
+      return false;
+    }
+    // Only where marching cubes' piece misses the feature point by more than a quarter
+    // of a spacing: elsewhere it already holds it, and a fan would only add a tooth.
+    double nearest = HUGE_VAL;
+    for (int t = 0; t < triangles; ++t)
+    {
+      const double* p[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        const int e = edges[3 * t + k];
+        p[k] = &this->Out.Points[3 * this->EdgePoint(start[e], axis[e])];
+      }
+      nearest = std::min(nearest, voxelizer::SquaredDistanceToTriangle(x, p[0], p[1], p[2]));
+    }
+    const double* h = this->In.Grid.Spacing.data();
+    const double quarter = 0.25 * std::min({ h[0], h[1], h[2] });
+    if (nearest <= quarter * quarter)
+    {
+      return false;
+    }
+    const int64_t centre = this->AddPoint(x);
+    // The border: the triangles' directed edges whose reverse is not among them.
+    for (int i = 0; i < 3 * triangles; ++i)
+    {
+      const int a = edges[i], b = edges[i % 3 == 2 ? i - 2 : i + 1];
+      bool inner = false;
+      for (int j = 0; j < 3 * triangles && !inner; ++j)
+      {
+        inner = edges[j] == b && edges[j % 3 == 2 ? j - 2 : j + 1] == a;
+      }
+      if (!inner && a != b)
+      {
+        this->AddTriangle(
+          this->EdgePoint(start[a], axis[a]), this->EdgePoint(start[b], axis[b]), centre, lo, hi);
+      }
+    }
+    ++this->Out.FeatureCells;
+    return true;
+  }
+
   void Cell(int64_t v0)
   {
     int64_t corner[8];
@@ -173,6 +488,11 @@ struct Builder
         index |= region[c] == lo ? (1 << c) : 0;
       }
       const int* edges = this->In.Cases[index];
+      ++this->Out.MarchingCells;
+      if (this->In.ClosestPoint && this->FeatureFan(corner, region, lo, hi, edges, start, axis, v0))
+      {
+        return;
+      }
       for (int i = 0; edges[i] >= 0 && i < 15; i += 3)
       {
         const int64_t p = this->EdgePoint(start[edges[i]], axis[edges[i]]);
@@ -183,7 +503,6 @@ struct Builder
           this->AddTriangle(p, q, r, lo, hi);
         }
       }
-      ++this->Out.MarchingCells;
       return;
     }
 
@@ -206,6 +525,18 @@ struct Builder
     for (int a = 0; a < 3; ++a)
     {
       centre[a] /= count;
+    }
+    if (this->In.ClosestPoint)
+    {
+      // On the junction line or the open rim that the tangent planes meet at.
+      double point[8][3], normal[8][3];
+      int which[8];
+      const int planes = this->TangentPlanes(corner, point, normal, which);
+      if (planes > 0)
+      {
+        const double mean[3] = { centre[0], centre[1], centre[2] };
+        this->FeaturePoint(planes, point, normal, mean, v0, corner, centre);
+      }
     }
     const int64_t cellVertex = this->AddPoint(centre);
     auto pairOf = [&](int e)

@@ -18,6 +18,18 @@
 // Where a marching-cubes cell shares an ambiguous face (four points, two regions) with a
 // cell of the second kind, the two may disagree on that face: a crack of less than a
 // cell, rare (only next to a junction or a boundary).
+//
+// With the samples' closest points (Hermite data: the tangent plane through each
+// sample's closest point, normal to the direction to it), vertices follow the surface's
+// features as in dual contouring and extended marching cubes: the vertex of a junction or
+// boundary cell goes to the point nearest the cell's tangent planes (a least-squares
+// point, pulled weakly towards the mean of the interface points so that it stays put
+// along the directions the planes leave free), which puts it on the junction line or on
+// the open rim rather than inside the sheets; and a marching-cubes cell whose tangent
+// planes differ by more than FeatureAngle (an apex, a crease) has its one surface piece
+// replaced by a fan around that point, with the same border, so the neighbours still
+// match. The points stay within the cell grown by one spacing (a sharp apex may lie past
+// the last cell that holds samples of its inside).
 #ifndef vtkdf_SegmentContour_h
 #define vtkdf_SegmentContour_h
 
@@ -40,6 +52,10 @@ struct ContourInput
   /// 4-7 0-4 1-5 3-7 2-6; bit v of the case is set where corner v is above the value.
   const int (*Cases)[16] = nullptr;
   double Tolerance = 1e-5;
+  /// Optional: each sample's closest point on the surface (xyz, the grid's frame).
+  const double* ClosestPoint = nullptr;
+  /// Tangent planes that differ by more than this (degrees) make a feature.
+  double FeatureAngle = 30;
 };
 
 struct ContourResult
@@ -49,6 +65,7 @@ struct ContourResult
   std::vector<int32_t> Pairs;     // per triangle: the lower and the higher region
   int64_t MarchingCells = 0;      // cells done by the case table
   int64_t OtherCells = 0;         // junction and boundary cells
+  int64_t FeatureCells = 0;       // marching-cubes cells fanned around a feature point
 };
 
 void ContourSegmented(const ContourInput& input, ContourResult& result);
