@@ -14,8 +14,14 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "HeadlessGL.h"
+#include "LinearFactorField.h"
+#include "MeshSites.h"
+#include "RangeCulling.h"
+#include "SegmentFieldGPU.h"
 #include "SegmentRegions.h"
 #include "SurfacePatches.h"
 #include "vtkDistanceFieldMesh.h"
@@ -119,71 +125,166 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
   }
   this->EndStage("patches");
 
-  // The exact unsigned field with closest features, on this filter's grid and backend.
+  // The exact unsigned field with closest features, and each sample's side label: on the
+  // GPU the field stays there and the labels are computed where it lies (SegmentFieldGPU);
+  // on the CPU from vtkLinearFactorDistanceField's arrays (SegmentRegions).
   vtkNew<vtkPolyData> surface;
   surface->SetPoints(mesh->GetPoints());
   surface->SetPolys(polys);
-  vtkNew<vtkLinearFactorDistanceField> exact;
-  const vtkdf::InnerErrors innerErrors(exact);
-  exact->SetInputData(surface);
-  exact->ExplicitGridOn();
-  exact->SetGridOrigin(grid.Origin.data());
-  exact->SetGridSpacing(grid.Spacing.data());
-  exact->SetGridDimensions(grid.Whole.Size(0), grid.Whole.Size(1), grid.Whole.Size(2));
-  exact->SetBackend(gl ? BACKEND_GPU : BACKEND_CPU);
-  exact->SetMemoryLimit(this->MemoryLimit);
-  exact->SetSignModeToUnsigned();
-  exact->ComputeClosestCellIdOn();
-  exact->ComputeClosestFeatureOn();
-  exact->ComputeClosestPointOn();
-  exact->Update();
-  vtkImageData* field = exact->GetOutput();
-  if (exact->GetErrorCode() || !field || field->GetNumberOfPoints() != n)
+  const vtkdf::GridFrame& frame = conversion.Frame;
+  vtkNew<vtkFloatArray> distance, points; // world units, for the output
+  distance->SetName("Distance");
+  points->SetName("ClosestPoint");
+  points->SetNumberOfComponents(3);
+  vtkdf::AllocateTuples(distance, n);
+  vtkdf::AllocateTuples(points, n);
+  std::vector<float> localDistance(n);
+  std::vector<int32_t> labels;
+  std::vector<int64_t> triangle;
+  std::vector<double> closest;
+  vtkSmartPointer<vtkUnsignedCharArray> features;
+  if (gl)
   {
-    vtkErrorMacro("The distance field of the input could not be computed: " << innerErrors.Message(
-                    "no output"));
-    return 0;
+    vtkdf::MeshConversion siteConversion; // the same local frame: it depends on the grid
+    vtkdf::MeshSites sites;
+    std::string warning;
+    if (!vtkdf::BuildSites(
+          surface, vtkdf::Culling::Auto, grid, siteConversion, sites, warning, error) ||
+      sites.Sites.empty())
+    {
+      vtkErrorMacro(<< (error.empty() ? "Invalid input mesh: no usable cell." : error));
+      return 0;
+    }
+    vtkdf::FieldRequest request;
+    request.Grid = siteConversion.Grid;
+    request.Extent = grid.Whole;
+    vtkdf::RangeCulling culling;
+    culling.ReachLevel = 0; // the GPU scan
+    culling.Build(sites, request.Grid, request.Extent, HUGE_VAL, vtkdf::SMPFor);
+    std::vector<int32_t> siteTriangle(2 * sites.Sites.size());
+    for (size_t i = 0; i < sites.Sites.size(); ++i)
+    {
+      const int64_t c = sites.Sites[i].CellId;
+      siteTriangle[2 * i] =
+        c >= 0 && c < static_cast<int64_t>(kept.size()) ? static_cast<int32_t>(kept[c]) : -1;
+      siteTriangle[2 * i + 1] = sites.Sites[i].Type;
+    }
+    std::vector<float> localClosest(3 * static_cast<size_t>(n));
+    labels.resize(n);
+    vtkdf::ScanStatistics stats;
+    auto progress = [this](double fraction)
+    {
+      this->UpdateProgress(0.05 + 0.5 * fraction);
+      return !this->GetAbortExecute();
+    };
+    if (!vtkdf::SegmentFieldGPU(*gl,
+          sites,
+          culling,
+          request,
+          patches,
+          siteTriangle,
+          localDistance.data(),
+          localClosest.data(),
+          labels.data(),
+          stats,
+          error,
+          progress))
+    {
+      vtkErrorMacro("The GPU field and side labels failed: " << error);
+      return 0;
+    }
+    if (stats.Aborted)
+    {
+      return 1; // aborted: the output stays empty
+    }
+    float* d = distance->GetPointer(0);
+    float* x = points->GetPointer(0);
+    vtkdf::SMPFor(n,
+      4096,
+      [&](int64_t begin, int64_t end)
+      {
+        for (int64_t v = begin; v < end; ++v)
+        {
+          d[v] = static_cast<float>(localDistance[v] * frame.Scale);
+          for (int a = 0; a < 3; ++a)
+          {
+            x[3 * v + a] = static_cast<float>(frame.ToWorld(a, localClosest[3 * v + a]));
+          }
+        }
+      });
+  }
+  else
+  {
+    vtkNew<vtkLinearFactorDistanceField> exact;
+    const vtkdf::InnerErrors innerErrors(exact);
+    exact->SetInputData(surface);
+    exact->ExplicitGridOn();
+    exact->SetGridOrigin(grid.Origin.data());
+    exact->SetGridSpacing(grid.Spacing.data());
+    exact->SetGridDimensions(grid.Whole.Size(0), grid.Whole.Size(1), grid.Whole.Size(2));
+    exact->SetBackendToCPU();
+    exact->SetMemoryLimit(this->MemoryLimit);
+    exact->SetSignModeToUnsigned();
+    exact->ComputeClosestCellIdOn();
+    exact->ComputeClosestFeatureOn();
+    exact->ComputeClosestPointOn();
+    exact->Update();
+    vtkImageData* field = exact->GetOutput();
+    auto* d =
+      field ? vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("Distance")) : nullptr;
+    auto* cells = field
+      ? vtkIdTypeArray::SafeDownCast(field->GetPointData()->GetArray("ClosestCellId"))
+      : nullptr;
+    features = field
+      ? vtkUnsignedCharArray::SafeDownCast(field->GetPointData()->GetArray("ClosestFeature"))
+      : nullptr;
+    auto* x = field ? vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("ClosestPoint"))
+                    : nullptr;
+    if (exact->GetErrorCode() || !field || field->GetNumberOfPoints() != n || !d || !cells ||
+      !features || !x)
+    {
+      vtkErrorMacro("The distance field of the input could not be computed: "
+        << innerErrors.Message("no output"));
+      return 0;
+    }
+    distance->DeepCopy(d);
+    points->DeepCopy(x);
+    triangle.resize(n);
+    closest.resize(3 * static_cast<size_t>(n));
+    vtkdf::SMPFor(n,
+      4096,
+      [&](int64_t begin, int64_t end)
+      {
+        for (int64_t v = begin; v < end; ++v)
+        {
+          localDistance[v] = static_cast<float>(d->GetValue(v) / frame.Scale);
+          const vtkIdType c = cells->GetValue(v);
+          triangle[v] = c >= 0 && c < static_cast<vtkIdType>(kept.size()) ? kept[c] : -1;
+          for (int a = 0; a < 3; ++a)
+          {
+            closest[3 * v + a] = frame.ToLocal(a, x->GetValue(3 * v + a));
+          }
+        }
+      });
   }
   this->EndStage("field");
   this->UpdateProgress(0.6);
 
   // Regions, in the grid's local frame.
-  auto* distance = vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("Distance"));
-  auto* cells = vtkIdTypeArray::SafeDownCast(field->GetPointData()->GetArray("ClosestCellId"));
-  auto* features =
-    vtkUnsignedCharArray::SafeDownCast(field->GetPointData()->GetArray("ClosestFeature"));
-  auto* points = vtkFloatArray::SafeDownCast(field->GetPointData()->GetArray("ClosestPoint"));
-  if (!distance || !cells || !features || !points)
-  {
-    vtkErrorMacro("The distance field lacks its arrays.");
-    return 0;
-  }
-  std::vector<float> localDistance(n);
-  std::vector<int64_t> triangle(n);
-  std::vector<double> closest(3 * static_cast<size_t>(n));
-  const vtkdf::GridFrame& frame = conversion.Frame;
-  vtkdf::SMPFor(n,
-    4096,
-    [&](int64_t begin, int64_t end)
-    {
-      for (int64_t v = begin; v < end; ++v)
-      {
-        localDistance[v] = static_cast<float>(distance->GetValue(v) / frame.Scale);
-        const vtkIdType c = cells->GetValue(v);
-        triangle[v] = c >= 0 && c < static_cast<vtkIdType>(kept.size()) ? kept[c] : -1;
-        for (int a = 0; a < 3; ++a)
-        {
-          closest[3 * v + a] = frame.ToLocal(a, points->GetValue(3 * v + a));
-        }
-      }
-    });
   vtkdf::SegmentInput input;
   input.Patches = &patches;
   input.Grid = conversion.Grid;
   input.Distance = localDistance.data();
-  input.ClosestTriangle = triangle.data();
-  input.ClosestFeature = features->GetPointer(0);
-  input.ClosestPoint = closest.data();
+  if (gl)
+  {
+    input.Labels = labels.data();
+  }
+  else
+  {
+    input.ClosestTriangle = triangle.data();
+    input.ClosestFeature = features->GetPointer(0);
+    input.ClosestPoint = closest.data();
+  }
   vtkdf::SegmentResult result;
   vtkdf::SegmentRegions(input, result, vtkdf::SMPFor);
   this->LastRegionCount = result.RegionCount;

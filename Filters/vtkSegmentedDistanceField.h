@@ -15,9 +15,13 @@
  *
  * Input: vtkPolyData of triangles and polygons (open, non-manifold, several components,
  * soups: points at the same position are one); lines and vertices are ignored (a
- * warning says so), as are triangles without area. The exact distance and closest
- * features come from vtkLinearFactorDistanceField on this filter's grid and Backend; the
- * regions are computed on the CPU (vtkSMPTools).
+ * warning says so), as are triangles without area. On the CPU the exact distance and
+ * closest features come from vtkLinearFactorDistanceField on this filter's grid, and the
+ * side labels and regions are computed with vtkSMPTools. On the GPU the field stays
+ * there: the scan, its finalize and the side labels run where the field lies
+ * (Filters/Core/Segment/SegmentFieldGPU.h, Shaders/SideLabel.comp.glsl), and only the
+ * distances, closest points and labels come back for the merge into regions (CPU: one
+ * pass over the samples).
  *
  * Output: vtkImageData (the whole grid) with `SegmentedDistance` (float), `RegionIndex`
  * (int), `Distance` (float, unsigned), `PatchId` (int: the patch whose side the sample

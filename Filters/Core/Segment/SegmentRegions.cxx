@@ -239,32 +239,48 @@ void SegmentRegions(const SegmentInput& input,
   // Labels.
   std::vector<int64_t> label(count);
   result.Patch.assign(count, -1);
-  run(n[2],
-    1,
-    [&](int64_t k0, int64_t k1)
-    {
-      std::vector<int64_t> scratch;
-      for (int64_t k = k0; k < k1; ++k)
+  if (input.Labels)
+  {
+    run(count,
+      1 << 16,
+      [&](int64_t begin, int64_t end)
       {
-        for (int j = 0; j < n[1]; ++j)
+        for (int64_t v = begin; v < end; ++v)
         {
-          for (int i = 0; i < n[0]; ++i)
+          label[v] = input.Labels[v];
+          result.Patch[v] = label[v] < 0 ? -1 : static_cast<int32_t>(label[v] / 2);
+        }
+      });
+  }
+  else
+  {
+    run(n[2],
+      1,
+      [&](int64_t k0, int64_t k1)
+      {
+        std::vector<int64_t> scratch;
+        for (int64_t k = k0; k < k1; ++k)
+        {
+          for (int j = 0; j < n[1]; ++j)
           {
-            const int64_t v = i + j * stride[1] + k * stride[2];
-            const double p[3] = { grid.Coordinate(0, whole.Lo[0] + i),
-              grid.Coordinate(1, whole.Lo[1] + j),
-              grid.Coordinate(2, whole.Lo[2] + static_cast<int>(k)) };
-            label[v] = SideLabel(*input.Patches,
-              p,
-              input.ClosestPoint + 3 * v,
-              input.ClosestTriangle[v],
-              input.ClosestFeature[v],
-              scratch);
-            result.Patch[v] = label[v] < 0 ? -1 : static_cast<int32_t>(label[v] / 2);
+            for (int i = 0; i < n[0]; ++i)
+            {
+              const int64_t v = i + j * stride[1] + k * stride[2];
+              const double p[3] = { grid.Coordinate(0, whole.Lo[0] + i),
+                grid.Coordinate(1, whole.Lo[1] + j),
+                grid.Coordinate(2, whole.Lo[2] + static_cast<int>(k)) };
+              label[v] = SideLabel(*input.Patches,
+                p,
+                input.ClosestPoint + 3 * v,
+                input.ClosestTriangle[v],
+                input.ClosestFeature[v],
+                scratch);
+              result.Patch[v] = label[v] < 0 ? -1 : static_cast<int32_t>(label[v] / 2);
+            }
           }
         }
-      }
-    });
+      });
+  }
 
   // Support of each label pair: adjacent samples with no surface between them.
   std::map<std::pair<int64_t, int64_t>, int64_t> support;

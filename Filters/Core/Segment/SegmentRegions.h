@@ -46,6 +46,9 @@ struct SegmentInput
   const int64_t* ClosestTriangle = nullptr;
   const uint8_t* ClosestFeature = nullptr; // 0 vertex, 1 edge, 2 face
   const double* ClosestPoint = nullptr;    // xyz in the grid's frame
+  /// Optional: each sample's side label already computed (SegmentFieldGPU); then
+  /// ClosestTriangle, ClosestFeature and ClosestPoint are not read.
+  const int32_t* Labels = nullptr;
 };
 
 struct SegmentResult

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 namespace vtkdf
 {
@@ -228,6 +229,30 @@ void SurfacePatches::Normal(int64_t t, double n[3]) const
   {
     n[a] *= scale;
   }
+}
+
+bool SurfacePatches::Flatten(std::vector<int32_t>& triangles, std::vector<int32_t>& corners) const
+{
+  const int64_t count = static_cast<int64_t>(this->Patch.size());
+  const int64_t keys = static_cast<int64_t>(this->CornerStart.size());
+  if (count > INT32_MAX / 5 ||
+    keys + static_cast<int64_t>(this->CornerTriangles.size()) > INT32_MAX)
+  {
+    return false;
+  }
+  triangles.resize(5 * count);
+  for (int64_t t = 0; t < count; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      triangles[5 * t + k] = static_cast<int32_t>(this->Key(t, k));
+    }
+    triangles[5 * t + 3] = static_cast<int32_t>(this->Patch[t]);
+    triangles[5 * t + 4] = this->Flipped[t];
+  }
+  corners.assign(this->CornerStart.begin(), this->CornerStart.end());
+  corners.insert(corners.end(), this->CornerTriangles.begin(), this->CornerTriangles.end());
+  return true;
 }
 
 void SurfacePatches::TrianglesAtPoint(int64_t p, std::vector<int64_t>& out) const

@@ -45,6 +45,16 @@ public:
   /// The merged id of triangle t's corner k (equal for equal positions).
   int64_t Key(int64_t t, int k) const { return this->Keys[this->Ids[3 * t + k]]; }
 
+  /// Flat int copies for the GPU (Shaders/SideLabel.comp.glsl): per triangle its three
+  /// corner keys, its patch and whether it is flipped; per key where its triangles start
+  /// in `corners` (one more entry than keys), then those triangles, ascending. False
+  /// when an id does not fit an int.
+  bool Flatten(std::vector<int32_t>& triangles, std::vector<int32_t>& corners) const;
+  /// The points Build was given (xyz per id), and how many triangle entries Flatten's
+  /// `corners` holds after its starts.
+  const std::vector<double>* PointArray() const { return this->Points; }
+  int64_t CornerCount() const { return static_cast<int64_t>(this->CornerTriangles.size()); }
+
 private:
   const std::vector<double>* Points = nullptr;
   std::vector<int64_t> Ids;         // the triangles' point ids
