@@ -8,11 +8,16 @@
 //   no sample in the band the wall sweeps is put nearer a surface than both inputs'
 //   blended distance and the moving wall's allow (the signed blend of the plain distances
 //   collapsed to 0 all along the box's faces there);
+// - an open disk into a bowl of the same rim (their regions meet beyond the rim without
+//   a sheet, in other places): at T = 0.25, 0.5, 0.75 the polygonized blend has no
+//   surface more than a spacing beyond the rim (1.46 at T = 0.5 when the blend took |s|
+//   across the seams too), and its middle at the blended depth within half a spacing;
 // - refused, with a message naming the problem: fields of other regions (a T-junction's
 //   segmentation), other grids, missing arrays, T outside [0, 1] or NaN.
 #include "TestShapes.h"
 #include "TestSupport.h"
 #include "vtkDistanceFieldBlend.h"
+#include "vtkSegmentedDistanceContour.h"
 #include "vtkSegmentedDistanceField.h"
 
 #include "vtkCellArray.h"
@@ -25,6 +30,7 @@
 #include "vtkSphereSource.h"
 #include "vtkTriangleFilter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -231,6 +237,78 @@ int main()
       collapsed);
     CHECK(std::abs(wall - expectedWall) < 0.5 * h, "T = %g: the wall is not where it should be", t);
     CHECK(collapsed == 0, "T = %g: %lld samples collapsed onto a spurious surface", t, collapsed);
+  }
+
+  {
+    // An open disk into a bowl of the same rim (radius 0.7 at z = 0; the bowl's bottom at
+    // z = -0.4): the two regions meet beyond the rim without a sheet, at other places in
+    // the two fields (seams). The blend's surface is a shallower bowl: its bottom at
+    // z = -0.4 T, and nothing beyond the rim.
+    auto dish = [](double depth)
+    {
+      vtkNew<vtkPoints> points;
+      vtkNew<vtkCellArray> polys;
+      const int rings = 12, around = 48;
+      points->InsertNextPoint(0, 0, -depth);
+      for (int i = 1; i <= rings; ++i)
+      {
+        const double r = 0.7 * i / rings;
+        for (int k = 0; k < around; ++k)
+        {
+          const double a = 2 * M_PI * k / around;
+          points->InsertNextPoint(r * std::cos(a), r * std::sin(a), -depth * (1 - r * r / 0.49));
+        }
+      }
+      auto id = [&](int i, int k) { return i == 0 ? 0 : 1 + (i - 1) * around + k % around; };
+      for (int i = 0; i < rings; ++i)
+      {
+        for (int k = 0; k < around; ++k)
+        {
+          const vtkIdType t0[3] = { id(i, k), id(i + 1, k), id(i + 1, k + 1) };
+          polys->InsertNextCell(3, t0);
+          if (i > 0)
+          {
+            const vtkIdType t1[3] = { id(i, k), id(i + 1, k + 1), id(i, k + 1) };
+            polys->InsertNextCell(3, t1);
+          }
+        }
+      }
+      vtkNew<vtkPolyData> mesh;
+      mesh->SetPoints(points);
+      mesh->SetPolys(polys);
+      return vtkSmartPointer<vtkPolyData>(mesh);
+    };
+    auto disk = Segmented(dish(0), 0.05);
+    auto bowl = Segmented(dish(0.4), 0.05);
+    for (const double t : { 0.25, 0.5, 0.75 })
+    {
+      auto b = Blend(disk, bowl, t);
+      vtkNew<vtkSegmentedDistanceContour> contour;
+      contour->SetInputData(b);
+      contour->Update();
+      vtkPolyData* surface = contour->GetOutput();
+      double beyond = 0, bottom = HUGE_VAL;
+      for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p)
+      {
+        double x[3];
+        surface->GetPoint(p, x);
+        const double r = std::hypot(x[0], x[1]);
+        beyond = std::max(beyond, r - 0.7);
+        if (r < 0.1)
+        {
+          bottom = std::min(bottom, std::abs(x[2] + 0.4 * t * (1 - r * r / 0.49)));
+        }
+      }
+      std::printf("T = %.2f: disk into bowl, %lld triangles; the surface reaches %.3f spacings "
+                  "beyond the rim; at the middle %.3f spacings from z = %.2f\n",
+        t,
+        static_cast<long long>(surface->GetNumberOfCells()),
+        beyond / h,
+        bottom / h,
+        -0.4 * t);
+      CHECK(beyond <= h, "T = %g: a sheet beyond the rim (%.3f spacings)", t, beyond / h);
+      CHECK(bottom <= 0.5 * h, "T = %g: the bowl's middle is not at its blended depth", t);
+    }
   }
 
   // Refusals.

@@ -175,6 +175,10 @@ void BlendSegmented(const SegmentedSamples& first,
   std::vector<float> toInterfaceFirst(static_cast<size_t>(count), 0.0f);
   std::vector<float> toInterfaceSecond(static_cast<size_t>(count), 0.0f);
   std::vector<float> scratch(static_cast<size_t>(count));
+  // Whether, in either field, the sample's region meets the other one across a seam:
+  // a voxel of the other region nearer than the nearest surface lies in the sample's
+  // empty ball, so the two regions touch there without a sheet between them.
+  std::vector<uint8_t> seam(static_cast<size_t>(count), 0);
   for (const int32_t r : inFirst)
   {
     RegionDistance(first.Region, r, grid, scratch.data(), parallelFor);
@@ -184,6 +188,7 @@ void BlendSegmented(const SegmentedSamples& first,
       {
         toInterfaceFirst[v] =
           static_cast<float>(std::max<double>(first.Distance[v], scratch[v] - halfDiagonal));
+        seam[v] |= scratch[v] < first.Distance[v] ? 1 : 0;
       }
     }
   }
@@ -196,6 +201,7 @@ void BlendSegmented(const SegmentedSamples& first,
       {
         toInterfaceSecond[v] =
           static_cast<float>(std::max<double>(second.Distance[v], scratch[v] - halfDiagonal));
+        seam[v] |= scratch[v] < second.Distance[v] ? 1 : 0;
       }
     }
   }
@@ -216,7 +222,10 @@ void BlendSegmented(const SegmentedSamples& first,
         else
         {
           const double s = (1 - t) * -toInterfaceFirst[v] + t * toInterfaceSecond[v];
-          distance[v] = static_cast<float>(std::min(std::fabs(s), (1 - t) * a + t * b));
+          // Across a seam the region still changes where s does, but no sheet moves
+          // there: the distance is the surfaces', which eq. 7 keeps from making one.
+          const double blended = (1 - t) * a + t * b;
+          distance[v] = static_cast<float>(seam[v] ? blended : std::min(std::fabs(s), blended));
           region[v] = s < 0 ? ra : rb;
         }
       }

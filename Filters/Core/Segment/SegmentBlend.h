@@ -22,6 +22,13 @@
 // diagonal). Likewise e_b in the second field with region a. The blended distance is
 // min(|s|, (1 - t) d_a + t d_b): the moving interface's distance, or the other surfaces'
 // where they are nearer.
+//
+// Beyond an open surface's boundary its two regions meet without a sheet (a seam). Where
+// a sample's two regions meet that way in either field (a voxel of the other region lies
+// nearer than the nearest surface, g_b < d: inside the sample's empty ball), the region
+// still follows the sign of s, so seams move too, but the distance is (1 - t) d_a + t d_b:
+// with |s|, which vanishes between the two seams, the blend of a disk into a bowl of the
+// same rim grew a sheet beyond the rim.
 #ifndef vtkdf_SegmentBlend_h
 #define vtkdf_SegmentBlend_h
 
