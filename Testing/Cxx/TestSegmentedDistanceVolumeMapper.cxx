@@ -1029,18 +1029,21 @@ int TestLighting()
 /// - against the field's own polygonized surface (vtkSegmentedDistanceContour), i.e. the
 ///   renderer's fidelity: within a voxel on >= 99% of the pixels both hit (but teapot and
 ///   max3ds_export, see below);
-/// - against the mesh drawn as opaque polygons: within a voxel on >= 99% of the pixels
-///   both hit for bunny_small, plane and scad_back_to_back; teapot and max3ds_export fall
-///   short because of the field, not the renderer (sub-voxel gaps between the teapot's lid
-///   and body and where its spout pierces the body, the thin parts of max3ds_export:
-///   regions the field cannot separate at this resolution), and are held to what they
-///   reach so that they cannot get worse unnoticed;
+/// - against the mesh drawn as opaque polygons, on >= 99% of the pixels both hit, on all
+///   five meshes: within a voxel in 3D, i.e. some pixel of the mesh's picture within a
+///   voxel sideways (at the pixel's depth) lies within a voxel in depth and sideways
+///   together. Per pixel in depth alone (the pixel's own depths within a voxel) bunny_small,
+///   plane and scad_back_to_back also reach 99%; teapot and max3ds_export do not (94.3%,
+///   85.9%), nearly all of it at silhouettes, where a sideways shift of less than a voxel
+///   makes one ray hit the surface behind (thin limbs, the lid's gap: the share falls with
+///   the voxel, 98.0% and 95.2% at 128^3), and are held per pixel to what they reach so
+///   that they cannot get worse unnoticed;
 /// - no spurious surface: every pixel the mapper draws, unprojected, lies within a voxel
 ///   of the mesh (for >= 99.5% of them): open boundaries end within a voxel.
 /// For bunny_small's signed field also VTK's GPU ray caster in ISOSURFACE mode (its
 /// first-hit depth from RenderToImage, the same sample distance), side by side: the
 /// mapper is the more accurate.
-int TestAccuracy(const std::string& data, const std::string& name)
+int TestAccuracy(const std::string& data, const std::string& name, int resolution)
 {
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName((data + "/" + name + ".vtp").c_str());
@@ -1050,7 +1053,7 @@ int TestAccuracy(const std::string& data, const std::string& name)
   auto meshActor = SurfaceActor(mesh, white);
   vtkNew<vtkSegmentedDistanceField> segment;
   segment->SetInputData(mesh);
-  segment->SetResolution(48);
+  segment->SetResolution(resolution);
   segment->SetBackendToCPU();
   segment->Update();
   vtkImageData* field = segment->GetOutput();
@@ -1095,6 +1098,55 @@ int TestAccuracy(const std::string& data, const std::string& name)
     std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
     return std::make_pair(within, errors[errors.size() / 2]);
   };
+  // The same pixels, with the voxel of tolerance in every direction: a pixel agrees when
+  // a pixel of `against` within a voxel of it sideways (at its depth) lies within a voxel
+  // in 3D. At a silhouette a sideways shift of less than a voxel makes a ray hit the
+  // surface behind instead, a depth difference the per-pixel test counts as an error;
+  // a hole or a misplaced surface still fails this test.
+  auto agree3D = [&](const std::vector<float>& depth, const Frame& against)
+  {
+    const double tangent = std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2);
+    size_t both = 0, within = 0;
+    for (int y = 0; y < against.Height; ++y)
+    {
+      for (int x = 0; x < against.Width; ++x)
+      {
+        const size_t p = static_cast<size_t>(y) * against.Width + x;
+        if (!(depth[p] < 1.0f && against.Covered(p)))
+        {
+          continue;
+        }
+        ++both;
+        const double d = ViewDepth(depth[p], camera);
+        const double pixel = camera->GetParallelProjection()
+          ? 2 * camera->GetParallelScale() / against.Height
+          : 2 * d * tangent / against.Height;
+        const int reach = static_cast<int>(std::ceil(h / pixel));
+        bool found = false;
+        for (int dy = -reach; dy <= reach && !found; ++dy)
+        {
+          for (int dx = -reach; dx <= reach && !found; ++dx)
+          {
+            const int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= against.Width || qy >= against.Height)
+            {
+              continue;
+            }
+            const size_t q = static_cast<size_t>(qy) * against.Width + qx;
+            if (!against.Covered(q))
+            {
+              continue;
+            }
+            const double sideways = std::hypot(dx, dy) * pixel;
+            const double along = d - ViewDepth(against.Depth[q], camera);
+            found = sideways * sideways + along * along <= h * h;
+          }
+        }
+        within += found;
+      }
+    }
+    return both ? static_cast<double>(within) / both : 0.0;
+  };
   const Frame drawn = scene.Draw({ volume });
   size_t bothPolygonized = 0, bothMesh = 0;
   const auto fidelity = agree(drawn.Depth, polygonized, bothPolygonized);
@@ -1131,6 +1183,13 @@ int TestAccuracy(const std::string& data, const std::string& name)
     }
   }
   const double near = drawnPixels ? static_cast<double>(nearMesh) / drawnPixels : 0.0;
+  const double onMesh3D = agree3D(drawn.Depth, reference);
+  std::printf("%s, %d^3: the mapper against the mesh within a voxel per pixel %.2f%%, with "
+              "the voxel sideways too %.2f%%\n",
+    name.c_str(),
+    resolution,
+    100 * onMesh.first,
+    100 * onMesh3D);
   std::printf("%s, segmented field (%d regions), %zu pixels drawn: against its polygonized "
               "surface %.2f%% within a voxel (median %.3f); against the mesh %.2f%% within a "
               "voxel (median %.3f, %zu pixels; the polygonized surface: %.2f%%); %.2f%% of the "
@@ -1160,6 +1219,9 @@ int TestAccuracy(const std::string& data, const std::string& name)
     "the surface is off the mesh (%.2f%% within a voxel, < %.1f%%)",
     100 * onMesh.first,
     100 * meshFloor);
+  CHECK(onMesh3D >= 0.99,
+    "the surface is off the mesh (%.2f%% within a voxel, sideways included, < 99%%)",
+    100 * onMesh3D);
   CHECK(near >= 0.995,
     "%.2f%% of the drawn points are farther than a voxel from the mesh",
     100 * (1 - near));
@@ -1168,7 +1230,7 @@ int TestAccuracy(const std::string& data, const std::string& name)
   {
     vtkNew<vtkLinearFactorDistanceField> signedField;
     signedField->SetInputData(mesh);
-    signedField->SetResolution(48);
+    signedField->SetResolution(resolution);
     signedField->SetBackendToCPU();
     signedField->SetSignModeToPseudoNormal();
     signedField->Update();
@@ -1176,7 +1238,8 @@ int TestAccuracy(const std::string& data, const std::string& name)
     sdf->GetPointData()->SetActiveScalars("Distance");
     mapper->SetInputData(sdf);
     size_t both = 0;
-    const auto m = agree(scene.Draw({ volume }).Depth, reference, both);
+    const std::vector<float> mapperDepth = scene.Draw({ volume }).Depth;
+    const auto m = agree(mapperDepth, reference, both);
     // VTK's ray caster, ISOSURFACE at 0, sampling at the mapper's slice spacing.
     vtkNew<vtkOpenGLGPUVolumeRayCastMapper> caster;
     caster->SetInputData(sdf);
@@ -1207,18 +1270,22 @@ int TestAccuracy(const std::string& data, const std::string& name)
     }
     size_t casterBoth = 0;
     const auto c = agree(casterDepth, reference, casterBoth);
-    std::printf("%s, signed field against the mesh: mapper %.2f%% within a voxel, median %.3f "
-                "voxel; VTK's ray caster (ISOSURFACE, same sample distance) %.2f%% within a "
-                "voxel, median %.3f voxel (%zu pixels)\n",
+    const double m3 = agree3D(mapperDepth, reference), c3 = agree3D(casterDepth, reference);
+    std::printf("%s, signed field against the mesh: mapper %.2f%% within a voxel (%.2f%% "
+                "sideways included), median %.3f voxel; VTK's ray caster (ISOSURFACE, same "
+                "sample distance) %.2f%% within a voxel (%.2f%% sideways included), median "
+                "%.3f voxel (%zu pixels)\n",
       name.c_str(),
       100 * m.first,
+      100 * m3,
       m.second,
       100 * c.first,
+      100 * c3,
       c.second,
       casterBoth);
-    CHECK(m.first >= 0.99, "the signed field's surface is off the mesh");
+    CHECK(m.first >= 0.99 && m3 >= 0.99, "the signed field's surface is off the mesh");
     CHECK(casterBoth > 2000, "the ray caster's depth image was not read");
-    CHECK(m.second < c.second && m.first > c.first,
+    CHECK(m.second < c.second && m.first > c.first && m3 > c3,
       "the mapper is not more accurate than the ray caster");
   }
   CHECK(messages.Errors.empty(), "errors: %s", messages.Errors.c_str());
@@ -1539,7 +1606,7 @@ int main(int argc, char* argv[])
   }
   else if (mode == "accuracy" && argc > 3)
   {
-    TestAccuracy(data, argv[3]);
+    TestAccuracy(data, argv[3], argc > 4 ? std::atoi(argv[4]) : 48);
   }
   else if (mode == "preintegration")
   {
