@@ -43,6 +43,12 @@ constexpr int FaceEdges[6][4] = { { 0, 1, 2, 3 },
 constexpr int FaceAxis[6] = { 2, 2, 1, 1, 0, 0 };
 constexpr int FaceCorner[6] = { 0, 4, 0, 3, 0, 1 };
 
+double Length(const double* p, const double* q)
+{
+  return std::sqrt(
+    (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+}
+
 // The volume spanned by three unit normals above which a feature is a corner.
 constexpr double CornerSpread = 0.1;
 
@@ -134,8 +140,7 @@ struct Builder
       double p[3];
       this->Position(corner[c], p);
       const double* q = this->In.ClosestPoint + 3 * corner[c];
-      const double d = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-        (p[2] - q[2]) * (p[2] - q[2]));
+      const double d = Length(p, q);
       if (!(d > 1e-6 * smallest && d <= diagonal))
       {
         continue;
@@ -225,12 +230,7 @@ struct Builder
     {
       double p[3];
       this->Position(corner[c], p);
-      const double* q = this->In.ClosestPoint + 3 * corner[c];
-      const double d = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-        (p[2] - q[2]) * (p[2] - q[2]));
-      const double e = std::sqrt((p[0] - solution[0]) * (p[0] - solution[0]) +
-        (p[1] - solution[1]) * (p[1] - solution[1]) + (p[2] - solution[2]) * (p[2] - solution[2]));
-      if (d - e > quarter)
+      if (Length(p, this->In.ClosestPoint + 3 * corner[c]) - Length(p, solution) > quarter)
       {
         return false;
       }
@@ -260,9 +260,7 @@ struct Builder
         {
           const double* q =
             this->In.ClosestPoint + 3 * (i + j * this->Stride[1] + k * this->Stride[2]);
-          const double d2 = (q[0] - x[0]) * (q[0] - x[0]) + (q[1] - x[1]) * (q[1] - x[1]) +
-            (q[2] - x[2]) * (q[2] - x[2]);
-          if (d2 <= radius * radius)
+          if (Length(q, x) <= radius)
           {
             return true;
           }
