@@ -32,6 +32,7 @@
 #include "vtkCellData.h"
 #include "vtkCleanPolyData.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFeatureEdges.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -654,6 +655,34 @@ int main(int argc, char* argv[])
     CHECK(recorder.Errors.find("RegionOffset") != std::string::npos,
       "no RegionOffset: %s",
       recorder.Errors.c_str());
+    // A ClosestPoint array of the wrong shape, a FeatureAngle out of (0, 180].
+    vtkNew<vtkDoubleArray> offset;
+    offset->SetName("RegionOffset");
+    offset->InsertNextValue(4);
+    bare->GetFieldData()->AddArray(offset);
+    vtkNew<vtkFloatArray> closest;
+    closest->SetName("ClosestPoint");
+    closest->SetNumberOfComponents(2);
+    closest->SetNumberOfTuples(64);
+    closest->FillValue(0);
+    bare->GetPointData()->AddArray(closest);
+    recorder.Errors.clear();
+    c->Modified();
+    c->Update();
+    CHECK(recorder.Errors.find("ClosestPoint must have 3 components") != std::string::npos,
+      "a 2-component ClosestPoint: %s",
+      recorder.Errors.c_str());
+    for (const double angle : { 0.0, -5.0, 181.0, std::nan("") })
+    {
+      recorder.Errors.clear();
+      c->SetFeatureAngle(angle);
+      c->Update();
+      CHECK(recorder.Errors.find("FeatureAngle must be in (0, 180]") != std::string::npos &&
+          c->GetOutput()->GetNumberOfPoints() == 0,
+        "FeatureAngle %g: %s",
+        angle,
+        recorder.Errors.c_str());
+    }
   }
   return testsupport::Verdict();
 }
