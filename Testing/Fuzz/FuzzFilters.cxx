@@ -1,6 +1,7 @@
 // libFuzzer target: bytes -> a small mesh, a grid and filter properties (valid or not)
 // -> vtkLinearFactorDistanceField, vtkPolyDataVoxelizer, vtkChamferVoxelDistance,
-// vtkMedialAxisFilter and vtkSegmentedDistanceField on the CPU backend. Built with clang,
+// vtkMedialAxisFilter and vtkSegmentedDistanceField (and its vtkSegmentedDistanceContour)
+// on the CPU backend. Built with clang,
 // -fsanitize=fuzzer,address, undefined (Testing/run-fuzz.sh). A crash, a sanitizer report, a leak
 // or a broken invariant of a successful output (below) is a finding; an error reported by a filter
 // is the expected answer to bad input.
@@ -8,6 +9,7 @@
 #include "vtkLinearFactorDistanceField.h"
 #include "vtkMedialAxisFilter.h"
 #include "vtkPolyDataVoxelizer.h"
+#include "vtkSegmentedDistanceContour.h"
 #include "vtkSegmentedDistanceField.h"
 
 #include "vtkCellArray.h"
@@ -257,6 +259,37 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         const double expected = std::min(d->GetTuple1(v), delta) + offset * region;
         Trap(std::fabs(f->GetTuple1(v) - expected) <=
           1e-6 * std::fabs(expected) + std::numeric_limits<float>::denorm_min());
+      }
+      // Its surface, vertices from the closest points: finite points within the grid
+      // grown by two spacings (a feature point may lie past its cell), valid ids.
+      vtkNew<vtkSegmentedDistanceContour> contour;
+      contour->SetInputData(output);
+      const double featureAngles[] = { 30, 1, 180, 90 };
+      contour->SetFeatureAngle(in.Pick(featureAngles));
+      contour->Update();
+      vtkPolyData* surface = contour->GetOutput();
+      double bounds[6];
+      output->GetBounds(bounds);
+      const double* h = output->GetSpacing();
+      for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p)
+      {
+        double x[3];
+        surface->GetPoint(p, x);
+        for (int a = 0; a < 3; ++a)
+        {
+          Trap(x[a] >= bounds[2 * a] - 2 * h[a] && x[a] <= bounds[2 * a + 1] + 2 * h[a]);
+        }
+      }
+      vtkIdType count = 0;
+      const vtkIdType* ids = nullptr;
+      vtkCellArray* polys = surface->GetPolys();
+      for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
+      {
+        Trap(count == 3);
+        for (vtkIdType k = 0; k < count; ++k)
+        {
+          Trap(ids[k] >= 0 && ids[k] < surface->GetNumberOfPoints());
+        }
       }
     }
   }
