@@ -132,12 +132,7 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
   surface->SetPoints(mesh->GetPoints());
   surface->SetPolys(polys);
   const vtkdf::GridFrame& frame = conversion.Frame;
-  vtkNew<vtkFloatArray> distance, points; // world units, for the output
-  distance->SetName("Distance");
-  points->SetName("ClosestPoint");
-  points->SetNumberOfComponents(3);
-  vtkdf::AllocateTuples(distance, n);
-  vtkdf::AllocateTuples(points, n);
+  vtkSmartPointer<vtkFloatArray> distance, points; // world units, for the output
   std::vector<float> localDistance(n);
   std::vector<int32_t> labels;
   std::vector<int64_t> triangle;
@@ -197,6 +192,13 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
     {
       return 1; // aborted: the output stays empty
     }
+    distance = vtkSmartPointer<vtkFloatArray>::New();
+    distance->SetName("Distance");
+    vtkdf::AllocateTuples(distance, n);
+    points = vtkSmartPointer<vtkFloatArray>::New();
+    points->SetName("ClosestPoint");
+    points->SetNumberOfComponents(3);
+    vtkdf::AllocateTuples(points, n);
     float* d = distance->GetPointer(0);
     float* x = points->GetPointer(0);
     vtkdf::SMPFor(n,
@@ -247,8 +249,8 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
         << innerErrors.Message("no output"));
       return 0;
     }
-    distance->DeepCopy(d);
-    points->DeepCopy(x);
+    distance = d; // the inner filter's arrays, named as the output's
+    points = x;
     triangle.resize(n);
     closest.resize(3 * static_cast<size_t>(n));
     vtkdf::SMPFor(n,

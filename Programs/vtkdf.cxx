@@ -861,15 +861,19 @@ int Segment(int argc, char* argv[])
   {
     vtkNew<vtkSegmentedDistanceContour> contour;
     contour->SetInputData(filter->GetOutput());
+    const auto start = std::chrono::steady_clock::now();
     contour->Update();
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (contour->GetErrorCode() || !WriteXML<vtkXMLPolyDataWriter>(contour->GetOutput(), surface))
     {
       code = 1;
     }
     else if (common.Timing)
     {
-      std::printf("vtkdf: surface triangles=%lld marching_cells=%lld feature_cells=%lld "
-                  "other_cells=%lld\n",
+      std::printf("vtkdf: surface time_s=%g triangles=%lld marching_cells=%lld "
+                  "feature_cells=%lld other_cells=%lld\n",
+        seconds,
         static_cast<long long>(contour->GetOutput()->GetNumberOfCells()),
         static_cast<long long>(contour->GetLastMarchingCells()),
         static_cast<long long>(contour->GetLastFeatureCells()),
