@@ -350,8 +350,91 @@ std::vector<std::array<double, 3>> AlongLines(vtkPolyData* lines, double step)
   return points;
 }
 
+/// Points along the input's boundary edges, a quarter spacing apart, leaving out those
+/// within a spacing of another connected part of the input (counted in `contacts`): a
+/// rim lying on another sheet (a handle's end on a body) bounds nothing there, and the
+/// surface rightly goes on across it.
+std::vector<std::array<double, 3>> FreeBoundary(vtkPolyData* mesh, double h, int& contacts)
+{
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputData(mesh);
+  clean->SetTolerance(0);
+  vtkNew<vtkPolyDataConnectivityFilter> parts;
+  parts->SetInputConnection(clean->GetOutputPort());
+  parts->SetExtractionModeToAllRegions();
+  parts->ColorRegionsOn();
+  parts->Update();
+  vtkPolyData* labelled = parts->GetOutput();
+  vtkDataArray* label = labelled->GetPointData()->GetArray("RegionId");
+  // Per part, a locator over the other parts' cells.
+  const int count = parts->GetNumberOfExtractedRegions();
+  std::vector<vtkSmartPointer<vtkStaticCellLocator>> others(count);
+  vtkNew<vtkIdList> ids;
+  for (int r = 0; r < count && count > 1; ++r)
+  {
+    vtkNew<vtkCellArray> polys;
+    for (vtkIdType c = 0; c < labelled->GetNumberOfCells(); ++c)
+    {
+      labelled->GetCellPoints(c, ids);
+      if (ids->GetNumberOfIds() > 0 && label->GetTuple1(ids->GetId(0)) != r)
+      {
+        polys->InsertNextCell(ids);
+      }
+    }
+    vtkNew<vtkPolyData> rest;
+    rest->SetPoints(labelled->GetPoints());
+    rest->SetPolys(polys);
+    others[r] = vtkSmartPointer<vtkStaticCellLocator>::New();
+    others[r]->SetDataSet(rest);
+    others[r]->BuildLocator();
+  }
+  vtkNew<vtkFeatureEdges> edges;
+  edges->SetInputData(labelled);
+  edges->BoundaryEdgesOn();
+  edges->FeatureEdgesOff();
+  edges->NonManifoldEdgesOff();
+  edges->ManifoldEdgesOff();
+  edges->ColoringOff();
+  edges->Update();
+  vtkPolyData* lines = edges->GetOutput();
+  vtkDataArray* lineLabel = lines->GetPointData()->GetArray("RegionId");
+  std::vector<std::array<double, 3>> points;
+  contacts = 0;
+  for (vtkIdType c = 0; c < lines->GetNumberOfCells(); ++c)
+  {
+    lines->GetCellPoints(c, ids);
+    const int r = static_cast<int>(lineLabel->GetTuple1(ids->GetId(0)));
+    vtkNew<vtkPolyData> one;
+    vtkNew<vtkCellArray> segment;
+    segment->InsertNextCell(ids);
+    one->SetPoints(lines->GetPoints());
+    one->SetLines(segment);
+    for (const auto& x : AlongLines(one, 0.25 * h))
+    {
+      double closest[3], d2 = HUGE_VAL;
+      vtkIdType cell;
+      int sub;
+      if (others[r])
+      {
+        others[r]->FindClosestPoint(x.data(), closest, cell, sub, d2);
+      }
+      if (std::sqrt(d2) <= h)
+      {
+        ++contacts;
+      }
+      else
+      {
+        points.push_back(x);
+      }
+    }
+  }
+  return points;
+}
+
 /// The boundary curve of the extracted surface against the input's boundary edges:
-/// each within a spacing of the other (or only printed, when `assert` is false).
+/// the input's free boundary (FreeBoundary) within a spacing of the surface's, and the
+/// surface's within a spacing of the input's boundary edges (only printed when `assert`
+/// is false).
 void CheckBoundary(const std::string& name, vtkPolyData* mesh, int resolution, bool assert = true)
 {
   auto field = Segment(mesh, resolution);
@@ -360,24 +443,30 @@ void CheckBoundary(const std::string& name, vtkPolyData* mesh, int resolution, b
   auto input = BoundaryEdges(mesh);
   auto output = BoundaryEdges(surface);
   double from[3] = { 0, 0, 0 }, where[3] = { 0, 0, 0 };
+  int contacts = 0;
+  const auto free = FreeBoundary(mesh, h, contacts);
   const double out = Farthest(AlongLines(output, 0.25 * h), input, h, from);
-  const double in = Farthest(AlongLines(input, 0.25 * h), output, h, where);
-  std::printf("%-17s boundary: %lld input edges, %lld surface edges; surface's within %.3f "
-              "spacings of the input's (at %g %g %g), input's within %.3f of the surface's "
-              "(at %g %g %g)\n",
+  const double in = Farthest(free, output, h, where);
+  std::printf("%-17s boundary: %lld input edges (%d of their points on another part, left "
+              "out), %lld surface edges; the input's within %.3f spacings of the surface's "
+              "(at %g %g %g), the surface's within %.3f of the input's (at %g %g %g)\n",
     name.c_str(),
     static_cast<long long>(input->GetNumberOfCells()),
+    contacts,
     static_cast<long long>(output->GetNumberOfCells()),
-    out,
-    from[0],
-    from[1],
-    from[2],
     in,
     where[0],
     where[1],
-    where[2]);
-  CHECK(!assert || (input->GetNumberOfCells() > 0 && out <= 1 && in <= 1),
-    "%s: the boundary curves differ by more than a spacing",
+    where[2],
+    out,
+    from[0],
+    from[1],
+    from[2]);
+  CHECK(!assert || (!free.empty() && in <= 1),
+    "%s: the input's boundary is more than a spacing from the surface's",
+    name.c_str());
+  CHECK(!assert || out <= 1,
+    "%s: the surface's boundary is more than a spacing from the input's",
     name.c_str());
 }
 
@@ -433,6 +522,7 @@ int main(int argc, char* argv[])
   {
     // Any mesh at any resolution: TestSegmentedDistanceContour DATA_DIR MESH.vtp N.
     CheckHausdorff(argv[2], Read(argv[2]), std::atoi(argv[3]));
+    CheckBoundary(argv[2], Read(argv[2]), std::atoi(argv[3]));
     return testsupport::Verdict();
   }
   CheckClosed("bunny_small", Read(data + "/bunny_small.vtp"), 28);
@@ -627,10 +717,13 @@ int main(int argc, char* argv[])
   CheckHausdorff("scad_back_to_back", Read(data + "/scad_back_to_back.vtp"), 32);
   CheckHausdorff("max3ds_export", Read(data + "/max3ds_export.vtp"), 128);
   CheckBoundary("plane", Read(data + "/plane.vtp"), 32);
-  // The teapot's rims where the handle and the spout meet the body lie on the body's
-  // sheet: no boundary of the surface there (rightly); and where the spout pierces the
-  // body, the regions of the spout's outer side and the body's inside meet without a
-  // sheet, whose interface eq. 7 stops a spacing or two away. Printed, not held.
+  // The teapot's boundary is printed, not held. Its handle and spout pass through the
+  // body without sharing an edge with it, and patches are not cut along such crossings:
+  // the pocket inside the body and outside the spout is split between the spout's outer
+  // side (the outside region) and the body's inner side, a seam whose interface eq. 7
+  // stops a few spacings from any input boundary; and the handle's lower end, open a
+  // short way from the body, is capped where its rim and the body are both within a
+  // spacing of the samples across the opening.
   CheckBoundary("teapot", Read(data + "/teapot.vtp"), 32, false);
 
   {
