@@ -1,6 +1,7 @@
 #include "vtkDistanceFieldBlend.h"
 
 #include "vtkDataArray.h"
+#include "vtkErrorCode.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -92,7 +93,23 @@ int vtkDistanceFieldBlend::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
-int vtkDistanceFieldBlend::RequestData(vtkInformation*,
+int vtkDistanceFieldBlend::RequestData(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // A failure leaves the output empty and says so in the error code (as the module's
+  // other filters do), for callers that do not observe ErrorEvent.
+  this->SetErrorCode(vtkErrorCode::NoError);
+  const int ok = this->Compute(request, inputVector, outputVector);
+  if (!ok)
+  {
+    vtkImageData::GetData(outputVector, 0)->Initialize();
+    this->SetErrorCode(vtkErrorCode::UserError);
+  }
+  return ok;
+}
+
+int vtkDistanceFieldBlend::Compute(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {

@@ -39,6 +39,9 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// RequestData's work; false on bad input (RequestData then empties the output and
+  /// sets the error code).
+  int Compute(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
 
   double T = 0.5;
 

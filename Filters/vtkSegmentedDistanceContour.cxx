@@ -3,6 +3,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkErrorCode.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -29,7 +30,23 @@ int vtkSegmentedDistanceContour::FillInputPortInformation(int, vtkInformation* i
   return 1;
 }
 
-int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
+int vtkSegmentedDistanceContour::RequestData(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // A failure leaves the output empty and says so in the error code (as the module's
+  // other filters do), for callers that do not observe ErrorEvent.
+  this->SetErrorCode(vtkErrorCode::NoError);
+  const int ok = this->Compute(request, inputVector, outputVector);
+  if (!ok)
+  {
+    vtkPolyData::GetData(outputVector, 0)->Initialize();
+    this->SetErrorCode(vtkErrorCode::UserError);
+  }
+  return ok;
+}
+
+int vtkSegmentedDistanceContour::Compute(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {

@@ -62,6 +62,9 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// RequestData's work; false on bad input (RequestData then empties the output and
+  /// sets the error code).
+  int Compute(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
 
   bool UseClosestPoints = true;
   double FeatureAngle = 30;

@@ -12,6 +12,7 @@
 //         [--sign pseudonormal|winding] [grid]
 //         [--backend ...] [--points OUT.vtp] [--png SLICE.png] [--timing]
 //   vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D] [--surface OUT.vtp]
+//         [--feature-angle A] [--paper-vertices]
 //   vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]
 //   vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--piece-array NAME]
 //         [--convex-hulls] [--backend ...] [--pixels N] [--uncertified] [--timing]
@@ -95,7 +96,8 @@ void PrintUsage(FILE* out)
     "             [--sign pseudonormal|winding] [grid] [--backend auto|gpu|cpu]\n"
     "             [--points OUT.vtp] [--png SLICE.png] [--timing]\n"
     "       vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D]\n"
-    "             [--backend auto|gpu|cpu] [--surface OUT.vtp] [--png SLICE.png] [--timing]\n"
+    "             [--backend auto|gpu|cpu] [--surface OUT.vtp [--feature-angle A]\n"
+    "             [--paper-vertices]] [--png SLICE.png] [--timing]\n"
     "       vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]\n"
     "             (A and B from vtkdf segment on the same grid; T in [0, 1])\n"
     "       vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS]\n"
@@ -473,10 +475,13 @@ void Configure(vtkDistanceFieldAlgorithm* filter, CommonOptions& common)
 /// Runs the filter (once: a second Update() of a failed filter runs it again and prints
 /// every error twice); prints the timing line, with `extra()` after the time; writes the
 /// output. Returns the exit code.
+/// Runs `filter`, prints its timing line (with `extra`), runs `then` (what depends on
+/// the field: false stops before any file is written) and writes the field.
 int Finish(const char* subcommand,
   vtkDistanceFieldAlgorithm* filter,
   const CommonOptions& common,
-  const std::function<std::string()>& extra = std::function<std::string()>())
+  const std::function<std::string()>& extra = std::function<std::string()>(),
+  const std::function<bool()>& then = std::function<bool()>())
 {
   filter->Update();
   vtkImageData* field = filter->GetOutput();
@@ -500,7 +505,7 @@ int Finish(const char* subcommand,
       extra ? extra().c_str() : "",
       filter->GetLastStageTimes());
   }
-  if (!WriteXML<vtkXMLImageDataWriter>(field, common.Output))
+  if ((then && !then()) || !WriteXML<vtkXMLImageDataWriter>(field, common.Output))
   {
     return 1;
   }
@@ -835,41 +840,43 @@ int Segment(int argc, char* argv[])
 {
   CommonOptions common;
   std::string png, surface;
-  double delta = 0, offset = 0;
+  double delta = 0, offset = 0, featureAngle = 30;
+  bool paperVertices = false;
   ParseOptions(argc,
     argv,
     common,
     { Number("--delta", delta),
       Number("--region-offset", offset),
       Text("--png", png),
-      Text("--surface", surface) });
+      Text("--surface", surface),
+      Number("--feature-angle", featureAngle),
+      Flag("--paper-vertices", paperVertices) });
   vtkNew<vtkSegmentedDistanceField> filter;
   filter->SetInputData(ReadMeshOrExit(argv[2]));
   Configure(filter, common);
   filter->SetDelta(delta);
   filter->SetRegionOffset(offset);
-  int code = Finish("segment",
-    filter,
-    common,
-    [&]()
-    {
-      return " regions=" + std::to_string(filter->GetLastRegionCount()) +
-        " patches=" + std::to_string(filter->GetLastPatchCount()) +
-        " refused_merges=" + std::to_string(filter->GetLastRefusedMerges());
-    });
-  if (code == 0 && !surface.empty())
+  // The surface, before any file is written: its errors (a FeatureAngle out of range)
+  // leave no output behind.
+  auto polygonize = [&]()
   {
+    if (surface.empty())
+    {
+      return true;
+    }
     vtkNew<vtkSegmentedDistanceContour> contour;
     contour->SetInputData(filter->GetOutput());
+    contour->SetFeatureAngle(featureAngle);
+    contour->SetUseClosestPoints(!paperVertices);
     const auto start = std::chrono::steady_clock::now();
     contour->Update();
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (contour->GetErrorCode() || !WriteXML<vtkXMLPolyDataWriter>(contour->GetOutput(), surface))
     {
-      code = 1;
+      return false;
     }
-    else if (common.Timing)
+    if (common.Timing)
     {
       std::printf("vtkdf: surface time_s=%g triangles=%lld marching_cells=%lld "
                   "feature_cells=%lld other_cells=%lld\n",
@@ -879,7 +886,19 @@ int Segment(int argc, char* argv[])
         static_cast<long long>(contour->GetLastFeatureCells()),
         static_cast<long long>(contour->GetLastOtherCells()));
     }
-  }
+    return true;
+  };
+  int code = Finish(
+    "segment",
+    filter,
+    common,
+    [&]()
+    {
+      return " regions=" + std::to_string(filter->GetLastRegionCount()) +
+        " patches=" + std::to_string(filter->GetLastPatchCount()) +
+        " refused_merges=" + std::to_string(filter->GetLastRefusedMerges());
+    },
+    polygonize);
   vtkDataArray* usedDelta = filter->GetOutput()->GetFieldData()->GetArray("Delta");
   if (code == 0 && !png.empty() &&
     !(usedDelta && WriteRegionPNG(filter->GetOutput(), usedDelta->GetTuple1(0), png)))

@@ -59,6 +59,11 @@ run segment "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=2 patches
   segment "$data/plane.vtp" -o "$out/segment.vti" --resolution 20 --backend cpu --timing \
   --png "$out/segment.png" --surface "$out/segment.vtp"
 [ -s "$out/segment.vtp" ] || fail "segment: $out/segment.vtp not written"
+# The surface's own options: the paper's vertices (no feature fans), a feature angle.
+run segment-paper "^vtkdf: surface time_s=[0-9.e-]+ triangles=[1-9][0-9]* marching_cells=[0-9]+ feature_cells=0 " \
+  "$out/segment-paper.vtp" -- \
+  segment "$data/plane.vtp" -o "$out/segment-paper.vti" --resolution 20 --backend cpu --timing \
+  --surface "$out/segment-paper.vtp" --paper-vertices --feature-angle 45
 run union "^vtkdf: union pieces=4 queries=1 $timing faces_visited=[1-9][0-9]* passes=0" \
   "$out/union.vtp" -- \
   union "$data/hubo_ankle_convex4.vtp" -o "$out/union.vtp" --query 0 0.01 0.01 --timing

@@ -19,8 +19,8 @@ from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter  # noqa: E402
 from vtkdistancefields import (vtkChamferVoxelDistance, vtkLinearFactorDistanceField,  # noqa: E402
                                vtkMedialAxisFilter, vtkPolyDataVoxelizer,
-                               vtkPenetrationDepth, vtkSegmentedDistanceField,
-                               vtkUnionClosestPoint)
+                               vtkPenetrationDepth, vtkSegmentedDistanceContour,
+                               vtkSegmentedDistanceField, vtkUnionClosestPoint)
 
 FILTERS = {"linfac": vtkLinearFactorDistanceField, "voxelize": vtkPolyDataVoxelizer,
            "chamfer": vtkChamferVoxelDistance, "medial": vtkMedialAxisFilter,
@@ -39,13 +39,17 @@ def number(text, kind):
         raise NotPassable(str(error))
 
 
-def configure(f, sub, options):
-    """The vtkdf options as setter calls."""
+def configure(f, sub, options, contour=None):
+    """The vtkdf options as setter calls (segment's surface options on `contour`)."""
     words = options.split()
     grid = {}
     i = 0
     while i < len(words):
         option = words[i]
+        if option == "--paper-vertices" and contour is not None:
+            contour.UseClosestPointsOff()
+            i += 1
+            continue
         if option == "--query":
             f.SetQueryPoint(*[number(w, float) for w in words[i + 1:i + 4]])
             i += 4
@@ -84,6 +88,10 @@ def configure(f, sub, options):
             f.SetDelta(number(value, float))
         elif option == "--region-offset":
             f.SetRegionOffset(number(value, float))
+        elif option == "--surface" and contour is not None:
+            contour.SetInputConnection(f.GetOutputPort())  # the path is vtkdf's business
+        elif option == "--feature-angle" and contour is not None:
+            contour.SetFeatureAngle(number(value, float))
         elif option == "--sign":
             if value not in ("pseudonormal", "winding"):
                 raise NotPassable(f"{option} {value}")
@@ -134,14 +142,22 @@ def run_case(corpus, data, sub, name, path, options, kind, pattern, workdir):
             data_object = read(path)
             return data_object.GetNumberOfPoints() == 0, "the reader returned no points"
         return True, "no such file"
+    # segment --surface: the field's vtkSegmentedDistanceContour is the filter judged.
+    contour = vtkSegmentedDistanceContour() if sub == "segment" and "--surface" in options else None
     try:
-        configure(f, sub, options)
+        configure(f, sub, options, contour)
     except (NotPassable, TypeError, OverflowError, ValueError) as refused:
         return kind == "usage", f"not passable ({refused})"
     f.SetInputData(0, read(path))
     if sub == "pd":  # the bad input is P; Q is a good solid
         f.SetInputData(1, read(os.path.join(data, "hubo_ankle_convex4.vtp")))
     f.Update()
+    if contour is not None and f.GetErrorCode() == 0:
+        f.RemoveAllObservers()
+        contour.AddObserver("ErrorEvent", on_error)
+        contour.AddObserver("WarningEvent", on_warning)
+        contour.Update()
+        f = contour
     output = f.GetOutput()
     empty = output.GetNumberOfPoints() == 0
     if kind in ("error", "usage"):

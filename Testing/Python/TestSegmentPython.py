@@ -78,3 +78,19 @@ if (surface.GetNumberOfCells() == 0 or not np.all(pairs == [0, 1])
         or np.abs(xyz[:, 2]).max() > 0.02 * h or np.hypot(xyz[:, 0], xyz[:, 1]).max() > 1.0 + 1e-6):
     print("FAIL")
     sys.exit(1)
+
+# The paper's vertices (UseClosestPoints off): every point on the disk's plane, no
+# feature fans.
+paper = vtkSegmentedDistanceContour()
+paper.SetInputConnection(segment.GetOutputPort())
+paper.UseClosestPointsOff()
+paper.SetFeatureAngle(45)
+paper.Update()
+flat = vtk_to_numpy(paper.GetOutput().GetPoints().GetData())
+print(f"paper's vertices: {paper.GetOutput().GetNumberOfCells()} triangles, largest |z| "
+      f"{np.abs(flat[:, 2]).max():.3g}, {paper.GetLastFeatureCells()} feature cells")
+if (paper.GetOutput().GetNumberOfCells() == 0
+        or np.abs(flat[:, 2]).max() > 1e-6 or paper.GetLastFeatureCells() != 0):
+    print("FAIL")
+    sys.exit(1)
+
