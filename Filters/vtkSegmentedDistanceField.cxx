@@ -13,6 +13,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
@@ -23,6 +24,7 @@
 #include "RangeCulling.h"
 #include "SegmentFieldGPU.h"
 #include "SegmentRegions.h"
+#include "SelfIntersections.h"
 #include "SurfacePatches.h"
 #include "vtkDistanceFieldMesh.h"
 
@@ -49,6 +51,7 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
   output->Initialize();
   this->LastRegionCount = 0;
   this->LastPatchCount = this->LastCutEdges = this->LastRefusedMerges = 0;
+  this->LastCrossedTriangles = 0;
   if (!mesh || mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0)
   {
     vtkWarningMacro("The input mesh is empty: the output is empty.");
@@ -96,8 +99,54 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
       << mi.SegmentCells.size() << " line segments and " << mi.Vertices.size()
       << " vertices are ignored.");
   }
+  // Cut along crossings in world coordinates (the cut's new points are rounded there, so
+  // the inner field and the patches see the same points).
+  const std::vector<double>* patchPoints = &mi.Points;
+  const std::vector<int64_t>* patchTriangles = &mi.Triangles;
+  vtkdf::SelfIntersectionCut cut;
+  std::vector<double> cutLocal;
+  vtkSmartPointer<vtkPoints> surfacePoints = mesh->GetPoints();
+  if (this->CutSelfIntersections)
+  {
+    std::vector<double> world(3 * static_cast<size_t>(mesh->GetNumberOfPoints()));
+    for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+    {
+      mesh->GetPoint(p, &world[3 * p]);
+    }
+    std::string cutError;
+    if (!vtkdf::CutSelfIntersections(world, mi.Triangles, cut, cutError))
+    {
+      vtkWarningMacro(<< cutError << ". The field is that of the uncut mesh.");
+    }
+    else if (cut.FailedGroups > 0)
+    {
+      vtkWarningMacro(<< cut.FailedGroups << " of " << cut.CrossingGroups
+                      << " groups of crossing triangles (" << cut.FailedTriangles
+                      << " triangles) could not be cut along their crossings (CGAL: "
+                      << cut.FailedMessage << "); there the field is that of the uncut mesh.");
+    }
+    if (cut.Cut())
+    {
+      this->LastCrossedTriangles = cut.CutTriangles;
+      cutLocal.resize(cut.Points.size());
+      surfacePoints = vtkSmartPointer<vtkPoints>::New();
+      surfacePoints->SetDataTypeToDouble();
+      surfacePoints->SetNumberOfPoints(static_cast<vtkIdType>(cut.Points.size() / 3));
+      for (size_t p = 0; p < cut.Points.size() / 3; ++p)
+      {
+        surfacePoints->SetPoint(static_cast<vtkIdType>(p), &cut.Points[3 * p]);
+        for (int a = 0; a < 3; ++a)
+        {
+          cutLocal[3 * p + a] = conversion.Frame.ToLocal(a, cut.Points[3 * p + a]);
+        }
+      }
+      patchPoints = &cutLocal;
+      patchTriangles = &cut.Triangles;
+    }
+  }
+  this->EndStage("crossings");
   vtkdf::SurfacePatches patches;
-  patches.Build(mi.Points, mi.Triangles);
+  patches.Build(*patchPoints, *patchTriangles);
   this->LastPatchCount = patches.PatchCount;
   this->LastCutEdges = patches.CutEdges;
   std::vector<int64_t> kept;
@@ -108,7 +157,7 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
     {
       kept.push_back(static_cast<int64_t>(t));
       const vtkIdType ids[3] = {
-        mi.Triangles[3 * t], mi.Triangles[3 * t + 1], mi.Triangles[3 * t + 2]
+        (*patchTriangles)[3 * t], (*patchTriangles)[3 * t + 1], (*patchTriangles)[3 * t + 2]
       };
       polys->InsertNextCell(3, ids);
     }
@@ -129,7 +178,7 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
   // GPU the field stays there and the labels are computed where it lies (SegmentFieldGPU);
   // on the CPU from vtkLinearFactorDistanceField's arrays (SegmentRegions).
   vtkNew<vtkPolyData> surface;
-  surface->SetPoints(mesh->GetPoints());
+  surface->SetPoints(surfacePoints);
   surface->SetPolys(polys);
   const vtkdf::GridFrame& frame = conversion.Frame;
   vtkSmartPointer<vtkFloatArray> distance, points; // world units, for the output
@@ -400,7 +449,9 @@ void vtkSegmentedDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RegionOffset: " << this->RegionOffset << "\n";
   os << indent << "ComputeClosestPoint: " << this->ComputeClosestPoint << "\n";
   os << indent << "LastRegionCount: " << this->LastRegionCount << "\n";
+  os << indent << "CutSelfIntersections: " << this->CutSelfIntersections << "\n";
   os << indent << "LastPatchCount: " << this->LastPatchCount << "\n";
+  os << indent << "LastCrossedTriangles: " << this->LastCrossedTriangles << "\n";
   os << indent << "LastCutEdges: " << this->LastCutEdges << "\n";
   os << indent << "LastRefusedMerges: " << this->LastRefusedMerges << "\n";
 }

@@ -60,11 +60,22 @@ public:
   vtkGetMacro(ComputeClosestPoint, bool);
   vtkBooleanMacro(ComputeClosestPoint, bool);
 
-  /// What the last run found: regions, patches, the edges where non-orientable patches
-  /// were cut, and the region merges refused (they would have joined two sides of one
-  /// patch).
+  /// Whether triangles that cross without sharing an edge (a teapot's spout through its
+  /// body) are cut along their crossings first (default on), so that each crossing is a
+  /// junction line between patches (Filters/Core/Segment/SelfIntersections.h, CGAL's
+  /// autorefinement). Uncut, the pocket between two crossing sheets belongs to two
+  /// patches' sides at once and its interfaces end short of the crossing. When CGAL
+  /// cannot refine the mesh, a warning says so and the field is that of the uncut mesh.
+  vtkSetMacro(CutSelfIntersections, bool);
+  vtkGetMacro(CutSelfIntersections, bool);
+  vtkBooleanMacro(CutSelfIntersections, bool);
+
+  /// What the last run found: regions, patches, the input triangles cut along
+  /// crossings, the edges where non-orientable patches were cut, and the region merges
+  /// refused (they would have joined two sides of one patch).
   vtkGetMacro(LastRegionCount, int);
   vtkGetMacro(LastPatchCount, vtkTypeInt64);
+  vtkGetMacro(LastCrossedTriangles, vtkTypeInt64);
   vtkGetMacro(LastCutEdges, vtkTypeInt64);
   vtkGetMacro(LastRefusedMerges, vtkTypeInt64);
 
@@ -78,8 +89,10 @@ protected:
   double Delta = 0;
   double RegionOffset = 0;
   bool ComputeClosestPoint = true;
+  bool CutSelfIntersections = true;
   int LastRegionCount = 0;
   vtkTypeInt64 LastPatchCount = 0;
+  vtkTypeInt64 LastCrossedTriangles = 0;
   vtkTypeInt64 LastCutEdges = 0;
   vtkTypeInt64 LastRefusedMerges = 0;
 

@@ -11,8 +11,8 @@
 //   vtkdf medial INPUT -o OUT.vti [--angle THETA] [--region inside|outside|both]
 //         [--sign pseudonormal|winding] [grid]
 //         [--backend ...] [--points OUT.vtp] [--png SLICE.png] [--timing]
-//   vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D] [--surface OUT.vtp]
-//         [--feature-angle A] [--paper-vertices]
+//   vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D] [--uncut]
+//         [--surface OUT.vtp] [--feature-angle A] [--paper-vertices]
 //   vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]
 //   vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--piece-array NAME]
 //         [--convex-hulls] [--backend ...] [--pixels N] [--uncertified] [--timing]
@@ -96,7 +96,7 @@ void PrintUsage(FILE* out)
     "             [--sign pseudonormal|winding] [grid] [--backend auto|gpu|cpu]\n"
     "             [--points OUT.vtp] [--png SLICE.png] [--timing]\n"
     "       vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D]\n"
-    "             [--backend auto|gpu|cpu] [--surface OUT.vtp [--feature-angle A]\n"
+    "             [--uncut] [--backend auto|gpu|cpu] [--surface OUT.vtp [--feature-angle A]\n"
     "             [--paper-vertices]] [--png SLICE.png] [--timing]\n"
     "       vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]\n"
     "             (A and B from vtkdf segment on the same grid; T in [0, 1])\n"
@@ -841,12 +841,13 @@ int Segment(int argc, char* argv[])
   CommonOptions common;
   std::string png, surface;
   double delta = 0, offset = 0, featureAngle = 30;
-  bool paperVertices = false;
+  bool paperVertices = false, uncut = false;
   ParseOptions(argc,
     argv,
     common,
     { Number("--delta", delta),
       Number("--region-offset", offset),
+      Flag("--uncut", uncut),
       Text("--png", png),
       Text("--surface", surface),
       Number("--feature-angle", featureAngle),
@@ -856,6 +857,7 @@ int Segment(int argc, char* argv[])
   Configure(filter, common);
   filter->SetDelta(delta);
   filter->SetRegionOffset(offset);
+  filter->SetCutSelfIntersections(!uncut);
   // The surface, before any file is written: its errors (a FeatureAngle out of range)
   // leave no output behind.
   auto polygonize = [&]()
@@ -896,6 +898,7 @@ int Segment(int argc, char* argv[])
     {
       return " regions=" + std::to_string(filter->GetLastRegionCount()) +
         " patches=" + std::to_string(filter->GetLastPatchCount()) +
+        " crossed_triangles=" + std::to_string(filter->GetLastCrossedTriangles()) +
         " refused_merges=" + std::to_string(filter->GetLastRefusedMerges());
     },
     polygonize);

@@ -54,11 +54,19 @@ run voxelize "^vtkdf: voxelize dims=[0-9]+x[0-9]+x[0-9]+ $timing" "$out/voxels.v
   voxelize "$data/bunny_small.vtp" -o "$out/voxels.vti" --resolution 24 --backend cpu --timing
 run chamfer "^vtkdf: chamfer dims=[0-9]+x[0-9]+x[0-9]+ $timing layers=[1-9]" "$out/chamfer.vti" -- \
   chamfer "$out/voxels.vti" -o "$out/chamfer.vti" --metric manhattan --backend cpu --timing
-run segment "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=2 patches=[0-9]+ refused_merges=[0-9]+ stages=patches:" \
+run segment "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=2 patches=[0-9]+ crossed_triangles=0 refused_merges=[0-9]+ stages=crossings:[0-9.e-]+,patches:" \
   "$out/segment.vti" "$out/segment.png" -- \
   segment "$data/plane.vtp" -o "$out/segment.vti" --resolution 20 --backend cpu --timing \
   --png "$out/segment.png" --surface "$out/segment.vtp"
 [ -s "$out/segment.vtp" ] || fail "segment: $out/segment.vtp not written"
+# The teapot's spout and handle cross its body: cut along the crossings (51 triangles),
+# or not (--uncut: its 4 patches as they are).
+run segment-crossed "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=[0-9]+ patches=9 crossed_triangles=51 " \
+  "$out/segment-crossed.vti" -- \
+  segment "$data/teapot.vtp" -o "$out/segment-crossed.vti" --resolution 16 --backend cpu --timing
+run segment-uncut "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=[0-9]+ patches=4 crossed_triangles=0 " \
+  "$out/segment-uncut.vti" -- \
+  segment "$data/teapot.vtp" -o "$out/segment-uncut.vti" --resolution 16 --backend cpu --timing --uncut
 # The surface's own options: the paper's vertices (no feature fans), a feature angle.
 run segment-paper "^vtkdf: surface time_s=[0-9.e-]+ triangles=[1-9][0-9]* marching_cells=[0-9]+ feature_cells=0 " \
   "$out/segment-paper.vtp" -- \

@@ -21,4 +21,4 @@ vtk_module_include(DistanceFields::vtkDistanceFields
   PUBLIC "$<BUILD_INTERFACE:${df_root}/Filters>"
   PRIVATE "$<TARGET_PROPERTY:vtkdf_core,INTERFACE_INCLUDE_DIRECTORIES>")
 vtk_module_link(DistanceFields::vtkDistanceFields
-  PRIVATE PkgConfig::EPOXY ${CMAKE_DL_LIBS} "${QHULL_R_LIBRARY}")
+  PRIVATE PkgConfig::EPOXY ${CMAKE_DL_LIBS} "${QHULL_R_LIBRARY}" "${MPFR_LIBRARY}" "${GMP_LIBRARY}")

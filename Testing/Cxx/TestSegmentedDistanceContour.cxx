@@ -44,6 +44,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataConnectivityFilter.h"
+#include "vtkPolyDataEdgeConnectivityFilter.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkStaticCellLocator.h"
@@ -61,10 +62,13 @@
 
 namespace
 {
+bool CutCrossings = true; // vtkSegmentedDistanceField's CutSelfIntersections
+
 vtkSmartPointer<vtkImageData> Segment(vtkPolyData* mesh, int resolution)
 {
   vtkNew<vtkSegmentedDistanceField> f;
   f->SetInputData(mesh);
+  f->SetCutSelfIntersections(CutCrossings);
   f->SetResolution(resolution);
   f->SetBackendToCPU();
   f->Update();
@@ -351,23 +355,25 @@ std::vector<std::array<double, 3>> AlongLines(vtkPolyData* lines, double step)
 }
 
 /// Points along the input's boundary edges, a quarter spacing apart, leaving out those
-/// within a spacing of another connected part of the input (counted in `contacts`): a
-/// rim lying on another sheet (a handle's end on a body) bounds nothing there, and the
+/// within a spacing of another sheet of the input (counted in `contacts`; a sheet: the
+/// triangles connected across edges): a rim lying on another sheet (the teapot's lid in
+/// the body's opening, its handle's end on the body) bounds nothing there, and the
 /// surface rightly goes on across it.
 std::vector<std::array<double, 3>> FreeBoundary(vtkPolyData* mesh, double h, int& contacts)
 {
   vtkNew<vtkCleanPolyData> clean;
   clean->SetInputData(mesh);
   clean->SetTolerance(0);
-  vtkNew<vtkPolyDataConnectivityFilter> parts;
-  parts->SetInputConnection(clean->GetOutputPort());
-  parts->SetExtractionModeToAllRegions();
-  parts->ColorRegionsOn();
-  parts->Update();
-  vtkPolyData* labelled = parts->GetOutput();
-  vtkDataArray* label = labelled->GetPointData()->GetArray("RegionId");
-  // Per part, a locator over the other parts' cells.
-  const int count = parts->GetNumberOfExtractedRegions();
+  vtkNew<vtkPolyDataEdgeConnectivityFilter> sheets;
+  sheets->SetInputConnection(clean->GetOutputPort());
+  sheets->SetExtractionModeToAllRegions();
+  sheets->ColorRegionsOn();
+  sheets->Update();
+  vtkPolyData* labelled = sheets->GetOutput();
+  labelled->BuildLinks();
+  vtkDataArray* label = labelled->GetCellData()->GetArray("RegionId");
+  const int count = sheets->GetNumberOfExtractedRegions();
+  // Per sheet, a locator over the other sheets' cells.
   std::vector<vtkSmartPointer<vtkStaticCellLocator>> others(count);
   vtkNew<vtkIdList> ids;
   for (int r = 0; r < count && count > 1; ++r)
@@ -375,9 +381,9 @@ std::vector<std::array<double, 3>> FreeBoundary(vtkPolyData* mesh, double h, int
     vtkNew<vtkCellArray> polys;
     for (vtkIdType c = 0; c < labelled->GetNumberOfCells(); ++c)
     {
-      labelled->GetCellPoints(c, ids);
-      if (ids->GetNumberOfIds() > 0 && label->GetTuple1(ids->GetId(0)) != r)
+      if (label->GetTuple1(c) != r)
       {
+        labelled->GetCellPoints(c, ids);
         polys->InsertNextCell(ids);
       }
     }
@@ -388,43 +394,48 @@ std::vector<std::array<double, 3>> FreeBoundary(vtkPolyData* mesh, double h, int
     others[r]->SetDataSet(rest);
     others[r]->BuildLocator();
   }
-  vtkNew<vtkFeatureEdges> edges;
-  edges->SetInputData(labelled);
-  edges->BoundaryEdgesOn();
-  edges->FeatureEdgesOff();
-  edges->NonManifoldEdgesOff();
-  edges->ManifoldEdgesOff();
-  edges->ColoringOff();
-  edges->Update();
-  vtkPolyData* lines = edges->GetOutput();
-  vtkDataArray* lineLabel = lines->GetPointData()->GetArray("RegionId");
   std::vector<std::array<double, 3>> points;
   contacts = 0;
-  for (vtkIdType c = 0; c < lines->GetNumberOfCells(); ++c)
+  vtkNew<vtkIdList> neighbours;
+  for (vtkIdType c = 0; c < labelled->GetNumberOfCells(); ++c)
   {
-    lines->GetCellPoints(c, ids);
-    const int r = static_cast<int>(lineLabel->GetTuple1(ids->GetId(0)));
-    vtkNew<vtkPolyData> one;
-    vtkNew<vtkCellArray> segment;
-    segment->InsertNextCell(ids);
-    one->SetPoints(lines->GetPoints());
-    one->SetLines(segment);
-    for (const auto& x : AlongLines(one, 0.25 * h))
+    labelled->GetCellPoints(c, ids);
+    const vtkIdType n = ids->GetNumberOfIds();
+    const int r = static_cast<int>(label->GetTuple1(c));
+    for (vtkIdType k = 0; k < n && n >= 3; ++k)
     {
-      double closest[3], d2 = HUGE_VAL;
-      vtkIdType cell;
-      int sub;
-      if (others[r])
+      const vtkIdType a = ids->GetId(k), b = ids->GetId((k + 1) % n);
+      labelled->GetCellEdgeNeighbors(c, a, b, neighbours);
+      if (neighbours->GetNumberOfIds() > 0)
       {
-        others[r]->FindClosestPoint(x.data(), closest, cell, sub, d2);
+        continue; // not a boundary edge
       }
-      if (std::sqrt(d2) <= h)
+      vtkNew<vtkPoints> ends;
+      ends->InsertNextPoint(labelled->GetPoint(a));
+      ends->InsertNextPoint(labelled->GetPoint(b));
+      vtkNew<vtkCellArray> segment;
+      const vtkIdType line[2] = { 0, 1 };
+      segment->InsertNextCell(2, line);
+      vtkNew<vtkPolyData> one;
+      one->SetPoints(ends);
+      one->SetLines(segment);
+      for (const auto& x : AlongLines(one, 0.25 * h))
       {
-        ++contacts;
-      }
-      else
-      {
-        points.push_back(x);
+        double closest[3], d2 = HUGE_VAL;
+        vtkIdType cell;
+        int sub;
+        if (others[r])
+        {
+          others[r]->FindClosestPoint(x.data(), closest, cell, sub, d2);
+        }
+        if (std::sqrt(d2) <= h)
+        {
+          ++contacts;
+        }
+        else
+        {
+          points.push_back(x);
+        }
       }
     }
   }
@@ -518,9 +529,11 @@ int main(int argc, char* argv[])
     return 2;
   }
   const std::string data = argv[1];
-  if (argc == 4)
+  if (argc == 4 || argc == 5)
   {
-    // Any mesh at any resolution: TestSegmentedDistanceContour DATA_DIR MESH.vtp N.
+    // Any mesh at any resolution: TestSegmentedDistanceContour DATA_DIR MESH.vtp N
+    // [uncut] (uncut: CutSelfIntersections off).
+    CutCrossings = argc == 4 || std::string(argv[4]) != "uncut";
     CheckHausdorff(argv[2], Read(argv[2]), std::atoi(argv[3]));
     CheckBoundary(argv[2], Read(argv[2]), std::atoi(argv[3]));
     return testsupport::Verdict();

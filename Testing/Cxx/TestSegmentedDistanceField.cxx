@@ -5,6 +5,8 @@
 // - an open disk: 2 (front and back meet only across the boundary);
 // - a T-junction of three half-planes (a "Y" of unequal angles, one sector reflex): 3,
 //   each sector one region;
+// - two strips crossing without sharing an edge (CutSelfIntersections cuts them along
+//   the crossing): 4, one per sector (uncut: fewer, printed);
 // - a closed box with an inner wall (non-manifold junction lines): 3, the outside leaking
 //   into neither chamber;
 // and, for every sample clear of the sheets, that it lies in the region of its part of
@@ -125,6 +127,72 @@ vtkSmartPointer<vtkPolyData> Junction()
   return b.Mesh();
 }
 
+/// Two strips that cross along the z axis without sharing an edge or a point there (the
+/// teapot's spout through its body): planes at angles CrossAngles[0] and [1] through the
+/// z axis, |along| <= 1, |z| <= 1, five quads along each, so the crossing runs through
+/// the middle quads' interiors. Cut along the crossing (CutSelfIntersections), they are
+/// four half-planes meeting at a junction line.
+const double CrossAngles[2] = { 0.1, 0.1 + 75 * M_PI / 180 };
+vtkSmartPointer<vtkPolyData> CrossedStrips()
+{
+  Builder b;
+  for (const double a : CrossAngles)
+  {
+    const double c = std::cos(a), s = std::sin(a);
+    for (int i = 0; i < 5; ++i)
+    {
+      const double r0 = -1 + 0.4 * i, r1 = r0 + 0.4;
+      b.Quad(b.Point(r0 * c, r0 * s, -1),
+        b.Point(r1 * c, r1 * s, -1),
+        b.Point(r1 * c, r1 * s, 1),
+        b.Point(r0 * c, r0 * s, 1));
+    }
+  }
+  return b.Mesh();
+}
+
+/// The sector (0, 1, ...) of half-planes at `angles` (ascending, through the z axis, out
+/// to radius 1, |z| <= 1) that holds (x, y, z), or -1 within `clear` of a half-plane or
+/// outside their extent.
+int Sector(double x, double y, double z, const std::vector<double>& angles, double clear)
+{
+  const double r = std::sqrt(x * x + y * y);
+  if (r > 1 - clear || std::fabs(z) > 1 - clear)
+  {
+    return -1;
+  }
+  const size_t n = angles.size();
+  for (const double angle : angles)
+  {
+    // Distance to the half-plane: to its line when in front of it, else to the axis.
+    const double c = std::cos(angle), s = std::sin(angle);
+    const double along = x * c + y * s;
+    const double distance = along > 0 ? std::fabs(-x * s + y * c) : r;
+    if (distance < clear)
+    {
+      return -1;
+    }
+  }
+  const double a = std::atan2(y, x);
+  for (size_t k = 0; k < n; ++k)
+  {
+    double a0 = angles[k], a1 = angles[(k + 1) % n], t = a;
+    if (a1 < a0)
+    {
+      a1 += 2 * M_PI;
+    }
+    while (t < a0)
+    {
+      t += 2 * M_PI;
+    }
+    if (t < a1)
+    {
+      return static_cast<int>(k);
+    }
+  }
+  return -1;
+}
+
 /// The box [-1, 1]^3 (outward) with a wall at x = Wall across it: the faces y = +-1 and
 /// z = +-1 are split at x = Wall, so that the wall's edges are junction lines.
 constexpr double Wall = 0.13;
@@ -154,10 +222,11 @@ struct Run
   int Count = 0;
 };
 
-Run Segment(vtkPolyData* mesh, double offset, const std::string& backend)
+Run Segment(vtkPolyData* mesh, double offset, const std::string& backend, bool cut = true)
 {
   vtkNew<vtkSegmentedDistanceField> f;
   f->SetInputData(mesh);
+  f->SetCutSelfIntersections(cut);
   testsupport::UseBackend(f.GetPointer(), backend);
   // A generic grid: spacing 0.1 (0.11 along y), shifted by `offset` spacings.
   f->ExplicitGridOn();
@@ -403,44 +472,24 @@ int main(int argc, char* argv[])
   CheckShape("T-junction",
     Junction(),
     3,
-    [](double x, double y, double z)
-    {
-      // Within the strips' extent, by polar angle, clear of each half-plane.
-      const double r = std::sqrt(x * x + y * y);
-      if (r > 1 - Clear || std::fabs(z) > 1 - Clear)
-      {
-        return -1;
-      }
-      for (int s = 0; s < 3; ++s)
-      {
-        // Distance to half-plane s: to its line when in front of it, else to the axis.
-        const double c = std::cos(Angles[s]), n = std::sin(Angles[s]);
-        const double along = x * c + y * n;
-        const double distance = along > 0 ? std::fabs(-x * n + y * c) : r;
-        if (distance < Clear)
-        {
-          return -1;
-        }
-      }
-      double a = std::atan2(y, x);
-      for (int s = 0; s < 3; ++s)
-      {
-        double a0 = Angles[s], a1 = Angles[(s + 1) % 3], t = a;
-        if (a1 < a0)
-        {
-          a1 += 2 * M_PI;
-        }
-        while (t < a0)
-        {
-          t += 2 * M_PI;
-        }
-        if (t < a1)
-        {
-          return s;
-        }
-      }
-      return -1;
+    [](double x, double y, double z) {
+      return Sector(x, y, z, { Angles[0], Angles[1], Angles[2] }, Clear);
     });
+  {
+    // Two strips crossing without a shared edge: cut along the crossing, four sectors.
+    const std::vector<double> quarters = {
+      CrossAngles[0], CrossAngles[1], CrossAngles[0] + M_PI, CrossAngles[1] + M_PI
+    };
+    CheckShape("crossed strips",
+      CrossedStrips(),
+      4,
+      [&](double x, double y, double z) { return Sector(x, y, z, quarters, Clear); });
+    // Uncut, the two strips are two patches; their four sides cannot make four regions
+    // without merging a patch's two sides, so a sector leaks into its neighbour.
+    const Run uncut = Segment(CrossedStrips(), 0.37, Backend, false);
+    std::printf("crossed strips, uncut: %d regions (4 when cut)\n", uncut.Count);
+    CHECK(uncut.Count != 4, "the uncut strips made four regions: the cut is not what counts");
+  }
   CheckShape("walled box",
     WalledBox(),
     3,

@@ -1,0 +1,59 @@
+// SelfIntersections: cuts a triangle soup along the curves where its triangles cross
+// without sharing an edge, so that the crossings become edges used by four triangles
+// (junction lines, SurfacePatches), without VTK types.
+//
+// A teapot's spout passes through its body: the two surfaces cross but share no edge,
+// so SurfacePatches sees one patch for the spout and one for the body, and the pocket
+// inside the body and outside the spout belongs to both the spout's outer side and the
+// body's inner side. Cut, the spout's part inside the body is a patch of its own and
+// the crossing a junction line, as paper 004's segmentation expects.
+//
+// The cut is CGAL's autorefinement (Polygon_mesh_processing::experimental::autorefine,
+// exact predicates): the soup is made a halfedge mesh (points at one position merged,
+// non-manifold points duplicated by orient_polygon_soup), refined so that no two
+// triangles cross in their interiors, and read back. Only the crossing triangles go to
+// CGAL, group by group. Triangles without area and repeats of a triangle are passed
+// through uncut.
+#ifndef vtkdf_SelfIntersections_h
+#define vtkdf_SelfIntersections_h
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vtkdf
+{
+
+struct SelfIntersectionCut
+{
+  /// The cut soup: xyz per point, 3 point ids per triangle, each triangle in the
+  /// orientation of the input triangle it lies in (Parent).
+  std::vector<double> Points;
+  std::vector<int64_t> Triangles;
+  std::vector<int64_t> Parent;
+  /// Input triangles that were cut, and whether any was (when none was, the output
+  /// arrays are empty and the input stands).
+  int64_t CutTriangles = 0;
+  bool Cut() const { return this->CutTriangles > 0; }
+  /// Groups of crossing triangles (joined by crossings and shared points), each refined
+  /// on its own; those CGAL refused (their triangles stay uncut), how many triangles
+  /// they hold, and CGAL's first message.
+  int64_t CrossingGroups = 0;
+  int64_t FailedGroups = 0;
+  int64_t FailedTriangles = 0;
+  std::string FailedMessage;
+};
+
+/// Cuts `triangles` (3 ids each into `points`, xyz) along their crossings: triangles
+/// that share no point and intersect. Neighbours that also cross elsewhere (a fold
+/// through its own fan) are not found. A group CGAL refuses is counted in `out`
+/// (FailedGroups) and left uncut. False and `error` only when finding the crossings
+/// fails; `out` is then empty.
+bool CutSelfIntersections(const std::vector<double>& points,
+  const std::vector<int64_t>& triangles,
+  SelfIntersectionCut& out,
+  std::string& error);
+
+} // namespace vtkdf
+
+#endif
