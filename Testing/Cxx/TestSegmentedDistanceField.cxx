@@ -6,7 +6,8 @@
 // - a T-junction of three half-planes (a "Y" of unequal angles, one sector reflex): 3,
 //   each sector one region;
 // - two strips crossing without sharing an edge (CutSelfIntersections cuts them along
-//   the crossing): 4, one per sector (uncut: fewer, printed);
+//   the crossing): 4, one per sector (uncut: fewer, printed); and a plane across a
+//   T-junction's line, which CGAL refuses to cut: a warning, and the uncut field;
 // - a closed box with an inner wall (non-manifold junction lines): 3, the outside leaking
 //   into neither chamber;
 // and, for every sample clear of the sheets, that it lies in the region of its part of
@@ -489,6 +490,34 @@ int main(int argc, char* argv[])
     const Run uncut = Segment(CrossedStrips(), 0.37, Backend, false);
     std::printf("crossed strips, uncut: %d regions (4 when cut)\n", uncut.Count);
     CHECK(uncut.Count != 4, "the uncut strips made four regions: the cut is not what counts");
+  }
+  {
+    // A known limit: a plane across the T-junction's line. CGAL's halfedge mesh holds the
+    // junction edge once per half-plane, and its refinement refuses the three copies
+    // crossing the plane at one point; the group stays uncut, a warning says so, and the
+    // field is the uncut mesh's.
+    vtkNew<vtkAppendPolyData> both;
+    both->AddInputData(Junction());
+    Builder b;
+    b.Quad(b.Point(-1.3, -1.2, 0.13),
+      b.Point(1.2, -1.3, 0.13),
+      b.Point(1.3, 1.2, 0.13),
+      b.Point(-1.2, 1.3, 0.13));
+    both->AddInputData(b.Mesh());
+    both->Update();
+    vtkNew<vtkSegmentedDistanceField> f;
+    testsupport::MessageRecorder messages(f);
+    f->SetInputData(both->GetOutput());
+    f->SetResolution(24);
+    f->SetBackendToCPU();
+    f->Update();
+    std::printf("T-junction across a plane: %lld triangles cut, %d regions\n",
+      static_cast<long long>(f->GetLastCrossedTriangles()),
+      f->GetLastRegionCount());
+    CHECK(messages.Warnings.find("could not be cut along their crossings") != std::string::npos &&
+        f->GetErrorCode() == 0 && f->GetOutput()->GetNumberOfPoints() > 0 &&
+        f->GetLastCrossedTriangles() == 0,
+      "a group CGAL refuses: no warning, or no field");
   }
   CheckShape("walled box",
     WalledBox(),

@@ -300,7 +300,9 @@ bool CutSelfIntersections(const std::vector<double>& points,
       out.FailedTriangles += static_cast<int64_t>(members.size());
       if (out.FailedMessage.empty())
       {
+        // CGAL's messages run over several lines: one line here.
         out.FailedMessage = e.what();
+        std::replace(out.FailedMessage.begin(), out.FailedMessage.end(), '\n', ' ');
       }
       continue;
     }
