@@ -1147,6 +1147,52 @@ int TestAccuracy(const std::string& data, const std::string& name, int resolutio
     }
     return both ? static_cast<double>(within) / both : 0.0;
   };
+  // Per pixel again, over the pixels away from the mesh picture's silhouettes: those
+  // whose every neighbour within a voxel (on screen, at their depth) is covered, with no
+  // step of more than a voxel in depth between two adjacent ones. There a sideways shift
+  // of less than a voxel cannot make a ray hit another surface.
+  auto agreeInside = [&](const std::vector<float>& depth, const Frame& against, size_t& inside)
+  {
+    const double tangent = std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2);
+    size_t within = 0;
+    inside = 0;
+    for (int y = 0; y < against.Height; ++y)
+    {
+      for (int x = 0; x < against.Width; ++x)
+      {
+        const size_t p = static_cast<size_t>(y) * against.Width + x;
+        if (!(depth[p] < 1.0f && against.Covered(p)))
+        {
+          continue;
+        }
+        const double d = ViewDepth(against.Depth[p], camera);
+        const double pixel = camera->GetParallelProjection()
+          ? 2 * camera->GetParallelScale() / against.Height
+          : 2 * d * tangent / against.Height;
+        const int reach = static_cast<int>(std::ceil(h / pixel));
+        bool smooth = true;
+        for (int dy = -reach; dy <= reach && smooth; ++dy)
+        {
+          for (int dx = -reach; dx <= reach && smooth; ++dx)
+          {
+            const int qx = x + dx, qy = y + dy;
+            const size_t q = static_cast<size_t>(qy) * against.Width + qx;
+            smooth = qx >= 0 && qy >= 0 && qx + 1 < against.Width && qy + 1 < against.Height &&
+              against.Covered(q) && against.Covered(q + 1) && against.Covered(q + against.Width);
+            const double dq = smooth ? ViewDepth(against.Depth[q], camera) : 0;
+            smooth = smooth && std::abs(ViewDepth(against.Depth[q + 1], camera) - dq) <= h &&
+              std::abs(ViewDepth(against.Depth[q + against.Width], camera) - dq) <= h;
+          }
+        }
+        if (smooth)
+        {
+          ++inside;
+          within += std::abs(ViewDepth(depth[p], camera) - d) <= h;
+        }
+      }
+    }
+    return inside ? static_cast<double>(within) / inside : 0.0;
+  };
   const Frame drawn = scene.Draw({ volume });
   size_t bothPolygonized = 0, bothMesh = 0;
   const auto fidelity = agree(drawn.Depth, polygonized, bothPolygonized);
@@ -1184,12 +1230,18 @@ int TestAccuracy(const std::string& data, const std::string& name, int resolutio
   }
   const double near = drawnPixels ? static_cast<double>(nearMesh) / drawnPixels : 0.0;
   const double onMesh3D = agree3D(drawn.Depth, reference);
+  size_t insidePixels = 0;
+  const double onMeshInside = agreeInside(drawn.Depth, reference, insidePixels);
   std::printf("%s, %d^3: the mapper against the mesh within a voxel per pixel %.2f%%, with "
-              "the voxel sideways too %.2f%%\n",
+              "the voxel sideways too %.2f%%; per pixel away from silhouettes %.2f%% (%zu of "
+              "the %zu pixels)\n",
     name.c_str(),
     resolution,
     100 * onMesh.first,
-    100 * onMesh3D);
+    100 * onMesh3D,
+    100 * onMeshInside,
+    insidePixels,
+    bothMesh);
   std::printf("%s, segmented field (%d regions), %zu pixels drawn: against its polygonized "
               "surface %.2f%% within a voxel (median %.3f); against the mesh %.2f%% within a "
               "voxel (median %.3f, %zu pixels; the polygonized surface: %.2f%%); %.2f%% of the "
@@ -1227,6 +1279,9 @@ int TestAccuracy(const std::string& data, const std::string& name, int resolutio
   CHECK(near >= 0.995,
     "%.2f%% of the drawn points are farther than a voxel from the mesh",
     100 * (1 - near));
+  CHECK(insidePixels > 0 && onMeshInside >= 0.99,
+    "the surface is off the mesh away from silhouettes (%.2f%% within a voxel per pixel)",
+    100 * onMeshInside);
 
   if (name == "bunny_small")
   {
@@ -1273,16 +1328,22 @@ int TestAccuracy(const std::string& data, const std::string& name, int resolutio
     size_t casterBoth = 0;
     const auto c = agree(casterDepth, reference, casterBoth);
     const double m3 = agree3D(mapperDepth, reference), c3 = agree3D(casterDepth, reference);
+    size_t mInsidePixels = 0, cInsidePixels = 0;
+    const double mInside = agreeInside(mapperDepth, reference, mInsidePixels);
+    const double cInside = agreeInside(casterDepth, reference, cInsidePixels);
     std::printf("%s, signed field against the mesh: mapper %.2f%% within a voxel (%.2f%% "
-                "sideways included), median %.3f voxel; VTK's ray caster (ISOSURFACE, same "
-                "sample distance) %.2f%% within a voxel (%.2f%% sideways included), median "
-                "%.3f voxel (%zu pixels)\n",
+                "sideways included, %.2f%% away from silhouettes), median %.3f voxel; VTK's "
+                "ray caster (ISOSURFACE, same sample distance) %.2f%% within a voxel (%.2f%% "
+                "sideways included, %.2f%% away from silhouettes), median %.3f voxel (%zu "
+                "pixels)\n",
       name.c_str(),
       100 * m.first,
       100 * m3,
+      100 * mInside,
       m.second,
       100 * c.first,
       100 * c3,
+      100 * cInside,
       c.second,
       casterBoth);
     CHECK(m.first >= 0.99 && m3 >= 0.99, "the signed field's surface is off the mesh");

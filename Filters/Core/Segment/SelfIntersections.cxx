@@ -54,6 +54,29 @@ Position At(const std::vector<double>& points, int64_t id)
   return { { points[3 * id], points[3 * id + 1], points[3 * id + 2] } };
 }
 
+// While it lives, CGAL's failed checks only throw (the message is the exception's, which
+// the caller reports once) instead of also printing to stderr.
+class QuietCGAL
+{
+public:
+  QuietCGAL()
+    : Error(CGAL::set_error_handler(&QuietCGAL::Ignore))
+    , Warning(CGAL::set_warning_handler(&QuietCGAL::Ignore))
+  {
+  }
+  ~QuietCGAL()
+  {
+    CGAL::set_error_handler(this->Error);
+    CGAL::set_warning_handler(this->Warning);
+  }
+  QuietCGAL(const QuietCGAL&) = delete;
+  QuietCGAL& operator=(const QuietCGAL&) = delete;
+
+private:
+  static void Ignore(const char*, const char*, const char*, int, const char*) {}
+  CGAL::Failure_function Error, Warning;
+};
+
 size_t Root(std::vector<size_t>& parent, size_t i)
 {
   while (parent[i] != i)
@@ -175,6 +198,7 @@ bool CutSelfIntersections(const std::vector<double>& points,
 {
   out = SelfIntersectionCut();
   error.clear();
+  const QuietCGAL quiet;
   const int64_t triangleCount = static_cast<int64_t>(triangles.size() / 3);
 
   // One point per position; the triangles with area, each once.
