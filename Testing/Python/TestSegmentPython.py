@@ -1,7 +1,9 @@
 """vtkSegmentedDistanceField from Python: an open disk gives two regions (its front and
 back meet only across its boundary), the field data describes them, and
 SegmentedDistance = min(Distance, Delta) + RegionOffset * RegionIndex; blended with
-itself (vtkDistanceFieldBlend), the field is unchanged."""
+itself (vtkDistanceFieldBlend), the field is unchanged; two squares crossing without a
+shared edge make four regions when cut along the crossing (CutSelfIntersections), two
+uncut."""
 import sys
 
 import numpy as np
@@ -94,3 +96,31 @@ if (paper.GetOutput().GetNumberOfCells() == 0
     print("FAIL")
     sys.exit(1)
 
+
+# Two squares crossing along the z axis without a shared edge: cut along the crossing
+# (CutSelfIntersections, the default), four half-planes and four regions; uncut, two.
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+
+points = vtkPoints()
+quads = vtkCellArray()
+for c, s in ((1.0, 0.1), (-0.2, 1.0)):
+    ids = [points.InsertNextPoint(-c, -s, -1), points.InsertNextPoint(c, s, -1),
+           points.InsertNextPoint(c, s, 1), points.InsertNextPoint(-c, -s, 1)]
+    quads.InsertNextCell(4, ids)
+crossed = vtkPolyData()
+crossed.SetPoints(points)
+crossed.SetPolys(quads)
+counts = {}
+for cut in (True, False):
+    f = vtkSegmentedDistanceField()
+    f.SetInputData(crossed)
+    f.SetResolution(20)
+    f.SetBackendToCPU()
+    f.SetCutSelfIntersections(cut)
+    f.Update()
+    counts[cut] = (f.GetLastRegionCount(), f.GetLastCrossedTriangles())
+print(f"crossed squares: cut {counts[True]}, uncut {counts[False]} (regions, triangles cut)")
+if counts[True][0] != 4 or counts[True][1] == 0 or counts[False] != (2, 0):
+    print("FAIL")
+    sys.exit(1)
