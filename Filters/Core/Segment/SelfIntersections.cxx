@@ -348,19 +348,61 @@ bool CutSelfIntersections(const std::vector<double>& points,
     out.Parent.clear();
     return true;
   }
-  // Every other triangle as it was.
+  // The output in a canonical order, so that it depends on the geometry alone (CGAL's
+  // refinement orders its faces by what it met first, which varies from run to run, and
+  // the patches' and regions' numbers follow the triangles' order): every triangle in
+  // its input triangle's place, its pieces sorted by their corners (each rotated to
+  // start at its least corner, orientation kept), three points each.
+  struct Piece
+  {
+    int64_t Parent;
+    std::array<Position, 3> Corners;
+    bool operator<(const Piece& other) const
+    {
+      return this->Parent != other.Parent ? this->Parent < other.Parent
+                                          : this->Corners < other.Corners;
+    }
+  };
+  std::vector<Piece> pieces;
+  pieces.reserve(out.Parent.size() + static_cast<size_t>(triangleCount));
+  for (size_t i = 0; i < out.Parent.size(); ++i)
+  {
+    Piece piece{ out.Parent[i], {} };
+    for (int k = 0; k < 3; ++k)
+    {
+      piece.Corners[k] = At(out.Points, out.Triangles[3 * i + k]);
+    }
+    pieces.push_back(piece);
+  }
   for (int64_t t = 0; t < triangleCount; ++t)
   {
-    if (!refined[t])
+    if (!refined[t]) // every other triangle as it was
     {
+      Piece piece{ t, {} };
       for (int k = 0; k < 3; ++k)
       {
-        const Position p = At(points, triangles[3 * t + k]);
-        out.Triangles.push_back(static_cast<int64_t>(out.Points.size() / 3));
-        out.Points.insert(out.Points.end(), p.begin(), p.end());
+        piece.Corners[k] = At(points, triangles[3 * t + k]);
       }
-      out.Parent.push_back(t);
+      pieces.push_back(piece);
     }
+  }
+  for (Piece& piece : pieces)
+  {
+    const auto least = std::min_element(piece.Corners.begin(), piece.Corners.end());
+    std::rotate(piece.Corners.begin(), least, piece.Corners.end());
+  }
+  std::sort(pieces.begin(), pieces.end());
+  out.Points.clear();
+  out.Triangles.clear();
+  out.Parent.clear();
+  for (const Piece& piece : pieces)
+  {
+    for (const Position& corner : piece.Corners)
+    {
+      out.Triangles.push_back(static_cast<int64_t>(out.Points.size() / 3));
+      out.Points.insert(out.Points.end(), corner.begin(), corner.end());
+    }
+    out.Parent.push_back(piece.Parent);
   }
   return true;
 }
