@@ -12,8 +12,8 @@ names=${5:-"max3ds_export snowden bunny_75k"}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 field() { sed -E "s/.*[ ,]$1[=:]([^ ,]+).*/\1/" <<<"$2"; }
-printf "%-14s %4s %-4s %9s %9s %8s %8s %9s %9s %7s %8s\n" mesh N back signed_s segment_s patches \
-  field regions surface_s regions triangles
+printf "%-14s %4s %-4s %9s %9s %9s %8s %8s %9s %9s %7s %8s\n" mesh N back signed_s segment_s \
+  crossings patches field regions surface_s regions triangles
 for mesh in $names; do
   for n in $sizes; do
     for backend in $backends; do
@@ -26,8 +26,10 @@ for mesh in $names; do
       surf=$(grep '^vtkdf: surface' <<<"$g")
       segment_s=$(field time_s "$seg")
       # The surface's time: vtkSegmentedDistanceContour alone (vtkdf times it).
-      printf "%-14s %4s %-4s %9.3f %9.3f %8.3f %8.3f %9.3f %9.3f %7s %8s\n" "$mesh" "$n" "$backend" \
-        "$(field time_s "$s")" "$segment_s" "$(sed -E 's/.*stages=patches:([^,]+).*/\1/' <<<"$seg")" "$(field field "$seg")" \
+      # Stage times: the last "name:" in the line (regions= and patches= come before).
+      printf "%-14s %4s %-4s %9.3f %9.3f %9.3f %8.3f %8.3f %9.3f %9.3f %7s %8s\n" "$mesh" "$n" "$backend" \
+        "$(field time_s "$s")" "$segment_s" "$(sed -E 's/.*stages=crossings:([^,]+).*/\1/' <<<"$seg")" \
+        "$(field patches "$seg")" "$(field field "$seg")" \
         "$(field regions "$seg")" "$(field time_s "$surf")" \
         "$(sed -E 's/.* regions=([0-9]+).*/\1/' <<<"$seg")" "$(field triangles "$surf")"
     done
