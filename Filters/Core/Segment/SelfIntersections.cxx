@@ -201,35 +201,74 @@ bool CutSelfIntersections(const std::vector<double>& points,
   const QuietCGAL quiet;
   const int64_t triangleCount = static_cast<int64_t>(triangles.size() / 3);
 
-  // One point per position; the triangles with area, each once.
-  std::map<Position, size_t> pointAt;
+  // One point per position (the used points sorted by position); the triangles with
+  // area, each once (their sorted id triples sorted, the first of each kept).
+  const int64_t pointCount = static_cast<int64_t>(points.size() / 3);
+  std::vector<int64_t> used;
+  {
+    std::vector<uint8_t> isUsed(pointCount, 0);
+    for (const int64_t id : triangles)
+    {
+      isUsed[id] = 1;
+    }
+    for (int64_t p = 0; p < pointCount; ++p)
+    {
+      if (isUsed[p])
+      {
+        used.push_back(p);
+      }
+    }
+  }
+  std::sort(used.begin(),
+    used.end(),
+    [&](int64_t a, int64_t b)
+    {
+      const Position pa = At(points, a), pb = At(points, b);
+      return pa != pb ? pa < pb : a < b;
+    });
+  std::vector<size_t> soupId(pointCount, 0);
   std::vector<Point> soupPoints;
-  std::vector<Triple> polygons;
-  std::vector<int64_t> polygonTriangle;
-  std::set<Triple> seen;
+  for (size_t i = 0; i < used.size(); ++i)
+  {
+    const Position p = At(points, used[i]);
+    if (i == 0 || p != At(points, used[i - 1]))
+    {
+      soupPoints.emplace_back(p[0], p[1], p[2]);
+    }
+    soupId[used[i]] = soupPoints.size() - 1;
+  }
+  std::vector<std::pair<Triple, int64_t>> candidates;
   for (int64_t t = 0; t < triangleCount; ++t)
   {
-    Triple ids;
-    for (int k = 0; k < 3; ++k)
-    {
-      const Position p = At(points, triangles[3 * t + k]);
-      const auto found = pointAt.emplace(p, soupPoints.size());
-      if (found.second)
-      {
-        soupPoints.emplace_back(p[0], p[1], p[2]);
-      }
-      ids[k] = found.first->second;
-    }
-    Triple sorted = ids;
+    Triple sorted = {
+      soupId[triangles[3 * t]], soupId[triangles[3 * t + 1]], soupId[triangles[3 * t + 2]]
+    };
     std::sort(sorted.begin(), sorted.end());
-    if (sorted[0] == sorted[1] || sorted[1] == sorted[2] ||
-      CGAL::collinear(soupPoints[ids[0]], soupPoints[ids[1]], soupPoints[ids[2]]) ||
-      !seen.insert(sorted).second)
+    if (sorted[0] != sorted[1] && sorted[1] != sorted[2] &&
+      !CGAL::collinear(soupPoints[sorted[0]], soupPoints[sorted[1]], soupPoints[sorted[2]]))
     {
-      continue; // no area, or a repeat: passed through
+      candidates.emplace_back(sorted, t);
     }
-    polygons.push_back(ids);
-    polygonTriangle.push_back(t);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<uint8_t> isPolygon(triangleCount, 0);
+  for (size_t i = 0; i < candidates.size(); ++i)
+  {
+    if (i == 0 || candidates[i].first != candidates[i - 1].first)
+    {
+      isPolygon[candidates[i].second] = 1; // a repeat is passed through
+    }
+  }
+  std::vector<Triple> polygons;
+  std::vector<int64_t> polygonTriangle;
+  for (int64_t t = 0; t < triangleCount; ++t)
+  {
+    if (isPolygon[t])
+    {
+      polygons.push_back(
+        { soupId[triangles[3 * t]], soupId[triangles[3 * t + 1]], soupId[triangles[3 * t + 2]] });
+      polygonTriangle.push_back(t);
+    }
   }
 
   // The crossing pairs: triangles whose boxes meet, that share no point and that
@@ -351,8 +390,9 @@ bool CutSelfIntersections(const std::vector<double>& points,
   // The output in a canonical order, so that it depends on the geometry alone (CGAL's
   // refinement orders its faces by what it met first, which varies from run to run, and
   // the patches' and regions' numbers follow the triangles' order): every triangle in
-  // its input triangle's place, its pieces sorted by their corners (each rotated to
-  // start at its least corner, orientation kept), three points each.
+  // its input triangle's place; the pieces of a cut one sorted by their corners (each
+  // rotated to start at its least corner, orientation kept), with three new points each
+  // after the input's points, which the others keep.
   struct Piece
   {
     int64_t Parent;
@@ -363,46 +403,40 @@ bool CutSelfIntersections(const std::vector<double>& points,
                                           : this->Corners < other.Corners;
     }
   };
-  std::vector<Piece> pieces;
-  pieces.reserve(out.Parent.size() + static_cast<size_t>(triangleCount));
-  for (size_t i = 0; i < out.Parent.size(); ++i)
+  std::vector<Piece> pieces(out.Parent.size());
+  for (size_t i = 0; i < pieces.size(); ++i)
   {
-    Piece piece{ out.Parent[i], {} };
+    Piece& piece = pieces[i];
+    piece.Parent = out.Parent[i];
     for (int k = 0; k < 3; ++k)
     {
       piece.Corners[k] = At(out.Points, out.Triangles[3 * i + k]);
     }
-    pieces.push_back(piece);
-  }
-  for (int64_t t = 0; t < triangleCount; ++t)
-  {
-    if (!refined[t]) // every other triangle as it was
-    {
-      Piece piece{ t, {} };
-      for (int k = 0; k < 3; ++k)
-      {
-        piece.Corners[k] = At(points, triangles[3 * t + k]);
-      }
-      pieces.push_back(piece);
-    }
-  }
-  for (Piece& piece : pieces)
-  {
     const auto least = std::min_element(piece.Corners.begin(), piece.Corners.end());
     std::rotate(piece.Corners.begin(), least, piece.Corners.end());
   }
   std::sort(pieces.begin(), pieces.end());
-  out.Points.clear();
+  out.Points = points;
   out.Triangles.clear();
   out.Parent.clear();
-  for (const Piece& piece : pieces)
+  auto next = pieces.begin();
+  for (int64_t t = 0; t < triangleCount; ++t)
   {
-    for (const Position& corner : piece.Corners)
+    if (!refined[t])
     {
-      out.Triangles.push_back(static_cast<int64_t>(out.Points.size() / 3));
-      out.Points.insert(out.Points.end(), corner.begin(), corner.end());
+      out.Triangles.insert(out.Triangles.end(), &triangles[3 * t], &triangles[3 * t] + 3);
+      out.Parent.push_back(t);
+      continue;
     }
-    out.Parent.push_back(piece.Parent);
+    for (; next != pieces.end() && next->Parent == t; ++next)
+    {
+      for (const Position& corner : next->Corners)
+      {
+        out.Triangles.push_back(static_cast<int64_t>(out.Points.size() / 3));
+        out.Points.insert(out.Points.end(), corner.begin(), corner.end());
+      }
+      out.Parent.push_back(t);
+    }
   }
   return true;
 }
