@@ -17,7 +17,7 @@
 #include <exception>
 #include <map>
 #include <numeric>
-#include <set>
+#include <stdexcept>
 
 namespace vtkdf
 {
@@ -349,13 +349,16 @@ bool CutSelfIntersections(const std::vector<double>& points,
       memberTriangle.push_back(polygonTriangle[i]);
     }
     const size_t pointsBefore = out.Points.size(), trianglesBefore = out.Triangles.size();
-    std::vector<uint8_t> groupCut(triangleCount, 0);
     try
     {
-      RefineGroup(soupPoints, members, memberTriangle, groupCut, out);
+      RefineGroup(soupPoints, members, memberTriangle, wasCut, out);
     }
     catch (const std::exception& e)
     {
+      for (const int64_t t : memberTriangle)
+      {
+        wasCut[t] = 0; // the visitor may have marked some before CGAL gave up
+      }
       out.Points.resize(pointsBefore);
       out.Triangles.resize(trianglesBefore);
       out.Parent.resize(trianglesBefore / 3);
@@ -372,7 +375,6 @@ bool CutSelfIntersections(const std::vector<double>& points,
     for (const int64_t t : memberTriangle)
     {
       refined[t] = 1;
-      wasCut[t] = groupCut[t];
     }
   }
   out.CrossingGroups = static_cast<int64_t>(groups.size());
