@@ -50,6 +50,10 @@ def configure(f, sub, options, contour=None):
             contour.UseClosestPointsOff()
             i += 1
             continue
+        if option == "--uncut":
+            f.CutSelfIntersectionsOff()
+            i += 1
+            continue
         if option == "--query":
             f.SetQueryPoint(*[number(w, float) for w in words[i + 1:i + 4]])
             i += 4
