@@ -97,16 +97,10 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation* request,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  // A failure leaves the output empty and says so in the error code (as the module's
-  // other filters do), for callers that do not observe ErrorEvent.
-  this->SetErrorCode(vtkErrorCode::NoError);
-  const int ok = this->Compute(request, inputVector, outputVector);
-  if (!ok)
-  {
-    vtkImageData::GetData(outputVector, 0)->Initialize();
-    this->SetErrorCode(vtkErrorCode::UserError);
-  }
-  return ok;
+  return vtkdf::RunOrEmpty(
+    vtkImageData::GetData(outputVector, 0),
+    [&] { return this->Compute(request, inputVector, outputVector); },
+    [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
 int vtkDistanceFieldBlend::Compute(vtkInformation*,

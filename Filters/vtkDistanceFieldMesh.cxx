@@ -7,6 +7,8 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
+#include "vtkDataObject.h"
+#include "vtkErrorCode.h"
 #include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -444,6 +446,20 @@ void AllocateTuples(vtkDataArray* array, vtkIdType tuples)
   {
     throw std::bad_alloc();
   }
+}
+
+int RunOrEmpty(vtkDataObject* output,
+  const std::function<int()>& compute,
+  const std::function<void(unsigned long)>& setErrorCode)
+{
+  setErrorCode(vtkErrorCode::NoError);
+  const int ok = compute();
+  if (!ok)
+  {
+    output->Initialize();
+    setErrorCode(vtkErrorCode::UserError);
+  }
+  return ok;
 }
 
 void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body)

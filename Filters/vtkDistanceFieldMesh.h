@@ -20,6 +20,7 @@
 class vtkAlgorithm;
 class vtkCallbackCommand;
 class vtkDataArray;
+class vtkDataObject;
 class vtkImageData;
 class vtkPolyData;
 
@@ -119,6 +120,13 @@ void AllocateTuples(vtkDataArray* array, vtkIdType tuples);
 /// (Backend GPU: any, even a software rasterizer; Auto: a hardware-accelerated one) or
 /// null for the CPU. False, with `error`, when Backend is GPU and there is no context.
 bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error);
+
+/// The RequestData of a filter whose work is `compute`: a failure (0) leaves `output`
+/// empty and says so in the error code (UserError, else NoError), for callers that do not
+/// observe ErrorEvent. `setErrorCode` is the filter's own (protected) SetErrorCode.
+int RunOrEmpty(vtkDataObject* output,
+  const std::function<int()>& compute,
+  const std::function<void(unsigned long)>& setErrorCode);
 
 /// vtkSMPTools::For behind the cores' ParallelFor hook. An exception thrown by `body`
 /// (std::bad_alloc) stops the remaining chunks and is rethrown here, on the calling

@@ -39,14 +39,10 @@ int vtkPenetrationDepth::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  this->SetErrorCode(vtkErrorCode::NoError);
-  const int ok = this->Compute(inputVector, outputVector);
-  if (!ok)
-  {
-    vtkPolyData::GetData(outputVector, 0)->Initialize();
-    this->SetErrorCode(vtkErrorCode::UserError);
-  }
-  return ok;
+  return vtkdf::RunOrEmpty(
+    vtkPolyData::GetData(outputVector, 0),
+    [&] { return this->Compute(inputVector, outputVector); },
+    [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
 int vtkPenetrationDepth::Compute(vtkInformationVector** inputVector,
