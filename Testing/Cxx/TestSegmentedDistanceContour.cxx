@@ -842,7 +842,7 @@ int main(int argc, char* argv[])
   // within a spacing of both, eq. 7 keeps it (a flap), while the handle's wall between
   // samples of that one region has no interface. The flap is about 0.4 across at every
   // grid (1.8 spacings at 80^3, 2.2 at 192^3, 2.7 at 256^3): the method's, not the
-  // sampling's (README, "What the segmented field cannot show").
+  // sampling's (README, vtkSegmentedDistanceContour).
   CheckBoundary("teapot", Read(data + "/teapot.vtp"), 32, false, false);
   CheckBoundary("teapot", Read(data + "/teapot.vtp"), 192, true, false);
 
