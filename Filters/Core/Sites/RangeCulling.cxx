@@ -387,8 +387,9 @@ void RangeCulling::Build(const MeshSites& sites,
                 (s.BoundsMin[a] - maximumDistance - grid.Origin[a]) / grid.Spacing[a];
               const double hi =
                 (s.BoundsMax[a] + maximumDistance - grid.Origin[a]) / grid.Spacing[a];
-              band.Lo[a] = static_cast<int>(std::max(std::ceil(lo), -2e9));
-              band.Hi[a] = static_cast<int>(std::min(std::floor(hi), 2e9));
+              // Clamped both ways: a site far off the grid puts either end past int.
+              band.Lo[a] = static_cast<int>(std::min(std::max(std::ceil(lo), -2e9), 2e9));
+              band.Hi[a] = static_cast<int>(std::min(std::max(std::floor(hi), -2e9), 2e9));
             }
             region = region.Intersect(band);
           }
