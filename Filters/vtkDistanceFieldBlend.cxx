@@ -1,7 +1,6 @@
 #include "vtkDistanceFieldBlend.h"
 
 #include "vtkDataArray.h"
-#include "vtkErrorCode.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"

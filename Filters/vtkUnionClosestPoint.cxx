@@ -2,7 +2,6 @@
 
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
-#include "vtkErrorCode.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
