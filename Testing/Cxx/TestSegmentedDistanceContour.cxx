@@ -556,11 +556,13 @@ void CheckBoundary(const std::string& name,
 /// field's spacing.
 double CheckHausdorff(const std::string& name,
   vtkPolyData* mesh,
-  int resolution,
+  vtkImageData* field,
   bool holdInputToSurface = true,
   double* inputToSurface = nullptr)
 {
-  auto field = Segment(mesh, resolution);
+  int dims[3];
+  field->GetDimensions(dims);
+  const int resolution = std::max({ dims[0], dims[1], dims[2] });
   vtkNew<vtkSegmentedDistanceContour> contour;
   contour->SetInputData(field);
   contour->Update();
@@ -601,6 +603,17 @@ double CheckHausdorff(const std::string& name,
     *inputToSurface = in;
   }
   return h;
+}
+
+/// The same on the segmented field of `mesh` at `resolution` samples along its longest
+/// side.
+double CheckHausdorff(const std::string& name,
+  vtkPolyData* mesh,
+  int resolution,
+  bool holdInputToSurface = true,
+  double* inputToSurface = nullptr)
+{
+  return CheckHausdorff(name, mesh, Segment(mesh, resolution), holdInputToSurface, inputToSurface);
 }
 
 /// The share of the input's area that lies within `reach` of another sheet along its
@@ -901,12 +914,14 @@ int main(int argc, char* argv[])
     // sample on each side, so the surface is lost there, whatever the rule; this is why
     // snowden (walls 0.33 spacings at 64^3, folds far thinner) cannot pass at a small grid
     // (README, vtkSegmentedDistanceContour).
-    const int regions = static_cast<int>(
-      Segment(Cup(0.1), 32)->GetFieldData()->GetArray("RegionCount")->GetTuple1(0));
+    vtkSmartPointer<vtkPolyData> cup = Cup(0.1);
+    vtkSmartPointer<vtkImageData> field = Segment(cup, 32);
+    const int regions =
+      static_cast<int>(field->GetFieldData()->GetArray("RegionCount")->GetTuple1(0));
     CHECK(regions == 2, "the cup has %d regions, not 2 (outside and hollow, material)", regions);
-    CheckHausdorff("cup, walls 1.3 h", Cup(0.1), 32);
+    CheckHausdorff("cup, walls 1.3 h", cup, field);
     double in = 0;
-    CheckHausdorff("cup, walls 0.46 h", Cup(0.1), 12, false, &in);
+    CheckHausdorff("cup, walls 0.46 h", cup, 12, false, &in);
     CHECK(in > 1,
       "a wall 0.46 spacings thick kept its surface within a spacing (%.3f): the README's "
       "account of snowden is out of date",
@@ -926,8 +941,9 @@ int main(int argc, char* argv[])
   // samples of that one region has no interface. The flap's edge is 0.58 units from the
   // rim at 96^3 and 0.41 at 256^3, shrinking much more slowly than the spacing (1.4 and
   // 2.7 spacings): the method's, not the sampling's (README, vtkSegmentedDistanceContour).
-  CheckBoundary("teapot", Read(data + "/teapot.vtp"), 32, false, false);
-  CheckBoundary("teapot", Read(data + "/teapot.vtp"), 192, true, false);
+  vtkSmartPointer<vtkPolyData> teapot = Read(data + "/teapot.vtp");
+  CheckBoundary("teapot", teapot, 32, false, false);
+  CheckBoundary("teapot", teapot, 192, true, false);
 
   {
     // Bad input.
