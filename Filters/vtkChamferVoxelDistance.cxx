@@ -13,10 +13,10 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "ChamferTransform.h"
-#include "HeadlessGL.h"
-#include "VoxelGPU.h"
-#include "Voxelizer.h"
+#include "Voxels/ChamferTransform.h"
+#include "GL/HeadlessGL.h"
+#include "Voxels/VoxelGPU.h"
+#include "Voxels/Voxelizer.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <limits>

@@ -11,7 +11,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
-#include "ConvexHull.h"
+#include "Union/ConvexHull.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <algorithm>

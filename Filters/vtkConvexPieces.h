@@ -6,7 +6,7 @@
 #ifndef vtkConvexPieces_h
 #define vtkConvexPieces_h
 
-#include "UnionClosestPoint.h"
+#include "Union/UnionClosestPoint.h"
 
 #include <string>
 #include <vector>

@@ -11,8 +11,8 @@
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-#include "HeadlessGL.h"
-#include "SampleGrid.h"
+#include "GL/HeadlessGL.h"
+#include "Common/SampleGrid.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <vtksys/SystemInformation.hxx>

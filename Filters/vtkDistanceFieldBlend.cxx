@@ -12,7 +12,7 @@
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-#include "SegmentBlend.h"
+#include "Segment/SegmentBlend.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <algorithm>

@@ -18,8 +18,8 @@
 #include "vtkPolygon.h"
 #include "vtkSMPTools.h"
 
-#include "VoxelGPU.h"
-#include "Voxelizer.h"
+#include "Voxels/VoxelGPU.h"
+#include "Voxels/Voxelizer.h"
 
 #include <algorithm>
 #include <atomic>

@@ -4,11 +4,11 @@
 #ifndef vtkDistanceFieldMesh_h
 #define vtkDistanceFieldMesh_h
 
-#include "BitVolume.h"
-#include "HeadlessGL.h"
-#include "MeshSites.h"
-#include "SampleGrid.h"
-#include "Voxelizer.h"
+#include "Voxels/BitVolume.h"
+#include "GL/HeadlessGL.h"
+#include "LinearFactor/MeshSites.h"
+#include "Common/SampleGrid.h"
+#include "Voxels/Voxelizer.h"
 
 #include "vtkSmartPointer.h"
 #include "vtkType.h"

@@ -16,11 +16,11 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "HeadlessGL.h"
-#include "LinearFactorField.h"
-#include "LinearFactorGPU.h"
-#include "WindingSigns.h"
-#include "WindingSignsGPU.h"
+#include "GL/HeadlessGL.h"
+#include "LinearFactor/LinearFactorScan.h"
+#include "LinearFactor/LinearFactorGPU.h"
+#include "Winding/WindingSigns.h"
+#include "Winding/WindingSignsGPU.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <cmath>

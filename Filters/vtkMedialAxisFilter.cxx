@@ -15,12 +15,12 @@
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "HeadlessGL.h"
-#include "LinearFactorField.h"
-#include "MedialAxis.h"
-#include "MedialAxisGPU.h"
-#include "MeshSites.h"
-#include "RangeCulling.h"
+#include "GL/HeadlessGL.h"
+#include "LinearFactor/LinearFactorScan.h"
+#include "Medial/MedialAxis.h"
+#include "Medial/MedialAxisGPU.h"
+#include "LinearFactor/MeshSites.h"
+#include "LinearFactor/RangeCulling.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <cmath>

@@ -12,7 +12,7 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "PenetrationDepth.h"
+#include "Union/PenetrationDepth.h"
 #include "vtkConvexPieces.h"
 #include "vtkDistanceFieldMesh.h"
 

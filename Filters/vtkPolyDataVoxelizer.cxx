@@ -9,7 +9,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "HeadlessGL.h"
+#include "GL/HeadlessGL.h"
 #include "vtkDistanceFieldMesh.h"
 
 vtkStandardNewMacro(vtkPolyDataVoxelizer);

@@ -15,7 +15,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
-#include "SegmentContour.h"
+#include "Segment/SegmentContour.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <cmath>

@@ -18,14 +18,14 @@
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "HeadlessGL.h"
-#include "LinearFactorField.h"
-#include "MeshSites.h"
-#include "RangeCulling.h"
-#include "SegmentFieldGPU.h"
-#include "SegmentRegions.h"
-#include "SelfIntersections.h"
-#include "SurfacePatches.h"
+#include "GL/HeadlessGL.h"
+#include "LinearFactor/LinearFactorScan.h"
+#include "LinearFactor/MeshSites.h"
+#include "LinearFactor/RangeCulling.h"
+#include "Segment/SegmentFieldGPU.h"
+#include "Segment/SegmentRegions.h"
+#include "Segment/SelfIntersections.h"
+#include "Segment/SurfacePatches.h"
 #include "vtkDistanceFieldMesh.h"
 
 #include <algorithm>

@@ -18,8 +18,8 @@
 #include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "UnionClosestPoint.h"
-#include "UnionClosestPointGPU.h"
+#include "Union/UnionClosestPoint.h"
+#include "Union/UnionClosestPointGPU.h"
 #include "vtkConvexPieces.h"
 #include "vtkDistanceFieldMesh.h"
 

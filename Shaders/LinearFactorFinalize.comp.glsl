@@ -1,5 +1,5 @@
 #version 450 core
-// The field from the nearest site of every voxel, on the GPU (LinearFactorField.cxx
+// The field from the nearest site of every voxel, on the GPU (LinearFactorScan.cxx
 // Finalize, the same double arithmetic): signed distance and closest point.
 layout(local_size_x = 64) in;
 struct Site

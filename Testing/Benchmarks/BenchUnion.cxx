@@ -9,9 +9,9 @@
 //          [--write DIR]   (the PD inputs as OBJ files, for `peers pd DIR/tori.obj`)
 //          [--only 45x40|70x30|tori|plates]
 // Prints one line per measurement. Not a test.
-#include "ConvexHull.h"
-#include "PenetrationDepth.h"
-#include "UnionClosestPointGPU.h"
+#include "Union/ConvexHull.h"
+#include "Union/PenetrationDepth.h"
+#include "Union/UnionClosestPointGPU.h"
 
 #include <algorithm>
 #include <array>

@@ -3,7 +3,7 @@
 // faces, random sparse sets; nz = 1, 64, 65, 129, 300 and 66000 (more than 2^16 layers);
 // every metric, with and without a maximum number of layers (3: within the first block
 // of eight layers, 11: within the second), unsigned and signed.
-#include "ChamferTransform.h"
+#include "Voxels/ChamferTransform.h"
 #include "ThreadFor.h"
 
 #include <cstdio>

@@ -1,8 +1,8 @@
 // Unit test of the VTK-free core: procedural meshes, every culling mode, the CPU scan
 // against an exact brute-force reference on every sample.
 #include "ExactDistance.h"
-#include "LinearFactorField.h"
-#include "SliceDomain.h"
+#include "LinearFactor/LinearFactorScan.h"
+#include "LinearFactor/SliceDomain.h"
 #include "ThreadFor.h"
 
 #include <cmath>

@@ -8,7 +8,7 @@
 //   feature never reaches beyond it (Reach <= 1), on cubic and stretched cells, and the
 //   bound is tight (the largest reach seen is near 1: the margin is what keeps exact
 //   fans out).
-#include "MedialAxis.h"
+#include "Medial/MedialAxis.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,8 +13,8 @@
 // - the pairs skipped by the box bound change nothing (the same answer with every pair);
 // - with the argument gpu, all of it with the union query on the GPU, certified (and the
 //   tori's image-only depth never below the exact one).
-#include "ConvexHull.h"
-#include "PenetrationDepth.h"
+#include "Union/ConvexHull.h"
+#include "Union/PenetrationDepth.h"
 #include "RaySpans.h"
 
 #include <algorithm>

@@ -13,9 +13,9 @@
 //   point at the answer's distance, on the boundary (probes around it in and out of the union), and
 //   the ray through it leaving (or entering) the union there;
 // - ConvexPiece::Build refuses an open, a non-manifold, a flat and a non-convex piece.
-#include "ConvexHull.h"
+#include "Union/ConvexHull.h"
 #include "RaySpans.h"
-#include "UnionClosestPoint.h"
+#include "Union/UnionClosestPoint.h"
 
 #include <algorithm>
 #include <cmath>

@@ -12,8 +12,8 @@
 //   at O (U misses it, the certified answer does not), a piece holding O alone, nested
 //   pieces;
 // - the six images: every pixel's distance is a boundary point's (at least the answer).
-#include "ConvexHull.h"
-#include "UnionClosestPointGPU.h"
+#include "Union/ConvexHull.h"
+#include "Union/UnionClosestPointGPU.h"
 
 #include <algorithm>
 #include <cmath>

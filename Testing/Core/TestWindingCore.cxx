@@ -11,11 +11,11 @@
 //   the exact sum wherever |w| is not within 1e-9 of 1/2, and the values within their
 //   bounds; the same with distances that skip blocks near the surface; two threads;
 // - with the argument gpu: WindingSignsGPU against WindingSigns (CheckGPU).
-#include "HeadlessGL.h"
+#include "GL/HeadlessGL.h"
 #include "ThreadFor.h"
-#include "WindingNumber.h"
-#include "WindingSigns.h"
-#include "WindingSignsGPU.h"
+#include "Winding/WindingNumber.h"
+#include "Winding/WindingSigns.h"
+#include "Winding/WindingSignsGPU.h"
 
 #include <cmath>
 #include <cstdio>

@@ -27,7 +27,7 @@
 #include "vtkXMLPolyDataReader.h"
 
 #include "ExactDistance.h"
-#include "MedialAxis.h"
+#include "Medial/MedialAxis.h"
 #include "TestSupport.h"
 
 #include <cmath>

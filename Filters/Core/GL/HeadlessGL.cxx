@@ -1,4 +1,4 @@
-#include "HeadlessGL.h"
+#include "GL/HeadlessGL.h"
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>

@@ -5,7 +5,7 @@
 #ifndef vtkdf_HeadlessGL_h
 #define vtkdf_HeadlessGL_h
 
-#include "GLFunctions.h"
+#include "GL/GLFunctions.h"
 
 #include <memory>
 #include <string>

@@ -1,4 +1,4 @@
-#include "MedialAxis.h"
+#include "Medial/MedialAxis.h"
 
 #include <atomic>
 

@@ -30,8 +30,8 @@
 #ifndef vtkdf_MedialAxis_h
 #define vtkdf_MedialAxis_h
 
-#include "Parallel.h"
-#include "SampleGrid.h"
+#include "Common/Parallel.h"
+#include "Common/SampleGrid.h"
 
 #include <algorithm>
 #include <cmath>

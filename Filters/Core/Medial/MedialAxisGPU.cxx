@@ -1,7 +1,7 @@
-#include "MedialAxisGPU.h"
+#include "Medial/MedialAxisGPU.h"
 
-#include "GLFunctions.h"
-#include "LinearFactorGPU.h"
+#include "GL/GLFunctions.h"
+#include "LinearFactor/LinearFactorGPU.h"
 #include "MedialAxis_comp.h"
 
 #include <algorithm>

@@ -3,9 +3,9 @@
 #ifndef vtkdf_MedialAxisGPU_h
 #define vtkdf_MedialAxisGPU_h
 
-#include "HeadlessGL.h"
-#include "LinearFactorField.h"
-#include "MedialAxis.h"
+#include "GL/HeadlessGL.h"
+#include "LinearFactor/LinearFactorScan.h"
+#include "Medial/MedialAxis.h"
 
 #include <string>
 

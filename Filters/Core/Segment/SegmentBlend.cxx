@@ -1,4 +1,4 @@
-#include "SegmentBlend.h"
+#include "Segment/SegmentBlend.h"
 
 #include <algorithm>
 #include <cmath>

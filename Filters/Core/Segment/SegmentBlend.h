@@ -32,7 +32,7 @@
 #ifndef vtkdf_SegmentBlend_h
 #define vtkdf_SegmentBlend_h
 
-#include "Parallel.h"
+#include "Common/Parallel.h"
 
 #include <cstdint>
 

@@ -1,6 +1,6 @@
-#include "SegmentContour.h"
+#include "Segment/SegmentContour.h"
 
-#include "VoxelizerRules.h" // SquaredDistanceToTriangle
+#include "Common/PointTriangleDistance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -397,7 +397,7 @@ struct Builder
         const int e = edges[3 * t + k];
         p[k] = &this->Out.Points[3 * this->EdgePoint(start[e], axis[e])];
       }
-      nearest = std::min(nearest, voxelizer::SquaredDistanceToTriangle(x, p[0], p[1], p[2]));
+      nearest = std::min(nearest, SquaredDistanceToTriangle(x, p[0], p[1], p[2]));
     }
     const double* h = this->In.Grid.Spacing.data();
     const double quarter = 0.25 * std::min({ h[0], h[1], h[2] });

@@ -33,7 +33,7 @@
 #ifndef vtkdf_SegmentContour_h
 #define vtkdf_SegmentContour_h
 
-#include "SampleGrid.h"
+#include "Common/SampleGrid.h"
 
 #include <cstdint>
 #include <vector>

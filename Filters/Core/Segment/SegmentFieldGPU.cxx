@@ -1,7 +1,7 @@
-#include "SegmentFieldGPU.h"
+#include "Segment/SegmentFieldGPU.h"
 
-#include "GLFunctions.h"
-#include "LinearFactorGPU.h"
+#include "GL/GLFunctions.h"
+#include "LinearFactor/LinearFactorGPU.h"
 #include "SideLabel_comp.h"
 
 #include <algorithm>

@@ -8,9 +8,9 @@
 #ifndef vtkdf_SegmentFieldGPU_h
 #define vtkdf_SegmentFieldGPU_h
 
-#include "HeadlessGL.h"
-#include "LinearFactorField.h"
-#include "SurfacePatches.h"
+#include "GL/HeadlessGL.h"
+#include "LinearFactor/LinearFactorScan.h"
+#include "Segment/SurfacePatches.h"
 
 #include <cstdint>
 #include <string>

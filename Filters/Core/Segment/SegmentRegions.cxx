@@ -1,4 +1,4 @@
-#include "SegmentRegions.h"
+#include "Segment/SegmentRegions.h"
 
 #include <algorithm>
 #include <cmath>

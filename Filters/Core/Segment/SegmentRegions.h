@@ -26,9 +26,9 @@
 #ifndef vtkdf_SegmentRegions_h
 #define vtkdf_SegmentRegions_h
 
-#include "Parallel.h"
-#include "SampleGrid.h"
-#include "SurfacePatches.h"
+#include "Common/Parallel.h"
+#include "Common/SampleGrid.h"
+#include "Segment/SurfacePatches.h"
 
 #include <cstdint>
 #include <utility>

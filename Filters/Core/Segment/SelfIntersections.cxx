@@ -2,7 +2,7 @@
 // reported) instead of running on unchecked.
 #define CGAL_DEBUG 1
 
-#include "SelfIntersections.h"
+#include "Segment/SelfIntersections.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>

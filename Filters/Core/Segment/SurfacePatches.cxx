@@ -1,4 +1,4 @@
-#include "SurfacePatches.h"
+#include "Segment/SurfacePatches.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "ConvexHull.h"
+#include "Union/ConvexHull.h"
 
 extern "C"
 {

@@ -1,6 +1,6 @@
-#include "PenetrationDepth.h"
+#include "Union/PenetrationDepth.h"
 
-#include "ConvexHull.h"
+#include "Union/ConvexHull.h"
 
 #include <algorithm>
 #include <cmath>

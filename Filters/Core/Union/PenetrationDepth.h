@@ -18,9 +18,9 @@
 #ifndef vtkdf_PenetrationDepth_h
 #define vtkdf_PenetrationDepth_h
 
-#include "Parallel.h"
-#include "UnionClosestPoint.h"
-#include "UnionClosestPointGPU.h"
+#include "Common/Parallel.h"
+#include "Union/UnionClosestPoint.h"
+#include "Union/UnionClosestPointGPU.h"
 
 #include <cstdint>
 #include <string>

@@ -1,4 +1,4 @@
-#include "UnionClosestPoint.h"
+#include "Union/UnionClosestPoint.h"
 
 #include <algorithm>
 #include <array>

@@ -20,7 +20,7 @@
 #ifndef vtkdf_UnionClosestPoint_h
 #define vtkdf_UnionClosestPoint_h
 
-#include "Parallel.h"
+#include "Common/Parallel.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "UnionClosestPointGPU.h"
+#include "Union/UnionClosestPointGPU.h"
 
 #include "UnionView_frag.h"
 #include "UnionView_geom.h"

@@ -24,9 +24,9 @@
 #ifndef vtkdf_UnionClosestPointGPU_h
 #define vtkdf_UnionClosestPointGPU_h
 
-#include "HeadlessGL.h"
-#include "Parallel.h"
-#include "UnionClosestPoint.h"
+#include "GL/HeadlessGL.h"
+#include "Common/Parallel.h"
+#include "Union/UnionClosestPoint.h"
 
 #include <cstdint>
 #include <string>

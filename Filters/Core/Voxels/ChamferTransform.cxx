@@ -1,4 +1,4 @@
-#include "ChamferTransform.h"
+#include "Voxels/ChamferTransform.h"
 
 #include <algorithm>
 #include <climits>

@@ -1,15 +1,15 @@
-#include "VoxelGPU.h"
+#include "Voxels/VoxelGPU.h"
 
 #include "ChamferLayer_comp.h"
 #include "ChamferSeed_comp.h"
-#include "GLFunctions.h"
+#include "GL/GLFunctions.h"
 #include "VoxelizeCombine_comp.h"
 #include "VoxelizeCommon.h"
 #include "VoxelizeFill_comp.h"
 #include "VoxelizeRaster_frag.h"
 #include "VoxelizeRaster_geom.h"
 #include "VoxelizeRaster_vert.h"
-#include "VoxelizerRules.h"
+#include "Voxels/VoxelizerRules.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,12 +6,12 @@
 #ifndef vtkdf_VoxelGPU_h
 #define vtkdf_VoxelGPU_h
 
-#include "BitVolume.h"
-#include "ChamferTransform.h"
-#include "HeadlessGL.h"
-#include "MeshSites.h"
-#include "SampleGrid.h"
-#include "Voxelizer.h"
+#include "Voxels/BitVolume.h"
+#include "Voxels/ChamferTransform.h"
+#include "GL/HeadlessGL.h"
+#include "Common/MeshInput.h"
+#include "Common/SampleGrid.h"
+#include "Voxels/Voxelizer.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
-#include "Voxelizer.h"
+#include "Voxels/Voxelizer.h"
 
-#include "VoxelizerRules.h"
+#include "Voxels/VoxelizerRules.h"
 
 #include <algorithm>
 #include <atomic>

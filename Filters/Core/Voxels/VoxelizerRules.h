@@ -8,8 +8,9 @@
 #ifndef vtkdf_VoxelizerRules_h
 #define vtkdf_VoxelizerRules_h
 
-#include "MeshSites.h"
-#include "SampleGrid.h"
+#include "Common/MeshInput.h"
+#include "Common/PointTriangleDistance.h"
+#include "Common/SampleGrid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -131,99 +132,6 @@ inline int SolidBit(double depth, int na)
 {
   const double u = 2 * depth + 1;
   return static_cast<int>(std::floor(std::min(std::max(u, -1.0), 2.0 * na))) + SolidGuard;
-}
-
-/// Squared distance from p to segment ab (a point when a = b).
-inline double SquaredDistanceToSegment(const double p[3], const double a[3], const double b[3])
-{
-  double ab[3], ap[3];
-  double length2 = 0, along = 0;
-  for (int k = 0; k < 3; ++k)
-  {
-    ab[k] = b[k] - a[k];
-    ap[k] = p[k] - a[k];
-    length2 += ab[k] * ab[k];
-    along += ap[k] * ab[k];
-  }
-  const double t = length2 > 0 ? std::min(1.0, std::max(0.0, along / length2)) : 0.0;
-  double d2 = 0;
-  for (int k = 0; k < 3; ++k)
-  {
-    const double e = a[k] + t * ab[k] - p[k];
-    d2 += e * e;
-  }
-  return d2;
-}
-
-/// Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection,
-/// 5.1.5); a degenerate triangle (collinear corners, repeated points) counts as the
-/// segments it is made of.
-inline double SquaredDistanceToTriangle(const double p[3],
-  const double a[3],
-  const double b[3],
-  const double c[3])
-{
-  double ab[3], ac[3], ap[3], bp[3], cp[3];
-  for (int k = 0; k < 3; ++k)
-  {
-    ab[k] = b[k] - a[k];
-    ac[k] = c[k] - a[k];
-    ap[k] = p[k] - a[k];
-    bp[k] = p[k] - b[k];
-    cp[k] = p[k] - c[k];
-  }
-  auto dot = [](const double* u, const double* v)
-  { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
-  double v = 0, w = 0;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-  if (d1 <= 0 && d2 <= 0)
-  {
-    v = 0, w = 0;
-  }
-  else if (d3 >= 0 && d4 <= d3)
-  {
-    v = 1, w = 0;
-  }
-  else if (vc <= 0 && d1 >= 0 && d3 <= 0)
-  {
-    v = d1 / (d1 - d3), w = 0;
-  }
-  else if (d6 >= 0 && d5 <= d6)
-  {
-    v = 0, w = 1;
-  }
-  else if (vb <= 0 && d2 >= 0 && d6 <= 0)
-  {
-    v = 0, w = d2 / (d2 - d6);
-  }
-  else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-  {
-    w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    v = 1 - w;
-  }
-  else
-  {
-    // Only a proper triangle gets here with va + vb + vc = |ab x ac|^2 > 0; a degenerate
-    // one (a segment or a point) is the union of its edges.
-    const double area2 = va + vb + vc;
-    if (!(area2 > 0))
-    {
-      return std::min(SquaredDistanceToSegment(p, a, b),
-        std::min(SquaredDistanceToSegment(p, b, c), SquaredDistanceToSegment(p, c, a)));
-    }
-    const double denominator = 1 / area2;
-    v = vb * denominator, w = vc * denominator;
-  }
-  double d2sum = 0;
-  for (int k = 0; k < 3; ++k)
-  {
-    const double e = a[k] + v * ab[k] + w * ac[k] - p[k];
-    d2sum += e * e;
-  }
-  return d2sum;
 }
 
 /// Half the cell diagonal, squared: the boundary's distance limit.

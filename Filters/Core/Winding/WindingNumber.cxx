@@ -1,4 +1,4 @@
-#include "WindingNumber.h"
+#include "Winding/WindingNumber.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "WindingSigns.h"
+#include "Winding/WindingSigns.h"
 
 #include <algorithm>
 #include <atomic>

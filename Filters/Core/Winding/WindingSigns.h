@@ -15,9 +15,9 @@
 #ifndef vtkdf_WindingSigns_h
 #define vtkdf_WindingSigns_h
 
-#include "Parallel.h"
-#include "SampleGrid.h"
-#include "WindingNumber.h"
+#include "Common/Parallel.h"
+#include "Common/SampleGrid.h"
+#include "Winding/WindingNumber.h"
 
 #include <cstdint>
 

@@ -1,6 +1,6 @@
-#include "WindingSignsGPU.h"
+#include "Winding/WindingSignsGPU.h"
 
-#include "GLFunctions.h"
+#include "GL/GLFunctions.h"
 #include "WindingNumber_comp.h"
 
 #include <algorithm>

@@ -6,8 +6,8 @@
 #ifndef vtkdf_WindingSignsGPU_h
 #define vtkdf_WindingSignsGPU_h
 
-#include "HeadlessGL.h"
-#include "WindingSigns.h"
+#include "GL/HeadlessGL.h"
+#include "Winding/WindingSigns.h"
 
 #include <string>
 

@@ -9,6 +9,7 @@
 #ifndef vtkdf_LargeVector_h
 #define vtkdf_LargeVector_h
 
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 #include <utility>
@@ -30,6 +31,12 @@ struct DefaultInitAllocator
 
   T* allocate(size_t n)
   {
+    // A count whose bytes overflow size_t (an overflowing sample count) is refused as
+    // std::allocator refuses it, not wrapped into a small request.
+    if (n > SIZE_MAX / sizeof(T))
+    {
+      throw std::bad_array_new_length();
+    }
     void* p = std::malloc(n > 0 ? n * sizeof(T) : 1);
     if (!p)
     {

@@ -1,6 +1,6 @@
-#include "LinearFactorField.h"
+#include "LinearFactor/LinearFactorScan.h"
 
-#include "SliceDomain.h"
+#include "LinearFactor/SliceDomain.h"
 
 #include <algorithm>
 #include <cmath>

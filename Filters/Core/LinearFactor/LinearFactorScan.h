@@ -7,11 +7,11 @@
 #ifndef vtkdf_LinearFactorField_h
 #define vtkdf_LinearFactorField_h
 
-#include "LargeVector.h"
-#include "MeshSites.h"
-#include "Parallel.h"
-#include "RangeCulling.h"
-#include "SampleGrid.h"
+#include "Common/LargeVector.h"
+#include "LinearFactor/MeshSites.h"
+#include "Common/Parallel.h"
+#include "LinearFactor/RangeCulling.h"
+#include "Common/SampleGrid.h"
 
 #include <atomic>
 #include <cstdint>

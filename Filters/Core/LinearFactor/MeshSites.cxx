@@ -1,4 +1,4 @@
-#include "MeshSites.h"
+#include "LinearFactor/MeshSites.h"
 
 #include <algorithm>
 #include <atomic>

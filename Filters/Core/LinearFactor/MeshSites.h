@@ -8,8 +8,9 @@
 #ifndef vtkdf_MeshSites_h
 #define vtkdf_MeshSites_h
 
-#include "LargeVector.h"
-#include "Parallel.h"
+#include "Common/LargeVector.h"
+#include "Common/MeshInput.h"
+#include "Common/Parallel.h"
 
 #include <array>
 #include <cstdint>
@@ -18,19 +19,6 @@
 
 namespace vtkdf
 {
-
-/// What the caller hands in: points and cells as plain arrays (no VTK types).
-struct MeshInput
-{
-  std::vector<double> Points; // xyz, 3 per point
-  // Triangles (polygons and strips already split into triangles), with the cell they came from.
-  std::vector<int64_t> Triangles; // 3 point ids each
-  std::vector<int64_t> TriangleCells;
-  std::vector<int64_t> Segments; // 2 point ids each (lines, polyline pieces)
-  std::vector<int64_t> SegmentCells;
-  std::vector<int64_t> Vertices; // point ids of vertex cells
-  std::vector<int64_t> VertexCells;
-};
 
 enum class Culling
 {

@@ -1,4 +1,4 @@
-#include "RangeCulling.h"
+#include "LinearFactor/RangeCulling.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,8 +4,8 @@
 #ifndef vtkdf_LinearFactorGPU_h
 #define vtkdf_LinearFactorGPU_h
 
-#include "HeadlessGL.h"
-#include "LinearFactorField.h"
+#include "GL/HeadlessGL.h"
+#include "LinearFactor/LinearFactorScan.h"
 
 #include <string>
 

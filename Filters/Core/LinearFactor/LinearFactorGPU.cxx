@@ -1,4 +1,4 @@
-#include "LinearFactorGPU.h"
+#include "LinearFactor/LinearFactorGPU.h"
 
 #include "LinearFactorDomain_frag.h"
 #include "LinearFactorDomain_geom.h"
@@ -6,9 +6,9 @@
 #include "LinearFactorFinalize_comp.h"
 #include "LinearFactorKeep_comp.h"
 #include "LinearFactorSites.h"
-#include "SliceDomain.h"
+#include "LinearFactor/SliceDomain.h"
 
-#include "GLFunctions.h"
+#include "GL/GLFunctions.h"
 
 #include <algorithm>
 #include <chrono>

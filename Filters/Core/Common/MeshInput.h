@@ -1,0 +1,76 @@
+// MeshInput: a polygon mesh as every core takes it, points and cells as plain arrays (no
+// VTK types), in world coordinates. The cores that sample it on a grid move it into the
+// grid's local frame themselves (SampleGrid.h, GridFrame).
+#ifndef vtkdf_MeshInput_h
+#define vtkdf_MeshInput_h
+
+#include "Common/SampleGrid.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vtkdf
+{
+
+struct MeshInput
+{
+  std::vector<double> Points; // xyz, 3 per point
+  // Triangles (polygons and strips already split into triangles), with the cell they came from.
+  std::vector<int64_t> Triangles; // 3 point ids each
+  std::vector<int64_t> TriangleCells;
+  std::vector<int64_t> Segments; // 2 point ids each (lines, polyline pieces)
+  std::vector<int64_t> SegmentCells;
+  std::vector<int64_t> Vertices; // point ids of vertex cells
+  std::vector<int64_t> VertexCells;
+  /// Bounds (xmin, xmax, ...) of the points the input's cells use, as whoever built the
+  /// mesh found them (UsedPointBounds, or the filter's own pass over its input, which
+  /// also counts the points of cells it could not use).
+  std::array<double, 6> Bounds{ { 0, -1, 0, -1, 0, -1 } };
+
+  /// Whether the mesh has no triangle, segment or vertex.
+  bool Empty() const { return Triangles.empty() && Segments.empty() && Vertices.empty(); }
+};
+
+/// The bounds of the points that the mesh's triangles, segments and vertices use; false
+/// when they use none.
+inline bool UsedPointBounds(const MeshInput& mesh, std::array<double, 6>& bounds)
+{
+  bounds = { { HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL } };
+  bool any = false;
+  auto use = [&](const std::vector<int64_t>& ids)
+  {
+    for (const int64_t id : ids)
+    {
+      const double* x = &mesh.Points[3 * id];
+      for (int a = 0; a < 3; ++a)
+      {
+        bounds[2 * a] = std::fmin(bounds[2 * a], x[a]);
+        bounds[2 * a + 1] = std::fmax(bounds[2 * a + 1], x[a]);
+      }
+      any = true;
+    }
+  };
+  use(mesh.Triangles);
+  use(mesh.Segments);
+  use(mesh.Vertices);
+  return any;
+}
+
+/// The mesh's points in `frame` (as GridFrame::ToLocal maps each coordinate).
+inline void MoveToLocalFrame(MeshInput& mesh, const GridFrame& frame)
+{
+  for (size_t i = 0; i < mesh.Points.size(); i += 3)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      mesh.Points[i + a] = frame.ToLocal(a, mesh.Points[i + a]);
+    }
+  }
+}
+
+} // namespace vtkdf
+
+#endif
