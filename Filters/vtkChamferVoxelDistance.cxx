@@ -13,13 +13,14 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "Voxels/ChamferTransform.h"
+#include "Common/Parallel.h"
 #include "GL/HeadlessGL.h"
-#include "Voxels/VoxelGPU.h"
-#include "Voxels/Voxelizer.h"
-#include "vtkDistanceFieldMesh.h"
+#include "Voxels/VoxelFields.h"
+#include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldExecution.h"
 
-#include <limits>
+#include <algorithm>
+#include <utility>
 
 vtkStandardNewMacro(vtkChamferVoxelDistance);
 
@@ -91,7 +92,7 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  this->StartTiming();
+  vtkdf::StageTimer timer;
   vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
   vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -99,7 +100,8 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   output->Initialize();
   this->LastLayers = 0;
   // The grid.
-  vtkdf::SampleGrid grid;
+  vtkdf::ChamferRequest request;
+  vtkdf::SampleGrid& grid = request.Grid;
   vtkdf::IndexBox unused;
   if (image)
   {
@@ -115,8 +117,10 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     vtkWarningMacro("The input mesh is empty: the output is an empty image.");
     return 1;
   }
+  request.Metric = static_cast<vtkdf::ChamferMetric>(this->Metric);
+  request.MaximumLayers = this->MaximumLayers;
+  request.Signed = this->Signed;
   const int nx = grid.Whole.Size(0), ny = grid.Whole.Size(1), nz = grid.Whole.Size(2);
-  const double voxels = double(grid.Whole.Count());
   // Three views of lanes (voxelizing), three lane grids and one bit plane per bit of the
   // largest layer index (propagating; no metric needs more than nx + ny + nz layers),
   // the int32 field.
@@ -128,15 +132,12 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   {
     ++planes;
   }
-  const double bytes = voxels * (6 / 8.0 + (3 + planes) / 8.0 + 4 + (this->OutputMasks ? 2 : 0));
-  if (!this->CheckMemory(bytes, grid.Whole))
-  {
-    return 0;
-  }
-
-  std::string error, warning;
+  const double bytes =
+    double(grid.Whole.Count()) * (6 / 8.0 + (3 + planes) / 8.0 + 4 + (this->OutputMasks ? 2 : 0));
   vtkdf::HeadlessGL* gl = nullptr;
-  if (!this->ChooseBackend(gl))
+  vtkdf::MeshInput input;
+  if (!this->CheckMemory(bytes, grid.Whole) || !this->ChooseBackend(gl) ||
+    (mesh && !this->ReadMesh(mesh, grid, input)))
   {
     return 0;
   }
@@ -144,8 +145,8 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   // The zero set, and the solid when a sign is wanted: read from the image, or
   // voxelized (on the GPU, the voxelization stays there for the propagation).
   vtkdf::BitVolume boundary(nx, ny, nz), solid;
-  vtkdf::MeshConversion conversion;
-  bool haveSolid = false;
+  bool haveSolid = this->Signed;
+  std::string error;
   if (image)
   {
     bool found = false;
@@ -161,153 +162,62 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
       vtkWarningMacro("Signed is on but the input image has no Solid array: the distances are "
                       "unsigned.");
     }
+    timer.End("masks");
   }
-  else
+  auto distance = vtkdf::NewArray<vtkIntArray>("ChamferDistance", grid.Whole.Count());
+  vtkdf::ChamferReport report;
+  const vtkdf::Execution execution = this->MakeExecution(timer);
+  const bool ok = image ? vtkdf::ComputeChamferField(boundary,
+                            haveSolid ? &solid : nullptr,
+                            request,
+                            gl,
+                            distance->GetPointer(0),
+                            execution,
+                            report,
+                            error)
+                        : vtkdf::ComputeChamferField(std::move(input),
+                            request,
+                            gl,
+                            distance->GetPointer(0),
+                            boundary,
+                            solid,
+                            this->OutputMasks,
+                            execution,
+                            report,
+                            error);
+  if (!ok)
   {
-    haveSolid = this->Signed;
-    if (!conversion.Run(mesh, grid, error))
-    {
-      vtkErrorMacro("Invalid input: " << error << ".");
-      return 0;
-    }
-    warning = vtkdf::TrianglesOnly(conversion);
-    if (!gl)
-    {
-      vtkdf::VoxelizeStatistics statistics;
-      if (!vtkdf::VoxelizeCPU(conversion.Mesh,
-            conversion.Grid,
-            &boundary,
-            haveSolid ? &solid : nullptr,
-            vtkdf::SMPFor,
-            statistics,
-            error))
-      {
-        vtkErrorMacro("Invalid input: " << error << ".");
-        return 0;
-      }
-      const std::string far = vtkdf::FarTriangles(statistics);
-      warning += (warning.empty() || far.empty() ? "" : " ") + far;
-    }
-  }
-  const char* emptyZeroSet =
-    "The zero set is empty: no Boundary voxel is set, so no distance can be propagated.";
-  if ((image || !gl) && !boundary.Any())
-  {
-    vtkErrorMacro(<< emptyZeroSet);
+    vtkErrorMacro(<< error);
     return 0;
   }
-  this->EndStage(image ? "masks" : "voxelize");
-
-  // Propagation.
-  vtkNew<vtkIntArray> distance;
-  distance->SetName("ChamferDistance");
-  vtkdf::AllocateTuples(distance, grid.Whole.Count());
-  const int32_t unreached =
-    this->MaximumLayers > 0 ? this->MaximumLayers + 1 : std::numeric_limits<int32_t>::max();
-  const vtkdf::ChamferMetric metric = this->Metric == MANHATTAN
-    ? vtkdf::ChamferMetric::Manhattan
-    : (this->Metric == CHESSBOARD26 ? vtkdf::ChamferMetric::Chessboard26
-                                    : vtkdf::ChamferMetric::Chessboard18);
-  vtkdf::ChamferResult result;
-  if (gl)
+  if (report.Result.Aborted)
   {
-    vtkdf::ChamferInput in;
-    in.Grid = grid;
-    if (image)
-    {
-      in.Boundary = &boundary;
-      in.Solid = haveSolid ? &solid : nullptr;
-    }
-    else
-    {
-      in.Mesh = &conversion.Mesh;
-      in.Grid = conversion.Grid; // the voxelization runs in the local frame
-    }
-    vtkdf::VoxelizeStatistics statistics;
-    const bool masksBack = this->OutputMasks && !image;
-    auto progress = [this](double fraction)
-    {
-      this->UpdateProgress(0.1 + 0.85 * fraction);
-      return !this->GetAbortExecute();
-    };
-    if (!vtkdf::ChamferGPU(*gl,
-          in,
-          metric,
-          this->MaximumLayers,
-          unreached,
-          this->Signed && haveSolid,
-          distance->GetPointer(0),
-          masksBack ? &boundary : nullptr,
-          masksBack && haveSolid ? &solid : nullptr,
-          result,
-          statistics,
-          error,
-          progress))
-    {
-      vtkErrorMacro("The GPU backend (" << gl->Renderer() << ") failed: " << error << ".");
-      return 0;
-    }
-    if (result.Aborted)
-    {
-      return 1; // an empty output
-    }
-    const std::string far = vtkdf::FarTriangles(statistics);
-    warning += (warning.empty() || far.empty() ? "" : " ") + far;
-    if (result.ZeroSet == 0)
-    {
-      vtkErrorMacro(<< emptyZeroSet);
-      return 0;
-    }
+    return 1; // an empty output
   }
-  if (!warning.empty())
+  if (!report.Voxels.Warning.empty())
   {
-    vtkWarningMacro(<< warning);
+    vtkWarningMacro(<< report.Voxels.Warning);
   }
-  if (!gl)
-  {
-    auto progress = [this](double fraction)
-    {
-      this->UpdateProgress(0.1 + 0.85 * fraction);
-      return !this->GetAbortExecute();
-    };
-    result = vtkdf::ChamferPropagate(boundary,
-      metric,
-      this->MaximumLayers,
-      unreached,
-      this->Signed && haveSolid ? &solid : nullptr,
-      distance->GetPointer(0),
-      vtkdf::SMPFor,
-      progress);
-    if (result.Aborted)
-    {
-      return 1;
-    }
-  }
-  this->EndStage("propagate");
   SetOutputExtent(output, grid, grid.Whole);
   output->GetPointData()->SetScalars(distance);
   vtkNew<vtkIntArray> unreachedValue;
   unreachedValue->SetName("UnreachedValue");
-  unreachedValue->InsertNextValue(unreached);
+  unreachedValue->InsertNextValue(request.Unreached());
   output->GetFieldData()->AddArray(unreachedValue);
   if (this->OutputMasks)
   {
-    for (int m = 0; m < 2; ++m)
+    for (int m = 0; m < (haveSolid ? 2 : 1); ++m)
     {
-      if (m == 1 && !haveSolid)
-      {
-        continue;
-      }
-      vtkNew<vtkUnsignedCharArray> mask;
-      mask->SetName(m == 0 ? "Boundary" : "Solid");
-      vtkdf::AllocateTuples(mask, grid.Whole.Count());
-      vtkdf::BitsToMask(m == 0 ? boundary : solid, grid, grid.Whole, mask->GetPointer(0));
+      auto mask =
+        vtkdf::NewArray<vtkUnsignedCharArray>(m == 0 ? "Boundary" : "Solid", grid.Whole.Count());
+      vtkdf::BitsToBytes(
+        m == 0 ? boundary : solid, grid, grid.Whole, mask->GetPointer(0), vtkdf::SMPFor);
       output->GetPointData()->AddArray(mask);
     }
   }
-  this->LastLayers = result.Layers;
-  this->EndStage("arrays");
-  this->FinishTiming(gl);
+  this->LastLayers = report.Result.Layers;
+  timer.End("arrays");
+  this->FinishTiming(gl, timer);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -12,7 +12,7 @@
 #include "vtkSmartPointer.h"
 
 #include "Union/ConvexHull.h"
-#include "vtkDistanceFieldMesh.h"
+#include "vtkDistanceFieldMeshInput.h"
 
 #include <algorithm>
 #include <array>

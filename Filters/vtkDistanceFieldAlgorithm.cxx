@@ -11,16 +11,18 @@
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-#include "GL/HeadlessGL.h"
+#include "Common/MeshInput.h"
+#include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
-#include "vtkDistanceFieldMesh.h"
+#include "GL/HeadlessGL.h"
+#include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldMeshInput.h"
 
 #include <vtksys/SystemInformation.hxx>
 
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <new>
@@ -60,60 +62,50 @@ void vtkDistanceFieldAlgorithm::ComputeDefaultGrid(const double bounds[6],
   }
 }
 
-bool vtkDistanceFieldAlgorithm::CellBounds(vtkDataSet* input, double bounds[6], std::string& error)
+bool vtkDistanceFieldAlgorithm::MeshBounds(vtkPolyData* mesh, double bounds[6], std::string& error)
 {
-  vtkPolyData* mesh = vtkPolyData::SafeDownCast(input);
-  if (!mesh)
+  if (!(this->BoundsMesh == mesh && this->BoundsTime == mesh->GetMTime()))
   {
-    error = "the input is not a vtkPolyData";
+    this->BoundsMesh = mesh;
+    this->BoundsTime = mesh->GetMTime();
+    this->BoundsError.clear();
+    this->BoundsValid = vtkdf::UsedPointBounds(mesh, this->Bounds, this->BoundsError);
+  }
+  std::copy(this->Bounds, this->Bounds + 6, bounds);
+  error = this->BoundsError;
+  return this->BoundsValid;
+}
+
+bool vtkDistanceFieldAlgorithm::ReadMesh(vtkPolyData* input,
+  const vtkdf::SampleGrid& grid,
+  vtkdf::MeshInput& mesh)
+{
+  double bounds[6];
+  std::string error;
+  if (!this->MeshBounds(input, bounds, error))
+  {
+    vtkErrorMacro("Invalid input: " << error << ".");
     return false;
   }
-  return vtkdf::UsedPointBounds(mesh, bounds, error);
+  vtkdf::IgnoredCells ignored;
+  vtkdf::CopyMesh(input, bounds, vtkdf::GridFrame::For(grid), mesh, ignored);
+  const std::string warning = ignored.Sentence();
+  if (!warning.empty())
+  {
+    vtkWarningMacro(<< warning);
+  }
+  return true;
 }
 
 vtkTypeBool vtkDistanceFieldAlgorithm::ProcessRequest(vtkInformation* request,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
-  {
-    this->SetErrorCode(vtkErrorCode::NoError); // a new run
-  }
-  vtkTypeBool result = 0;
-  try
-  {
-    result = this->Superclass::ProcessRequest(request, inputVector, outputVector);
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Out of memory: an allocation failed (the grid or the mesh is too large for "
-                  "the memory this process can get; MemoryLimit is checked against estimates).");
-  }
-  catch (const std::length_error& e)
-  {
-    vtkErrorMacro(
-      "A buffer would exceed its largest size (" << e.what() << "): the grid is too large.");
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro("Failed: " << e.what());
-  }
-  if (!result)
-  {
-    if (this->GetErrorCode() == vtkErrorCode::NoError)
-    {
-      this->SetErrorCode(vtkErrorCode::UserError);
-    }
-    // No output of a failed run may pass for a result.
-    for (int port = 0; port < this->GetNumberOfOutputPorts(); ++port)
-    {
-      if (vtkDataObject* output = this->GetOutputDataObject(port))
-      {
-        output->Initialize();
-      }
-    }
-  }
-  return result;
+  return vtkdf::ProcessRequestOrEmpty(
+    this,
+    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()),
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); },
+    [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
 bool vtkDistanceFieldAlgorithm::CheckEnum(const char* name,
@@ -249,11 +241,11 @@ int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
     {
       upstream->Update(this->GetInputConnection(0, 0)->GetIndex());
     }
-    vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
+    vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
     double bounds[6];
     std::string error;
     const bool empty = !input || input->GetNumberOfCells() == 0 || input->GetNumberOfPoints() == 0;
-    if (!empty && !CellBounds(input, bounds, error))
+    if (!empty && !this->MeshBounds(input, bounds, error))
     {
       vtkErrorMacro("Invalid input mesh: " << error << ".");
       return 0;
@@ -307,52 +299,42 @@ int vtkDistanceFieldAlgorithm::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
-namespace
+vtkdf::Execution vtkDistanceFieldAlgorithm::MakeExecution(vtkdf::StageTimer& timer,
+  double from,
+  double to)
 {
-double SteadySeconds()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  vtkdf::Execution execution;
+  execution.For = vtkdf::SMPFor;
+  execution.Stages = &timer;
+  execution.Progress = [this, from, to](double fraction)
+  {
+    this->UpdateProgress(from + (to - from) * fraction);
+    return !this->GetAbortExecute();
+  };
+  return execution;
 }
-} // namespace
 
-void vtkDistanceFieldAlgorithm::StartTiming()
+void vtkDistanceFieldAlgorithm::FinishTiming(vtkdf::HeadlessGL* gl, const vtkdf::StageTimer& timer)
 {
-  this->TimingStart = this->StageStart = SteadySeconds();
-  this->LastStageTimes.clear();
-}
-
-void vtkDistanceFieldAlgorithm::EndStage(const char* name)
-{
-  const double now = SteadySeconds();
+  this->LastTime = timer.Elapsed();
   std::ostringstream text;
-  text << (this->LastStageTimes.empty() ? "" : ",") << name << ":" << now - this->StageStart;
-  this->LastStageTimes += text.str();
-  this->StageStart = now;
-}
-
-void vtkDistanceFieldAlgorithm::FinishTiming(vtkdf::HeadlessGL* gl)
-{
-  this->LastTime = SteadySeconds() - this->TimingStart;
+  for (const auto& stage : timer.Times())
+  {
+    text << (text.tellp() > 0 ? "," : "") << stage.first << ":" << stage.second;
+  }
+  this->LastStageTimes = text.str();
   this->LastBackend = gl ? "gpu" : "cpu";
   this->LastRenderer = gl ? gl->Renderer() : "cpu";
 }
 
 bool vtkDistanceFieldAlgorithm::ChooseBackend(vtkdf::HeadlessGL*& gl)
 {
-  gl = nullptr;
-  if (this->Backend == BACKEND_CPU)
+  std::string error;
+  if (!vtkdf::ChooseContext(this->Backend, gl, error))
   {
-    return true;
-  }
-  std::string why;
-  vtkdf::HeadlessGL* context = vtkdf::HeadlessGL::Get(why);
-  if (this->Backend == BACKEND_GPU && !context)
-  {
-    vtkErrorMacro("Backend is GPU but " << why);
+    vtkErrorMacro(<< error);
     return false;
   }
-  // Auto: a hardware-accelerated context only.
-  gl = this->Backend == BACKEND_GPU || (context && !context->IsSoftware()) ? context : nullptr;
   return true;
 }
 

@@ -3,9 +3,12 @@
  * @brief   Base of the filters that sample a field of a vtkPolyData on a vtkImageData.
  *
  * Holds what every such filter shares: the output grid (the default grid of
- * shared/docs/GRID.md from Resolution and Padding, or an explicit origin, spacing and
+ * docs/grid.md from Resolution and Padding, or an explicit origin, spacing and
  * dimensions), the Backend (Auto, GPU, CPU), the memory limit checked before
- * allocating, and what the last run used (backend, GL renderer, time).
+ * allocating, and what the last run used (backend, GL renderer, time). Subclasses are
+ * adapters: they turn the input into the cores' types (ReadMesh), resolve the Backend
+ * once (ChooseBackend), hand their arrays to one core entry point with the progress and
+ * abort hooks of this filter (MakeExecution), and report.
  *
  * The output honours UPDATE_EXTENT: a requested sub-extent is computed alone.
  *
@@ -28,10 +31,14 @@ class vtkImageData;
 namespace vtkdf
 {
 class HeadlessGL;
+class StageTimer;
+struct Execution;
 struct IndexBox;
+struct MeshInput;
 struct SampleGrid;
 }
 #endif
+class vtkPolyData;
 
 class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldAlgorithm : public vtkImageAlgorithm
 {
@@ -39,6 +46,7 @@ public:
   vtkTypeMacro(vtkDistanceFieldAlgorithm, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// Where a filter runs (the values of vtkdf::BackendValue, vtkDistanceFieldExecution.h).
   enum BackendType
   {
     BACKEND_AUTO = 0, ///< the GPU when a hardware-accelerated context exists, else the CPU
@@ -127,25 +135,31 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  /// Bounds of the points that the cells use (GRID.md ignores unused points). False,
-  /// with `error` saying why, when a cell refers to a point that does not exist, a used
-  /// point has a NaN or infinite coordinate, or no cell uses any point.
-  static bool CellBounds(vtkDataSet* input, double bounds[6], std::string& error);
+  /// Bounds of the points that the cells of `mesh` use (the grid convention ignores
+  /// unused points), computed once per version of the mesh: RequestInformation needs them
+  /// for the default grid, RequestData finds them there. False, with `error` saying why,
+  /// when a cell refers to a point that does not exist, a used point has a NaN or
+  /// infinite coordinate, or no cell uses any point.
+  bool MeshBounds(vtkPolyData* mesh, double bounds[6], std::string& error);
 
 #ifndef __VTK_WRAP__
   /// The GL context to run on (null: the CPU), from Backend; false, with the error
   /// reported, when the GPU is asked for and there is none.
   bool ChooseBackend(vtkdf::HeadlessGL*& gl);
 
-  ///@{
-  /// The timing of a run: StartTiming() first in RequestData, EndStage(name) after each
-  /// stage (LastStageTimes gets "name:seconds", comma separated), FinishTiming(gl) when
-  /// the output is complete (LastTime, and LastBackend/LastRenderer from `gl`, null for
-  /// the CPU).
-  void StartTiming();
-  void EndStage(const char* name);
-  void FinishTiming(vtkdf::HeadlessGL* gl);
-  ///@}
+  /// `input` as the cores take it (MeshInput, world coordinates, with its bounds) for
+  /// fields on `grid`; cells it cannot use are reported in a warning. False, with the
+  /// error reported, on invalid input.
+  bool ReadMesh(vtkPolyData* input, const vtkdf::SampleGrid& grid, vtkdf::MeshInput& mesh);
+
+  /// The hooks a core runs with: vtkSMPTools, this filter's progress (the core's fraction
+  /// mapped onto [from, to]) and abort, and `timer` for the stage times.
+  vtkdf::Execution MakeExecution(vtkdf::StageTimer& timer, double from = 0, double to = 1);
+
+  /// The end of a complete run: LastTime and LastStageTimes from `timer` (the stage
+  /// times as "name:seconds", comma separated), LastBackend and LastRenderer from `gl`
+  /// (null for the CPU).
+  void FinishTiming(vtkdf::HeadlessGL* gl, const vtkdf::StageTimer& timer);
 #endif
 
   /// Filters that also take a vtkImageData (a field or masks on a grid) set this; the
@@ -176,12 +190,6 @@ protected:
 
   /// The grid of an image (its extent as Whole); false when it is empty.
   static bool GetImageGrid(vtkImageData* image, vtkdf::SampleGrid& grid);
-
-  /// Whether `grid` can carry float32 distances to the stated accuracy: a finite origin,
-  /// finite positive spacing, distinct sample coordinates, and (with `bounds`, the mesh's
-  /// xmin, xmax, ...) a box holding mesh and grid whose diagonal float32 holds and that
-  /// spans at most 2^50 spacings. False with `error` naming the problem.
-  static bool CheckGrid(const vtkdf::SampleGrid& grid, const double* bounds, std::string& error);
 #endif
 
   int Backend = BACKEND_AUTO;
@@ -197,9 +205,15 @@ protected:
   std::string LastRenderer = "none";
   double LastTime = 0;
   std::string LastStageTimes;
-  double TimingStart = 0, StageStart = 0; // steady-clock seconds
 
 private:
+  // MeshBounds' last answer, and what it was for.
+  vtkPolyData* BoundsMesh = nullptr;
+  vtkMTimeType BoundsTime = 0;
+  bool BoundsValid = false;
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  std::string BoundsError;
+
   vtkDistanceFieldAlgorithm(const vtkDistanceFieldAlgorithm&) = delete;
   void operator=(const vtkDistanceFieldAlgorithm&) = delete;
 };

@@ -1,6 +1,7 @@
 #include "vtkDistanceFieldBlend.h"
 
 #include "vtkDataArray.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -13,7 +14,8 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "Segment/SegmentBlend.h"
-#include "vtkDistanceFieldMesh.h"
+#include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldExecution.h"
 
 #include <algorithm>
 #include <cmath>
@@ -92,17 +94,18 @@ int vtkDistanceFieldBlend::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
-int vtkDistanceFieldBlend::RequestData(vtkInformation* request,
+vtkTypeBool vtkDistanceFieldBlend::ProcessRequest(vtkInformation* request,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  return vtkdf::RunOrEmpty(
-    vtkImageData::GetData(outputVector, 0),
-    [&] { return this->Compute(request, inputVector, outputVector); },
+  return vtkdf::ProcessRequestOrEmpty(
+    this,
+    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()),
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); },
     [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
-int vtkDistanceFieldBlend::Compute(vtkInformation*,
+int vtkDistanceFieldBlend::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {

@@ -28,6 +28,12 @@ public:
   vtkTypeMacro(vtkDistanceFieldBlend, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// Runs the request; a failure (a request returning 0, or an exception such as
+  /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
   /// The blend parameter: 0 gives the first field, 1 the second (default 0.5).
   vtkSetMacro(T, double);
   vtkGetMacro(T, double);
@@ -39,9 +45,6 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// RequestData's work; false on bad input (RequestData then empties the output and
-  /// sets the error code).
-  int Compute(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
 
   double T = 0.5;
 

@@ -34,6 +34,16 @@
 #define vtkMedialAxisFilter_h
 
 #include "vtkDistanceFieldAlgorithm.h"
+#include "vtkSmartPointer.h" // For ReadField
+
+class vtkFloatArray;
+class vtkUnsignedCharArray;
+#ifndef __VTK_WRAP__
+namespace vtkdf
+{
+struct MedialInput;
+}
+#endif
 #include "vtkDistanceFieldsModule.h" // For export macro
 
 class vtkPolyData;
@@ -91,6 +101,22 @@ protected:
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   bool CheckProperties() override;
+
+#ifndef __VTK_WRAP__
+  /// The field of an image input (Distance and ClosestPoint as float), checked against
+  /// Region and the memory limit; false with the error reported.
+  bool ReadField(vtkImageData* image,
+    vtkdf::MedialInput& field,
+    vtkSmartPointer<vtkFloatArray>& distance,
+    vtkSmartPointer<vtkFloatArray>& closest);
+  /// Output port 1: a vertex at every medial voxel, with its arrays.
+  static void WriteMedialPoints(const vtkdf::SampleGrid& grid,
+    vtkUnsignedCharArray* medial,
+    vtkFloatArray* angle,
+    vtkFloatArray* radius,
+    vtkIdType count,
+    vtkPolyData* points);
+#endif
 
   double SeparationAngle = 90;
   int Region = INSIDE;

@@ -12,9 +12,10 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "GL/HeadlessGL.h"
 #include "Union/PenetrationDepth.h"
 #include "vtkConvexPieces.h"
-#include "vtkDistanceFieldMesh.h"
+#include "vtkDistanceFieldExecution.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,25 +27,8 @@ vtkPenetrationDepth::vtkPenetrationDepth()
   this->SetNumberOfInputPorts(2);
 }
 
-int vtkPenetrationDepth::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
-  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
-  return 1;
-}
-
 int vtkPenetrationDepth::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  return vtkdf::RunOrEmpty(
-    vtkPolyData::GetData(outputVector, 0),
-    [&] { return this->Compute(inputVector, outputVector); },
-    [this](unsigned long code) { this->SetErrorCode(code); });
-}
-
-int vtkPenetrationDepth::Compute(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
@@ -53,28 +37,15 @@ int vtkPenetrationDepth::Compute(vtkInformationVector** inputVector,
   this->LastDirection[0] = this->LastDirection[1] = this->LastDirection[2] = 0;
   this->LastIntersecting = false;
   this->LastErrorBound = 0;
-  this->LastBackend = BACKEND_CPU;
-  this->LastRenderer.clear();
   this->LastPasses = 0;
   this->LastPairsTotal = this->LastPairsKept = this->LastFacesVisited = 0;
-
   vtkdf::ConvexPieceInput solids[2];
-  for (int s = 0; s < 2; ++s)
+  vtkdf::HeadlessGL* gl = nullptr;
+  if (!this->ReadPieces(vtkDataObject::GetData(inputVector[0], 0), "P", 0, solids[0]) ||
+    !this->ReadPieces(vtkDataObject::GetData(inputVector[1], 0), "Q", 1, solids[1]) ||
+    !this->ChooseBackend(gl))
   {
-    std::string error;
-    if (!solids[s].Read(
-          vtkDataObject::GetData(inputVector[s], 0), this->PieceArray, this->UseConvexHulls, error))
-    {
-      vtkErrorMacro("Solid " << (s == 0 ? "P" : "Q") << " (input " << s << "): " << error);
-      return 0;
-    }
-    if (solids[s].Hulls > 0)
-    {
-      vtkWarningMacro("UseConvexHulls: " << solids[s].Hulls << " of " << solids[s].Pieces.size()
-                                         << " pieces of solid " << (s == 0 ? "P" : "Q")
-                                         << " were not closed and convex and were replaced "
-                                            "by their convex hulls.");
-    }
+    return 0;
   }
   this->UpdateProgress(0.1);
 
@@ -84,12 +55,6 @@ int vtkPenetrationDepth::Compute(vtkInformationVector** inputVector,
   const double origin[3] = { 0, 0, 0 };
   vtkdf::PenetrationAnswer answer;
   std::string error;
-  vtkdf::HeadlessGL* gl = nullptr;
-  if (!vtkdf::ChooseContext(this->Backend, gl, error))
-  {
-    vtkErrorMacro(<< error << ".");
-    return 0;
-  }
   vtkdf::UnionGPUSettings settings;
   settings.Resolution = this->ViewResolution;
   settings.Certify = this->Certify;
@@ -98,12 +63,18 @@ int vtkPenetrationDepth::Compute(vtkInformationVector** inputVector,
     vtkErrorMacro(<< (gl ? "The GPU query failed: " : "No Minkowski sum: ") << error << ".");
     return 0;
   }
-  this->LastBackend = gl ? BACKEND_GPU : BACKEND_CPU;
-  this->LastRenderer = gl ? gl->Renderer() : "cpu";
+  this->UpdateProgress(0.9);
+  this->WriteAnswer(answer, solids[1], output);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkPenetrationDepth::WriteAnswer(const vtkdf::PenetrationAnswer& answer,
+  const vtkdf::ConvexPieceInput& q,
+  vtkPolyData* output)
+{
   this->LastPasses = answer.Passes;
   this->LastErrorBound = answer.ErrorBound;
-  this->UpdateProgress(0.9);
-
   const double length = answer.Distance;
   double n[3] = { 0, 0, 0 };
   for (int a = 0; a < 3; ++a)
@@ -123,7 +94,7 @@ int vtkPenetrationDepth::Compute(vtkInformationVector** inputVector,
   double start[3] = { 0, 0, 0 };
   if (answer.PieceQ >= 0)
   {
-    const std::vector<double> corners = solids[1].Pieces[answer.PieceQ].Corners();
+    const std::vector<double> corners = q.Pieces[answer.PieceQ].Corners();
     double lowest = HUGE_VAL;
     for (size_t k = 0; k < corners.size(); k += 3)
     {
@@ -177,22 +148,11 @@ int vtkPenetrationDepth::Compute(vtkInformationVector** inputVector,
   const int pair[2] = { static_cast<int>(answer.PieceP), static_cast<int>(answer.PieceQ) };
   witness->InsertNextTypedTuple(pair);
   fields->AddArray(witness);
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 void vtkPenetrationDepth::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "PieceArray: " << (this->PieceArray.empty() ? "(none)" : this->PieceArray)
-     << "\n";
-  os << indent << "UseConvexHulls: " << this->UseConvexHulls << "\n";
-  os << indent << "Backend: " << this->Backend << "\n";
-  os << indent << "ViewResolution: " << this->ViewResolution << "\n";
-  os << indent << "Certify: " << this->Certify << "\n";
-  os << indent << "LastBackend: " << this->LastBackend << "\n";
-  os << indent << "LastRenderer: " << this->LastRenderer << "\n";
-  os << indent << "LastPasses: " << this->LastPasses << "\n";
   os << indent << "LastErrorBound: " << this->LastErrorBound << "\n";
   os << indent << "LastPenetrationDepth: " << this->LastPenetrationDepth << "\n";
   os << indent << "LastSeparationDistance: " << this->LastSeparationDistance << "\n";
@@ -201,5 +161,4 @@ void vtkPenetrationDepth::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastIntersecting: " << this->LastIntersecting << "\n";
   os << indent << "LastPairsTotal: " << this->LastPairsTotal << "\n";
   os << indent << "LastPairsKept: " << this->LastPairsKept << "\n";
-  os << indent << "LastFacesVisited: " << this->LastFacesVisited << "\n";
 }

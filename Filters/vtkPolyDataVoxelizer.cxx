@@ -9,8 +9,13 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "Common/Parallel.h"
 #include "GL/HeadlessGL.h"
-#include "vtkDistanceFieldMesh.h"
+#include "Voxels/VoxelFields.h"
+#include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldExecution.h"
+
+#include <utility>
 
 vtkStandardNewMacro(vtkPolyDataVoxelizer);
 
@@ -20,7 +25,7 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  this->StartTiming();
+  vtkdf::StageTimer timer;
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
@@ -43,39 +48,31 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
   const double voxels = double(grid.Whole.Count());
   const double bytes = voxels * ((wantSolid ? 6 : 3) / 8.0 + 2 / 8.0) +
     double(extent.Count()) * (wantBoundary + wantSolid);
-  if (!this->CheckMemory(bytes, grid.Whole))
-  {
-    return 0;
-  }
-
-  std::string error, warning;
   vtkdf::HeadlessGL* gl = nullptr;
-  if (!this->ChooseBackend(gl))
+  vtkdf::MeshInput mesh;
+  if (!this->CheckMemory(bytes, grid.Whole) || !this->ChooseBackend(gl) ||
+    !this->ReadMesh(input, grid, mesh))
   {
     return 0;
   }
   vtkdf::BitVolume boundary, solid;
-  if (!vtkdf::VoxelizeMesh(input,
+  vtkdf::VoxelReport report;
+  std::string error;
+  if (!vtkdf::VoxelizeMesh(std::move(mesh),
         grid,
         gl,
         wantBoundary ? &boundary : nullptr,
         wantSolid ? &solid : nullptr,
-        error,
-        warning))
+        this->MakeExecution(timer),
+        report,
+        error))
   {
-    if (gl)
-    {
-      vtkErrorMacro("The GPU voxelizer (" << gl->Renderer() << ") failed: " << error << ".");
-    }
-    else
-    {
-      vtkErrorMacro("Invalid input: " << error << ".");
-    }
+    vtkErrorMacro(<< error);
     return 0;
   }
-  if (!warning.empty())
+  if (!report.Warning.empty())
   {
-    vtkWarningMacro(<< warning);
+    vtkWarningMacro(<< report.Warning);
   }
   this->UpdateProgress(0.8);
 
@@ -86,15 +83,15 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
     {
       continue;
     }
-    vtkNew<vtkUnsignedCharArray> array;
-    array->SetName(mask == 0 ? "Boundary" : "Solid");
-    vtkdf::AllocateTuples(array, extent.Count());
-    vtkdf::BitsToMask(mask == 0 ? boundary : solid, grid, extent, array->GetPointer(0));
+    auto array =
+      vtkdf::NewArray<vtkUnsignedCharArray>(mask == 0 ? "Boundary" : "Solid", extent.Count());
+    vtkdf::BitsToBytes(
+      mask == 0 ? boundary : solid, grid, extent, array->GetPointer(0), vtkdf::SMPFor);
     output->GetPointData()->AddArray(array);
   }
   output->GetPointData()->SetActiveScalars(wantBoundary ? "Boundary" : "Solid");
-  this->EndStage("voxelize");
-  this->FinishTiming(gl);
+  timer.End("voxelize");
+  this->FinishTiming(gl, timer);
   this->UpdateProgress(1.0);
   return 1;
 }

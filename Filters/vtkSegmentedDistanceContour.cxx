@@ -3,6 +3,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -16,7 +17,8 @@
 #include "vtkPolyData.h"
 
 #include "Segment/SegmentContour.h"
-#include "vtkDistanceFieldMesh.h"
+#include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldExecution.h"
 
 #include <cmath>
 #include <vector>
@@ -29,17 +31,18 @@ int vtkSegmentedDistanceContour::FillInputPortInformation(int, vtkInformation* i
   return 1;
 }
 
-int vtkSegmentedDistanceContour::RequestData(vtkInformation* request,
+vtkTypeBool vtkSegmentedDistanceContour::ProcessRequest(vtkInformation* request,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  return vtkdf::RunOrEmpty(
-    vtkPolyData::GetData(outputVector, 0),
-    [&] { return this->Compute(request, inputVector, outputVector); },
+  return vtkdf::ProcessRequestOrEmpty(
+    this,
+    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()),
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); },
     [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
-int vtkSegmentedDistanceContour::Compute(vtkInformation*,
+int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {

@@ -39,6 +39,12 @@ public:
   vtkTypeMacro(vtkSegmentedDistanceContour, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// Runs the request; a failure (a request returning 0, or an exception such as
+  /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
   ///@{
   /// Vertices from the input's ClosestPoint array when it has one (default on), and the
   /// angle between tangent planes (degrees, in (0, 180]; default 30) above which a
@@ -62,9 +68,6 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// RequestData's work; false on bad input (RequestData then empties the output and
-  /// sets the error code).
-  int Compute(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
 
   bool UseClosestPoints = true;
   double FeatureAngle = 30;

@@ -35,6 +35,14 @@
 #define vtkSegmentedDistanceField_h
 
 #include "vtkDistanceFieldAlgorithm.h"
+
+class vtkFieldData;
+#ifndef __VTK_WRAP__
+namespace vtkdf
+{
+struct SegmentedFieldReport;
+}
+#endif
 #include "vtkDistanceFieldsModule.h" // For export macro
 
 class VTKDISTANCEFIELDS_EXPORT vtkSegmentedDistanceField : public vtkDistanceFieldAlgorithm
@@ -85,6 +93,10 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   bool CheckProperties() override;
+#ifndef __VTK_WRAP__
+  /// Delta, RegionOffset, RegionCount and RegionSides, as the run used and found them.
+  static void WriteFieldData(const vtkdf::SegmentedFieldReport& report, vtkFieldData* fd);
+#endif
 
   double Delta = 0;
   double RegionOffset = 0;

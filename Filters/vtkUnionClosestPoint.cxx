@@ -18,10 +18,11 @@
 #include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "Union/UnionClosestPoint.h"
-#include "Union/UnionClosestPointGPU.h"
+#include "Common/Parallel.h"
+#include "GL/HeadlessGL.h"
+#include "Union/UnionQuery.h"
 #include "vtkConvexPieces.h"
-#include "vtkDistanceFieldMesh.h"
+#include "vtkDistanceFieldExecution.h"
 
 #include <algorithm>
 #include <cmath>
@@ -92,29 +93,40 @@ int vtkUnionClosestPoint::FillInputPortInformation(int port, vtkInformation* inf
 {
   if (port == 0)
   {
-    info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
-    info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-    info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+    return this->Superclass::FillInputPortInformation(port, info);
   }
-  else
-  {
-    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
-    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
-  }
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
 }
 
-int vtkUnionClosestPoint::RequestData(vtkInformation* request,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+bool vtkUnionClosestPoint::ReadQueries(vtkInformationVector* queryInput,
+  std::vector<double>& queries)
 {
-  return vtkdf::RunOrEmpty(
-    vtkPolyData::GetData(outputVector, 0),
-    [&] { return this->Compute(request, inputVector, outputVector); },
-    [this](unsigned long code) { this->SetErrorCode(code); });
+  if (auto* points = vtkPointSet::GetData(queryInput, 0))
+  {
+    queries.resize(3 * points->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+    {
+      points->GetPoint(i, &queries[3 * i]);
+    }
+  }
+  else
+  {
+    queries.assign(this->QueryPoint, this->QueryPoint + 3);
+  }
+  for (size_t i = 0; i < queries.size(); ++i)
+  {
+    if (!std::isfinite(queries[i]))
+    {
+      vtkErrorMacro("Query " << i / 3 << " has a coordinate that is not finite.");
+      return false;
+    }
+  }
+  return true;
 }
 
-int vtkUnionClosestPoint::Compute(vtkInformation*,
+int vtkUnionClosestPoint::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
@@ -123,62 +135,22 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
   this->LastPieceCount = 0;
   this->LastFacesVisited = 0;
   this->LastPasses = 0;
-  this->LastBackend = BACKEND_CPU;
-  this->LastRenderer.clear();
   if (auto* views = vtkPartitionedDataSet::GetData(outputVector, 1))
   {
     views->Initialize();
   }
-  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
-
-  // The pieces, checked (or replaced by their hulls).
   vtkdf::ConvexPieceInput pieces;
-  std::string error;
-  if (!pieces.Read(input, this->PieceArray, this->UseConvexHulls, error))
+  std::vector<double> o;
+  vtkdf::HeadlessGL* gl = nullptr;
+  if (!this->ReadPieces(vtkDataObject::GetData(inputVector[0], 0), nullptr, 0, pieces) ||
+    !this->ReadQueries(inputVector[1], o) || !this->ChooseBackend(gl))
   {
-    vtkErrorMacro(<< error);
     return 0;
-  }
-  if (pieces.Hulls > 0)
-  {
-    vtkWarningMacro("UseConvexHulls: " << pieces.Hulls << " of " << pieces.Pieces.size()
-                                       << " pieces were not closed and convex and were "
-                                          "replaced by their convex hulls.");
   }
   vtkdf::UnionClosestPoint query;
   query.Tolerance = pieces.Tolerance;
   query.Pieces = std::move(pieces.Pieces);
   this->LastPieceCount = static_cast<int>(query.Pieces.size());
-
-  // The queries.
-  std::vector<double> o;
-  if (auto* queries = vtkPointSet::GetData(inputVector[1], 0))
-  {
-    o.resize(3 * queries->GetNumberOfPoints());
-    for (vtkIdType i = 0; i < queries->GetNumberOfPoints(); ++i)
-    {
-      queries->GetPoint(i, &o[3 * i]);
-    }
-  }
-  else
-  {
-    o.assign(this->QueryPoint, this->QueryPoint + 3);
-  }
-  for (size_t i = 0; i < o.size(); ++i)
-  {
-    if (!std::isfinite(o[i]))
-    {
-      vtkErrorMacro("Query " << i / 3 << " has a coordinate that is not finite.");
-      return 0;
-    }
-  }
-  const vtkIdType n = static_cast<vtkIdType>(o.size() / 3);
-  vtkdf::HeadlessGL* gl = nullptr;
-  if (!vtkdf::ChooseContext(this->Backend, gl, error))
-  {
-    vtkErrorMacro(<< error << ".");
-    return 0;
-  }
   if (this->GenerateViewImages && !gl)
   {
     vtkWarningMacro("GenerateViewImages: the views come from the GPU backend, which this run "
@@ -186,86 +158,56 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
       << (this->Backend == BACKEND_CPU ? "CPU" : "Auto without a hardware GPU")
       << "): output 1 is empty.");
   }
-  std::vector<vtkdf::UnionGPUAnswer> answers(n);
   this->UpdateProgress(0.1);
-  // Parallel over the queries (or their certification), or over each query's faces when
-  // there are too few queries to keep the threads busy.
-  const bool fewQueries = n < 4 * vtkSMPTools::GetEstimatedNumberOfThreads();
-  if (fewQueries)
+  vtkdf::UnionQueryOptions options;
+  options.ViewResolution = this->ViewResolution;
+  options.Certify = this->Certify;
+  options.Threads = vtkSMPTools::GetEstimatedNumberOfThreads();
+  std::vector<float> images;
+  std::vector<double> frames;
+  if (this->GenerateViewImages)
   {
-    query.For = vtkdf::SMPFor;
+    options.Images = &images;
+    options.Frames = &frames;
   }
-  if (gl)
+  vtkdf::Execution execution;
+  execution.For = vtkdf::SMPFor;
+  execution.Progress = [this](double fraction)
   {
-    vtkdf::UnionGPUSettings settings;
-    settings.Resolution = this->ViewResolution;
-    settings.Certify = this->Certify;
-    if (!fewQueries)
-    {
-      settings.For = vtkdf::SMPFor;
-    }
-    settings.Progress = [this](double fraction)
-    {
-      this->UpdateProgress(0.1 + 0.8 * fraction);
-      return !this->GetAbortExecute();
-    };
-    std::vector<float> images;
-    std::vector<double> frames;
-    const bool views = this->GenerateViewImages && n > 0;
-    if (!vtkdf::QueryUnionGPU(*gl,
-          query,
-          o,
-          settings,
-          answers,
-          error,
-          views ? &images : nullptr,
-          views ? &frames : nullptr))
-    {
-      if (this->GetAbortExecute())
-      {
-        return 1; // aborted: an empty output, no error
-      }
-      vtkErrorMacro("The GPU query failed: " << error << ".");
-      return 0;
-    }
-    this->LastBackend = BACKEND_GPU;
-    this->LastRenderer = gl->Renderer();
-    for (const auto& answer : answers)
-    {
-      this->LastPasses += answer.Passes;
-    }
-    if (views)
-    {
-      this->WriteViewImages(images, frames, &o[3 * (n - 1)], outputVector);
-    }
+    this->UpdateProgress(fraction);
+    return !this->GetAbortExecute();
+  };
+  std::vector<vtkdf::UnionGPUAnswer> answers;
+  bool aborted = false;
+  std::string error;
+  if (!vtkdf::QueryUnion(query, o, gl, options, execution, answers, aborted, error))
+  {
+    vtkErrorMacro("The GPU query failed: " << error << ".");
+    return 0;
   }
-  else
+  if (aborted)
   {
-    // In twenty blocks, between which progress is told and an abort heard.
-    const vtkIdType block = std::max<vtkIdType>(1, (n + 19) / 20);
-    for (vtkIdType first = 0; first < n; first += block)
-    {
-      vtkSMPTools::For(first,
-        std::min(n, first + block),
-        [&](vtkIdType begin, vtkIdType end)
-        {
-          for (vtkIdType i = begin; i < end; ++i)
-          {
-            answers[i].Answer = query.Query(&o[3 * i]);
-            answers[i].Certified = true;
-          }
-        });
-      this->UpdateProgress(0.1 + 0.8 * std::min(n, first + block) / n);
-      if (this->GetAbortExecute())
-      {
-        return 1; // aborted: an empty output, no error
-      }
-    }
-    this->LastBackend = BACKEND_CPU;
-    this->LastRenderer = "cpu";
+    return 1; // an empty output, no error
+  }
+  for (const auto& answer : answers)
+  {
+    this->LastPasses += answer.Passes;
+  }
+  if (gl && this->GenerateViewImages && !o.empty())
+  {
+    this->WriteViewImages(images, frames, &o[o.size() - 3], outputVector);
   }
   this->UpdateProgress(0.9);
+  this->WriteAnswers(o, answers, output);
+  this->UpdateProgress(1.0);
+  return 1;
+}
 
+void vtkUnionClosestPoint::WriteAnswers(const std::vector<double>& o,
+  const std::vector<vtkdf::UnionGPUAnswer>& answers,
+  vtkPolyData* output)
+{
+  const vtkIdType n = static_cast<vtkIdType>(answers.size());
   vtkNew<vtkPoints> out;
   out->SetDataTypeToDouble();
   out->SetNumberOfPoints(2 * n);
@@ -317,8 +259,6 @@ int vtkUnionClosestPoint::Compute(vtkInformation*,
   pd->AddArray(piece);
   pd->AddArray(bound);
   pd->AddArray(certified);
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 void vtkUnionClosestPoint::PrintSelf(ostream& os, vtkIndent indent)
@@ -326,16 +266,6 @@ void vtkUnionClosestPoint::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "QueryPoint: " << this->QueryPoint[0] << " " << this->QueryPoint[1] << " "
      << this->QueryPoint[2] << "\n";
-  os << indent << "PieceArray: " << (this->PieceArray.empty() ? "(none)" : this->PieceArray)
-     << "\n";
-  os << indent << "UseConvexHulls: " << this->UseConvexHulls << "\n";
-  os << indent << "Backend: " << this->Backend << "\n";
-  os << indent << "ViewResolution: " << this->ViewResolution << "\n";
-  os << indent << "Certify: " << this->Certify << "\n";
   os << indent << "GenerateViewImages: " << this->GenerateViewImages << "\n";
-  os << indent << "LastBackend: " << this->LastBackend << "\n";
-  os << indent << "LastRenderer: " << this->LastRenderer << "\n";
-  os << indent << "LastPasses: " << this->LastPasses << "\n";
   os << indent << "LastPieceCount: " << this->LastPieceCount << "\n";
-  os << indent << "LastFacesVisited: " << this->LastFacesVisited << "\n";
 }

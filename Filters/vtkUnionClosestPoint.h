@@ -1,7 +1,9 @@
 /**
  * @class   vtkUnionClosestPoint
- * @brief   Closest point on the boundary of a union of convex polytopes (paper 003).
+ * @brief   Closest point on the boundary of a union of convex polytopes.
  *
+ * Implements Kim, Hoff, Lin and Manocha, "Closest Point Query Among the Union of Convex
+ * Polytopes Using Rasterization Hardware" (Journal of Graphics Tools 7(4), 2002).
  * Given convex pieces M_i and query points O, finds for each O the closest point on the
  * boundary of M = union of M_i, without building the union: its signed distance
  * (negative inside M), the point, the unit direction from O to it and the piece whose face
@@ -21,16 +23,7 @@
  * narrower than a pixel can exceed (Certified 0). Auto: the GPU when a hardware-accelerated
  * context exists, else the CPU.
  *
- * Input 0, the pieces: a vtkPolyData whose connected components (cells sharing point
- * ids: touching pieces that repeat their shared corners stay apart) are the pieces, in
- * the order of their lowest cell id; or a vtkMultiBlockDataSet /
- * vtkPartitionedDataSetCollection / vtkPartitionedDataSet of vtkPolyData, one piece per
- * leaf, in traversal order. With PieceArray, a vtkPolyData's pieces are instead the cells
- * sharing a value of that cell-data array, in the order of their lowest cell id. Each
- * piece must be closed and convex (within a tolerance relative to the pieces' size: 1e-6
- * of their box's diagonal for float points, 1e-9 for double); otherwise an error names the
- * piece, unless UseConvexHulls replaces each such piece by its convex hull (qhull), which a
- * warning says.
+ * Input 0, the pieces, in the forms vtkConvexQueryAlgorithm describes.
  * Input 1 (optional): a vtkPointSet whose points are the queries; without it, the
  * QueryPoint property.
  *
@@ -47,17 +40,23 @@
 #ifndef vtkUnionClosestPoint_h
 #define vtkUnionClosestPoint_h
 
+#include "vtkConvexQueryAlgorithm.h"
 #include "vtkDistanceFieldsModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
 
-#include <string> // For std::string
 #include <vector> // For std::vector
 
-class VTKDISTANCEFIELDS_EXPORT vtkUnionClosestPoint : public vtkPolyDataAlgorithm
+#ifndef __VTK_WRAP__
+namespace vtkdf
+{
+struct UnionGPUAnswer;
+}
+#endif
+
+class VTKDISTANCEFIELDS_EXPORT vtkUnionClosestPoint : public vtkConvexQueryAlgorithm
 {
 public:
   static vtkUnionClosestPoint* New();
-  vtkTypeMacro(vtkUnionClosestPoint, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkUnionClosestPoint, vtkConvexQueryAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// The query when input 1 is not connected (default 0, 0, 0).
@@ -69,67 +68,15 @@ public:
   void SetQueryData(vtkDataObject* data) { this->SetInputData(1, data); }
 
   ///@{
-  /// The name of a cell-data array of piece ids (integers) of a vtkPolyData input: its
-  /// pieces are the cells of one id, not its connected components. Empty (default):
-  /// connected components.
-  vtkSetStdStringFromCharMacro(PieceArray);
-  vtkGetCharFromStdStringMacro(PieceArray);
-  ///@}
-
-  ///@{
-  /// Replace each piece by its convex hull (qhull) instead of refusing non-convex or open
-  /// pieces (default off); a warning says how many pieces changed. A piece with no
-  /// three-dimensional hull (fewer than four points, flat) is still an error.
-  vtkSetMacro(UseConvexHulls, bool);
-  vtkGetMacro(UseConvexHulls, bool);
-  vtkBooleanMacro(UseConvexHulls, bool);
-  ///@}
-
-  enum BackendType
-  {
-    BACKEND_AUTO = 0, ///< the GPU when a hardware-accelerated context exists, else the CPU
-    BACKEND_GPU = 1,  ///< the GPU, even a software rasterizer; an error when there is none
-    BACKEND_CPU = 2   ///< exact, vtkSMPTools on the CPU
-  };
-  ///@{
-  /// Where the query runs (default Auto).
-  vtkSetClampMacro(Backend, int, BACKEND_AUTO, BACKEND_CPU);
-  vtkGetMacro(Backend, int);
-  void SetBackendToAuto() { this->SetBackend(BACKEND_AUTO); }
-  void SetBackendToGPU() { this->SetBackend(BACKEND_GPU); }
-  void SetBackendToCPU() { this->SetBackend(BACKEND_CPU); }
-  ///@}
-
-  ///@{
-  /// GPU: pixels a side of each of the six cube-face views (default 256, 8 to 8192).
-  vtkSetMacro(ViewResolution, int);
-  vtkGetMacro(ViewResolution, int);
-  ///@}
-
-  ///@{
-  /// GPU: search the faces nearer than the images' answer exactly on the CPU (default on),
-  /// so that the answer is exact; off, the image-space answer alone.
-  vtkSetMacro(Certify, bool);
-  vtkGetMacro(Certify, bool);
-  vtkBooleanMacro(Certify, bool);
-  ///@}
-
-  ///@{
   /// GPU: the last query's six views on output 1 (default off).
   vtkSetMacro(GenerateViewImages, bool);
   vtkGetMacro(GenerateViewImages, bool);
   vtkBooleanMacro(GenerateViewImages, bool);
   ///@}
 
-  /// Pieces and faces visited by the last run, summed over the queries (with the GPU,
-  /// the faces certification searched).
+  /// The pieces of the last run (its faces visited, summed over the queries, are
+  /// LastFacesVisited; with the GPU, the faces certification searched).
   vtkGetMacro(LastPieceCount, int);
-  vtkGetMacro(LastFacesVisited, vtkTypeInt64);
-  /// The backend the last run used (BACKEND_GPU or BACKEND_CPU), the GPU's renderer, and
-  /// its rendering rounds, summed over the queries.
-  vtkGetMacro(LastBackend, int);
-  const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
-  vtkGetMacro(LastPasses, vtkTypeInt64);
 
 protected:
   vtkUnionClosestPoint();
@@ -138,8 +85,15 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// RequestData's work; 0 on failure.
-  int Compute(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
+  /// The query points: input 1's points, or QueryPoint; false with the error reported
+  /// when one is not finite.
+  bool ReadQueries(vtkInformationVector* queryInput, std::vector<double>& queries);
+#ifndef __VTK_WRAP__
+  /// Output 0: the queries, their closest points, a line between them, the arrays.
+  void WriteAnswers(const std::vector<double>& queries,
+    const std::vector<vtkdf::UnionGPUAnswer>& answers,
+    vtkPolyData* output);
+#endif
   /// The six views of the last query onto output 1.
   void WriteViewImages(const std::vector<float>& images,
     const std::vector<double>& frames,
@@ -147,17 +101,8 @@ protected:
     vtkInformationVector* outputVector);
 
   double QueryPoint[3] = { 0, 0, 0 };
-  std::string PieceArray;
-  bool UseConvexHulls = false;
-  int Backend = BACKEND_AUTO;
-  int ViewResolution = 256;
-  bool Certify = true;
   bool GenerateViewImages = false;
   int LastPieceCount = 0;
-  vtkTypeInt64 LastFacesVisited = 0;
-  int LastBackend = BACKEND_CPU;
-  std::string LastRenderer;
-  vtkTypeInt64 LastPasses = 0;
 
 private:
   vtkUnionClosestPoint(const vtkUnionClosestPoint&) = delete;

@@ -18,7 +18,7 @@ layout(std430, binding = 1) buffer Counts
 {
   uint count[];
 };
-uniform ivec3 Dims;
+//DF::SampleGrid
 uniform int Texels;
 uniform int TexelBase;    // the first texel of this dispatch's slab
 uniform int DistanceBase; // the voxel index where the bound part of `distance` starts

@@ -24,9 +24,7 @@ layout(std430, binding = 3) writeonly buffer ClosestPoints
 {
   float closest[];
 };
-uniform ivec3 Dims;
-uniform ivec3 Lo;
-uniform dvec3 Origin, Spacing;
+//DF::SampleGrid
 uniform int Signed;
 uniform int First, Last;                      // voxels of this dispatch
 uniform int IdBase, DistanceBase, ClosestBase; // first elements of the bound ranges

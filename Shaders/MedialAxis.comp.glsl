@@ -17,9 +17,7 @@ layout(std430, binding = 2) writeonly buffer Cosines
 {
   double cosine[];
 };
-uniform ivec3 Dims;
-uniform ivec3 Lo;
-uniform dvec3 Origin, Spacing;
+//DF::SampleGrid
 uniform double Threshold;    // cos(theta)
 uniform double HalfDiagonal; // half the cell diagonal, l/2
 uniform double CapTolerance; // MedialCapTolerance

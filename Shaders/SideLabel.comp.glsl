@@ -34,9 +34,7 @@ layout(std430, binding = 6) readonly buffer CornerTriangles
 {
   int corners[]; // per key: where its triangles start (KeyCount + 1 entries), then them
 };
-uniform ivec3 Dims;
-uniform ivec3 Lo;
-uniform dvec3 Origin, Spacing;
+//DF::SampleGrid
 uniform int KeyCount;
 uniform int First, Last;                     // voxels of this dispatch
 uniform int SiteBase, ClosestBase, LabelBase; // first elements of the bound ranges

@@ -12,7 +12,7 @@ layout(rgba32ui, binding = 4) uniform readonly uimage2DArray Solid1;
 layout(rgba32ui, binding = 5) uniform readonly uimage2DArray Solid2;
 layout(rgba32ui, binding = 6) uniform writeonly uimage2DArray BoundaryOut;
 layout(rgba32ui, binding = 7) uniform writeonly uimage2DArray SolidOut;
-uniform ivec3 Dims;
+//DF::SampleGrid
 uniform int WantBoundary, WantSolid;
 const int SolidGuard = 2;
 

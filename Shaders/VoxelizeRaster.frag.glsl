@@ -4,8 +4,7 @@
 uniform int Mode;
 uniform int Na;
 uniform ivec3 Axes;     // the view's A, B, C
-uniform ivec3 Lo;       // the grid's first sample index
-uniform dvec3 Origin, Spacing;
+//DF::SampleGrid
 uniform double Limit2, Reach;
 
 flat in int TriIndex;

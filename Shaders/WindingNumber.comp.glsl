@@ -28,9 +28,7 @@ layout(std430, binding = 4) writeonly buffer Values
 {
   float value[]; // w, when WantValues
 };
-uniform ivec3 Dims; // of the extent
-uniform ivec3 Lo;
-uniform dvec3 Origin, Spacing;
+//DF::SampleGrid
 uniform int First; // sample index of invocation 0
 uniform int Last;  // one past the last sample of this dispatch
 uniform int TriangleCount;

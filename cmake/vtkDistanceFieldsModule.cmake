@@ -9,12 +9,19 @@ set(classes
   "${df_root}/Filters/vtkSegmentedDistanceField"
   "${df_root}/Filters/vtkDistanceFieldBlend"
   "${df_root}/Filters/vtkSegmentedDistanceContour"
+  "${df_root}/Filters/vtkConvexQueryAlgorithm"
   "${df_root}/Filters/vtkUnionClosestPoint"
   "${df_root}/Filters/vtkPenetrationDepth")
 vtk_module_add_module(DistanceFields::vtkDistanceFields
   CLASSES ${classes}
-  SOURCES "${df_root}/Filters/vtkDistanceFieldMesh.cxx" "${df_root}/Filters/vtkConvexPieces.cxx"
-  PRIVATE_HEADERS "${df_root}/Filters/vtkDistanceFieldMesh.h" "${df_root}/Filters/vtkConvexPieces.h")
+  SOURCES "${df_root}/Filters/vtkDistanceFieldMeshInput.cxx"
+    "${df_root}/Filters/vtkDistanceFieldArrays.cxx"
+    "${df_root}/Filters/vtkDistanceFieldExecution.cxx"
+    "${df_root}/Filters/vtkConvexPieces.cxx"
+  PRIVATE_HEADERS "${df_root}/Filters/vtkDistanceFieldMeshInput.h"
+    "${df_root}/Filters/vtkDistanceFieldArrays.h"
+    "${df_root}/Filters/vtkDistanceFieldExecution.h"
+    "${df_root}/Filters/vtkConvexPieces.h")
 vtk_module_include(DistanceFields::vtkDistanceFields
   PUBLIC "$<BUILD_INTERFACE:${df_root}/Filters>")
 # The VTK-free cores (Filters/Core), one static library per family, linked into the

@@ -3,8 +3,10 @@
 // faces, random sparse sets; nz = 1, 64, 65, 129, 300 and 66000 (more than 2^16 layers);
 // every metric, with and without a maximum number of layers (3: within the first block
 // of eight layers, 11: within the second), unsigned and signed.
-#include "Voxels/ChamferTransform.h"
+#include "CoreTest.h"
 #include "ThreadFor.h"
+#include "Voxels/ChamferTransform.h"
+#include "Voxels/VoxelFields.h"
 
 #include <cstdio>
 #include <deque>
@@ -15,10 +17,10 @@
 #include <vector>
 
 using namespace vtkdf;
+using namespace coretest;
 
 namespace
 {
-int Failures = 0;
 
 /// Layer index of every voxel by breadth-first search from the set voxels.
 std::vector<int32_t> Reference(const BitVolume& zero,
@@ -86,8 +88,9 @@ std::vector<int32_t> Reference(const BitVolume& zero,
   return d;
 }
 
-/// One run against the reference; `inside` (optional) negates its voxels.
-void CheckOne(const std::string& name,
+/// One run of the family's entry point (as vtkChamferVoxelDistance calls it on masks)
+/// against the reference; `inside` (optional) negates its voxels.
+void CompareOne(const std::string& name,
   const BitVolume& zero,
   ChamferMetric metric,
   int maxLayers,
@@ -114,8 +117,20 @@ void CheckOne(const std::string& name,
     }
   }
   std::vector<int32_t> got(expected.size());
-  const ChamferResult r =
-    ChamferPropagate(zero, metric, maxLayers, unreached, inside, got.data(), ThreadFor, nullptr);
+  ChamferRequest request;
+  request.Grid.Whole.Hi = { nx - 1, ny - 1, nz - 1 };
+  request.Metric = metric;
+  request.MaximumLayers = maxLayers;
+  request.Signed = inside != nullptr;
+  Execution execution;
+  execution.For = ThreadFor;
+  ChamferReport report;
+  std::string error;
+  Check(ComputeChamferField(zero, inside, request, nullptr, got.data(), execution, report, error),
+    "%s: %s",
+    name.c_str(),
+    error.c_str());
+  const ChamferResult& r = report.Result;
   int64_t wrong = 0, first = -1;
   for (size_t i = 0; i < got.size(); ++i)
   {
@@ -125,27 +140,23 @@ void CheckOne(const std::string& name,
       ++wrong;
     }
   }
-  if (wrong || r.Layers != layers)
-  {
-    std::printf("FAIL: %s %s M=%d%s: %lld voxels differ (first at %lld: %d, expected %d), "
-                "layers %d, expected %d\n",
-      name.c_str(),
-      metrics[static_cast<int>(metric)],
-      maxLayers,
-      inside ? " signed" : "",
-      (long long)wrong,
-      (long long)first,
-      first >= 0 ? got[first] : 0,
-      first >= 0 ? expected[first] : 0,
-      r.Layers,
-      layers);
-    ++Failures;
-  }
+  Check(!wrong && r.Layers == layers,
+    "%s %s M=%d%s: %lld voxels differ (first at %lld: %d, expected %d), layers %d, expected %d",
+    name.c_str(),
+    metrics[static_cast<int>(metric)],
+    maxLayers,
+    inside ? " signed" : "",
+    (long long)wrong,
+    (long long)first,
+    first >= 0 ? got[first] : 0,
+    first >= 0 ? expected[first] : 0,
+    r.Layers,
+    layers);
 }
 
 /// Every metric, with and without a maximum number of layers, unsigned and with a
 /// random half of the voxels inside.
-void Check(const std::string& name, const BitVolume& zero, std::mt19937& random)
+void CompareAll(const std::string& name, const BitVolume& zero, std::mt19937& random)
 {
   BitVolume inside(zero.Size(0), zero.Size(1), zero.Size(2));
   for (int z = 0; z < zero.Size(2); ++z)
@@ -165,9 +176,9 @@ void Check(const std::string& name, const BitVolume& zero, std::mt19937& random)
   {
     for (int maxLayers : { 0, 3, 11 })
     {
-      CheckOne(name, zero, static_cast<ChamferMetric>(m), maxLayers, nullptr);
+      CompareOne(name, zero, static_cast<ChamferMetric>(m), maxLayers, nullptr);
     }
-    CheckOne(name, zero, static_cast<ChamferMetric>(m), 0, &inside);
+    CompareOne(name, zero, static_cast<ChamferMetric>(m), 0, &inside);
   }
   std::printf("%-34s %dx%dx%d  %lld zero voxels: ok\n",
     name.c_str(),
@@ -198,12 +209,12 @@ int main()
     {
       BitVolume v(d.X, d.Y, d.Z);
       v.Set(d.X / 2, d.Y / 2, d.Z / 2);
-      Check("single voxel " + size, v, random);
+      CompareAll("single voxel " + size, v, random);
     }
     {
       BitVolume v(d.X, d.Y, d.Z);
       v.Set(d.X - 1, 0, d.Z - 1);
-      Check("corner voxel " + size, v, random);
+      CompareAll("corner voxel " + size, v, random);
     }
     {
       BitVolume v(d.X, d.Y, d.Z);
@@ -214,7 +225,7 @@ int main()
           v.Set(d.X / 3, y, z); // a plane x = const
         }
       }
-      Check("plane " + size, v, random);
+      CompareAll("plane " + size, v, random);
     }
     {
       BitVolume v(d.X, d.Y, d.Z);
@@ -222,7 +233,7 @@ int main()
       {
         v.Set(c & 1 ? d.X - 1 : 0, c & 2 ? d.Y - 1 : 0, c & 4 ? d.Z - 1 : 0);
       }
-      Check("corners " + size, v, random);
+      CompareAll("corners " + size, v, random);
     }
     {
       BitVolume v(d.X, d.Y, d.Z);
@@ -233,7 +244,7 @@ int main()
           v.Set(x, y, 0); // the face z = 0
         }
       }
-      Check("face z=0 " + size, v, random);
+      CompareAll("face z=0 " + size, v, random);
     }
     {
       BitVolume v(d.X, d.Y, d.Z);
@@ -242,14 +253,14 @@ int main()
       {
         v.Set(rx(random), ry(random), rz(random));
       }
-      Check("random sparse " + size, v, random);
+      CompareAll("random sparse " + size, v, random);
     }
   }
   {
     // More than 2^16 layers: the layer indices need more than two bytes.
     BitVolume line(1, 2, 66000);
     line.Set(0, 0, 0);
-    CheckOne(
+    CompareOne(
       "one voxel at the end of a line 1x2x66000", line, ChamferMetric::Manhattan, 0, nullptr);
   }
   {
@@ -262,12 +273,7 @@ int main()
     {
       all = all && v == -7;
     }
-    if (!all)
-    {
-      std::printf("FAIL: an empty zero set must leave every voxel unreached\n");
-      ++Failures;
-    }
+    Check(all, "an empty zero set must leave every voxel unreached");
   }
-  std::printf("%d failures\n", Failures);
-  return Failures ? 1 : 0;
+  return Verdict();
 }

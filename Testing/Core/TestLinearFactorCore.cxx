@@ -1,7 +1,10 @@
 // Unit test of the VTK-free core: procedural meshes, every culling mode, the CPU scan
 // against an exact brute-force reference on every sample.
+#include "CoreTest.h"
 #include "ExactDistance.h"
+#include "LinearFactor/LinearFactorField.h"
 #include "LinearFactor/LinearFactorScan.h"
+#include "LinearFactor/MeshSites.h"
 #include "LinearFactor/SliceDomain.h"
 #include "ThreadFor.h"
 
@@ -14,19 +17,10 @@
 #include <vector>
 
 using namespace vtkdf;
+using namespace coretest;
 
 namespace
 {
-int Failures = 0;
-
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::printf("FAIL: %s\n", what.c_str());
-    ++Failures;
-  }
-}
 
 double BruteForce(const MeshInput& m, const double x[3])
 {
@@ -57,41 +51,39 @@ double BruteForce(const MeshInput& m, const double x[3])
   return best;
 }
 
-void RunCase(const std::string& name, const MeshInput& mesh, int resolution)
+/// The field of `mesh` by the family's entry point (as the filter calls it) against the
+/// brute force, every culling mode; and the parallel build of its sites against the
+/// serial one.
+void RunCase(const std::string& name, const MeshInput& input, int resolution)
 {
+  MeshInput mesh = input;
+  Check(UsedPointBounds(mesh, mesh.Bounds), "%s: no point used", name.c_str());
   for (Culling culling : { Culling::Auto, Culling::NonManifold, Culling::Manifold })
   {
-    MeshSites sites;
-    std::string error;
-    FieldRequest request;
-    double bounds[6];
-    const double* P = mesh.Points.data();
-    for (int a = 0; a < 3; ++a)
-    {
-      bounds[2 * a] = HUGE_VAL;
-      bounds[2 * a + 1] = -HUGE_VAL;
-    }
-    auto use = [&](const std::vector<int64_t>& ids)
-    {
-      for (int64_t id : ids)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          bounds[2 * a] = std::min(bounds[2 * a], P[3 * id + a]);
-          bounds[2 * a + 1] = std::max(bounds[2 * a + 1], P[3 * id + a]);
-        }
-      }
-    };
-    use(mesh.Triangles);
-    use(mesh.Segments);
-    use(mesh.Vertices);
-    request.Grid = SampleGrid::FromBounds(bounds, resolution, 0.25);
+    LinearFactorRequest request;
+    request.Grid = SampleGrid::FromBounds(mesh.Bounds.data(), resolution, 0.25);
     request.Extent = request.Grid.Whole;
+    request.Domains = culling;
     const double h = request.Grid.MinSpacing();
-    Check(sites.Build(mesh, culling, 1e-5 * h, error), name + ": build " + error);
+    std::vector<float> distance(request.Extent.Count());
+    LinearFactorArrays arrays;
+    arrays.Distance = distance.data();
+    Execution execution;
+    execution.For = ThreadFor;
+    LinearFactorReport report;
+    std::string error;
+    Check(ComputeLinearFactorField(mesh, request, nullptr, arrays, execution, report, error),
+      "%s: %s",
+      name.c_str(),
+      error.c_str());
+
     // The parallel build writes the same sites and planes.
-    MeshSites parallel;
-    Check(parallel.Build(mesh, culling, 1e-5 * h, error, ThreadFor), name + ": build " + error);
+    MeshSites sites, parallel;
+    Check(sites.Build(mesh, culling, 1e-5 * h, error), "%s: build %s", name.c_str(), error.c_str());
+    Check(parallel.Build(mesh, culling, 1e-5 * h, error, ThreadFor),
+      "%s: build %s",
+      name.c_str(),
+      error.c_str());
     // memcmp only on non-empty arrays: an empty vector's data() may be null.
     auto same = [](const auto& u, const auto& v)
     {
@@ -99,16 +91,9 @@ void RunCase(const std::string& name, const MeshInput& mesh, int resolution)
         (u.empty() || std::memcmp(u.data(), v.data(), u.size() * sizeof(u[0])) == 0);
     };
     Check(same(parallel.Sites, sites.Sites) && same(parallel.Planes, sites.Planes),
-      name + ": the parallel build differs from the serial one");
-    RangeCulling range;
-    range.Build(sites, request.Grid, request.Extent, HUGE_VAL, ThreadFor);
-    NearestSiteBuffer nearest;
-    nearest.Reset(request.Extent.Count());
-    const ScanStatistics stats = ScanSitesCPU(sites, range, request, nearest, ThreadFor, nullptr);
-    std::vector<float> distance(request.Extent.Count());
-    FieldArrays arrays;
-    arrays.Distance = distance.data();
-    Finalize(sites, request, nearest, arrays, ThreadFor);
+      "%s: the parallel build differs from the serial one",
+      name.c_str());
+
     double worst = 0;
     int64_t worstAt = -1;
     const IndexBox& e = request.Extent;
@@ -139,13 +124,16 @@ void RunCase(const std::string& name, const MeshInput& mesh, int resolution)
       name.c_str(),
       mode,
       worst / h,
-      double(stats.Evaluations) / stats.Samples,
+      double(report.Evaluations) / double(e.Count()),
       sites.Sites.size(),
       (long long)sites.Statistics.PyramidVertices,
       (long long)sites.Statistics.UnboundedVertices);
     Check(worst <= 1e-3 * h,
-      name + " " + mode + ": error " + std::to_string(worst / h) + " h at sample " +
-        std::to_string(worstAt));
+      "%s %s: error %g h at sample %lld",
+      name.c_str(),
+      mode,
+      worst / h,
+      (long long)worstAt);
   }
 }
 
@@ -265,8 +253,11 @@ void CheckDomainSpans()
     }
   }
   Check(wrong == 0,
-    "DomainSpans visits exactly the samples inside the planes (" + std::to_string(wrong) +
-      " wrong of " + std::to_string(visited) + " visited, " + std::to_string(cases) + " domains)");
+    "%s",
+    std::string("DomainSpans visits exactly the samples inside the planes (" +
+      std::to_string(wrong) + " wrong of " + std::to_string(visited) + " visited, " +
+      std::to_string(cases) + " domains)")
+      .c_str());
   Check(visited > 10000, "DomainSpans test domains hold samples");
 }
 } // namespace
@@ -371,6 +362,5 @@ int main()
     m.VertexCells = { 32, 33 };
     RunCase("soup", m, 20);
   }
-  std::printf("%d failures\n", Failures);
-  return Failures == 0 ? 0 : 1;
+  return Verdict();
 }

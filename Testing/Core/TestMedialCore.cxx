@@ -8,6 +8,7 @@
 //   feature never reaches beyond it (Reach <= 1), on cubic and stretched cells, and the
 //   bound is tight (the largest reach seen is near 1: the margin is what keeps exact
 //   fans out).
+#include "CoreTest.h"
 #include "Medial/MedialAxis.h"
 
 #include <algorithm>
@@ -16,10 +17,10 @@
 #include <random>
 
 using namespace vtkdf;
+using namespace coretest;
 
 namespace
 {
-int Failures = 0;
 std::mt19937_64 Random(20261123);
 
 double Uniform(double lo, double hi)
@@ -108,14 +109,6 @@ double SearchedCapCosine(const double u[8][3])
   return std::max(0.0, best);
 }
 
-void Check(bool ok, const char* what, double value)
-{
-  if (!ok && ++Failures <= 20)
-  {
-    std::printf("FAIL: %s (%.17g)\n", what, value);
-  }
-}
-
 /// The 8 corners of the cell [0, h] with spacings h.
 void Corners(const double h[3], double x[8][3])
 {
@@ -178,10 +171,12 @@ int main()
     const double exact = SmallestCapCosine(u, centre);
     const double searched = SearchedCapCosine(u);
     worstGap = std::max(worstGap, exact - searched);
-    Check(exact >= searched - 1e-9, "the search found a smaller cap", searched - exact);
+    Check(exact >= searched - 1e-9,
+      "the search found a smaller cap (%.17g)",
+      static_cast<double>(searched - exact));
     Check(exact == 0 || Worst(centre, u) >= exact - 2 * MedialCapTolerance,
-      "the cap does not hold every direction",
-      exact - Worst(centre, u));
+      "the cap does not hold every direction (%.17g)",
+      static_cast<double>(exact - Worst(centre, u)));
   }
   std::printf("SmallestCapCosine: 1000 random sets, none smaller found by a search (which "
               "stayed up to %.2g below), each holds its 8 directions\n",
@@ -255,9 +250,15 @@ int main()
       sheetError,
       lineCos,
       pointCos);
-    Check(sheetError <= 1e-6, "a sheet's aperture is not its separation angle", sheetError);
-    Check(lineCos <= 1e-9, "a line through a cell below 180 degrees", lineCos);
-    Check(pointCos <= 1e-9, "a point in a cell below 180 degrees", pointCos);
+    Check(sheetError <= 1e-6,
+      "a sheet's aperture is not its separation angle (%.17g)",
+      static_cast<double>(sheetError));
+    Check(lineCos <= 1e-9,
+      "a line through a cell below 180 degrees (%.17g)",
+      static_cast<double>(lineCos));
+    Check(pointCos <= 1e-9,
+      "a point in a cell below 180 degrees (%.17g)",
+      static_cast<double>(pointCos));
 
     // Fans: one closest point f (a vertex), or one closest line (an edge), for all 8
     // corners, at distances from under the cell's half diagonal to 20 diagonals.
@@ -290,7 +291,9 @@ int main()
       if (m.Cosine <= 1)
       {
         largest = std::max(largest, m.Reach);
-        Check(m.Reach <= 1 + 1e-6, "a fan reaches beyond its bound", m.Reach);
+        Check(m.Reach <= 1 + 1e-6,
+          "a fan reaches beyond its bound (%.17g)",
+          static_cast<double>(m.Reach));
       }
     }
     std::printf("cell %gx%gx%g: fans of one point or one line reach at most %.6f (bound 1, "
@@ -300,8 +303,7 @@ int main()
       h[2],
       largest,
       MedialFanMargin);
-    Check(largest > 0.9, "the fan bound is far from tight", largest);
+    Check(largest > 0.9, "the fan bound is far from tight (%.17g)", static_cast<double>(largest));
   }
-  std::printf("%d failures\n", Failures);
-  return Failures ? 1 : 0;
+  return Verdict();
 }

@@ -13,9 +13,10 @@
 // - the pairs skipped by the box bound change nothing (the same answer with every pair);
 // - with the argument gpu, all of it with the union query on the GPU, certified (and the
 //   tori's image-only depth never below the exact one).
+#include "CoreTest.h"
+#include "RaySpans.h"
 #include "Union/ConvexHull.h"
 #include "Union/PenetrationDepth.h"
-#include "RaySpans.h"
 
 #include <algorithm>
 #include <array>
@@ -26,10 +27,10 @@
 #include <vector>
 
 using namespace vtkdf;
+using namespace coretest;
 
 namespace
 {
-int Failures = 0;
 /// With the argument gpu: the union query on the GPU, certified (64 pixels a side).
 HeadlessGL* GPU = nullptr;
 UnionGPUSettings Settings()
@@ -37,14 +38,6 @@ UnionGPUSettings Settings()
   UnionGPUSettings settings;
   settings.Resolution = 64;
   return settings;
-}
-
-void Check(bool ok, const std::string& what, double value)
-{
-  if (!ok && ++Failures <= 30)
-  {
-    std::printf("FAIL: %s (%.17g)\n", what.c_str(), value);
-  }
 }
 
 double Dot(const double* a, const double* b)
@@ -60,7 +53,7 @@ ConvexPiece HullPiece(const std::vector<double>& points)
   ConvexPiece piece;
   const bool ok =
     ConvexHull(points, faces, corners, error) && piece.Build(points, faces, 1e-9, error);
-  Check(ok, "a test piece: " + error, 0);
+  Check(ok, "%s", std::string("a test piece: " + error).c_str());
   return piece;
 }
 
@@ -281,37 +274,50 @@ void ConvexPairs()
     PenetrationAnswer answer;
     std::string error;
     Check(depth.Compute(p, q, origin, answer, error, GPU, Settings()),
-      "a convex pair: " + error,
-      trial);
-    Check(answer.Certified && answer.ErrorBound == 0, "a convex pair: certified", trial);
+      "%s (%.17g)",
+      std::string("a convex pair: " + error).c_str(),
+      static_cast<double>(trial));
+    Check(answer.Certified && answer.ErrorBound == 0,
+      "a convex pair: certified (%.17g)",
+      static_cast<double>(trial));
     const double reference = AxisDepth(p[0], q[0]);
     const std::string name = "pair " + std::to_string(trial);
     if (std::fabs(reference) < 1e-6)
     {
       continue; // touching: either flag is right
     }
-    Check(answer.Intersecting == (reference > 0), name + ": intersecting flag", reference);
+    Check(answer.Intersecting == (reference > 0),
+      "%s (%.17g)",
+      std::string(name + ": intersecting flag").c_str(),
+      static_cast<double>(reference));
     if (reference > 0)
     {
       ++overlapping;
       Check(std::fabs(answer.Distance - reference) <= 1e-9,
-        name + ": depth = SAT",
-        answer.Distance - reference);
+        "%s (%.17g)",
+        std::string(name + ": depth = SAT").c_str(),
+        static_cast<double>(answer.Distance - reference));
     }
     else
     {
       ++apart;
       const double distance = FeatureDistance(p[0], q[0]);
       Check(std::fabs(answer.Distance - distance) <= 1e-9,
-        name + ": separation = features",
-        answer.Distance - distance);
+        "%s (%.17g)",
+        std::string(name + ": separation = features").c_str(),
+        static_cast<double>(answer.Distance - distance));
     }
     // Moved by the answer, the pair touches.
     const double moved = AxisDepth(p[0], Moved(q[0], answer.Translation));
-    Check(std::fabs(moved) <= 1e-9, name + ": Q moved by the translation touches P", moved);
+    Check(std::fabs(moved) <= 1e-9,
+      "%s (%.17g)",
+      std::string(name + ": Q moved by the translation touches P").c_str(),
+      static_cast<double>(moved));
   }
   std::printf("convex pairs: %d overlapping, %d apart\n", overlapping, apart);
-  Check(overlapping >= 15 && apart >= 15, "both kinds of pairs tested", overlapping);
+  Check(overlapping >= 15 && apart >= 15,
+    "both kinds of pairs tested (%.17g)",
+    static_cast<double>(overlapping));
 }
 
 void Tori()
@@ -332,24 +338,28 @@ void Tori()
   const double origin[3] = { 0, 0, 0 };
   PenetrationAnswer answer;
   std::string error;
-  Check(depth.Compute(p, q, origin, answer, error, GPU, Settings()), "tori: " + error, 0);
+  Check(depth.Compute(p, q, origin, answer, error, GPU, Settings()),
+    "%s",
+    std::string("tori: " + error).c_str());
   if (GPU)
   {
     // Not certified: the image's depth, never below the exact one.
     UnionGPUSettings image = Settings();
     image.Certify = false;
     PenetrationAnswer estimate;
-    Check(depth.Compute(p, q, origin, estimate, error, GPU, image), "tori: " + error, 0);
+    Check(depth.Compute(p, q, origin, estimate, error, GPU, image),
+      "%s",
+      std::string("tori: " + error).c_str());
     std::printf("tori on the GPU: certified %.9f, image %.9f (error bound %.3g, %d passes)\n",
       answer.Distance,
       estimate.Distance,
       estimate.ErrorBound,
       estimate.Passes);
     Check(!estimate.Certified && estimate.Distance >= answer.Distance - 1e-9,
-      "tori: the image's depth is never below the exact one",
-      estimate.Distance);
+      "tori: the image's depth is never below the exact one (%.17g)",
+      static_cast<double>(estimate.Distance));
   }
-  Check(answer.Intersecting, "tori intersect", answer.Distance);
+  Check(answer.Intersecting, "tori intersect (%.17g)", static_cast<double>(answer.Distance));
   double pairMax = 0;
   std::vector<std::vector<std::array<double, 3>>> axes;
   std::vector<std::vector<double>> supports;
@@ -372,10 +382,12 @@ void Tori()
     static_cast<long long>(answer.PairsKept),
     static_cast<long long>(answer.PairsTotal),
     pairMax);
-  Check(answer.Distance >= pairMax - 1e-9, "tori: global depth >= every pair's depth", pairMax);
+  Check(answer.Distance >= pairMax - 1e-9,
+    "tori: global depth >= every pair's depth (%.17g)",
+    static_cast<double>(pairMax));
   Check(answer.Distance > 1.5 * pairMax,
-    "tori: the union matters (global depth well above the pairs')",
-    answer.Distance / pairMax);
+    "tori: the union matters (global depth well above the pairs') (%.17g)",
+    static_cast<double>(answer.Distance / pairMax));
   // Q moved by the translation: no pair overlaps, one touches; at 99.9 % one overlaps.
   auto deepest = [&](double scale)
   {
@@ -391,9 +403,12 @@ void Tori()
     }
     return worst;
   };
-  Check(
-    std::fabs(deepest(1.0)) <= 1e-9, "tori: moved by the translation, they touch", deepest(1.0));
-  Check(deepest(0.999) > 0, "tori: moved by 99.9 % of it, they still overlap", deepest(0.999));
+  Check(std::fabs(deepest(1.0)) <= 1e-9,
+    "tori: moved by the translation, they touch (%.17g)",
+    static_cast<double>(deepest(1.0)));
+  Check(deepest(0.999) > 0,
+    "tori: moved by 99.9 %% of it, they still overlap (%.17g)",
+    static_cast<double>(deepest(0.999)));
   // No direction leaves the union of the sums sooner.
   std::mt19937 random(7);
   std::normal_distribution<double> gauss;
@@ -420,8 +435,12 @@ void Tori()
     soonest = std::min(soonest, reach);
   }
   std::printf("tori: the soonest exit of 4000 rays %.9f\n", soonest);
-  Check(soonest >= answer.Distance - 1e-9, "tori: no ray leaves sooner than the depth", soonest);
-  Check(soonest <= answer.Distance * 1.05, "tori: the rays find the depth (within 5 %)", soonest);
+  Check(soonest >= answer.Distance - 1e-9,
+    "tori: no ray leaves sooner than the depth (%.17g)",
+    static_cast<double>(soonest));
+  Check(soonest <= answer.Distance * 1.05,
+    "tori: the rays find the depth (within 5 %%) (%.17g)",
+    static_cast<double>(soonest));
 
   // The box bound skipped pairs without changing the answer: compare with no skipping
   // (the query from a far origin keeps every pair, then a shift brings it back).
@@ -445,8 +464,8 @@ void Tori()
   }
   const UnionAnswer every = all.Query(origin);
   Check(std::fabs(std::fabs(every.Distance) - answer.Distance) <= 1e-12,
-    "tori: the same depth with every pair",
-    every.Distance);
+    "tori: the same depth with every pair (%.17g)",
+    static_cast<double>(every.Distance));
 }
 } // namespace
 
@@ -464,11 +483,9 @@ int main(int argc, char* argv[])
   }
   ConvexPairs();
   Tori();
-  if (Failures > 0)
+  if (Failures == 0)
   {
-    std::printf("%d failures\n", Failures);
-    return 1;
+    std::printf("all penetration-depth checks passed\n");
   }
-  std::printf("all penetration-depth checks passed\n");
-  return 0;
+  return Verdict();
 }

@@ -13,8 +13,9 @@
 //   point at the answer's distance, on the boundary (probes around it in and out of the union), and
 //   the ray through it leaving (or entering) the union there;
 // - ConvexPiece::Build refuses an open, a non-manifold, a flat and a non-convex piece.
-#include "Union/ConvexHull.h"
+#include "CoreTest.h"
 #include "RaySpans.h"
+#include "Union/ConvexHull.h"
 #include "Union/UnionClosestPoint.h"
 
 #include <algorithm>
@@ -25,18 +26,10 @@
 #include <vector>
 
 using namespace vtkdf;
+using namespace coretest;
 
 namespace
 {
-int Failures = 0;
-
-void Check(bool ok, const std::string& what, double value)
-{
-  if (!ok && ++Failures <= 20)
-  {
-    std::printf("FAIL: %s (%.17g)\n", what.c_str(), value);
-  }
-}
 
 /// A box: centre, half sizes, rotated by the unit quaternion q.
 ConvexPiece Box(const double c[3], const double half[3], const double q[4] = nullptr)
@@ -72,7 +65,7 @@ ConvexPiece Box(const double c[3], const double half[3], const double q[4] = nul
   };
   ConvexPiece piece;
   std::string error;
-  Check(piece.Build(points, faces, 1e-9, error), "a box: " + error, 0);
+  Check(piece.Build(points, faces, 1e-9, error), "%s", std::string("a box: " + error).c_str());
   return piece;
 }
 
@@ -106,7 +99,8 @@ ConvexPiece Octahedron(const double c[3], double r)
     { 0, 3, 5 } };
   ConvexPiece piece;
   std::string error;
-  Check(piece.Build(points, faces, 1e-9, error), "an octahedron: " + error, 0);
+  Check(
+    piece.Build(points, faces, 1e-9, error), "%s", std::string("an octahedron: " + error).c_str());
   return piece;
 }
 
@@ -253,10 +247,21 @@ void Compare(const UnionClosestPoint& u, const double o[3], const std::string& n
     (exact.Closest[1] - o[1]) * (exact.Closest[1] - o[1]) +
     (exact.Closest[2] - o[2]) * (exact.Closest[2] - o[2]));
   // 1e-8: the touching tolerance (1e-9) of several pieces at a crease.
-  Check(d <= rays + 1e-8, name + ": the exact answer exceeds the reference", d - rays);
-  Check(rays - d <= 1e-4, name + ": the reference finds no point this near", rays - d);
-  Check(std::fabs(at - d) <= 1e-9, name + ": the closest point is not at the distance", at - d);
-  Check(u.Contains(exact.Closest), name + ": the closest point is not in the union", 0);
+  Check(d <= rays + 1e-8,
+    "%s (%.17g)",
+    std::string(name + ": the exact answer exceeds the reference").c_str(),
+    static_cast<double>(d - rays));
+  Check(rays - d <= 1e-4,
+    "%s (%.17g)",
+    std::string(name + ": the reference finds no point this near").c_str(),
+    static_cast<double>(rays - d));
+  Check(std::fabs(at - d) <= 1e-9,
+    "%s (%.17g)",
+    std::string(name + ": the closest point is not at the distance").c_str(),
+    static_cast<double>(at - d));
+  Check(u.Contains(exact.Closest),
+    "%s",
+    std::string(name + ": the closest point is not in the union").c_str());
   // On the boundary: points around it both in and out of the union.
   int out = 0;
   std::mt19937 probe(3);
@@ -269,7 +274,10 @@ void Compare(const UnionClosestPoint& u, const double o[3], const std::string& n
     }
     out += !u.Contains(x);
   }
-  Check(out > 0 && out < 400, name + ": the closest point is not on the boundary", out);
+  Check(out > 0 && out < 400,
+    "%s (%.17g)",
+    std::string(name + ": the closest point is not on the boundary").c_str(),
+    static_cast<double>(out));
   if (d > 1e-9)
   {
     const double dir[3] = {
@@ -284,8 +292,10 @@ void Compare(const UnionClosestPoint& u, const double o[3], const std::string& n
       event = std::fabs(event - d) <= 1e-6 ? d : event;
     }
     Check(exact.Inside ? event >= d - 1e-9 : std::fabs(event - d) <= 1e-9,
-      name + ": the ray through the closest point does not leave or enter there",
-      event - d);
+      "%s (%.17g)",
+      std::string(name + ": the ray through the closest point does not leave or enter there")
+        .c_str(),
+      static_cast<double>(event - d));
   }
 }
 } // namespace
@@ -301,13 +311,17 @@ int main()
     const UnionAnswer a = u.Query(o);
     std::printf(
       "two cubes from (0.9, 0.5, 0.5): %.12f (%s)\n", a.Distance, a.Inside ? "inside" : "outside");
-    Check(std::fabs(a.Distance + 0.5) < 1e-12, "two cubes", a.Distance);
+    Check(
+      std::fabs(a.Distance + 0.5) < 1e-12, "two cubes (%.17g)", static_cast<double>(a.Distance));
     const double onFace[3] = { 1, 0.5, 0.3 };
     const UnionAnswer b = u.Query(onFace);
-    Check(std::fabs(b.Distance + 0.3) < 1e-12, "O on the shared face", b.Distance);
+    Check(std::fabs(b.Distance + 0.3) < 1e-12,
+      "O on the shared face (%.17g)",
+      static_cast<double>(b.Distance));
     const double outside[3] = { 2.5, 0.5, 0.5 };
-    Check(
-      std::fabs(u.Query(outside).Distance - 0.5) < 1e-12, "O outside", u.Query(outside).Distance);
+    Check(std::fabs(u.Query(outside).Distance - 0.5) < 1e-12,
+      "O outside (%.17g)",
+      static_cast<double>(u.Query(outside).Distance));
   }
   {
     // 27 touching unit cubes: from the centre, 1.5 to the block's faces.
@@ -323,7 +337,7 @@ int main()
     std::printf("27 cubes from the centre: %.12f, %lld faces visited of 162\n",
       a.Distance,
       static_cast<long long>(a.FacesVisited));
-    Check(std::fabs(a.Distance + 1.4) < 1e-12, "27 cubes", a.Distance);
+    Check(std::fabs(a.Distance + 1.4) < 1e-12, "27 cubes (%.17g)", static_cast<double>(a.Distance));
   }
   {
     // Nested: a small cube inside a big one; O in the small one.
@@ -332,7 +346,9 @@ int main()
     const double s[3] = { 0.5, 0.2, 0.1 };
     u.Pieces = { Box(s, small), Box(c, big) };
     const double o[3] = { 0.6, 0.1, 0.0 };
-    Check(std::fabs(u.Query(o).Distance + 1.4) < 1e-12, "nested", u.Query(o).Distance);
+    Check(std::fabs(u.Query(o).Distance + 1.4) < 1e-12,
+      "nested (%.17g)",
+      static_cast<double>(u.Query(o).Distance));
   }
   // Random unions.
   std::mt19937_64 random(13);
@@ -401,8 +417,9 @@ int main()
       ConvexPiece piece;
       Check(ConvexHull(points, faces, onHull, error) && piece.Build(points, faces, 1e-9, error) &&
           piece.Faces.size() >= 8 && piece.Faces.size() <= 40,
-        "a hull piece of 8 to 40 faces: " + error,
-        static_cast<double>(piece.Faces.size()));
+        "%s (%.17g)",
+        std::string("a hull piece of 8 to 40 faces: " + error).c_str(),
+        static_cast<double>(static_cast<double>(piece.Faces.size())));
       u.Pieces.push_back(piece);
     }
     for (int query = 0; query < 3; ++query)
@@ -425,8 +442,7 @@ int main()
     ConvexPiece piece;
     const std::vector<double> points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0.1, 0.1, 0.1 };
     Check(!piece.Build(points, { { 0, 1, 2 }, { 0, 1, 3 }, { 0, 2, 3 } }, 1e-9, error),
-      "an open piece accepted",
-      0);
+      "an open piece accepted");
     std::printf("open: %s\n", error.c_str());
     Check(!piece.Build(points,
             { { 0, 2, 1 },
@@ -438,13 +454,11 @@ int main()
               { 0, 1, 3 } },
             1e-9,
             error),
-      "a non-manifold piece accepted",
-      0);
+      "a non-manifold piece accepted");
     // A tetrahedron whose four corners lie in one plane.
     const std::vector<double> flat = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.3, 0.3, 0 };
     Check(!piece.Build(flat, { { 0, 2, 1 }, { 0, 1, 3 }, { 1, 2, 3 }, { 2, 0, 3 } }, 1e-9, error),
-      "a flat piece accepted",
-      0);
+      "a flat piece accepted");
     std::printf("flat: %s\n", error.c_str());
     // A non-convex one: a bipyramid whose top apex is pushed below the base (a funnel).
     const std::vector<double> funnel = {
@@ -454,10 +468,8 @@ int main()
             { { 0, 1, 3 }, { 1, 2, 3 }, { 2, 0, 3 }, { 1, 0, 4 }, { 2, 1, 4 }, { 0, 2, 4 } },
             1e-9,
             error),
-      "a non-convex piece accepted",
-      0);
+      "a non-convex piece accepted");
     std::printf("non-convex: %s\n", error.c_str());
   }
-  std::printf("%d failures\n", Failures);
-  return Failures ? 1 : 0;
+  return Verdict();
 }

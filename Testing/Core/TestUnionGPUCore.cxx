@@ -12,6 +12,7 @@
 //   at O (U misses it, the certified answer does not), a piece holding O alone, nested
 //   pieces;
 // - the six images: every pixel's distance is a boundary point's (at least the answer).
+#include "CoreTest.h"
 #include "Union/ConvexHull.h"
 #include "Union/UnionClosestPointGPU.h"
 
@@ -23,18 +24,10 @@
 #include <vector>
 
 using namespace vtkdf;
+using namespace coretest;
 
 namespace
 {
-int Failures = 0;
-
-void Check(bool ok, const std::string& what, double value)
-{
-  if (!ok && ++Failures <= 30)
-  {
-    std::printf("FAIL: %s (%.17g)\n", what.c_str(), value);
-  }
-}
 
 ConvexPiece HullPiece(const std::vector<double>& points)
 {
@@ -43,8 +36,8 @@ ConvexPiece HullPiece(const std::vector<double>& points)
   std::string error;
   ConvexPiece piece;
   Check(ConvexHull(points, faces, corners, error) && piece.Build(points, faces, 1e-9, error),
-    "a test piece: " + error,
-    0);
+    "%s",
+    std::string("a test piece: " + error).c_str());
   return piece;
 }
 
@@ -96,13 +89,15 @@ std::vector<UnionGPUAnswer> Compare(HeadlessGL& gl,
   std::vector<UnionGPUAnswer> certified, estimated;
   std::string error;
   Check(QueryUnionGPU(gl, u, queries, settings, certified, error, images, frames),
-    name + ": " + error,
-    0);
+    "%s",
+    std::string(name + ": " + error).c_str());
   settings.Certify = false;
-  Check(QueryUnionGPU(gl, u, queries, settings, estimated, error), name + ": " + error, 0);
+  Check(QueryUnionGPU(gl, u, queries, settings, estimated, error),
+    "%s",
+    std::string(name + ": " + error).c_str());
   if (certified.size() != queries.size() / 3 || estimated.size() != certified.size())
   {
-    Check(false, name + ": answers missing", 0);
+    Check(false, "%s", std::string(name + ": answers missing").c_str());
     return certified;
   }
   for (size_t q = 0; q < certified.size(); ++q)
@@ -110,21 +105,34 @@ std::vector<UnionGPUAnswer> Compare(HeadlessGL& gl,
     const UnionAnswer exact = u.Query(&queries[3 * q]);
     const std::string at = name + " query " + std::to_string(q);
     const UnionGPUAnswer& c = certified[q];
-    Check(c.Certified && c.ErrorBound == 0, at + ": certified", c.ErrorBound);
+    Check(c.Certified && c.ErrorBound == 0,
+      "%s (%.17g)",
+      std::string(at + ": certified").c_str(),
+      static_cast<double>(c.ErrorBound));
     Check(std::fabs(c.Answer.Distance - exact.Distance) <= tolerance,
-      at + ": certified GPU = CPU (" + std::to_string(exact.Distance) + ")",
-      c.Answer.Distance);
+      "%s (%.17g)",
+      std::string(at + ": certified GPU = CPU (" + std::to_string(exact.Distance) + ")").c_str(),
+      static_cast<double>(c.Answer.Distance));
     double gap = 0;
     for (int a = 0; a < 3; ++a)
     {
       gap = std::max(gap, std::fabs(c.Answer.Closest[a] - exact.Closest[a]));
     }
-    Check(gap <= tolerance || std::fabs(exact.Distance) > 0, at + ": the same point", gap);
+    Check(gap <= tolerance || std::fabs(exact.Distance) > 0,
+      "%s (%.17g)",
+      std::string(at + ": the same point").c_str(),
+      static_cast<double>(gap));
     const UnionGPUAnswer& e = estimated[q];
     Check(!e.Certified && e.Estimate >= std::fabs(exact.Distance) - tolerance,
-      at + ": U never below the answer (" + std::to_string(std::fabs(exact.Distance)) + ")",
-      e.Estimate);
-    Check(e.Answer.Inside == exact.Inside, at + ": the same side", e.Answer.Inside);
+      "%s (%.17g)",
+      std::string(
+        at + ": U never below the answer (" + std::to_string(std::fabs(exact.Distance)) + ")")
+        .c_str(),
+      static_cast<double>(e.Estimate));
+    Check(e.Answer.Inside == exact.Inside,
+      "%s (%.17g)",
+      std::string(at + ": the same side").c_str(),
+      static_cast<double>(e.Answer.Inside));
     if (e.Estimate - std::fabs(exact.Distance) > e.ErrorBound)
     {
       ++totals.Beyond;
@@ -207,15 +215,19 @@ void RandomUnions(HeadlessGL& gl)
         settings.Certify = false;
         std::vector<UnionGPUAnswer> together, apart;
         std::string error;
-        Check(QueryUnionGPU(gl, u, queries, settings, together, error), "batched: " + error, 0);
+        Check(QueryUnionGPU(gl, u, queries, settings, together, error),
+          "%s",
+          std::string("batched: " + error).c_str());
         settings.BatchBytes = 1;
-        Check(QueryUnionGPU(gl, u, queries, settings, apart, error), "one a batch: " + error, 0);
-        Check(together.size() == apart.size() && !apart.empty(), "batched and alone: answers", 0);
+        Check(QueryUnionGPU(gl, u, queries, settings, apart, error),
+          "%s",
+          std::string("one a batch: " + error).c_str());
+        Check(together.size() == apart.size() && !apart.empty(), "batched and alone: answers");
         for (size_t q = 0; q < together.size() && together.size() == apart.size(); ++q)
         {
           Check(together[q].Estimate == apart[q].Estimate,
-            "batched and alone: the same U",
-            together[q].Estimate - apart[q].Estimate);
+            "batched and alone: the same U (%.17g)",
+            static_cast<double>(together[q].Estimate - apart[q].Estimate));
         }
       }
     }
@@ -230,14 +242,14 @@ void HardCases(HeadlessGL& gl)
     const auto answers =
       Compare(gl, u, { 0.9, 0.5, 0.5, 1, 0.5, 0.5, 0, 0.5, 0.5 }, "two touching cubes");
     Check(answers.size() == 3 && std::fabs(answers[0].Answer.Distance + 0.5) < 1e-9,
-      "two cubes from (0.9, 0.5, 0.5): 0.5",
-      answers.empty() ? 0 : answers[0].Answer.Distance);
+      "two cubes from (0.9, 0.5, 0.5): 0.5 (%.17g)",
+      static_cast<double>(answers.empty() ? 0 : answers[0].Answer.Distance));
     Check(answers.size() == 3 && std::fabs(answers[1].Answer.Distance + 0.5) < 1e-9,
-      "two cubes from the shared face: 0.5",
-      answers.size() < 2 ? 0 : answers[1].Answer.Distance);
+      "two cubes from the shared face: 0.5 (%.17g)",
+      static_cast<double>(answers.size() < 2 ? 0 : answers[1].Answer.Distance));
     Check(answers.size() == 3 && std::fabs(answers[2].Answer.Distance) < 1e-9,
-      "two cubes from an outer face: 0",
-      answers.size() < 3 ? 0 : answers[2].Answer.Distance);
+      "two cubes from an outer face: 0 (%.17g)",
+      static_cast<double>(answers.size() < 3 ? 0 : answers[2].Answer.Distance));
   }
   for (const int k : { 3, 5 })
   {
@@ -263,11 +275,11 @@ void HardCases(HeadlessGL& gl)
           " cubes");
       const double expected = c - 0.1 + grow;
       Check(!answers.empty() && std::fabs(answers[0].Answer.Distance + expected) < 1e-9,
-        "block: the outer boundary",
-        answers.empty() ? 0 : answers[0].Answer.Distance);
+        "block: the outer boundary (%.17g)",
+        static_cast<double>(answers.empty() ? 0 : answers[0].Answer.Distance));
       Check(!answers.empty() && answers[0].Passes >= (k - 1) / 2 + 1,
-        "block: the hops need passes",
-        answers.empty() ? 0 : answers[0].Passes);
+        "block: the hops need passes (%.17g)",
+        static_cast<double>(answers.empty() ? 0 : answers[0].Passes));
     }
   }
   {
@@ -280,10 +292,12 @@ void HardCases(HeadlessGL& gl)
     };
     const int beyond = totals.Beyond;
     const auto answers = Compare(gl, u, { 0, 0, 0 }, "sub-pixel slot");
-    Check(totals.Beyond == beyond + 1, "slot: U misses it, beyond its ErrorBound", totals.Beyond);
+    Check(totals.Beyond == beyond + 1,
+      "slot: U misses it, beyond its ErrorBound (%.17g)",
+      static_cast<double>(totals.Beyond));
     Check(!answers.empty() && std::fabs(answers[0].Answer.Distance + 0.2) < 1e-9,
-      "slot: the certified answer is its tip",
-      answers.empty() ? 0 : answers[0].Answer.Distance);
+      "slot: the certified answer is its tip (%.17g)",
+      static_cast<double>(answers.empty() ? 0 : answers[0].Answer.Distance));
   }
   {
     UnionClosestPoint u;
@@ -297,8 +311,8 @@ void HardCases(HeadlessGL& gl)
       Box(0.45, 0.55, 0.45, 0.55, 0.3, 0.7) };
     const auto answers = Compare(gl, u, { 0.5, 0.5, 0.5 }, "nested pieces");
     Check(!answers.empty() && std::fabs(answers[0].Answer.Distance + 0.5) < 1e-9,
-      "nested: the outer box",
-      answers.empty() ? 0 : answers[0].Answer.Distance);
+      "nested: the outer box (%.17g)",
+      static_cast<double>(answers.empty() ? 0 : answers[0].Answer.Distance));
   }
   {
     // The images: every seen pixel is a boundary point (the ray's point is in the closed
@@ -331,8 +345,9 @@ void HardCases(HeadlessGL& gl)
       ++seen;
       bad += !(u.Contains(before) && !u.Contains(after));
     }
-    Check(
-      seen == 6 * 32 * 32 && bad == 0, "images: every pixel a boundary point (bad pixels)", bad);
+    Check(seen == 6 * 32 * 32 && bad == 0,
+      "images: every pixel a boundary point (bad pixels) (%.17g)",
+      static_cast<double>(bad));
   }
 }
 } // namespace
@@ -360,11 +375,9 @@ int main()
     totals.Beyond,
     totals.CertifyFaces,
     totals.CpuFaces);
-  if (Failures > 0)
+  if (Failures == 0)
   {
-    std::printf("%d failures\n", Failures);
-    return 1;
+    std::printf("all GPU union checks passed\n");
   }
-  std::printf("all GPU union checks passed\n");
-  return 0;
+  return Verdict();
 }

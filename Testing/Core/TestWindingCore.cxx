@@ -11,6 +11,7 @@
 //   the exact sum wherever |w| is not within 1e-9 of 1/2, and the values within their
 //   bounds; the same with distances that skip blocks near the surface; two threads;
 // - with the argument gpu: WindingSignsGPU against WindingSigns (CheckGPU).
+#include "CoreTest.h"
 #include "GL/HeadlessGL.h"
 #include "ThreadFor.h"
 #include "Winding/WindingNumber.h"
@@ -26,19 +27,11 @@
 #include <vector>
 
 using namespace vtkdf;
+using namespace coretest;
 
 namespace
 {
-int Failures = 0;
 std::mt19937_64 Random(16);
-
-void Check(bool ok, const char* what, double value)
-{
-  if (!ok && ++Failures <= 20)
-  {
-    std::printf("FAIL: %s (%.17g)\n", what, value);
-  }
-}
 
 struct Mesh
 {
@@ -102,7 +95,9 @@ int CheckMesh(const char* name,
     const double exact = w.Exact(q);
     const WindingValue fast = w.Evaluate(q);
     const double error = std::fabs(fast.Value - exact);
-    Check(error <= fast.Bound + 1e-12, "the approximation is outside its bound", error);
+    Check(error <= fast.Bound + 1e-12,
+      "the approximation is outside its bound (%.17g)",
+      static_cast<double>(error));
     if (fast.Bound > 0)
     {
       worstRatio = std::max(worstRatio, error / fast.Bound);
@@ -114,10 +109,12 @@ int CheckMesh(const char* name,
     exactCalls += wasExact;
     if (std::fabs(std::fabs(exact) - 0.5) > 1e-9)
     {
-      Check(inside == (std::fabs(exact) > 0.5), "Inside() differs from the exact sign", exact);
+      Check(inside == (std::fabs(exact) > 0.5),
+        "Inside() differs from the exact sign (%.17g)",
+        static_cast<double>(exact));
       Check(insideAlone == (std::fabs(exact) > 0.5),
-        "Inside() without a value differs from the exact sign",
-        exact);
+        "Inside() without a value differs from the exact sign (%.17g)",
+        static_cast<double>(exact));
     }
 
     // The gradient: the exact one against central differences of the exact sum, the
@@ -164,13 +161,13 @@ int CheckMesh(const char* name,
             det, l[0] * l[1] * l[2] + dot(0, 1) * l[2] + dot(0, 2) * l[1] + dot(1, 2) * l[0]);
       }
       Check(std::fabs(sum / (4 * M_PI) - exact) <= 1e-12,
-        "Exact() differs from the sum of atan2's",
-        sum / (4 * M_PI) - exact);
+        "Exact() differs from the sum of atan2's (%.17g)",
+        static_cast<double>(sum / (4 * M_PI) - exact));
     }
     const WindingGradient fastGradient = w.EvaluateWithGradient(q);
     Check(std::fabs(fastGradient.Value - exact) <= fastGradient.Bound + 1e-12,
-      "EvaluateWithGradient's value is outside its bound",
-      fastGradient.Value - exact);
+      "EvaluateWithGradient's value is outside its bound (%.17g)",
+      static_cast<double>(fastGradient.Value - exact));
     double gradientError = 0;
     for (int a = 0; a < 3; ++a)
     {
@@ -178,8 +175,8 @@ int CheckMesh(const char* name,
       gradientError += e * e;
     }
     Check(std::sqrt(gradientError) <= fastGradient.GradientBound + 1e-9,
-      "the gradient is outside its bound",
-      std::sqrt(gradientError));
+      "the gradient is outside its bound (%.17g)",
+      static_cast<double>(std::sqrt(gradientError)));
     if (fastGradient.GradientBound > 0)
     {
       worstGradientRatio =
@@ -201,8 +198,8 @@ int CheckMesh(const char* name,
           minus[a] -= step;
           const double difference = (w.Exact(plus) - w.Exact(minus)) / (2 * step);
           Check(std::fabs(difference - exactGradient[a]) <= 1e-5 * (1 + std::fabs(difference)),
-            "the exact gradient differs from central differences",
-            difference - exactGradient[a]);
+            "the exact gradient differs from central differences (%.17g)",
+            static_cast<double>(difference - exactGradient[a]));
         }
       }
       // The Hessian bound: the first-order Taylor remainder over a ball.
@@ -222,8 +219,8 @@ int CheckMesh(const char* name,
           }
           const double remainder = std::fabs(w.Exact(y) - linear);
           Check(remainder <= 0.5 * r2 * hessian + 1e-12,
-            "the first-order remainder exceeds the Hessian bound",
-            remainder);
+            "the first-order remainder exceeds the Hessian bound (%.17g)",
+            static_cast<double>(remainder));
           if (remainder > 1e-12)
           {
             worstHessianRatio = std::max(worstHessianRatio, remainder / (0.5 * r2 * hessian));
@@ -276,7 +273,7 @@ void CheckGPU(HeadlessGL& gl, const char* name, const Mesh& mesh, double accurac
     std::string error;
     if (!WindingSignsGPU(gl, w, grid, grid.Whole, gpu.data(), gpuOptions, b, error))
     {
-      Check(false, ("the GPU pass failed: " + error).c_str(), 0);
+      Check(false, "%s", std::string(("the GPU pass failed: " + error).c_str()).c_str());
       return;
     }
     int64_t differ = 0, valuesOff = 0;
@@ -306,9 +303,14 @@ void CheckGPU(HeadlessGL& gl, const char* name, const Mesh& mesh, double accurac
       static_cast<long long>(b.Exact),
       static_cast<long long>(differ),
       worst);
-    Check(differ == 0, "the GPU's signs differ from the CPU's", double(differ));
-    Check(valuesOff == 0, "the GPU's values differ from the CPU's", double(valuesOff));
-    Check(b.Evaluated == n, "the GPU missed samples", double(b.Evaluated));
+    Check(differ == 0,
+      "the GPU's signs differ from the CPU's (%.17g)",
+      static_cast<double>(double(differ)));
+    Check(valuesOff == 0,
+      "the GPU's values differ from the CPU's (%.17g)",
+      static_cast<double>(double(valuesOff)));
+    Check(
+      b.Evaluated == n, "the GPU missed samples (%.17g)", static_cast<double>(double(b.Evaluated)));
   }
 }
 
@@ -351,8 +353,7 @@ int main(int argc, char* argv[])
       CheckGPU(*gl, "flipped sphere", flipped, accuracy);
       CheckGPU(*gl, "open sphere", OpenSphere(sphere), accuracy);
     }
-    std::printf("%d failures\n", Failures);
-    return Failures ? 1 : 0;
+    return Verdict();
   }
 
   const Mesh sphere = Sphere(4); // 2048 triangles
@@ -371,7 +372,9 @@ int main(int argc, char* argv[])
       worst = std::max(worst, std::fabs(w.Exact(q) - (r < 1 ? 1 : 0)));
     }
     std::printf("closed sphere: exact w within %.2g of 1 inside and 0 outside\n", worst);
-    Check(worst <= 1e-9, "a closed sphere's w is not 1 inside and 0 outside", worst);
+    Check(worst <= 1e-9,
+      "a closed sphere's w is not 1 inside and 0 outside (%.17g)",
+      static_cast<double>(worst));
   }
   CheckMesh("closed sphere", sphere, 3000);
   CheckMesh("closed sphere, accuracy 2", sphere, 300, 2);
@@ -386,8 +389,8 @@ int main(int argc, char* argv[])
     const double centre[3] = { 0.1, -0.2, 0.05 };
     std::printf("flipped sphere: w = %.12f at the centre\n", w.Exact(centre));
     Check(std::fabs(w.Exact(centre) + 1) <= 1e-9 && w.Inside(centre),
-      "a flipped sphere is not w = -1, inside",
-      w.Exact(centre));
+      "a flipped sphere is not w = -1, inside (%.17g)",
+      static_cast<double>(w.Exact(centre)));
     CheckMesh("flipped sphere", flipped, 1000);
 
     // Opposite copies cancel; repeated ones count once.
@@ -408,12 +411,15 @@ int main(int argc, char* argv[])
       wb.Exact(centre),
       static_cast<long long>(wt.TriangleCount()),
       wt.Exact(centre));
-    Check(std::fabs(wb.Exact(centre)) <= 1e-9, "opposite copies do not cancel", wb.Exact(centre));
+    Check(std::fabs(wb.Exact(centre)) <= 1e-9,
+      "opposite copies do not cancel (%.17g)",
+      static_cast<double>(wb.Exact(centre)));
     Check(wt.TriangleCount() == static_cast<int64_t>(sphere.Triangles.size() / 3),
-      "repeated triangles are not kept once",
-      static_cast<double>(wt.TriangleCount()));
-    Check(
-      std::fabs(wt.Exact(centre) - 1) <= 1e-9, "a repeated sphere is not w = 1", wt.Exact(centre));
+      "repeated triangles are not kept once (%.17g)",
+      static_cast<double>(static_cast<double>(wt.TriangleCount())));
+    Check(std::fabs(wt.Exact(centre) - 1) <= 1e-9,
+      "a repeated sphere is not w = 1 (%.17g)",
+      static_cast<double>(wt.Exact(centre)));
   }
   {
     // An open sphere: the triangles above z = 0.7 removed.
@@ -553,15 +559,20 @@ int main(int argc, char* argv[])
         static_cast<long long>(differ),
         static_cast<long long>(wrong),
         static_cast<long long>(outOfBound));
-      Check(differ == 0, "blocks and single samples decide differently", double(differ));
-      Check(wrong == 0, "a sign differs from the exact sum's", double(wrong));
-      Check(outOfBound == 0, "a written value is not the evaluation's", double(outOfBound));
+      Check(differ == 0,
+        "blocks and single samples decide differently (%.17g)",
+        static_cast<double>(double(differ)));
+      Check(wrong == 0,
+        "a sign differs from the exact sum's (%.17g)",
+        static_cast<double>(double(wrong)));
+      Check(outOfBound == 0,
+        "a written value is not the evaluation's (%.17g)",
+        static_cast<double>(double(outOfBound)));
       Check(
         a.BlockSamples + a.Evaluated == n && b.Evaluated == n && c.BlockSamples + c.Evaluated == n,
-        "samples missed",
-        double(a.BlockSamples + a.Evaluated));
+        "samples missed (%.17g)",
+        static_cast<double>(double(a.BlockSamples + a.Evaluated)));
     }
   }
-  std::printf("%d failures\n", Failures);
-  return Failures ? 1 : 0;
+  return Verdict();
 }

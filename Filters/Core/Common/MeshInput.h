@@ -4,6 +4,7 @@
 #ifndef vtkdf_MeshInput_h
 #define vtkdf_MeshInput_h
 
+#include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
 
 #include <array>
@@ -59,15 +60,30 @@ inline bool UsedPointBounds(const MeshInput& mesh, std::array<double, 6>& bounds
   return any;
 }
 
-/// The mesh's points in `frame` (as GridFrame::ToLocal maps each coordinate).
-inline void MoveToLocalFrame(MeshInput& mesh, const GridFrame& frame)
+/// Moves the mesh's points into `frame` (GridFrame::ToLocal, coordinate by coordinate),
+/// with `parallelFor` when given.
+inline void MoveToLocalFrame(MeshInput& mesh,
+  const GridFrame& frame,
+  const ParallelFor& parallelFor = ParallelFor())
 {
-  for (size_t i = 0; i < mesh.Points.size(); i += 3)
+  auto move = [&](int64_t begin, int64_t end)
   {
-    for (int a = 0; a < 3; ++a)
+    for (int64_t i = begin; i < end; ++i)
     {
-      mesh.Points[i + a] = frame.ToLocal(a, mesh.Points[i + a]);
+      for (int a = 0; a < 3; ++a)
+      {
+        mesh.Points[3 * i + a] = frame.ToLocal(a, mesh.Points[3 * i + a]);
+      }
     }
+  };
+  const int64_t count = static_cast<int64_t>(mesh.Points.size() / 3);
+  if (parallelFor)
+  {
+    parallelFor(count, 4096, move);
+  }
+  else
+  {
+    move(0, count);
   }
 }
 

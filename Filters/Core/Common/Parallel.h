@@ -1,10 +1,15 @@
 // The few execution hooks the VTK-free cores need from their host: a parallel loop
-// (vtkSMPTools in the module, std::thread in stand-alone programs) and progress.
+// (vtkSMPTools in the module, std::thread in stand-alone programs), progress with abort,
+// and the time each stage took.
 #ifndef vtkdf_Parallel_h
 #define vtkdf_Parallel_h
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace vtkdf
 {
@@ -14,6 +19,62 @@ using ParallelFor =
 
 /// Receives the fraction done; returns false to abort.
 using ProgressCallback = std::function<bool(double)>;
+
+/// Seconds per stage of a run, in the order the stages ended: each stage runs from the
+/// end of the previous one (or the timer's start) to its End().
+class StageTimer
+{
+public:
+  StageTimer() { this->Start = this->Last = Now(); }
+  void End(const char* name)
+  {
+    const double now = Now();
+    this->Stages.emplace_back(name, now - this->Last);
+    this->Last = now;
+  }
+  /// Seconds since the timer started.
+  double Elapsed() const { return Now() - this->Start; }
+  const std::vector<std::pair<std::string, double>>& Times() const { return this->Stages; }
+
+private:
+  static double Now()
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+  }
+  double Start, Last;
+  std::vector<std::pair<std::string, double>> Stages;
+};
+
+/// How a core's entry point runs: its loops, its progress (and abort), its stage times.
+/// Every member may be left empty.
+struct Execution
+{
+  ParallelFor For;
+  ProgressCallback Progress;
+  StageTimer* Stages = nullptr;
+
+  /// Tells the fraction done; false when the host asks to abort.
+  bool Report(double fraction) const { return !this->Progress || this->Progress(fraction); }
+  void EndStage(const char* name) const
+  {
+    if (this->Stages)
+    {
+      this->Stages->End(name);
+    }
+  }
+  /// The same hooks with progress mapped onto [from, to] of this run's.
+  Execution Part(double from, double to) const
+  {
+    Execution part = *this;
+    if (this->Progress)
+    {
+      const ProgressCallback whole = this->Progress;
+      part.Progress = [whole, from, to](double f) { return whole(from + (to - from) * f); };
+    }
+    return part;
+  }
+};
 } // namespace vtkdf
 
 #endif

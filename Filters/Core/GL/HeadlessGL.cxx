@@ -1,5 +1,7 @@
 #include "GL/HeadlessGL.h"
 
+#include "GL/GridUniforms.h"
+
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 #include <epoxy/glx.h>
@@ -374,7 +376,9 @@ unsigned HeadlessGL::BuildProgram(const std::vector<std::pair<unsigned, const ch
   for (const auto& stage : stages)
   {
     const GLuint shader = gl.CreateShader(stage.first);
-    gl.ShaderSource(shader, 1, &stage.second, nullptr);
+    const std::string source = WithSampleGrid(stage.second);
+    const char* text = source.c_str();
+    gl.ShaderSource(shader, 1, &text, nullptr);
     gl.CompileShader(shader);
     GLint status = 0;
     gl.GetShaderiv(shader, GL_COMPILE_STATUS, &status);

@@ -59,7 +59,8 @@ public:
   /// The GL entry points of this context (call them while a Scope is alive).
   const GLFunctions& GL() const { return this->Functions; }
 
-  /// Compiles and links (stage enum, source) pairs; 0 and the logs on failure.
+  /// Compiles and links (stage enum, source) pairs; 0 and the logs on failure. A
+  /// source's //DF::SampleGrid line becomes the grid's uniforms (GridUniforms.h).
   unsigned BuildProgram(const std::vector<std::pair<unsigned, const char*>>& stages,
     std::string& log) const;
 

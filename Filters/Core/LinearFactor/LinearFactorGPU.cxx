@@ -1,12 +1,14 @@
 #include "LinearFactor/LinearFactorGPU.h"
 
+#include "GL/GridUniforms.h"
+
+#include "LinearFactor/SliceDomain.h"
 #include "LinearFactorDomain_frag.h"
 #include "LinearFactorDomain_geom.h"
 #include "LinearFactorDomain_vert.h"
 #include "LinearFactorFinalize_comp.h"
 #include "LinearFactorKeep_comp.h"
 #include "LinearFactorSites.h"
-#include "LinearFactor/SliceDomain.h"
 
 #include "GL/GLFunctions.h"
 
@@ -464,10 +466,7 @@ bool FinalizeGPU(HeadlessGL& context,
   gl.UseProgram(program);
   auto uniform = [&](const char* name) { return gl.GetUniformLocation(program, name); };
   const SampleGrid& grid = request.Grid;
-  gl.Uniform3i(uniform("Dims"), nx, ny, nz);
-  gl.Uniform3i(uniform("Lo"), ext.Lo[0], ext.Lo[1], ext.Lo[2]);
-  gl.Uniform3d(uniform("Origin"), grid.Origin[0], grid.Origin[1], grid.Origin[2]);
-  gl.Uniform3d(uniform("Spacing"), grid.Spacing[0], grid.Spacing[1], grid.Spacing[2]);
+  SetGridUniforms(gl, program, grid, ext);
   gl.Uniform1i(uniform("Signed"), signedField);
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
   const int64_t perDispatch = int64_t(65535) * 64;

@@ -1,17 +1,17 @@
-// LinearFactorField: the exact distance field of paper 000, without VTK types.
+// LinearFactorScan: the scan of the linear factorization on the CPU, and Finalize.
 //
 // Pipeline: MeshSites (sites + domains) -> RangeCulling (regions) -> a scan pass that
 // writes, per sample, the nearest site found so far (CPU here, GPU in
 // LinearFactorGPU) -> Finalize, which turns the winning site of every sample into the
 // requested arrays, recomputing distance and closest point in double precision.
-#ifndef vtkdf_LinearFactorField_h
-#define vtkdf_LinearFactorField_h
+#ifndef vtkdf_LinearFactorScan_h
+#define vtkdf_LinearFactorScan_h
 
 #include "Common/LargeVector.h"
-#include "LinearFactor/MeshSites.h"
 #include "Common/Parallel.h"
-#include "LinearFactor/RangeCulling.h"
 #include "Common/SampleGrid.h"
+#include "LinearFactor/MeshSites.h"
+#include "LinearFactor/RangeCulling.h"
 
 #include <atomic>
 #include <cstdint>

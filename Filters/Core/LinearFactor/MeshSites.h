@@ -11,6 +11,7 @@
 #include "Common/LargeVector.h"
 #include "Common/MeshInput.h"
 #include "Common/Parallel.h"
+#include "LinearFactor/LinearFactorField.h"
 
 #include <array>
 #include <cstdint>
@@ -19,13 +20,6 @@
 
 namespace vtkdf
 {
-
-enum class Culling
-{
-  Auto,        // tightest exact domains for every site, whatever the topology
-  NonManifold, // triangle prism, edge slab, whole space for points
-  Manifold     // the paper's manifold domains where the neighbourhood is a closed manifold
-};
 
 enum SiteType : uint8_t
 {

@@ -11,9 +11,9 @@
 #ifndef vtkdf_RangeCulling_h
 #define vtkdf_RangeCulling_h
 
-#include "LinearFactor/MeshSites.h"
 #include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
+#include "LinearFactor/MeshSites.h"
 
 #include <algorithm>
 #include <array>

@@ -1,7 +1,8 @@
 #include "Medial/MedialAxisGPU.h"
 
+#include "GL/GridUniforms.h"
+
 #include "GL/GLFunctions.h"
-#include "LinearFactor/LinearFactorGPU.h"
 #include "MedialAxis_comp.h"
 
 #include <algorithm>
@@ -46,11 +47,7 @@ bool MedialPass(HeadlessGL& context,
   gl.BufferData(GL_SHADER_STORAGE_BUFFER, voxels * 8, nullptr, GL_DYNAMIC_READ);
   gl.UseProgram(program);
   auto uniform = [&](const char* name) { return gl.GetUniformLocation(program, name); };
-  gl.Uniform3i(uniform("Dims"), nx, ny, nz);
-  gl.Uniform3i(uniform("Lo"), whole.Lo[0], whole.Lo[1], whole.Lo[2]);
-  gl.Uniform3d(uniform("Origin"), input.Grid.Origin[0], input.Grid.Origin[1], input.Grid.Origin[2]);
-  gl.Uniform3d(
-    uniform("Spacing"), input.Grid.Spacing[0], input.Grid.Spacing[1], input.Grid.Spacing[2]);
+  SetGridUniforms(gl, program, input.Grid, whole);
   gl.Uniform1d(uniform("Threshold"), std::cos(input.SeparationAngle * M_PI / 180.0));
   gl.Uniform1i(uniform("Region"), static_cast<int>(input.Region));
   const auto& h = input.Grid.Spacing;
@@ -139,43 +136,24 @@ bool MedialAxisGPU(HeadlessGL& context,
   return true;
 }
 
-bool MedialAxisFromSitesGPU(HeadlessGL& context,
-  const MeshSites& sites,
-  const RangeCulling& culling,
-  const FieldRequest& request,
+bool MedialAxisOnGPUField(HeadlessGL& context,
+  const GPUField& field,
   const MedialInput& parameters,
   float* distance,
   uint8_t* medial,
   double* cosine,
   int64_t& count,
-  ScanStatistics& stats,
   std::string& error)
 {
   HeadlessGL::Scope scope(context);
-  if (!scope.Ok(error))
+  if (!scope.Ok(error) ||
+    !MedialPass(context, parameters, field.Distance, field.ClosestPoint, cosine, error))
   {
     return false;
   }
   const GLFunctions& gl = context.GL();
-  const int64_t voxels = request.Extent.Count();
-  Buffers field(gl); // distances, closest points, nearest-site ids
-  const int64_t bytes[3] = { voxels * 4, voxels * 12, voxels * 4 };
-  for (int b = 0; b < 3; ++b)
-  {
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, field.Id[b]);
-    gl.BufferData(GL_SHADER_STORAGE_BUFFER, bytes[b], nullptr, GL_DYNAMIC_COPY);
-  }
-  NearestSiteBuffer unused;
-  if (!ScanSitesGPU(context, sites, culling, request, unused, nullptr, stats, error, field.Id[2]) ||
-    !FinalizeGPU(context, sites, request, field.Id[2], true, field.Id[0], field.Id[1], error))
-  {
-    return false;
-  }
-  if (!MedialPass(context, parameters, field.Id[0], field.Id[1], cosine, error))
-  {
-    return false;
-  }
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, field.Id[0]);
+  const int64_t voxels = field.Extent.Count();
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, field.Distance);
   gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, voxels * 4, distance);
   count = Mark(cosine, medial, voxels);
   return true;

@@ -4,7 +4,7 @@
 #define vtkdf_MedialAxisGPU_h
 
 #include "GL/HeadlessGL.h"
-#include "LinearFactor/LinearFactorScan.h"
+#include "LinearFactor/LinearFactorField.h"
 #include "Medial/MedialAxis.h"
 
 #include <string>
@@ -20,21 +20,16 @@ bool MedialAxisGPU(HeadlessGL& context,
   int64_t& count,
   std::string& error);
 
-/// The field of a mesh and its medial axis, all on the GPU: the scan keeps the nearest
-/// sites there, a GPU finalize turns them into the signed field with closest points
-/// (FinalizeGPU), and the medial pass reads that field where it is. Only the distances
-/// (for Radius) and the cosines come back. `parameters` gives the angle and region (its
-/// Distance and ClosestPoint pointers are not used).
-bool MedialAxisFromSitesGPU(HeadlessGL& context,
-  const MeshSites& sites,
-  const RangeCulling& culling,
-  const FieldRequest& request,
+/// The medial pass over a field on the GPU (ComputeLinearFactorFieldOnGPU, signed, in its
+/// local frame), read where it lies; its distances (local units) come back into
+/// `distance`.
+bool MedialAxisOnGPUField(HeadlessGL& context,
+  const GPUField& field,
   const MedialInput& parameters,
   float* distance,
   uint8_t* medial,
   double* cosine,
   int64_t& count,
-  ScanStatistics& stats,
   std::string& error);
 
 } // namespace vtkdf

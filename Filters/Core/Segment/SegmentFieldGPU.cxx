@@ -1,7 +1,8 @@
 #include "Segment/SegmentFieldGPU.h"
 
+#include "GL/GridUniforms.h"
+
 #include "GL/GLFunctions.h"
-#include "LinearFactor/LinearFactorGPU.h"
 #include "SideLabel_comp.h"
 
 #include <algorithm>
@@ -15,28 +16,24 @@ namespace
 struct Buffers
 {
   const GLFunctions& GL;
-  GLuint Id[7] = { 0, 0, 0, 0, 0, 0, 0 };
+  GLuint Id[4] = { 0, 0, 0, 0 };
   explicit Buffers(const GLFunctions& gl)
     : GL(gl)
   {
-    gl.GenBuffers(7, this->Id);
+    gl.GenBuffers(4, this->Id);
   }
-  ~Buffers() { this->GL.DeleteBuffers(7, this->Id); }
+  ~Buffers() { this->GL.DeleteBuffers(4, this->Id); }
 };
 } // namespace
 
-bool SegmentFieldGPU(HeadlessGL& context,
-  const MeshSites& sites,
-  const RangeCulling& culling,
-  const FieldRequest& request,
+bool SideLabelsOnGPUField(HeadlessGL& context,
+  const GPUField& field,
   const SurfacePatches& patches,
   const std::vector<int32_t>& siteTriangle,
   float* distance,
   float* closest,
   int32_t* label,
-  ScanStatistics& stats,
-  std::string& error,
-  const ProgressCallback& progress)
+  std::string& error)
 {
   HeadlessGL::Scope scope(context);
   if (!scope.Ok(error))
@@ -44,7 +41,7 @@ bool SegmentFieldGPU(HeadlessGL& context,
     return false;
   }
   const GLFunctions& gl = context.GL();
-  const IndexBox& extent = request.Extent;
+  const IndexBox& extent = field.Extent;
   const int nx = extent.Size(0), ny = extent.Size(1), nz = extent.Size(2);
   const int64_t slice = int64_t(nx) * ny, voxels = slice * nz;
   std::vector<int32_t> triangles, corners;
@@ -53,45 +50,17 @@ bool SegmentFieldGPU(HeadlessGL& context,
     error = "the grid or the mesh is too large for the GPU's int indices";
     return false;
   }
-  // The field: distances, closest points, nearest-site ids; then labels; then the mesh.
+  // The labels, then the mesh; the field's buffers are the GPUField's.
   enum
   {
-    DistanceBuffer,
-    ClosestBuffer,
-    IdBuffer,
     LabelBuffer,
     SiteBuffer,
     TriangleBuffer,
     PositionBuffer
   };
   Buffers buffers(gl);
-  const int64_t bytes[4] = { voxels * 4, voxels * 12, voxels * 4, voxels * 4 };
-  for (int b = 0; b < 4; ++b)
-  {
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers.Id[b]);
-    gl.BufferData(GL_SHADER_STORAGE_BUFFER, bytes[b], nullptr, GL_DYNAMIC_COPY);
-  }
-  NearestSiteBuffer unused;
-  if (!ScanSitesGPU(
-        context, sites, culling, request, unused, progress, stats, error, buffers.Id[IdBuffer]))
-  {
-    return false;
-  }
-  if (stats.Aborted)
-  {
-    return true;
-  }
-  if (!FinalizeGPU(context,
-        sites,
-        request,
-        buffers.Id[IdBuffer],
-        false,
-        buffers.Id[DistanceBuffer],
-        buffers.Id[ClosestBuffer],
-        error))
-  {
-    return false;
-  }
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers.Id[LabelBuffer]);
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER, voxels * 4, nullptr, GL_DYNAMIC_COPY);
 
   std::string log;
   const GLuint program = context.BuildProgram({ { GL_COMPUTE_SHADER, SideLabel_comp } }, log);
@@ -123,11 +92,8 @@ bool SegmentFieldGPU(HeadlessGL& context,
 
   gl.UseProgram(program);
   auto uniform = [&](const char* name) { return gl.GetUniformLocation(program, name); };
-  const SampleGrid& grid = request.Grid;
-  gl.Uniform3i(uniform("Dims"), nx, ny, nz);
-  gl.Uniform3i(uniform("Lo"), extent.Lo[0], extent.Lo[1], extent.Lo[2]);
-  gl.Uniform3d(uniform("Origin"), grid.Origin[0], grid.Origin[1], grid.Origin[2]);
-  gl.Uniform3d(uniform("Spacing"), grid.Spacing[0], grid.Spacing[1], grid.Spacing[2]);
+  const SampleGrid& grid = field.Grid;
+  SetGridUniforms(gl, program, grid, extent);
   gl.Uniform1i(uniform("KeyCount"), static_cast<int>(corners.size() - patches.CornerCount() - 1));
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
   // The per-sample buffers a slab of z at a time (within the storage block limit).
@@ -146,10 +112,9 @@ bool SegmentFieldGPU(HeadlessGL& context,
   {
     const int64_t z1 = std::min<int64_t>(nz, z0 + slab), from = z0 * slice, to = z1 * slice;
     gl.Uniform1i(uniform("SiteBase"),
-      static_cast<int>(BindVoxelRange(gl, 0, buffers.Id[IdBuffer], from, to, 4, 4, alignment)));
+      static_cast<int>(BindVoxelRange(gl, 0, field.SiteIds, from, to, 4, 4, alignment)));
     gl.Uniform1i(uniform("ClosestBase"),
-      static_cast<int>(
-        BindVoxelRange(gl, 1, buffers.Id[ClosestBuffer], from, to, 12, 4, alignment)));
+      static_cast<int>(BindVoxelRange(gl, 1, field.ClosestPoint, from, to, 12, 4, alignment)));
     gl.Uniform1i(uniform("LabelBase"),
       static_cast<int>(BindVoxelRange(gl, 2, buffers.Id[LabelBuffer], from, to, 4, 4, alignment)));
     gl.Uniform1i(uniform("Last"), static_cast<int>(to));
@@ -162,15 +127,15 @@ bool SegmentFieldGPU(HeadlessGL& context,
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
   const struct
   {
-    int Buffer;
+    GLuint Buffer;
     void* Out;
     int64_t Bytes;
-  } results[3] = { { DistanceBuffer, distance, voxels * 4 },
-    { ClosestBuffer, closest, voxels * 12 },
-    { LabelBuffer, label, voxels * 4 } };
+  } results[3] = { { field.Distance, distance, voxels * 4 },
+    { field.ClosestPoint, closest, voxels * 12 },
+    { buffers.Id[LabelBuffer], label, voxels * 4 } };
   for (const auto& r : results)
   {
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers.Id[r.Buffer]);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, r.Buffer);
     gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, r.Bytes, r.Out);
   }
   gl.DeleteBuffers(1, &cornerBuffer);

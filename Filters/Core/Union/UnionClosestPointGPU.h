@@ -24,8 +24,8 @@
 #ifndef vtkdf_UnionClosestPointGPU_h
 #define vtkdf_UnionClosestPointGPU_h
 
-#include "GL/HeadlessGL.h"
 #include "Common/Parallel.h"
+#include "GL/HeadlessGL.h"
 #include "Union/UnionClosestPoint.h"
 
 #include <cstdint>

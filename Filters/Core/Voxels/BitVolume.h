@@ -4,6 +4,9 @@
 #ifndef vtkdf_BitVolume_h
 #define vtkdf_BitVolume_h
 
+#include "Common/Parallel.h"
+#include "Common/SampleGrid.h"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -112,6 +115,14 @@ inline void TransposeBits64(uint64_t m[64])
     }
   }
 }
+
+/// Writes the bits of `bits` (the voxels of `grid.Whole`) over `extent`, a sub-extent
+/// of it, as bytes 0 or 1, x fastest.
+void BitsToBytes(const BitVolume& bits,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* out,
+  const ParallelFor& parallelFor);
 
 } // namespace vtkdf
 

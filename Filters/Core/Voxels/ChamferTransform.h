@@ -11,8 +11,8 @@
 #ifndef vtkdf_ChamferTransform_h
 #define vtkdf_ChamferTransform_h
 
-#include "Voxels/BitVolume.h"
 #include "Common/Parallel.h"
+#include "Voxels/BitVolume.h"
 
 #include <cstdint>
 

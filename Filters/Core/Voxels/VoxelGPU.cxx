@@ -1,5 +1,7 @@
 #include "Voxels/VoxelGPU.h"
 
+#include "GL/GridUniforms.h"
+
 #include "ChamferLayer_comp.h"
 #include "ChamferSeed_comp.h"
 #include "GL/GLFunctions.h"
@@ -372,9 +374,7 @@ bool VoxelizeToLanes(HeadlessGL& context,
     gl.Uniform1i(Uniform(gl, raster, "Nc"), n[c]);
     gl.Uniform1i(Uniform(gl, raster, "Na"), n[a]);
     gl.Uniform3i(Uniform(gl, raster, "Axes"), a, b, c);
-    gl.Uniform3i(Uniform(gl, raster, "Lo"), whole.Lo[0], whole.Lo[1], whole.Lo[2]);
-    gl.Uniform3d(Uniform(gl, raster, "Origin"), grid.Origin[0], grid.Origin[1], grid.Origin[2]);
-    gl.Uniform3d(Uniform(gl, raster, "Spacing"), grid.Spacing[0], grid.Spacing[1], grid.Spacing[2]);
+    SetGridUniforms(gl, raster, grid, whole);
     gl.Uniform1d(Uniform(gl, raster, "Limit2"), limit2);
     gl.Uniform1d(Uniform(gl, raster, "Reach"), BoundaryReach(grid, a));
     gl.Viewport(0, 0, n[b], n[c]);
@@ -452,7 +452,7 @@ bool VoxelizeToLanes(HeadlessGL& context,
   {
     solidZ->Bind(7, GL_WRITE_ONLY);
   }
-  gl.Uniform3i(Uniform(gl, combine, "Dims"), n[0], n[1], n[2]);
+  SetGridUniforms(gl, combine, grid, whole);
   gl.Uniform1i(Uniform(gl, combine, "WantBoundary"), boundaryZ != nullptr);
   gl.Uniform1i(Uniform(gl, combine, "WantSolid"), solidZ != nullptr);
   gl.DispatchCompute((n[0] + 7) / 8, (n[1] + 7) / 8, (n[2] + 127) / 128);
@@ -626,7 +626,7 @@ bool ChamferGPU(HeadlessGL& context,
   gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeros), zeros);
   gl.UseProgram(seed);
   boundaryZ.Bind(0, GL_READ_ONLY);
-  gl.Uniform3i(Uniform(gl, seed, "Dims"), nx, ny, nz);
+  SetGridUniforms(gl, seed, input.Grid, whole);
   gl.Uniform1i(Uniform(gl, seed, "Texels"), texels);
   gl.Uniform1i(Uniform(gl, seed, "Value"), 0);
   gl.Uniform1i(Uniform(gl, seed, "Negate"), 0);
@@ -674,7 +674,7 @@ bool ChamferGPU(HeadlessGL& context,
   Lanes* current = &first;
   Lanes* next = &second;
   gl.UseProgram(layer);
-  gl.Uniform3i(Uniform(gl, layer, "Dims"), nx, ny, nz);
+  SetGridUniforms(gl, layer, input.Grid, whole);
   gl.Uniform1i(Uniform(gl, layer, "Texels"), texels);
   gl.Uniform1i(Uniform(gl, layer, "Metric"), static_cast<int>(metric));
   const GLint layerLocation = Uniform(gl, layer, "Layer");

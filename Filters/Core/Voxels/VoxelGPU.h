@@ -6,11 +6,11 @@
 #ifndef vtkdf_VoxelGPU_h
 #define vtkdf_VoxelGPU_h
 
-#include "Voxels/BitVolume.h"
-#include "Voxels/ChamferTransform.h"
-#include "GL/HeadlessGL.h"
 #include "Common/MeshInput.h"
 #include "Common/SampleGrid.h"
+#include "GL/HeadlessGL.h"
+#include "Voxels/BitVolume.h"
+#include "Voxels/ChamferTransform.h"
 #include "Voxels/Voxelizer.h"
 
 #include <string>

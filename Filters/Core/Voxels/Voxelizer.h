@@ -20,10 +20,10 @@
 #ifndef vtkdf_Voxelizer_h
 #define vtkdf_Voxelizer_h
 
-#include "Voxels/BitVolume.h"
 #include "Common/MeshInput.h"
 #include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
+#include "Voxels/BitVolume.h"
 
 #include <string>
 

@@ -1,5 +1,7 @@
 #include "Winding/WindingSigns.h"
 
+#include "Winding/WindingSignsGPU.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -205,6 +207,27 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
   stats.Evaluated = evaluated.load();
   stats.Exact = exact.load();
   return stats;
+}
+
+bool ComputeWindingSigns(const std::vector<double>& points,
+  const std::vector<int64_t>& triangles,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* inside,
+  const WindingSignOptions& options,
+  HeadlessGL* gl,
+  const ParallelFor& parallelFor,
+  WindingSignStatistics& stats,
+  std::string& error)
+{
+  WindingNumber winding;
+  winding.Build(points, triangles);
+  if (gl)
+  {
+    return WindingSignsGPU(*gl, winding, grid, extent, inside, options, stats, error);
+  }
+  stats = WindingSigns(winding, grid, extent, inside, options, parallelFor);
+  return true;
 }
 
 } // namespace vtkdf

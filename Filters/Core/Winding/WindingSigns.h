@@ -20,9 +20,12 @@
 #include "Winding/WindingNumber.h"
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 namespace vtkdf
 {
+class HeadlessGL;
 
 struct WindingSignStatistics
 {
@@ -53,6 +56,20 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
   uint8_t* inside,
   const WindingSignOptions& options,
   const ParallelFor& parallelFor);
+
+/// The family's entry point: the hierarchy of `triangles` (3 ids each into xyz `points`)
+/// built, then WindingSigns on the CPU, or WindingSignsGPU when `gl` is given (which
+/// honours options.Value only). False and `error` when the GPU cannot run it.
+bool ComputeWindingSigns(const std::vector<double>& points,
+  const std::vector<int64_t>& triangles,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* inside,
+  const WindingSignOptions& options,
+  HeadlessGL* gl,
+  const ParallelFor& parallelFor,
+  WindingSignStatistics& stats,
+  std::string& error);
 
 } // namespace vtkdf
 

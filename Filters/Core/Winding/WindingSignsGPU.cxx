@@ -1,5 +1,7 @@
 #include "Winding/WindingSignsGPU.h"
 
+#include "GL/GridUniforms.h"
+
 #include "GL/GLFunctions.h"
 #include "WindingNumber_comp.h"
 
@@ -98,10 +100,7 @@ bool WindingSignsGPU(HeadlessGL& context,
 
   gl.UseProgram(program);
   auto uniform = [&](const char* name) { return gl.GetUniformLocation(program, name); };
-  gl.Uniform3i(uniform("Dims"), extent.Size(0), extent.Size(1), extent.Size(2));
-  gl.Uniform3i(uniform("Lo"), extent.Lo[0], extent.Lo[1], extent.Lo[2]);
-  gl.Uniform3d(uniform("Origin"), grid.Origin[0], grid.Origin[1], grid.Origin[2]);
-  gl.Uniform3d(uniform("Spacing"), grid.Spacing[0], grid.Spacing[1], grid.Spacing[2]);
+  SetGridUniforms(gl, program, grid, extent);
   gl.Uniform1i(uniform("TriangleCount"), static_cast<int>(winding.TriangleCount()));
   gl.Uniform1d(uniform("CoarseAccuracy"), WindingNumber::CoarseAccuracy);
   gl.Uniform1d(uniform("Accuracy"), winding.GetAccuracy());

@@ -1,0 +1,28 @@
+// GridUniforms: the sample grid as the shaders see it. A shader that samples a grid has
+// the line //DF::SampleGrid where Shaders/SampleGridUniforms.glsl's declarations go (HeadlessGL's
+// BuildProgram puts them there), and SetGridUniforms gives them their values, so that no
+// pass declares or sets them its own way.
+#ifndef vtkdf_GridUniforms_h
+#define vtkdf_GridUniforms_h
+
+#include "Common/SampleGrid.h"
+#include "GL/GLFunctions.h"
+
+#include <string>
+
+namespace vtkdf
+{
+
+/// Dims (the sizes of `extent`), Lo (its first sample index), Origin and Spacing (of
+/// `grid`) on `program`, which must be in use.
+void SetGridUniforms(const GLFunctions& gl,
+  GLuint program,
+  const SampleGrid& grid,
+  const IndexBox& extent);
+
+/// `source` with its //DF::SampleGrid line replaced by the declarations.
+std::string WithSampleGrid(const char* source);
+
+} // namespace vtkdf
+
+#endif

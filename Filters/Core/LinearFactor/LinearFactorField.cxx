@@ -1,0 +1,305 @@
+#include "LinearFactor/LinearFactorField.h"
+
+#include "GL/HeadlessGL.h"
+#include "LinearFactor/LinearFactorGPU.h"
+#include "LinearFactor/LinearFactorScan.h"
+#include "LinearFactor/MeshSites.h"
+#include "LinearFactor/RangeCulling.h"
+#include "Winding/WindingSigns.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vtkdf
+{
+
+namespace
+{
+/// The request in the grid's local frame, and the sites of the mesh moved there.
+struct LocalSites
+{
+  GridFrame Frame;
+  FieldRequest Request;
+  MeshSites Sites;
+};
+
+/// Moves `mesh` into the local frame of the request's grid and builds its sites there.
+/// The domains' slack is 1e-4 of the smallest spacing plus what the float planes need
+/// over the box that holds the mesh and the grid (MeshSites::PlaneSlack).
+bool BuildLocalSites(MeshInput& mesh,
+  const LinearFactorRequest& request,
+  const ParallelFor& parallelFor,
+  LocalSites& local,
+  std::string& error)
+{
+  if (!CheckGrid(request.Grid, mesh.Bounds.data(), error))
+  {
+    error = "Invalid input: " + error + ".";
+    return false;
+  }
+  local.Frame = GridFrame::For(request.Grid);
+  local.Request.Grid = local.Frame.Local(request.Grid);
+  local.Request.Extent = request.Extent;
+  if (request.MaximumDistance > 0)
+  {
+    local.Request.MaximumDistance = request.MaximumDistance / local.Frame.Scale;
+  }
+  MoveToLocalFrame(mesh, local.Frame, parallelFor);
+  // The planes are used between the mesh and the samples: the diagonal of the box that
+  // holds both bounds that distance.
+  const SampleGrid& grid = local.Request.Grid;
+  double diagonal2 = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double g0 = grid.Coordinate(a, grid.Whole.Lo[a]);
+    const double g1 = grid.Coordinate(a, grid.Whole.Hi[a]);
+    const double lo = std::min(std::min(g0, g1), local.Frame.ToLocal(a, mesh.Bounds[2 * a]));
+    const double hi = std::max(std::max(g0, g1), local.Frame.ToLocal(a, mesh.Bounds[2 * a + 1]));
+    diagonal2 += (hi - lo) * (hi - lo);
+  }
+  const double slack = MeshSites::PlaneSlack(1e-4 * grid.MinSpacing(), std::sqrt(diagonal2));
+  if (!local.Sites.Build(mesh, request.Domains, slack, error, parallelFor))
+  {
+    error = "Invalid input mesh: " + error + ".";
+    return false;
+  }
+  if (local.Sites.Sites.size() >= 0xffffffffu)
+  {
+    error =
+      "The mesh has " + std::to_string(local.Sites.Sites.size()) + " sites, more than 2^32 - 1.";
+    return false;
+  }
+  return true;
+}
+
+/// Inside or outside at every sample by the winding number (on the GPU when `gl` is
+/// given), the distances' signs set from it when `sign` says so, and w itself when asked
+/// for.
+bool WindingSign(const MeshInput& mesh,
+  SignMode sign,
+  const LocalSites& local,
+  HeadlessGL* gl,
+  const LinearFactorArrays& arrays,
+  const Execution& execution,
+  LinearFactorReport& report,
+  std::string& error)
+{
+  const int64_t n = local.Request.Extent.Count();
+  std::vector<uint8_t> inside(n);
+  WindingSignOptions options;
+  options.Value = arrays.WindingNumber;
+  // Unsigned still, in world units: blocks near the surface split without trying.
+  options.Distance = arrays.Distance;
+  options.DistanceScale = 1 / local.Frame.Scale;
+  WindingSignStatistics stats;
+  if (!ComputeWindingSigns(mesh.Points,
+        mesh.Triangles,
+        local.Request.Grid,
+        local.Request.Extent,
+        inside.data(),
+        options,
+        gl,
+        execution.For,
+        stats,
+        error))
+  {
+    error = "The GPU backend (" + gl->Renderer() + ") failed: " + error;
+    return false;
+  }
+  report.WindingBlockSamples = stats.BlockSamples;
+  report.WindingExactSamples = stats.Exact;
+  float* d = arrays.Distance;
+  if (d && sign == SignMode::WindingNumber)
+  {
+    execution.For(n,
+      65536,
+      [d, &inside](int64_t begin, int64_t end)
+      {
+        for (int64_t v = begin; v < end; ++v)
+        {
+          d[v] = inside[v] ? -std::fabs(d[v]) : std::fabs(d[v]);
+        }
+      });
+  }
+  return true;
+}
+} // namespace
+
+bool ComputeLinearFactorField(MeshInput mesh,
+  const LinearFactorRequest& request,
+  HeadlessGL* gl,
+  const LinearFactorArrays& arrays,
+  const Execution& execution,
+  LinearFactorReport& report,
+  std::string& error)
+{
+  report = LinearFactorReport();
+  const double accuracy = 1e-3 * request.Grid.MinSpacing();
+  if (request.MaximumDistance > 0 && request.MaximumDistance < accuracy)
+  {
+    error = "MaximumDistance (" + FormatNumber(request.MaximumDistance) +
+      ") is below the field's accuracy, 1e-3 of the smallest spacing (" + FormatNumber(accuracy) +
+      "): use 0 for no cap, or a larger one.";
+    return false;
+  }
+  LocalSites local;
+  if (!BuildLocalSites(mesh, request, execution.For, local, error))
+  {
+    return false;
+  }
+  if (local.Sites.Sites.empty())
+  {
+    report.NoUsableCell = true;
+    return true;
+  }
+  execution.EndStage("sites");
+  if (!execution.Report(0.0))
+  {
+    report.Aborted = true;
+    return true;
+  }
+
+  RangeCulling range;
+  range.ReachLevel = gl ? 0 : 1;
+  range.Build(local.Sites,
+    local.Request.Grid,
+    local.Request.Extent,
+    local.Request.MaximumDistance,
+    execution.For);
+  execution.EndStage("culling");
+  if (!execution.Report(0.1))
+  {
+    report.Aborted = true;
+    return true;
+  }
+
+  NearestSiteBuffer nearest;
+  nearest.Reset(local.Request.Extent.Count(), execution.For);
+  const ProgressCallback scanProgress = execution.Part(0.1, 0.9).Progress;
+  ScanStatistics stats;
+  if (gl)
+  {
+    if (!ScanSitesGPU(*gl, local.Sites, range, local.Request, nearest, scanProgress, stats, error))
+    {
+      error = "The GPU backend (" + gl->Renderer() + ") failed: " + error;
+      return false;
+    }
+  }
+  else
+  {
+    stats = ScanSitesCPU(local.Sites, range, local.Request, nearest, execution.For, scanProgress);
+  }
+  if (stats.Aborted)
+  {
+    report.Aborted = true;
+    return true;
+  }
+  execution.EndStage("scan");
+  report.Evaluations = stats.Evaluations;
+
+  FieldArrays field;
+  field.Frame = local.Frame;
+  field.Distance = arrays.Distance;
+  field.Signed = request.Sign == SignMode::PseudoNormal;
+  field.ClosestCellId = arrays.ClosestCellId;
+  field.ClosestFeature = arrays.ClosestFeature;
+  field.ClosestPoint = arrays.ClosestPoint;
+  Finalize(local.Sites, local.Request, nearest, field, execution.For);
+  execution.EndStage("finalize");
+  if ((request.Sign == SignMode::WindingNumber && arrays.Distance) || arrays.WindingNumber)
+  {
+    if (!WindingSign(mesh, request.Sign, local, gl, arrays, execution, report, error))
+    {
+      return false;
+    }
+    execution.EndStage("sign");
+  }
+  return true;
+}
+
+bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
+  MeshInput mesh,
+  const LinearFactorRequest& request,
+  const Execution& execution,
+  const std::function<bool(const GPUField&, std::string&)>& use,
+  LinearFactorReport& report,
+  std::string& error)
+{
+  report = LinearFactorReport();
+  LocalSites local;
+  if (!BuildLocalSites(mesh, request, execution.For, local, error))
+  {
+    return false;
+  }
+  if (local.Sites.Sites.empty())
+  {
+    report.NoUsableCell = true;
+    return true;
+  }
+  RangeCulling range;
+  range.ReachLevel = 0; // the GPU scan
+  range.Build(local.Sites, local.Request.Grid, local.Request.Extent, HUGE_VAL, execution.For);
+
+  HeadlessGL::Scope scope(gl);
+  if (!scope.Ok(error))
+  {
+    return false;
+  }
+  const GLFunctions& functions = gl.GL();
+  GPUField field;
+  field.Grid = local.Request.Grid;
+  field.Extent = local.Request.Extent;
+  field.Frame = local.Frame;
+  const int64_t samples = local.Request.Extent.Count();
+  GLuint buffers[3] = { 0, 0, 0 };
+  functions.GenBuffers(3, buffers);
+  const int64_t bytes[3] = { samples * 4, samples * 12, samples * 4 };
+  for (int b = 0; b < 3; ++b)
+  {
+    functions.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[b]);
+    functions.BufferData(GL_SHADER_STORAGE_BUFFER, bytes[b], nullptr, GL_DYNAMIC_COPY);
+  }
+  field.Distance = buffers[0];
+  field.ClosestPoint = buffers[1];
+  field.SiteIds = buffers[2];
+  NearestSiteBuffer unused;
+  ScanStatistics stats;
+  bool ok = ScanSitesGPU(
+    gl, local.Sites, range, local.Request, unused, execution.Progress, stats, error, field.SiteIds);
+  if (!ok)
+  {
+    error = "The GPU backend (" + gl.Renderer() + ") failed: " + error;
+  }
+  report.Evaluations = stats.Evaluations;
+  report.Aborted = stats.Aborted;
+  if (ok && !stats.Aborted)
+  {
+    ok = FinalizeGPU(gl,
+      local.Sites,
+      local.Request,
+      field.SiteIds,
+      request.Sign == SignMode::PseudoNormal,
+      field.Distance,
+      field.ClosestPoint,
+      error);
+    if (!ok)
+    {
+      error = "The GPU backend (" + gl.Renderer() + ") failed: " + error;
+    }
+    else
+    {
+      field.SiteCells.resize(local.Sites.Sites.size());
+      field.SiteTypes.resize(local.Sites.Sites.size());
+      for (size_t s = 0; s < local.Sites.Sites.size(); ++s)
+      {
+        field.SiteCells[s] = local.Sites.Sites[s].CellId;
+        field.SiteTypes[s] = local.Sites.Sites[s].Type;
+      }
+      ok = use(field, error);
+    }
+  }
+  functions.DeleteBuffers(3, buffers);
+  return ok;
+}
+
+} // namespace vtkdf

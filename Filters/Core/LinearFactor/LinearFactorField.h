@@ -1,0 +1,126 @@
+// LinearFactorField: the entry point of the linear factorization family. The exact
+// Euclidean distance field of a polygon mesh on a grid, after A. Sud, N. Govindaraju,
+// R. Gayle and D. Manocha, "Interactive 3D Distance Field Computation using Linear
+// Factorization", ACM Symposium on Interactive 3D Graphics and Games (I3D), 2006.
+//
+// The stages, each in its own file of this folder: the mesh's sites (vertices, edges,
+// triangles) and the convex domains that bound their Voronoi regions (MeshSites), the
+// regions of the grid where each site can still win (RangeCulling), the scan that keeps
+// every sample's nearest site (LinearFactorScan on the CPU, LinearFactorGPU on the GPU),
+// the arrays from the nearest sites in double precision (Finalize), and the sign
+// (pseudonormal at the closest feature, or the winding number, Winding/).
+//
+// Everything runs in the grid's local frame (SampleGrid.h, GridFrame), so that a mesh
+// and grid scaled by 2^k give the same numbers bit for bit; the arrays come out in world
+// units.
+#ifndef vtkdf_LinearFactorField_h
+#define vtkdf_LinearFactorField_h
+
+#include "Common/MeshInput.h"
+#include "Common/Parallel.h"
+#include "Common/SampleGrid.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vtkdf
+{
+class HeadlessGL;
+
+/// Which domains bound the sites' Voronoi regions.
+enum class Culling
+{
+  Auto,        // tightest exact domains for every site, whatever the topology
+  NonManifold, // triangle prism, edge slab, whole space for points
+  Manifold     // the paper's manifold domains where the neighbourhood is a closed manifold
+};
+
+enum class SignMode
+{
+  Unsigned,
+  PseudoNormal, // the angle-weighted pseudonormal of the closest feature
+  WindingNumber // inside where the generalized winding number has |w| > 1/2
+};
+
+struct LinearFactorRequest
+{
+  SampleGrid Grid; // world coordinates
+  IndexBox Extent; // the samples to compute, within Grid.Whole
+  Culling Domains = Culling::Auto;
+  SignMode Sign = SignMode::Unsigned;
+  /// A cap on the distances (a narrow band), in world units; 0: none.
+  double MaximumDistance = 0;
+};
+
+/// Where the field goes: any pointer may be null. Each array covers the request's
+/// Extent, x fastest; distances and points in world units.
+struct LinearFactorArrays
+{
+  float* Distance = nullptr;
+  int64_t* ClosestCellId = nullptr;  // the mesh's cell id of the closest site
+  uint8_t* ClosestFeature = nullptr; // 0 vertex, 1 edge, 2 face
+  float* ClosestPoint = nullptr;     // 3 per sample
+  float* WindingNumber = nullptr;    // the winding number w itself
+};
+
+struct LinearFactorReport
+{
+  /// The mesh has no cell the field can use: nothing was written.
+  bool NoUsableCell = false;
+  /// The host asked to abort (Execution::Progress): the arrays are incomplete.
+  bool Aborted = false;
+  /// Distance evaluations of the scan (per sample: the culling factor); -1 when the GPU
+  /// did not count them.
+  int64_t Evaluations = 0;
+  /// Samples whose winding sign a block decided, and samples decided by the exact sum.
+  int64_t WindingBlockSamples = 0;
+  int64_t WindingExactSamples = 0;
+};
+
+/// The field of `mesh` (world coordinates, Bounds filled; taken by value: it is moved
+/// into the grid's local frame in place) on the CPU, or on the GPU when `gl` is given.
+/// Stages: sites, culling, scan, finalize and, with a winding-number sign or value,
+/// sign. Progress runs from 0 to 0.9 (the scan from 0.1). False and `error` on invalid
+/// input (a grid that cannot carry float32 distances with the mesh, a bad mesh) or when
+/// the GPU fails.
+bool ComputeLinearFactorField(MeshInput mesh,
+  const LinearFactorRequest& request,
+  HeadlessGL* gl,
+  const LinearFactorArrays& arrays,
+  const Execution& execution,
+  LinearFactorReport& report,
+  std::string& error);
+
+/// The field as GL buffers on the GPU, for passes that read it where it lies (the medial
+/// axis, the segmented field's side labels): per sample of the extent (x fastest) the
+/// distance (float, the local frame's units), the closest point (3 floats, local frame)
+/// and the nearest site's index (int); per site, its cell id and type (0 vertex, 1 edge,
+/// 2 face).
+struct GPUField
+{
+  unsigned Distance = 0, ClosestPoint = 0, SiteIds = 0;
+  SampleGrid Grid; // the request's grid in the local frame
+  IndexBox Extent;
+  GridFrame Frame;
+  std::vector<int64_t> SiteCells;
+  std::vector<uint8_t> SiteTypes;
+};
+
+/// Computes the field of `mesh` on the GPU (request.Sign Unsigned or PseudoNormal, no
+/// MaximumDistance) and calls `use` with it while the context is current; the buffers
+/// are deleted afterwards. Progress (the scan's) and abort as ComputeLinearFactorField;
+/// `use` is not called when the run aborts. False and `error` on invalid input, a GPU
+/// failure, or when `use` returns false (with its error).
+bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
+  MeshInput mesh,
+  const LinearFactorRequest& request,
+  const Execution& execution,
+  const std::function<bool(const GPUField&, std::string&)>& use,
+  LinearFactorReport& report,
+  std::string& error);
+
+} // namespace vtkdf
+
+#endif

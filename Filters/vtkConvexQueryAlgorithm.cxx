@@ -1,0 +1,102 @@
+#include "vtkConvexQueryAlgorithm.h"
+
+#include "vtkDemandDrivenPipeline.h"
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+
+#include "GL/HeadlessGL.h"
+#include "vtkConvexPieces.h"
+#include "vtkDistanceFieldExecution.h"
+
+int vtkConvexQueryAlgorithm::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+  return 1;
+}
+
+vtkTypeBool vtkConvexQueryAlgorithm::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  return vtkdf::ProcessRequestOrEmpty(
+    this,
+    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()),
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); },
+    [this](unsigned long code) { this->SetErrorCode(code); });
+}
+
+int vtkConvexQueryAlgorithm::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector*)
+{
+  return this->CheckProperties() ? 1 : 0;
+}
+
+bool vtkConvexQueryAlgorithm::CheckProperties()
+{
+  if (this->Backend < BACKEND_AUTO || this->Backend > BACKEND_CPU)
+  {
+    vtkErrorMacro("Backend must be 0 (Auto), 1 (GPU) or 2 (CPU); it is " << this->Backend << ".");
+    return false;
+  }
+  return true;
+}
+
+bool vtkConvexQueryAlgorithm::ChooseBackend(vtkdf::HeadlessGL*& gl)
+{
+  std::string error;
+  if (!vtkdf::ChooseContext(this->Backend, gl, error))
+  {
+    vtkErrorMacro(<< error << ".");
+    return false;
+  }
+  this->LastBackend = gl ? BACKEND_GPU : BACKEND_CPU;
+  this->LastRenderer = gl ? gl->Renderer() : "cpu";
+  return true;
+}
+
+bool vtkConvexQueryAlgorithm::ReadPieces(vtkDataObject* input,
+  const char* solid,
+  int port,
+  vtkdf::ConvexPieceInput& pieces)
+{
+  std::string error;
+  if (!pieces.Read(input, this->PieceArray, this->UseConvexHulls, error))
+  {
+    if (solid)
+    {
+      vtkErrorMacro("Solid " << solid << " (input " << port << "): " << error);
+    }
+    else
+    {
+      vtkErrorMacro(<< error);
+    }
+    return false;
+  }
+  if (pieces.Hulls > 0)
+  {
+    vtkWarningMacro("UseConvexHulls: " << pieces.Hulls << " of " << pieces.Pieces.size()
+                                       << " pieces"
+                                       << (solid ? std::string(" of solid ") + solid : "")
+                                       << " were not closed and convex and were replaced by "
+                                          "their convex hulls.");
+  }
+  return true;
+}
+
+void vtkConvexQueryAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "PieceArray: " << (this->PieceArray.empty() ? "(none)" : this->PieceArray)
+     << "\n";
+  os << indent << "UseConvexHulls: " << this->UseConvexHulls << "\n";
+  os << indent << "Backend: " << this->Backend << "\n";
+  os << indent << "ViewResolution: " << this->ViewResolution << "\n";
+  os << indent << "Certify: " << this->Certify << "\n";
+  os << indent << "LastBackend: " << this->LastBackend << "\n";
+  os << indent << "LastRenderer: " << this->LastRenderer << "\n";
+  os << indent << "LastPasses: " << this->LastPasses << "\n";
+  os << indent << "LastFacesVisited: " << this->LastFacesVisited << "\n";
+}

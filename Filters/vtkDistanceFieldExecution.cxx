@@ -1,0 +1,122 @@
+#include "vtkDistanceFieldExecution.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkDataObject.h"
+#include "vtkErrorCode.h"
+#include "vtkSMPTools.h"
+#include "vtkSetGet.h"
+
+#include "GL/HeadlessGL.h"
+
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <new>
+#include <stdexcept>
+
+namespace vtkdf
+{
+
+bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error)
+{
+  gl = nullptr;
+  if (backend == BackendCPU)
+  {
+    return true;
+  }
+  std::string why;
+  HeadlessGL* context = HeadlessGL::Get(why);
+  if (backend == BackendGPU && !context)
+  {
+    error = "Backend is GPU but " + why;
+    return false;
+  }
+  gl = backend == BackendGPU || (context && !context->IsSoftware()) ? context : nullptr;
+  return true;
+}
+
+void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body)
+{
+  std::atomic<bool> failed{ false };
+  std::exception_ptr first;
+  std::mutex lock;
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(n),
+    static_cast<vtkIdType>(grain),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      if (failed.load(std::memory_order_relaxed))
+      {
+        return;
+      }
+      try
+      {
+        body(begin, end);
+      }
+      catch (...)
+      {
+        std::lock_guard<std::mutex> guard(lock);
+        if (!failed.exchange(true))
+        {
+          first = std::current_exception();
+        }
+      }
+    });
+  if (first)
+  {
+    std::rethrow_exception(first);
+  }
+}
+
+vtkTypeBool ProcessRequestOrEmpty(vtkAlgorithm* filter,
+  bool newRun,
+  const std::function<vtkTypeBool()>& process,
+  const std::function<void(unsigned long)>& setErrorCode)
+{
+  if (newRun)
+  {
+    setErrorCode(vtkErrorCode::NoError);
+  }
+  vtkTypeBool result = 0;
+  std::string failure;
+  try
+  {
+    result = process();
+  }
+  catch (const std::bad_alloc&)
+  {
+    failure = "Out of memory: an allocation failed (the grid or the mesh is too large for the "
+              "memory this process can get; MemoryLimit is checked against estimates).";
+  }
+  catch (const std::length_error& e)
+  {
+    failure = std::string("A buffer would exceed its largest size (") + e.what() +
+      "): the grid is too large.";
+  }
+  catch (const std::exception& e)
+  {
+    failure = std::string("Failed: ") + e.what();
+  }
+  if (!failure.empty())
+  {
+    vtkErrorWithObjectMacro(filter, << failure);
+  }
+  if (!result)
+  {
+    if (filter->GetErrorCode() == vtkErrorCode::NoError)
+    {
+      setErrorCode(vtkErrorCode::UserError);
+    }
+    // No output of a failed run may pass for a result.
+    for (int port = 0; port < filter->GetNumberOfOutputPorts(); ++port)
+    {
+      if (vtkDataObject* output = filter->GetOutputDataObject(port))
+      {
+        output->Initialize();
+      }
+    }
+  }
+  return result;
+}
+
+} // namespace vtkdf

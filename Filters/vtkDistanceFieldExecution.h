@@ -1,0 +1,51 @@
+// vtkDistanceFieldExecution: how the module's filters run the cores: vtkSMPTools behind
+// the cores' parallel loop, the GL context a Backend resolves to, and the failure rule
+// of every filter (an empty output and a non-zero error code). Private to the module
+// (not wrapped).
+#ifndef vtkDistanceFieldExecution_h
+#define vtkDistanceFieldExecution_h
+
+#include "vtkType.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+class vtkAlgorithm;
+
+namespace vtkdf
+{
+class HeadlessGL;
+
+/// The values of every filter's Backend property (each base class re-declares them as
+/// its BackendType, where VTK's wrapping finds them).
+enum BackendValue
+{
+  BackendAuto = 0, // the GPU when a hardware-accelerated context exists, else the CPU
+  BackendGPU = 1,  // the GPU, even a software rasterizer; an error when there is none
+  BackendCPU = 2   // the CPU
+};
+
+/// The GPU context for a Backend: `gl` is the context (GPU: any, even a software
+/// rasterizer; Auto: a hardware-accelerated one) or null for the CPU. False, with
+/// `error`, when Backend is GPU and there is no context.
+bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error);
+
+/// vtkSMPTools::For behind the cores' ParallelFor hook. An exception thrown by `body`
+/// (std::bad_alloc) stops the remaining chunks and is rethrown here, on the calling
+/// thread, whatever the SMP backend (a std::thread backend would otherwise terminate).
+void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body);
+
+/// A filter's ProcessRequest: `process` (its superclass's) run with every exception
+/// caught and reported (std::bad_alloc as out of memory). A failed request leaves every
+/// output empty and, when the filter set none, the error code UserError; a new run (the
+/// information request) starts from NoError. `setErrorCode` is the filter's own
+/// (protected) SetErrorCode.
+vtkTypeBool ProcessRequestOrEmpty(vtkAlgorithm* filter,
+  bool newRun,
+  const std::function<vtkTypeBool()>& process,
+  const std::function<void(unsigned long)>& setErrorCode);
+
+} // namespace vtkdf
+
+#endif

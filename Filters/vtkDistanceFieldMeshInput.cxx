@@ -1,0 +1,326 @@
+#include "vtkDistanceFieldMeshInput.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolygon.h"
+
+#include "vtkDistanceFieldExecution.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace vtkdf
+{
+
+namespace
+{
+/// The bounds of the points marked in `used`, or the first such point that is not
+/// finite (-1 when all are): one pass over the typed point array.
+struct UsedBoundsWorker
+{
+  const std::vector<uint8_t>* Used;
+  double* Bounds;
+  vtkIdType FirstBad = -1;
+
+  template<typename ArrayT>
+  void operator()(ArrayT* points)
+  {
+    const auto tuples = vtk::DataArrayTupleRange<3>(points);
+    const std::vector<uint8_t>& used = *this->Used;
+    vtkIdType id = 0;
+    for (const auto x : tuples)
+    {
+      if (used[id])
+      {
+        const double p[3] = {
+          static_cast<double>(x[0]), static_cast<double>(x[1]), static_cast<double>(x[2])
+        };
+        if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+        {
+          this->FirstBad = id;
+          return;
+        }
+        for (int a = 0; a < 3; ++a)
+        {
+          this->Bounds[2 * a] = std::min(this->Bounds[2 * a], p[a]);
+          this->Bounds[2 * a + 1] = std::max(this->Bounds[2 * a + 1], p[a]);
+        }
+      }
+      ++id;
+    }
+  }
+};
+
+/// The first cell (in the filters' numbering: verts, lines, polys, strips) using `point`.
+vtkIdType FirstCellUsing(vtkPolyData* input, vtkIdType point)
+{
+  vtkIdType cellId = 0;
+  for (vtkCellArray* cells :
+    { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+  {
+    vtkIdType count;
+    const vtkIdType* ids;
+    for (cells->InitTraversal(); cells->GetNextCell(count, ids); ++cellId)
+    {
+      if (std::find(ids, ids + count, point) != ids + count)
+      {
+        return cellId;
+      }
+    }
+  }
+  return -1;
+}
+} // namespace
+
+bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error)
+{
+  const vtkIdType numPoints = input->GetPoints() ? input->GetNumberOfPoints() : 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = VTK_DOUBLE_MAX;
+    bounds[2 * a + 1] = -VTK_DOUBLE_MAX;
+  }
+  // The ids first, checked before any point is read (a file may hold any number
+  // there); then each used point once, from the typed array.
+  std::vector<uint8_t> used(numPoints, 0);
+  bool any = false;
+  vtkIdType cellId = 0;
+  for (vtkCellArray* cells :
+    { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+  {
+    vtkIdType count;
+    const vtkIdType* ids;
+    for (cells->InitTraversal(); cells->GetNextCell(count, ids); ++cellId)
+    {
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        if (ids[i] < 0 || ids[i] >= numPoints)
+        {
+          error = "cell " + std::to_string(cellId) + " refers to point " + std::to_string(ids[i]) +
+            ", but the mesh has " + std::to_string(numPoints) + " points";
+          return false;
+        }
+        used[ids[i]] = 1;
+        any = true;
+      }
+    }
+  }
+  if (!any)
+  {
+    error = "no cell of the mesh uses a point";
+    return false;
+  }
+  UsedBoundsWorker worker{ &used, bounds };
+  vtkDataArray* points = input->GetPoints()->GetData();
+  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(points, worker))
+  {
+    worker(points); // other value types, through the vtkDataArray API
+  }
+  if (worker.FirstBad >= 0)
+  {
+    double x[3];
+    input->GetPoint(worker.FirstBad, x);
+    error = "point " + std::to_string(worker.FirstBad) + " (used by cell " +
+      std::to_string(FirstCellUsing(input, worker.FirstBad)) + ") has " +
+      (std::isnan(x[0] + x[1] + x[2]) ? "a NaN" : "an infinite") + " coordinate";
+    return false;
+  }
+  return true;
+}
+
+namespace
+{
+/// Appends the cells of `input` to `mesh`, in the filters' numbering.
+class CellCopy
+{
+public:
+  CellCopy(vtkPolyData* input, const GridFrame& frame, MeshInput& mesh, IgnoredCells& ignored)
+    : Input(input)
+    , Frame(frame)
+    , Mesh(mesh)
+    , Ignored(ignored)
+  {
+  }
+
+  void Run()
+  {
+    vtkIdType cellId = 0;
+    this->Vertices(cellId);
+    this->Lines(cellId);
+    this->Polygons(cellId);
+    this->Strips(cellId);
+  }
+
+private:
+  void Vertices(vtkIdType& cellId)
+  {
+    vtkIdType count;
+    const vtkIdType* ids;
+    vtkCellArray* verts = this->Input->GetVerts();
+    for (verts->InitTraversal(); verts->GetNextCell(count, ids); ++cellId)
+    {
+      this->Ignored.EmptyVertices += count == 0;
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        this->Mesh.Vertices.push_back(ids[i]);
+        this->Mesh.VertexCells.push_back(cellId);
+      }
+    }
+  }
+
+  void Lines(vtkIdType& cellId)
+  {
+    vtkIdType count;
+    const vtkIdType* ids;
+    vtkCellArray* lines = this->Input->GetLines();
+    for (lines->InitTraversal(); lines->GetNextCell(count, ids); ++cellId)
+    {
+      this->Ignored.ShortLines += count < 2;
+      for (vtkIdType i = 0; i + 1 < count; ++i)
+      {
+        this->Mesh.Segments.insert(this->Mesh.Segments.end(), { ids[i], ids[i + 1] });
+        this->Mesh.SegmentCells.push_back(cellId);
+      }
+    }
+  }
+
+  void Polygons(vtkIdType& cellId)
+  {
+    vtkIdType count;
+    const vtkIdType* ids;
+    vtkCellArray* polys = this->Input->GetPolys();
+    for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cellId)
+    {
+      if (count < 3)
+      {
+        ++this->Ignored.ShortPolygons;
+      }
+      else if (count == 3)
+      {
+        this->Triangle(ids[0], ids[1], ids[2], cellId);
+      }
+      else
+      {
+        this->Polygon(count, ids, cellId);
+      }
+    }
+  }
+
+  /// Concave polygons need an ear-cut; a fan covers what the ear-cut rejects.
+  void Polygon(vtkIdType count, const vtkIdType* ids, vtkIdType cellId)
+  {
+    this->Cut->GetPointIds()->SetNumberOfIds(count);
+    this->Cut->GetPoints()->SetNumberOfPoints(count);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      const double* world = &this->Mesh.Points[3 * ids[i]];
+      const double local[3] = { this->Frame.ToLocal(0, world[0]),
+        this->Frame.ToLocal(1, world[1]),
+        this->Frame.ToLocal(2, world[2]) };
+      this->Cut->GetPointIds()->SetId(i, i);
+      this->Cut->GetPoints()->SetPoint(i, local);
+    }
+    if (this->Cut->Triangulate(this->Triangles) &&
+      this->Triangles->GetNumberOfIds() == 3 * (count - 2))
+    {
+      for (vtkIdType t = 0; t < this->Triangles->GetNumberOfIds(); t += 3)
+      {
+        this->Triangle(ids[this->Triangles->GetId(t)],
+          ids[this->Triangles->GetId(t + 1)],
+          ids[this->Triangles->GetId(t + 2)],
+          cellId);
+      }
+    }
+    else
+    {
+      for (vtkIdType i = 1; i + 1 < count; ++i)
+      {
+        this->Triangle(ids[0], ids[i], ids[i + 1], cellId);
+      }
+    }
+  }
+
+  void Strips(vtkIdType& cellId)
+  {
+    vtkIdType count;
+    const vtkIdType* ids;
+    vtkCellArray* strips = this->Input->GetStrips();
+    for (strips->InitTraversal(); strips->GetNextCell(count, ids); ++cellId)
+    {
+      this->Ignored.ShortStrips += count < 3;
+      for (vtkIdType i = 0; i + 2 < count; ++i)
+      {
+        if (i % 2 == 0)
+        {
+          this->Triangle(ids[i], ids[i + 1], ids[i + 2], cellId);
+        }
+        else
+        {
+          this->Triangle(ids[i + 1], ids[i], ids[i + 2], cellId);
+        }
+      }
+    }
+  }
+
+  void Triangle(vtkIdType a, vtkIdType b, vtkIdType c, vtkIdType cell)
+  {
+    this->Mesh.Triangles.insert(this->Mesh.Triangles.end(), { a, b, c });
+    this->Mesh.TriangleCells.push_back(cell);
+  }
+
+  vtkPolyData* Input;
+  const GridFrame& Frame;
+  MeshInput& Mesh;
+  IgnoredCells& Ignored;
+  vtkNew<vtkPolygon> Cut;
+  vtkNew<vtkIdList> Triangles;
+};
+} // namespace
+
+void CopyMesh(vtkPolyData* input,
+  const double bounds[6],
+  const GridFrame& frame,
+  MeshInput& mesh,
+  IgnoredCells& ignored)
+{
+  mesh = MeshInput();
+  ignored = IgnoredCells();
+  std::copy(bounds, bounds + 6, mesh.Bounds.begin());
+  vtkPoints* points = input->GetPoints();
+  const vtkIdType numPoints = points ? points->GetNumberOfPoints() : 0;
+  mesh.Points.resize(3 * numPoints);
+  SMPFor(numPoints,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t i = begin; i < end; ++i)
+      {
+        points->GetPoint(i, &mesh.Points[3 * i]);
+      }
+    });
+  CellCopy(input, frame, mesh, ignored).Run();
+}
+
+std::string IgnoredCells::Sentence() const
+{
+  if (!this->ShortPolygons && !this->ShortLines && !this->ShortStrips && !this->EmptyVertices)
+  {
+    return std::string();
+  }
+  std::ostringstream text;
+  text << "Ignored cells it cannot use: " << this->ShortPolygons
+       << " polygons with fewer than 3 points, " << this->ShortLines
+       << " lines with fewer than 2 points, " << this->ShortStrips
+       << " triangle strips with fewer than 3 points, " << this->EmptyVertices
+       << " vertex cells without points. The other cells are used.";
+  return text.str();
+}
+
+} // namespace vtkdf

@@ -1,0 +1,54 @@
+#include "Subcommands.h"
+
+#include "Files.h"
+#include "Options.h"
+#include "SlicePictures.h"
+#include "vtkChamferVoxelDistance.h"
+
+#include "vtkImageData.h"
+#include "vtkNew.h"
+
+#include <string>
+
+namespace vtkdfcli
+{
+
+int Chamfer(int argc, char* argv[])
+{
+  CommonOptions common;
+  std::string metric = "chessboard18";
+  int layers = 0;
+  bool signedField = false;
+  ParseOptions(argc,
+    argv,
+    common,
+    { Text("--metric", metric), Count("--layers", layers), Flag("--signed", signedField) });
+  vtkNew<vtkChamferVoxelDistance> filter;
+  filter->SetInputData(ReadMeshOrImageOrExit(argv[2]));
+  Configure(filter, common);
+  if (metric == "manhattan")
+  {
+    filter->SetMetricToManhattan();
+  }
+  else if (metric == "chessboard26")
+  {
+    filter->SetMetricToChessboard26();
+  }
+  else if (metric != "chessboard18")
+  {
+    return Usage("--metric takes manhattan, chessboard18 or chessboard26");
+  }
+  if (layers < 0)
+  {
+    return Usage("--layers takes a count >= 0");
+  }
+  filter->SetMaximumLayers(layers);
+  filter->SetSigned(signedField);
+  filter->OutputMasksOn();
+  return Finish("chamfer",
+    filter,
+    common,
+    [&]() { return " layers=" + std::to_string(filter->GetLastLayers()); });
+}
+
+} // namespace vtkdfcli

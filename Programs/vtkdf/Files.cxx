@@ -1,0 +1,103 @@
+#include "Files.h"
+
+#include "Options.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkImageData.h"
+#include "vtkOBJReader.h"
+#include "vtkPLYReader.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataReader.h"
+#include "vtkSTLReader.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtkXMLMultiBlockDataReader.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include <cstdlib>
+
+namespace vtkdfcli
+{
+
+vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
+{
+  vtkSmartPointer<vtkPolyData> mesh;
+  auto run = [&](auto reader)
+  {
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    // A reader that failed (a missing, truncated or garbled file) says so in its error
+    // code; its output is then not the file's mesh.
+    mesh = reader->GetErrorCode() == 0 ? reader->GetOutput() : nullptr;
+  };
+  if (EndsWith(path, ".vtp"))
+  {
+    run(vtkSmartPointer<vtkXMLPolyDataReader>::New());
+  }
+  else if (EndsWith(path, ".vtk"))
+  {
+    run(vtkSmartPointer<vtkPolyDataReader>::New());
+  }
+  else if (EndsWith(path, ".ply"))
+  {
+    run(vtkSmartPointer<vtkPLYReader>::New());
+  }
+  else if (EndsWith(path, ".stl"))
+  {
+    run(vtkSmartPointer<vtkSTLReader>::New());
+  }
+  else if (EndsWith(path, ".obj"))
+  {
+    run(vtkSmartPointer<vtkOBJReader>::New());
+  }
+  return mesh;
+}
+
+vtkSmartPointer<vtkPolyData> ReadMeshOrExit(const std::string& input)
+{
+  vtkSmartPointer<vtkPolyData> mesh = ReadMesh(input);
+  // Some readers report a file they cannot parse only by an empty output.
+  if (!mesh || mesh->GetNumberOfPoints() == 0)
+  {
+    std::exit(Usage(("cannot read a mesh from " + input +
+      " (missing, unreadable, or no points; expected .vtp .vtk .ply .stl .obj)")
+                      .c_str()));
+  }
+  return mesh;
+}
+
+/// Convex pieces: a .vtm (one piece per leaf) or a mesh (its connected components).
+vtkSmartPointer<vtkDataObject> ReadPolytopesOrExit(const std::string& input)
+{
+  if (!EndsWith(input, ".vtm"))
+  {
+    return ReadMeshOrExit(input);
+  }
+  vtkNew<vtkXMLMultiBlockDataReader> reader;
+  reader->SetFileName(input.c_str());
+  reader->Update();
+  if (reader->GetErrorCode() || !reader->GetOutput())
+  {
+    std::exit(Usage(("cannot read " + input).c_str()));
+  }
+  return reader->GetOutput();
+}
+
+/// A .vti (an image of masks or a field) or a mesh.
+vtkSmartPointer<vtkDataObject> ReadMeshOrImageOrExit(const std::string& input)
+{
+  if (!EndsWith(input, ".vti"))
+  {
+    return ReadMeshOrExit(input);
+  }
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(input.c_str());
+  reader->Update();
+  if (reader->GetErrorCode() || !reader->GetOutput() ||
+    reader->GetOutput()->GetNumberOfPoints() == 0)
+  {
+    std::exit(
+      Usage(("cannot read an image from " + input + " (missing, unreadable or empty)").c_str()));
+  }
+  return reader->GetOutput();
+}
+
+} // namespace vtkdfcli

@@ -1,0 +1,92 @@
+#include "Subcommands.h"
+
+#include "Files.h"
+#include "Options.h"
+#include "SlicePictures.h"
+#include "vtkLinearFactorDistanceField.h"
+
+#include "vtkImageData.h"
+#include "vtkNew.h"
+
+#include <cstdio>
+
+namespace vtkdfcli
+{
+
+int Linfac(int argc, char* argv[])
+{
+  CommonOptions common;
+  std::string png, arrays = "distance,cellid", culling = "auto", sign;
+  double maxDistance = 0;
+  bool signedField = false;
+  ParseOptions(argc,
+    argv,
+    common,
+    { Flag("--signed", signedField),
+      Text("--sign", sign),
+      Text("--culling", culling),
+      Text("--arrays", arrays),
+      Number("--max-distance", maxDistance),
+      Text("--png", png) });
+  vtkNew<vtkLinearFactorDistanceField> filter;
+  filter->SetInputData(ReadMeshOrExit(argv[2]));
+  Configure(filter, common);
+  if (culling == "nonmanifold")
+  {
+    filter->SetCullingToNonManifold();
+  }
+  else if (culling == "manifold")
+  {
+    filter->SetCullingToManifold();
+  }
+  else if (culling != "auto")
+  {
+    return Usage("--culling takes auto, nonmanifold or manifold");
+  }
+  // --sign implies --signed; --signed alone is the pseudonormal sign.
+  if (sign == "winding")
+  {
+    filter->SetSignModeToWindingNumber();
+  }
+  else if (sign == "pseudonormal" || (sign.empty() && signedField))
+  {
+    filter->SetSignModeToPseudoNormal();
+  }
+  else if (!sign.empty())
+  {
+    return Usage("--sign takes pseudonormal or winding");
+  }
+  filter->SetComputeWindingNumber(arrays.find("winding") != std::string::npos);
+  filter->SetMaximumDistance(maxDistance);
+  filter->SetComputeDistance(arrays.find("distance") != std::string::npos);
+  filter->SetComputeClosestCellId(arrays.find("cellid") != std::string::npos);
+  filter->SetComputeClosestFeature(arrays.find("feature") != std::string::npos);
+  filter->SetComputeClosestPoint(arrays.find("point") != std::string::npos);
+  const int code = Finish("linfac",
+    filter,
+    common,
+    [&]()
+    {
+      char extra[64];
+      std::snprintf(extra, sizeof(extra), " culling_factor=%.3f", filter->GetLastCullingFactor());
+      if (filter->GetSignMode() == vtkLinearFactorDistanceField::WINDING_NUMBER)
+      {
+        char blocks[96];
+        std::snprintf(blocks,
+          sizeof(blocks),
+          " winding_block_samples=%lld winding_exact_samples=%lld",
+          static_cast<long long>(filter->GetLastWindingBlockSamples()),
+          static_cast<long long>(filter->GetLastWindingExactSamples()));
+        return std::string(extra) + blocks;
+      }
+      return std::string(extra);
+    });
+  if (code == 0 && !png.empty() && !WriteSlicePNG(filter->GetOutput(), png))
+  {
+    std::fprintf(stderr, "vtkdf: cannot write %s (it needs the distance array)\n", png.c_str());
+    return 1;
+  }
+  return code;
+}
+
+} // namespace vtkdfcli

@@ -1,0 +1,92 @@
+// QueryOptions: the options vtkdf union and vtkdf pd share.
+#ifndef vtkdf_QueryOptions_h
+#define vtkdf_QueryOptions_h
+
+#include "Options.h"
+
+#include <cstdlib>
+#include <string>
+
+namespace vtkdfcli
+{
+
+/// The options vtkdf union and vtkdf pd share: the output, the pieces, where the union
+/// query runs, --timing.
+struct QueryOptions
+{
+  std::string Output, PieceArray;
+  bool Timing = false, Hulls = false;
+  std::string Backend = "auto";
+  int Pixels = 256;
+  bool Uncertified = false;
+
+  /// The usage error for an option Parse did not take: a value missing, or unknown.
+  static std::string Refuse(const std::string& option)
+  {
+    for (const char* valued :
+      { "-o", "--piece-array", "--backend", "--pixels", "--query", "--queries" })
+    {
+      if (option == valued)
+      {
+        return option + (option == "--query" ? " needs three numbers" : " needs a value");
+      }
+    }
+    return "unknown option " + option;
+  }
+
+  /// Consumes argv[a] (and its value) when it is one of these options.
+  bool Parse(int argc, char* argv[], int& a)
+  {
+    const std::string option = argv[a];
+    if (option == "--uncertified" || option == "--timing" || option == "--convex-hulls")
+    {
+      (option == "--uncertified" ? this->Uncertified
+          : option == "--timing" ? this->Timing
+                                 : this->Hulls) = true;
+      return true;
+    }
+    if ((option == "-o" || option == "--piece-array") && a + 1 < argc)
+    {
+      (option == "-o" ? this->Output : this->PieceArray) = argv[++a];
+      return true;
+    }
+    if ((option == "--backend" || option == "--pixels") && a + 1 < argc)
+    {
+      if (option == "--backend")
+      {
+        this->Backend = argv[++a];
+      }
+      else
+      {
+        this->Pixels = ParseInt("--pixels", argv[++a]);
+      }
+      return true;
+    }
+    return false;
+  }
+
+  template<typename Filter>
+  void Apply(Filter* filter) const
+  {
+    if (this->Backend == "gpu")
+    {
+      filter->SetBackendToGPU();
+    }
+    else if (this->Backend == "cpu")
+    {
+      filter->SetBackendToCPU();
+    }
+    else if (this->Backend != "auto")
+    {
+      std::exit(Usage("--backend takes auto, gpu or cpu"));
+    }
+    filter->SetViewResolution(this->Pixels);
+    filter->SetCertify(!this->Uncertified);
+    filter->SetPieceArray(this->PieceArray.c_str());
+    filter->SetUseConvexHulls(this->Hulls);
+  }
+};
+
+} // namespace vtkdfcli
+
+#endif

@@ -1,0 +1,28 @@
+// Subcommands: vtkdf's subcommands, one file each; each takes main's arguments
+// (argv[1] is its name) and returns the exit status.
+#ifndef vtkdf_Subcommands_h
+#define vtkdf_Subcommands_h
+
+namespace vtkdfcli
+{
+/// vtkdf linfac (vtkLinearFactorDistanceField).
+int Linfac(int argc, char* argv[]);
+/// vtkdf voxelize (vtkPolyDataVoxelizer).
+int Voxelize(int argc, char* argv[]);
+/// vtkdf chamfer (vtkChamferVoxelDistance).
+int Chamfer(int argc, char* argv[]);
+/// vtkdf medial (vtkMedialAxisFilter).
+int Medial(int argc, char* argv[]);
+/// vtkdf segment (vtkSegmentedDistanceField).
+int Segment(int argc, char* argv[]);
+/// vtkdf blend (vtkDistanceFieldBlend).
+int Blend(int argc, char* argv[]);
+/// vtkdf union (vtkUnionClosestPoint).
+int Union(int argc, char* argv[]);
+/// vtkdf pd (vtkPenetrationDepth).
+int PenetrationDepth(int argc, char* argv[]);
+/// vtkdf render (vtkSegmentedDistanceVolumeMapper).
+int Render(int argc, char* argv[]);
+} // namespace vtkdfcli
+
+#endif

@@ -1,0 +1,38 @@
+#include "Subcommands.h"
+
+#include "Files.h"
+#include "Options.h"
+#include "SlicePictures.h"
+#include "vtkPolyDataVoxelizer.h"
+
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+
+namespace vtkdfcli
+{
+
+int Voxelize(int argc, char* argv[])
+{
+  CommonOptions common;
+  std::string mode = "both";
+  ParseOptions(argc, argv, common, { Text("--mode", mode) });
+  vtkNew<vtkPolyDataVoxelizer> filter;
+  filter->SetInputData(ReadMeshOrExit(argv[2]));
+  Configure(filter, common);
+  if (mode == "boundary")
+  {
+    filter->SetModeToBoundary();
+  }
+  else if (mode == "solid")
+  {
+    filter->SetModeToSolid();
+  }
+  else if (mode != "both")
+  {
+    return Usage("--mode takes boundary, solid or both");
+  }
+  return Finish("voxelize", filter, common);
+}
+
+} // namespace vtkdfcli
