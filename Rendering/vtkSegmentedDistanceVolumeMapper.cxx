@@ -750,55 +750,28 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   Internals& impl = *this->Impl;
   vtkVolumeProperty* property = volume->GetProperty();
   const bool surface = this->Mode == Surface;
-  impl.Field->SetContext(window);
-  impl.Scalars->SetContext(window);
-  impl.Table->SetContext(window);
-  impl.Colors->SetContext(window);
-  impl.Bricks->SetContext(window);
-  impl.ClosestPoints->SetContext(window);
-  impl.OpaqueDepth->SetContext(window);
+  for (vtkTextureObject* texture : { impl.Field.Get(),
+         impl.Scalars.Get(),
+         impl.Table.Get(),
+         impl.Colors.Get(),
+         impl.Bricks.Get(),
+         impl.ClosestPoints.Get(),
+         impl.OpaqueDepth.Get() })
+  {
+    texture->SetContext(window);
+  }
   if (surface ? !this->UpdateField(image)
               : !(this->UpdateScalars(image) && this->UpdateTable(property)))
   {
     return;
   }
-  int colorCount = 1;
-  if (surface)
-  {
-    this->LastRegionCount = impl.RegionCount;
-    this->LastSegmented = impl.Segmented;
-    // Region colours: one texel per region (cycling beyond the texture's width).
-    colorCount = std::max(1, std::min(impl.RegionCount, 4096));
-    if (!impl.Colors->GetHandle() || impl.ColorsTime < impl.ColorsModified ||
-      impl.ColorsTime < impl.FieldTime)
-    {
-      std::vector<float> rgb(3 * static_cast<size_t>(colorCount));
-      for (int r = 0; r < colorCount; ++r)
-      {
-        double c[3];
-        this->GetRegionColor(r, c);
-        std::copy(c, c + 3, rgb.begin() + 3 * r);
-      }
-      PrepareTexture(impl.Colors, vtkTextureObject::Nearest, GL_RGB32F, GL_RGB, GL_FLOAT);
-      impl.Colors->Create2DFromRaw(
-        static_cast<unsigned int>(colorCount), 1, 3, VTK_FLOAT, rgb.data());
-      impl.ColorsTime.Modified();
-    }
-  }
+  const int colorCount = surface ? this->UpdateRegionColors() : 1;
 
   // Index space -> world: the image's index-to-physical matrix, then the volume's.
   vtkNew<vtkMatrix4x4> indexToWorld;
   vtkMatrix4x4::Multiply4x4(
     volume->GetMatrix()->GetData(), impl.IndexToPhysical, indexToWorld->GetData());
-  vtkNew<vtkMatrix4x4> worldToIndex;
-  vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
-  // Gradients in index space (per index step) -> world normals: the inverse transpose of
-  // index-to-world's linear part.
-  double normalMatrix[3][3];
-  NormalMatrix(worldToIndex, normalMatrix);
-
   vtkCamera* camera = renderer->GetActiveCamera();
-  const bool parallel = camera->GetParallelProjection() != 0;
   Vec3 eye, viewDir;
   camera->GetPosition(eye.data());
   camera->GetDirectionOfProjection(viewDir.data());
@@ -810,18 +783,74 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   {
     return;
   }
-
-  // The program (through VTK's shader cache) and the vertices.
   vtkOpenGLHelper& helper = surface ? impl.Slices : impl.Composite;
-  // Both fragment shaders take the slab code they share in place of //DF::SlabCommon.
-  std::string fragment = surface ? SegmentedVolume_frag : PreIntegratedVolume_frag;
+  vtkShaderProgram* program = this->ReadyProgram(window, triangles, helper);
+  if (!program)
+  {
+    return;
+  }
+  this->SetViewUniforms(program, renderer, indexToWorld, eye.data(), viewDir.data(), spacing);
+  this->SetShadingUniforms(program, property);
+  const std::vector<vtkTextureObject*> active = surface
+    ? this->BindSurfaceTextures(program, volume, colorCount)
+    : this->BindCompositeTextures(program, renderer, window);
+  const GLsizei vertexCount = static_cast<GLsizei>(triangles.size() / 3);
+  if (surface)
+  {
+    this->DrawSurfaces(window, vertexCount);
+  }
+  else
+  {
+    this->DrawComposite(renderer, window, helper, vertexCount);
+  }
+  for (vtkTextureObject* texture : active)
+  {
+    texture->Deactivate();
+  }
+  helper.VAO->Release();
+  vtkOpenGLCheckErrorMacro("failed after drawing the slices");
+}
+
+int vtkSegmentedDistanceVolumeMapper::UpdateRegionColors()
+{
+  Internals& impl = *this->Impl;
+  this->LastRegionCount = impl.RegionCount;
+  this->LastSegmented = impl.Segmented;
+  // Region colours: one texel per region (cycling beyond the texture's width).
+  const int colorCount = std::max(1, std::min(impl.RegionCount, 4096));
+  if (!impl.Colors->GetHandle() || impl.ColorsTime < impl.ColorsModified ||
+    impl.ColorsTime < impl.FieldTime)
+  {
+    std::vector<float> rgb(3 * static_cast<size_t>(colorCount));
+    for (int r = 0; r < colorCount; ++r)
+    {
+      double c[3];
+      this->GetRegionColor(r, c);
+      std::copy(c, c + 3, rgb.begin() + 3 * r);
+    }
+    PrepareTexture(impl.Colors, vtkTextureObject::Nearest, GL_RGB32F, GL_RGB, GL_FLOAT);
+    impl.Colors->Create2DFromRaw(
+      static_cast<unsigned int>(colorCount), 1, 3, VTK_FLOAT, rgb.data());
+    impl.ColorsTime.Modified();
+  }
+  return colorCount;
+}
+
+vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRenderWindow* window,
+  const std::vector<float>& triangles,
+  vtkOpenGLHelper& helper)
+{
+  Internals& impl = *this->Impl;
+  // Through VTK's shader cache. Both fragment shaders take the slab code they share in
+  // place of //DF::SlabCommon.
+  std::string fragment = this->Mode == Surface ? SegmentedVolume_frag : PreIntegratedVolume_frag;
   vtkShaderProgram::Substitute(fragment, "//DF::SlabCommon", SlabCommon);
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(SegmentedVolume_vert, fragment.c_str(), "");
   if (!program)
   {
     vtkErrorMacro("Could not build the slice shader program");
-    return;
+    return nullptr;
   }
   if (program != helper.Program)
   {
@@ -835,9 +864,26 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   {
     vtkErrorMacro("Could not bind the slice vertices");
     helper.VAO->Release();
-    return;
+    return nullptr;
   }
+  return program;
+}
 
+void vtkSegmentedDistanceVolumeMapper::SetViewUniforms(vtkShaderProgram* program,
+  vtkRenderer* renderer,
+  vtkMatrix4x4* indexToWorld,
+  const double eye[3],
+  const double viewDir[3],
+  double spacing)
+{
+  Internals& impl = *this->Impl;
+  vtkNew<vtkMatrix4x4> worldToIndex;
+  vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
+  // Gradients in index space (per index step) -> world normals: the inverse transpose of
+  // index-to-world's linear part.
+  double normalMatrix[3][3];
+  NormalMatrix(worldToIndex, normalMatrix);
+  vtkCamera* camera = renderer->GetActiveCamera();
   vtkMatrix4x4 *worldToView, *viewToClip, *worldToClipT;
   vtkMatrix3x3* normals;
   static_cast<vtkOpenGLCamera*>(camera)->GetKeyMatrices(
@@ -854,195 +900,213 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   };
   program->SetUniform3f("eyeWC", eyeF);
   program->SetUniform3f("viewDirWC", dirF);
-  program->SetUniformi("parallelProjection", parallel ? 1 : 0);
+  program->SetUniformi("parallelProjection", camera->GetParallelProjection() != 0 ? 1 : 0);
   program->SetUniformf("sliceSpacing", static_cast<float>(spacing));
   const float dimsF[3] = { static_cast<float>(impl.Dims[0]),
     static_cast<float>(impl.Dims[1]),
     static_cast<float>(impl.Dims[2]) };
   program->SetUniform3f("gridSize", dimsF);
+}
+
+void vtkSegmentedDistanceVolumeMapper::SetShadingUniforms(vtkShaderProgram* program,
+  vtkVolumeProperty* property)
+{
   program->SetUniformi("shade", property->GetShade(0) ? 1 : 0);
   program->SetUniformf("ambient", static_cast<float>(property->GetAmbient(0)));
   program->SetUniformf("diffuse", static_cast<float>(property->GetDiffuse(0)));
   program->SetUniformf("specular", static_cast<float>(property->GetSpecular(0)));
   program->SetUniformf("specularPower", static_cast<float>(property->GetSpecularPower(0)));
+}
 
-  std::vector<vtkTextureObject*> active;
-  if (surface)
+std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindSurfaceTextures(
+  vtkShaderProgram* program,
+  vtkVolume* volume,
+  int colorCount)
+{
+  Internals& impl = *this->Impl;
+  const float spacingF[3] = { static_cast<float>(std::abs(impl.Spacing[0])),
+    static_cast<float>(std::abs(impl.Spacing[1])),
+    static_cast<float>(std::abs(impl.Spacing[2])) };
+  program->SetUniform3f("spacing", spacingF);
+  program->SetUniformi("interpolation", this->Interpolation);
+  program->SetUniformi("segmented", impl.Segmented ? 1 : 0);
+  program->SetUniformf("regionOffset", static_cast<float>(impl.RegionOffset));
+  program->SetUniformi("regionColorCount", colorCount);
+  program->SetUniformf("opacity", static_cast<float>(this->SurfaceOpacity));
+  std::vector<vtkTextureObject*> active = { impl.Field, impl.Colors, impl.Bricks };
+  const bool closestNormals = impl.HasClosestPoints && this->UseClosestPointNormals;
+  if (closestNormals)
   {
-    const float spacingF[3] = { static_cast<float>(std::abs(impl.Spacing[0])),
-      static_cast<float>(std::abs(impl.Spacing[1])),
-      static_cast<float>(std::abs(impl.Spacing[2])) };
-    program->SetUniform3f("spacing", spacingF);
-    program->SetUniformi("interpolation", this->Interpolation);
-    program->SetUniformi("segmented", impl.Segmented ? 1 : 0);
-    program->SetUniformf("regionOffset", static_cast<float>(impl.RegionOffset));
-    program->SetUniformi("regionColorCount", colorCount);
-    program->SetUniformf("opacity", static_cast<float>(this->SurfaceOpacity));
-    active = { impl.Field, impl.Colors, impl.Bricks };
-    const bool closestNormals = impl.HasClosestPoints && this->UseClosestPointNormals;
-    if (closestNormals)
-    {
-      active.push_back(impl.ClosestPoints);
-    }
-    for (vtkTextureObject* texture : active)
-    {
-      texture->Activate();
-    }
-    program->SetUniformi("field", impl.Field->GetTextureUnit());
-    program->SetUniformi("regionColors", impl.Colors->GetTextureUnit());
-    program->SetUniformi("bricks", impl.Bricks->GetTextureUnit());
-    program->SetUniformf("brickSize", static_cast<float>(BrickSize));
-    program->SetUniformi("useClosestPoint", closestNormals ? 1 : 0);
-    // Unused, the closest-point sampler names the field's unit (a 3D texture too; never
-    // read), so that no sampler is left on a unit of another texture type.
-    program->SetUniformi("closestPoints",
-      closestNormals ? impl.ClosestPoints->GetTextureUnit() : impl.Field->GetTextureUnit());
-    vtkNew<vtkMatrix4x4> indexToPhysical;
-    indexToPhysical->DeepCopy(impl.IndexToPhysical);
-    SetPlainMatrix(program, "indexToPhysical", indexToPhysical);
-    // Physical -> world normals: the inverse transpose of the volume matrix's linear part.
-    vtkNew<vtkMatrix4x4> worldToPhysical;
-    vtkMatrix4x4::Invert(volume->GetMatrix(), worldToPhysical);
-    double physicalNormal[3][3];
-    NormalMatrix(worldToPhysical, physicalNormal);
-    SetPlainMatrix(program, "physicalToWorldNormal", physicalNormal);
-  }
-  else
-  {
-    // The opaque geometry's depth, captured before the volume is drawn, cuts the slabs.
-    int width, height, x0, y0;
-    renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-    if (!impl.OpaqueDepth->GetHandle() || impl.DepthSize[0] != width || impl.DepthSize[1] != height)
-    {
-      impl.OpaqueDepth->ReleaseGraphicsResources(window);
-      impl.OpaqueDepth->SetContext(window);
-      PrepareTexture(impl.OpaqueDepth, vtkTextureObject::Nearest);
-      impl.OpaqueDepth->AllocateDepth(static_cast<unsigned int>(width),
-        static_cast<unsigned int>(height),
-        vtkTextureObject::Float32);
-      impl.DepthSize[0] = width;
-      impl.DepthSize[1] = height;
-    }
-    impl.OpaqueDepth->CopyFromFrameBuffer(x0, y0, 0, 0, width, height);
-    if (!impl.Accumulation->GetHandle() ||
-      static_cast<int>(impl.Accumulation->GetWidth()) != width ||
-      static_cast<int>(impl.Accumulation->GetHeight()) != height)
-    {
-      impl.Accumulation->ReleaseGraphicsResources(window);
-      impl.Accumulation->SetContext(window);
-      PrepareTexture(impl.Accumulation, vtkTextureObject::Nearest, GL_RGBA32F, GL_RGBA, GL_FLOAT);
-      impl.Accumulation->Allocate2D(
-        static_cast<unsigned int>(width), static_cast<unsigned int>(height), 4, VTK_FLOAT);
-    }
-    impl.DepthSize[0] = width;
-    impl.DepthSize[1] = height;
-    // The slabs go into the float target, whose pixels start at the viewport's corner.
-    const int origin[2] = { 0, 0 };
-    program->SetUniform2i("viewportOrigin", origin);
-    program->SetUniformi("useOpaqueDepth", 1);
-    const float range[2] = { static_cast<float>(impl.ScalarRange[0]),
-      static_cast<float>(impl.ScalarRange[1]) };
-    program->SetUniform2f("scalarRange", range);
-    program->SetUniformf("tableSize", static_cast<float>(this->PreIntegrationTableSize));
-    active = { impl.Scalars, impl.Table, impl.OpaqueDepth };
-    for (vtkTextureObject* texture : active)
-    {
-      texture->Activate();
-    }
-    program->SetUniformi("scalars", impl.Scalars->GetTextureUnit());
-    program->SetUniformi("preIntegrated", impl.Table->GetTextureUnit());
-    program->SetUniformi("opaqueDepth", impl.OpaqueDepth->GetTextureUnit());
-  }
-
-  vtkOpenGLState* state = window->GetState();
-  const GLsizei vertexCount = static_cast<GLsizei>(triangles.size() / 3);
-  {
-    vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
-    vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
-    vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
-    vtkOpenGLState::ScopedglDepthMask depthMask(state);
-    vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
-    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
-    state->vtkglDisable(GL_CULL_FACE);
-    if (surface)
-    {
-      state->vtkglEnable(GL_DEPTH_TEST);
-      state->vtkglDepthFunc(GL_LEQUAL);
-      if (this->SurfaceOpacity >= 1.0)
-      {
-        state->vtkglDisable(GL_BLEND);
-        state->vtkglDepthMask(GL_TRUE);
-      }
-      else
-      {
-        // Premultiplied colours, back to front, depth-tested at the interface points.
-        state->vtkglEnable(GL_BLEND);
-        state->vtkglBlendFuncSeparate(
-          GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        state->vtkglDepthMask(GL_FALSE);
-      }
-      glDrawArrays(GL_TRIANGLES, 0, vertexCount);
-    }
-    else
-    {
-      // Slabs back to front into the float target (the shader tests them against the
-      // captured depth), ...
-      int width, height, x0, y0;
-      renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-      state->vtkglDisable(GL_DEPTH_TEST);
-      state->vtkglDepthMask(GL_FALSE);
-      state->vtkglEnable(GL_BLEND);
-      state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-      state->PushFramebufferBindings();
-      impl.Target->SetContext(window);
-      impl.Target->Bind();
-      impl.Target->AddColorAttachment(0, impl.Accumulation);
-      impl.Target->ActivateDrawBuffer(0);
-      {
-        vtkOpenGLState::ScopedglViewport viewport(state);
-        vtkOpenGLState::ScopedglClearColor clearColor(state);
-        state->vtkglViewport(0, 0, width, height);
-        state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-        state->vtkglClear(GL_COLOR_BUFFER_BIT);
-        glDrawArrays(GL_TRIANGLES, 0, vertexCount);
-      }
-      state->PopFramebufferBindings();
-      helper.VAO->Release();
-      // ... then the accumulated volume over the window, in one pass.
-      if (!impl.Blend)
-      {
-        impl.Blend.reset(new vtkOpenGLQuadHelper(window,
-          nullptr,
-          "//VTK::System::Dec\n"
-          "in vec2 texCoord;\n"
-          "uniform sampler2D accumulated;\n"
-          "//VTK::Output::Dec\n"
-          "void main() { gl_FragData[0] = texture(accumulated, texCoord); }\n",
-          ""));
-      }
-      else
-      {
-        window->GetShaderCache()->ReadyShaderProgram(impl.Blend->Program);
-      }
-      if (!impl.Blend->Program)
-      {
-        vtkErrorMacro("Could not build the compositing program");
-      }
-      else
-      {
-        impl.Accumulation->Activate();
-        impl.Blend->Program->SetUniformi("accumulated", impl.Accumulation->GetTextureUnit());
-        impl.Blend->Render();
-        impl.Accumulation->Deactivate();
-      }
-    }
+    active.push_back(impl.ClosestPoints);
   }
   for (vtkTextureObject* texture : active)
   {
-    texture->Deactivate();
+    texture->Activate();
   }
+  program->SetUniformi("field", impl.Field->GetTextureUnit());
+  program->SetUniformi("regionColors", impl.Colors->GetTextureUnit());
+  program->SetUniformi("bricks", impl.Bricks->GetTextureUnit());
+  program->SetUniformf("brickSize", static_cast<float>(BrickSize));
+  program->SetUniformi("useClosestPoint", closestNormals ? 1 : 0);
+  // Unused, the closest-point sampler names the field's unit (a 3D texture too; never
+  // read), so that no sampler is left on a unit of another texture type.
+  program->SetUniformi("closestPoints",
+    closestNormals ? impl.ClosestPoints->GetTextureUnit() : impl.Field->GetTextureUnit());
+  vtkNew<vtkMatrix4x4> indexToPhysical;
+  indexToPhysical->DeepCopy(impl.IndexToPhysical);
+  SetPlainMatrix(program, "indexToPhysical", indexToPhysical);
+  // Physical -> world normals: the inverse transpose of the volume matrix's linear part.
+  vtkNew<vtkMatrix4x4> worldToPhysical;
+  vtkMatrix4x4::Invert(volume->GetMatrix(), worldToPhysical);
+  double physicalNormal[3][3];
+  NormalMatrix(worldToPhysical, physicalNormal);
+  SetPlainMatrix(program, "physicalToWorldNormal", physicalNormal);
+  return active;
+}
+
+std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindCompositeTextures(
+  vtkShaderProgram* program,
+  vtkRenderer* renderer,
+  vtkOpenGLRenderWindow* window)
+{
+  Internals& impl = *this->Impl;
+  // The opaque geometry's depth, captured before the volume is drawn, cuts the slabs.
+  int width, height, x0, y0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  if (!impl.OpaqueDepth->GetHandle() || impl.DepthSize[0] != width || impl.DepthSize[1] != height)
+  {
+    impl.OpaqueDepth->ReleaseGraphicsResources(window);
+    impl.OpaqueDepth->SetContext(window);
+    PrepareTexture(impl.OpaqueDepth, vtkTextureObject::Nearest);
+    impl.OpaqueDepth->AllocateDepth(static_cast<unsigned int>(width),
+      static_cast<unsigned int>(height),
+      vtkTextureObject::Float32);
+    impl.DepthSize[0] = width;
+    impl.DepthSize[1] = height;
+  }
+  impl.OpaqueDepth->CopyFromFrameBuffer(x0, y0, 0, 0, width, height);
+  if (!impl.Accumulation->GetHandle() || static_cast<int>(impl.Accumulation->GetWidth()) != width ||
+    static_cast<int>(impl.Accumulation->GetHeight()) != height)
+  {
+    impl.Accumulation->ReleaseGraphicsResources(window);
+    impl.Accumulation->SetContext(window);
+    PrepareTexture(impl.Accumulation, vtkTextureObject::Nearest, GL_RGBA32F, GL_RGBA, GL_FLOAT);
+    impl.Accumulation->Allocate2D(
+      static_cast<unsigned int>(width), static_cast<unsigned int>(height), 4, VTK_FLOAT);
+  }
+  impl.DepthSize[0] = width;
+  impl.DepthSize[1] = height;
+  // The slabs go into the float target, whose pixels start at the viewport's corner.
+  const int origin[2] = { 0, 0 };
+  program->SetUniform2i("viewportOrigin", origin);
+  program->SetUniformi("useOpaqueDepth", 1);
+  const float range[2] = { static_cast<float>(impl.ScalarRange[0]),
+    static_cast<float>(impl.ScalarRange[1]) };
+  program->SetUniform2f("scalarRange", range);
+  program->SetUniformf("tableSize", static_cast<float>(this->PreIntegrationTableSize));
+  std::vector<vtkTextureObject*> active = { impl.Scalars, impl.Table, impl.OpaqueDepth };
+  for (vtkTextureObject* texture : active)
+  {
+    texture->Activate();
+  }
+  program->SetUniformi("scalars", impl.Scalars->GetTextureUnit());
+  program->SetUniformi("preIntegrated", impl.Table->GetTextureUnit());
+  program->SetUniformi("opaqueDepth", impl.OpaqueDepth->GetTextureUnit());
+  return active;
+}
+
+void vtkSegmentedDistanceVolumeMapper::DrawSurfaces(vtkOpenGLRenderWindow* window,
+  GLsizei vertexCount)
+{
+  vtkOpenGLState* state = window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthFunc(GL_LEQUAL);
+  if (this->SurfaceOpacity >= 1.0)
+  {
+    state->vtkglDisable(GL_BLEND);
+    state->vtkglDepthMask(GL_TRUE);
+  }
+  else
+  {
+    // Premultiplied colours, back to front, depth-tested at the interface points.
+    state->vtkglEnable(GL_BLEND);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    state->vtkglDepthMask(GL_FALSE);
+  }
+  glDrawArrays(GL_TRIANGLES, 0, vertexCount);
+}
+
+void vtkSegmentedDistanceVolumeMapper::DrawComposite(vtkRenderer* renderer,
+  vtkOpenGLRenderWindow* window,
+  vtkOpenGLHelper& helper,
+  GLsizei vertexCount)
+{
+  Internals& impl = *this->Impl;
+  vtkOpenGLState* state = window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  state->vtkglDisable(GL_CULL_FACE);
+  // Slabs back to front into the float target (the shader tests them against the
+  // captured depth), ...
+  int width, height, x0, y0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  state->PushFramebufferBindings();
+  impl.Target->SetContext(window);
+  impl.Target->Bind();
+  impl.Target->AddColorAttachment(0, impl.Accumulation);
+  impl.Target->ActivateDrawBuffer(0);
+  {
+    vtkOpenGLState::ScopedglViewport viewport(state);
+    vtkOpenGLState::ScopedglClearColor clearColor(state);
+    state->vtkglViewport(0, 0, width, height);
+    state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    state->vtkglClear(GL_COLOR_BUFFER_BIT);
+    glDrawArrays(GL_TRIANGLES, 0, vertexCount);
+  }
+  state->PopFramebufferBindings();
   helper.VAO->Release();
-  vtkOpenGLCheckErrorMacro("failed after drawing the slices");
+  // ... then the accumulated volume over the window, in one pass.
+  if (!impl.Blend)
+  {
+    impl.Blend.reset(new vtkOpenGLQuadHelper(window,
+      nullptr,
+      "//VTK::System::Dec\n"
+      "in vec2 texCoord;\n"
+      "uniform sampler2D accumulated;\n"
+      "//VTK::Output::Dec\n"
+      "void main() { gl_FragData[0] = texture(accumulated, texCoord); }\n",
+      ""));
+  }
+  else
+  {
+    window->GetShaderCache()->ReadyShaderProgram(impl.Blend->Program);
+  }
+  if (!impl.Blend->Program)
+  {
+    vtkErrorMacro("Could not build the compositing program");
+  }
+  else
+  {
+    impl.Accumulation->Activate();
+    impl.Blend->Program->SetUniformi("accumulated", impl.Accumulation->GetTextureUnit());
+    impl.Blend->Render();
+    impl.Accumulation->Deactivate();
+  }
 }
 
 std::vector<float> vtkSegmentedDistanceVolumeMapper::SlicePolygons(vtkMatrix4x4* indexToWorld,

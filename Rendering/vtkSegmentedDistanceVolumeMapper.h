@@ -68,6 +68,10 @@
 class vtkDataArray;
 class vtkImageData;
 class vtkMatrix4x4;
+class vtkOpenGLHelper;
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+class vtkTextureObject;
 class vtkVolumeProperty;
 class vtkRenderer;
 class vtkVolume;
@@ -208,6 +212,30 @@ private:
     const double viewDir[3],
     double& spacing);
   std::string ArraySelectionKey() const;
+  // Render's steps: the regions' colours (their count), the program with the slices'
+  // vertices, the uniforms, the textures each mode reads, and each mode's drawing.
+  int UpdateRegionColors();
+  vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* window,
+    const std::vector<float>& triangles,
+    vtkOpenGLHelper& helper);
+  void SetViewUniforms(vtkShaderProgram* program,
+    vtkRenderer* renderer,
+    vtkMatrix4x4* indexToWorld,
+    const double eye[3],
+    const double viewDir[3],
+    double spacing);
+  static void SetShadingUniforms(vtkShaderProgram* program, vtkVolumeProperty* property);
+  std::vector<vtkTextureObject*> BindSurfaceTextures(vtkShaderProgram* program,
+    vtkVolume* volume,
+    int colorCount);
+  std::vector<vtkTextureObject*> BindCompositeTextures(vtkShaderProgram* program,
+    vtkRenderer* renderer,
+    vtkOpenGLRenderWindow* window);
+  void DrawSurfaces(vtkOpenGLRenderWindow* window, int vertexCount);
+  void DrawComposite(vtkRenderer* renderer,
+    vtkOpenGLRenderWindow* window,
+    vtkOpenGLHelper& helper,
+    int vertexCount);
 };
 
 #endif

@@ -40,8 +40,10 @@ run_cases() {
     args=$(sed -E 's/^[^|]*\|[[:space:]]*//' <<<"$line")
     args=${args//DATA/$root/Testing/Data}
     args=${args//OUT/$out}
+    local run=()
+    [[ $name == render* ]] && run=(xvfb-run -a -s "-screen 0 1280x1024x24")
     # shellcheck disable=SC2086
-    if ! "$vtkdf" $args >"$out/../$name.$(basename "$out").log" 2>&1; then
+    if ! "${run[@]}" "$vtkdf" $args >"$out/../$name.$(basename "$out").log" 2>&1; then
       echo "$name: vtkdf failed ($vtkdf)"
       cat "$out/../$name.$(basename "$out").log"
       return 1
