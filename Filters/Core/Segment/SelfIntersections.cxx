@@ -189,23 +189,21 @@ void RefineGroup(const std::vector<Point>& points,
     out.Parent.push_back(t);
   }
 }
-} // namespace
 
-bool CutSelfIntersections(const std::vector<double>& points,
-  const std::vector<int64_t>& triangles,
-  SelfIntersectionCut& out,
-  std::string& error)
+/// The triangles as CGAL takes them: one point per position (the used points sorted by
+/// position), the triangles with area, each once (their sorted id triples sorted, the
+/// first of each kept; a repeat is passed through uncut).
+struct Soup
 {
-  out = SelfIntersectionCut();
-  error.clear();
-  const QuietCGAL quiet;
-  const int64_t triangleCount = static_cast<int64_t>(triangles.size() / 3);
+  std::vector<Point> Points;
+  std::vector<Triple> Polygons;
+  std::vector<int64_t> PolygonTriangle; // each polygon's input triangle
 
-  // One point per position (the used points sorted by position); the triangles with
-  // area, each once (their sorted id triples sorted, the first of each kept).
-  const int64_t pointCount = static_cast<int64_t>(points.size() / 3);
-  std::vector<int64_t> used;
+  Soup(const std::vector<double>& points, const std::vector<int64_t>& triangles)
   {
+    const int64_t triangleCount = static_cast<int64_t>(triangles.size() / 3);
+    const int64_t pointCount = static_cast<int64_t>(points.size() / 3);
+    std::vector<int64_t> used;
     std::vector<uint8_t> isUsed(pointCount, 0);
     for (const int64_t id : triangles)
     {
@@ -218,64 +216,69 @@ bool CutSelfIntersections(const std::vector<double>& points,
         used.push_back(p);
       }
     }
-  }
-  std::sort(used.begin(),
-    used.end(),
-    [&](int64_t a, int64_t b)
+    std::sort(used.begin(),
+      used.end(),
+      [&](int64_t a, int64_t b)
+      {
+        const Position pa = At(points, a), pb = At(points, b);
+        return pa != pb ? pa < pb : a < b;
+      });
+    std::vector<size_t> soupId(pointCount, 0);
+    for (size_t i = 0; i < used.size(); ++i)
     {
-      const Position pa = At(points, a), pb = At(points, b);
-      return pa != pb ? pa < pb : a < b;
-    });
-  std::vector<size_t> soupId(pointCount, 0);
-  std::vector<Point> soupPoints;
-  for (size_t i = 0; i < used.size(); ++i)
-  {
-    const Position p = At(points, used[i]);
-    if (i == 0 || p != At(points, used[i - 1]))
-    {
-      soupPoints.emplace_back(p[0], p[1], p[2]);
+      const Position p = At(points, used[i]);
+      if (i == 0 || p != At(points, used[i - 1]))
+      {
+        this->Points.emplace_back(p[0], p[1], p[2]);
+      }
+      soupId[used[i]] = this->Points.size() - 1;
     }
-    soupId[used[i]] = soupPoints.size() - 1;
-  }
-  std::vector<std::pair<Triple, int64_t>> candidates;
-  for (int64_t t = 0; t < triangleCount; ++t)
-  {
-    Triple sorted = {
-      soupId[triangles[3 * t]], soupId[triangles[3 * t + 1]], soupId[triangles[3 * t + 2]]
-    };
-    std::sort(sorted.begin(), sorted.end());
-    if (sorted[0] != sorted[1] && sorted[1] != sorted[2] &&
-      !CGAL::collinear(soupPoints[sorted[0]], soupPoints[sorted[1]], soupPoints[sorted[2]]))
+    std::vector<std::pair<Triple, int64_t>> candidates;
+    for (int64_t t = 0; t < triangleCount; ++t)
     {
-      candidates.emplace_back(sorted, t);
+      Triple sorted = {
+        soupId[triangles[3 * t]], soupId[triangles[3 * t + 1]], soupId[triangles[3 * t + 2]]
+      };
+      std::sort(sorted.begin(), sorted.end());
+      if (sorted[0] != sorted[1] && sorted[1] != sorted[2] &&
+        !CGAL::collinear(this->Points[sorted[0]], this->Points[sorted[1]], this->Points[sorted[2]]))
+      {
+        candidates.emplace_back(sorted, t);
+      }
     }
-  }
-  std::sort(candidates.begin(), candidates.end());
-  std::vector<uint8_t> isPolygon(triangleCount, 0);
-  for (size_t i = 0; i < candidates.size(); ++i)
-  {
-    if (i == 0 || candidates[i].first != candidates[i - 1].first)
+    std::sort(candidates.begin(), candidates.end());
+    std::vector<uint8_t> isPolygon(triangleCount, 0);
+    for (size_t i = 0; i < candidates.size(); ++i)
     {
-      isPolygon[candidates[i].second] = 1; // a repeat is passed through
+      if (i == 0 || candidates[i].first != candidates[i - 1].first)
+      {
+        isPolygon[candidates[i].second] = 1;
+      }
     }
-  }
-  std::vector<Triple> polygons;
-  std::vector<int64_t> polygonTriangle;
-  for (int64_t t = 0; t < triangleCount; ++t)
-  {
-    if (isPolygon[t])
+    for (int64_t t = 0; t < triangleCount; ++t)
     {
-      polygons.push_back(
-        { soupId[triangles[3 * t]], soupId[triangles[3 * t + 1]], soupId[triangles[3 * t + 2]] });
-      polygonTriangle.push_back(t);
+      if (isPolygon[t])
+      {
+        this->Polygons.push_back(
+          { soupId[triangles[3 * t]], soupId[triangles[3 * t + 1]], soupId[triangles[3 * t + 2]] });
+        this->PolygonTriangle.push_back(t);
+      }
     }
   }
+};
 
-  // The crossing pairs: triangles whose boxes meet, that share no point and that
-  // intersect (an exact predicate). Each group of crossing triangles (joined by crossings
-  // and shared points) is refined on its own, so that non-manifold edges elsewhere, which
-  // CGAL's halfedge mesh would have to duplicate and its refinement then trips over, do
-  // not matter, and a group CGAL refuses leaves the others cut.
+/// The groups of crossing polygons: the crossing pairs are polygons whose boxes meet,
+/// that share no point and that intersect (an exact predicate); a group holds the
+/// polygons joined by crossings and shared points. Each group is refined on its own, so
+/// that non-manifold edges elsewhere, which CGAL's halfedge mesh would have to duplicate
+/// and its refinement then trips over, do not matter, and a group CGAL refuses leaves the
+/// others cut. False and `error` when the search fails.
+bool FindCrossingGroups(const Soup& soup,
+  std::map<size_t, std::vector<size_t>>& groups,
+  std::string& error)
+{
+  const std::vector<Triple>& polygons = soup.Polygons;
+  const std::vector<Point>& points = soup.Points;
   using Box = CGAL::Box_intersection_d::
     Box_with_info_d<double, 3, size_t, CGAL::Box_intersection_d::ID_EXPLICIT>;
   std::vector<Box> boxes;
@@ -283,8 +286,7 @@ bool CutSelfIntersections(const std::vector<double>& points,
   for (size_t i = 0; i < polygons.size(); ++i)
   {
     const Triple& q = polygons[i];
-    boxes.emplace_back(
-      soupPoints[q[0]].bbox() + soupPoints[q[1]].bbox() + soupPoints[q[2]].bbox(), i);
+    boxes.emplace_back(points[q[0]].bbox() + points[q[1]].bbox() + points[q[2]].bbox(), i);
   }
   std::vector<uint8_t> crossing(polygons.size(), 0);
   std::vector<size_t> group(polygons.size());
@@ -300,8 +302,8 @@ bool CutSelfIntersections(const std::vector<double>& points,
         return; // neighbours: they meet where they share
       }
     }
-    if (CGAL::do_intersect(Kernel::Triangle_3(soupPoints[p[0]], soupPoints[p[1]], soupPoints[p[2]]),
-          Kernel::Triangle_3(soupPoints[q[0]], soupPoints[q[1]], soupPoints[q[2]])))
+    if (CGAL::do_intersect(Kernel::Triangle_3(points[p[0]], points[p[1]], points[p[2]]),
+          Kernel::Triangle_3(points[q[0]], points[q[1]], points[q[2]])))
     {
       crossing[a.info()] = crossing[b.info()] = 1;
       group[Root(group, a.info())] = Root(group, b.info());
@@ -328,7 +330,6 @@ bool CutSelfIntersections(const std::vector<double>& points,
       }
     }
   }
-  std::map<size_t, std::vector<size_t>> groups;
   for (size_t i = 0; i < polygons.size(); ++i)
   {
     if (crossing[i])
@@ -336,22 +337,31 @@ bool CutSelfIntersections(const std::vector<double>& points,
       groups[Root(group, i)].push_back(i);
     }
   }
+  return true;
+}
 
-  std::vector<uint8_t> wasCut(triangleCount, 0);
-  std::vector<uint8_t> refined(triangleCount, 0);
+/// Refines every group into `out` (in CGAL's order); a group CGAL refuses is counted
+/// and left uncut. `refined` marks the input triangles of the groups that were refined,
+/// `wasCut` those the refinement cut.
+void RefineGroups(const Soup& soup,
+  const std::map<size_t, std::vector<size_t>>& groups,
+  std::vector<uint8_t>& wasCut,
+  std::vector<uint8_t>& refined,
+  SelfIntersectionCut& out)
+{
   for (const auto& g : groups)
   {
     std::vector<Triple> members;
     std::vector<int64_t> memberTriangle;
     for (const size_t i : g.second)
     {
-      members.push_back(polygons[i]);
-      memberTriangle.push_back(polygonTriangle[i]);
+      members.push_back(soup.Polygons[i]);
+      memberTriangle.push_back(soup.PolygonTriangle[i]);
     }
     const size_t pointsBefore = out.Points.size(), trianglesBefore = out.Triangles.size();
     try
     {
-      RefineGroup(soupPoints, members, memberTriangle, wasCut, out);
+      RefineGroup(soup.Points, members, memberTriangle, wasCut, out);
     }
     catch (const std::exception& e)
     {
@@ -378,23 +388,19 @@ bool CutSelfIntersections(const std::vector<double>& points,
     }
   }
   out.CrossingGroups = static_cast<int64_t>(groups.size());
-  for (const uint8_t c : wasCut)
-  {
-    out.CutTriangles += c;
-  }
-  if (!out.Cut())
-  {
-    out.Points.clear();
-    out.Triangles.clear();
-    out.Parent.clear();
-    return true;
-  }
-  // The output in a canonical order, so that it depends on the geometry alone (CGAL's
-  // refinement orders its faces by what it met first, which varies from run to run, and
-  // the patches' and regions' numbers follow the triangles' order): every triangle in
-  // its input triangle's place; the pieces of a cut one sorted by their corners (each
-  // rotated to start at its least corner, orientation kept), with three new points each
-  // after the input's points, which the others keep.
+}
+
+/// The output in a canonical order, so that it depends on the geometry alone (CGAL's
+/// refinement orders its faces by what it met first, which varies from run to run, and
+/// the patches' and regions' numbers follow the triangles' order): every triangle in its
+/// input triangle's place; the pieces of a cut one sorted by their corners (each rotated
+/// to start at its least corner, orientation kept), with three new points each after the
+/// input's points, which the others keep.
+void CanonicalOrder(const std::vector<double>& points,
+  const std::vector<int64_t>& triangles,
+  const std::vector<uint8_t>& refined,
+  SelfIntersectionCut& out)
+{
   struct Piece
   {
     int64_t Parent;
@@ -422,6 +428,7 @@ bool CutSelfIntersections(const std::vector<double>& points,
   out.Triangles.clear();
   out.Parent.clear();
   auto next = pieces.begin();
+  const int64_t triangleCount = static_cast<int64_t>(triangles.size() / 3);
   for (int64_t t = 0; t < triangleCount; ++t)
   {
     if (!refined[t])
@@ -440,6 +447,38 @@ bool CutSelfIntersections(const std::vector<double>& points,
       out.Parent.push_back(t);
     }
   }
+}
+} // namespace
+
+bool CutSelfIntersections(const std::vector<double>& points,
+  const std::vector<int64_t>& triangles,
+  SelfIntersectionCut& out,
+  std::string& error)
+{
+  out = SelfIntersectionCut();
+  error.clear();
+  const QuietCGAL quiet;
+  const Soup soup(points, triangles);
+  std::map<size_t, std::vector<size_t>> groups;
+  if (!FindCrossingGroups(soup, groups, error))
+  {
+    return false;
+  }
+  const size_t triangleCount = triangles.size() / 3;
+  std::vector<uint8_t> wasCut(triangleCount, 0), refined(triangleCount, 0);
+  RefineGroups(soup, groups, wasCut, refined, out);
+  for (const uint8_t c : wasCut)
+  {
+    out.CutTriangles += c;
+  }
+  if (!out.Cut())
+  {
+    out.Points.clear();
+    out.Triangles.clear();
+    out.Parent.clear();
+    return true;
+  }
+  CanonicalOrder(points, triangles, refined, out);
   return true;
 }
 

@@ -251,6 +251,222 @@ bool CheckLimits(const GLFunctions& gl, int nx, int ny, int texels, std::string&
   return true;
 }
 
+/// VoxelizeToLanes' views: each looks along axis A (b = A + 1, c = A + 2), rasterizes the
+/// boundary triangles it owns and the solid's front and back crossings onto its lanes,
+/// and fills the solid's [front, back] intervals.
+class ViewRaster
+{
+public:
+  ViewRaster(const GLFunctions& gl, const MeshInput& mesh, const SampleGrid& grid)
+    : GL(gl)
+    , Mesh(mesh)
+    , Grid(grid)
+    , Orientation(MeshOrientation(mesh))
+    , Boundary{ Lanes(gl), Lanes(gl), Lanes(gl) }
+    , Front{ Lanes(gl), Lanes(gl), Lanes(gl) }
+    , Back{ Lanes(gl), Lanes(gl), Lanes(gl) }
+    , Solid{ Lanes(gl), Lanes(gl), Lanes(gl) }
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      this->N[a] = grid.Whole.Size(a);
+    }
+  }
+
+  /// Each triangle in its boundary view (VoxelizerRules.h, BoundaryTriangle).
+  void SetUpBoundary()
+  {
+    const int64_t numTriangles = static_cast<int64_t>(this->Mesh.Triangles.size() / 3);
+    for (int64_t t = 0; t < numTriangles; ++t)
+    {
+      BoundaryTriangle setup;
+      if (SetupBoundaryTriangle(this->Mesh, t, this->Grid, setup))
+      {
+        this->BoundaryRecords[setup.View].push_back(Pack(setup));
+      }
+    }
+  }
+
+  /// The triangles as view `a` sees them for the solid; counts the far ones.
+  void SetUpSolid(int a, std::vector<GpuTriangle>& records)
+  {
+    const int64_t numTriangles = static_cast<int64_t>(this->Mesh.Triangles.size() / 3);
+    records.clear();
+    for (int64_t t = 0; t < numTriangles; ++t)
+    {
+      ProjectedTriangle p;
+      bool isFar = false;
+      if (!ProjectTriangle(this->Mesh, t, this->Grid, a, this->Orientation, p, isFar))
+      {
+        this->Far += isFar;
+        continue;
+      }
+      GpuTriangle g{};
+      for (int k = 0; k < 3; ++k)
+      {
+        g.X[k] = p.X[k];
+        g.Y[k] = p.Y[k];
+        g.Z[k] = p.Z[k];
+        for (int d = 0; d < 3; ++d)
+        {
+          g.P[k][d] = p.P[k][d];
+        }
+        g.Flags[k + 1] = p.Owns[k];
+      }
+      g.X[3] = p.Area;
+      g.Flags[0] = p.Entering;
+      records.push_back(g);
+    }
+  }
+
+  /// View `a`: its uniforms, then the boundary lanes (when wanted) and the solid's front
+  /// and back lanes and intervals (when wanted). False and `error` when a framebuffer is
+  /// incomplete.
+  bool Rasterize(int a,
+    GLuint raster,
+    GLuint fill,
+    const std::vector<GpuTriangle>& records,
+    bool wantBoundary,
+    bool wantSolid,
+    std::string& error)
+  {
+    const GLFunctions& gl = this->GL;
+    const int* n = this->N;
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    gl.UseProgram(raster);
+    gl.Uniform1i(Uniform(gl, raster, "Nb"), n[b]);
+    gl.Uniform1i(Uniform(gl, raster, "Nc"), n[c]);
+    gl.Uniform1i(Uniform(gl, raster, "Na"), n[a]);
+    gl.Uniform3i(Uniform(gl, raster, "Axes"), a, b, c);
+    SetGridUniforms(gl, raster, this->Grid, this->Grid.Whole);
+    gl.Uniform1d(Uniform(gl, raster, "Limit2"), BoundaryLimit2(this->Grid));
+    gl.Uniform1d(Uniform(gl, raster, "Reach"), BoundaryReach(this->Grid, a));
+    gl.Viewport(0, 0, n[b], n[c]);
+    const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
+    if (wantBoundary)
+    {
+      this->Boundary[a].Create(n[b], n[c], n[a]);
+      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, this->Boundary[a].Id, 0);
+      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, 0, 0);
+      gl.DrawBuffers(1, buffers);
+      if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      {
+        error = "the boundary lane framebuffer is incomplete";
+        return false;
+      }
+      gl.Uniform1i(Uniform(gl, raster, "Mode"), 0);
+      gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(this->BoundaryRecords[a].size()));
+    }
+    if (wantSolid)
+    {
+      Lanes& front = this->Front[a];
+      Lanes& back = this->Back[a];
+      front.Create(n[b], n[c], 2 * n[a] + 1 + SolidGuard);
+      back.Create(n[b], n[c], 2 * n[a] + 1 + SolidGuard);
+      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, front.Id, 0);
+      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, back.Id, 0);
+      gl.DrawBuffers(2, buffers);
+      if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      {
+        error = "the solid lane framebuffer is incomplete";
+        return false;
+      }
+      gl.Uniform1i(Uniform(gl, raster, "Mode"), 1);
+      gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(records.size()));
+      gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+      // The [front, back] intervals of this view.
+      this->Solid[a].Create(n[b], n[c], 2 * n[a] + 1 + SolidGuard);
+      gl.UseProgram(fill);
+      front.Bind(0, GL_READ_ONLY);
+      back.Bind(1, GL_READ_ONLY);
+      this->Solid[a].Bind(2, GL_READ_WRITE);
+      gl.Uniform2i(Uniform(gl, fill, "Lanes"), n[b], n[c]);
+      gl.Uniform1i(Uniform(gl, fill, "Texels"), this->Solid[a].Texels);
+      gl.DispatchCompute((n[b] + 7) / 8, (n[c] + 7) / 8, 1);
+      gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    }
+    return true;
+  }
+
+  /// The views rotated into z-lanes and combined (OR for the boundary, AND for the solid).
+  void Combine(GLuint combine, Lanes* boundaryZ, Lanes* solidZ)
+  {
+    const GLFunctions& gl = this->GL;
+    const int* n = this->N;
+    if (boundaryZ)
+    {
+      boundaryZ->Create(n[0], n[1], n[2]);
+    }
+    if (solidZ)
+    {
+      solidZ->Create(n[0], n[1], n[2]);
+    }
+    gl.UseProgram(combine);
+    for (int a = 0; a < 3; ++a)
+    {
+      if (boundaryZ)
+      {
+        this->Boundary[a].Bind(a, GL_READ_ONLY);
+      }
+      if (solidZ)
+      {
+        this->Solid[a].Bind(3 + a, GL_READ_ONLY);
+      }
+    }
+    if (boundaryZ)
+    {
+      boundaryZ->Bind(6, GL_WRITE_ONLY);
+    }
+    if (solidZ)
+    {
+      solidZ->Bind(7, GL_WRITE_ONLY);
+    }
+    SetGridUniforms(gl, combine, this->Grid, this->Grid.Whole);
+    gl.Uniform1i(Uniform(gl, combine, "WantBoundary"), boundaryZ != nullptr);
+    gl.Uniform1i(Uniform(gl, combine, "WantSolid"), solidZ != nullptr);
+    gl.DispatchCompute((n[0] + 7) / 8, (n[1] + 7) / 8, (n[2] + 127) / 128);
+    gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  }
+
+  const GLFunctions& GL;
+  const MeshInput& Mesh;
+  const SampleGrid& Grid;
+  const double Orientation;
+  int N[3];
+  int64_t Far = 0; // vertices beyond the snapping range, three per far triangle
+  std::vector<GpuBoundaryTriangle> BoundaryRecords[3];
+  Lanes Boundary[3], Front[3], Back[3], Solid[3];
+};
+
+/// Whether the GPU can voxelize the mesh on the grid; else false and `error`.
+bool CheckVoxelizer(HeadlessGL& context,
+  const MeshInput& mesh,
+  const SampleGrid& grid,
+  std::string& error)
+{
+  const GLFunctions& gl = context.GL();
+  if (!ValidateMesh(mesh, grid, error))
+  {
+    return false;
+  }
+  if (!gl.HasExtension("GL_ARB_gpu_shader_int64"))
+  {
+    error =
+      "the GPU voxelizer needs GL_ARB_gpu_shader_int64, which " + context.Renderer() + " lacks";
+    return false;
+  }
+  const IndexBox& whole = grid.Whole;
+  const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!CheckLimits(gl, n[(a + 1) % 3], n[(a + 2) % 3], (2 * n[a] + 3 + 127) / 128, error))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// Voxelizes into z-lane textures (boundaryZ / solidZ created when wanted).
 bool VoxelizeToLanes(HeadlessGL& context,
   Objects& objects,
@@ -263,29 +479,13 @@ bool VoxelizeToLanes(HeadlessGL& context,
 {
   const GLFunctions& gl = context.GL();
   statistics = VoxelizeStatistics();
-  if (!ValidateMesh(mesh, grid, error))
+  if (!CheckVoxelizer(context, mesh, grid, error))
   {
-    return false;
-  }
-  if (!gl.HasExtension("GL_ARB_gpu_shader_int64"))
-  {
-    error =
-      "the GPU voxelizer needs GL_ARB_gpu_shader_int64, which " + context.Renderer() + " lacks";
     return false;
   }
   statistics.Triangles = static_cast<int64_t>(mesh.Triangles.size() / 3);
-  const double orientation = MeshOrientation(mesh);
-  statistics.FlippedOrientation = orientation < 0;
-  const IndexBox& whole = grid.Whole;
-  const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
-  for (int a = 0; a < 3; ++a)
-  {
-    if (!CheckLimits(gl, n[(a + 1) % 3], n[(a + 2) % 3], (2 * n[a] + 3 + 127) / 128, error))
-    {
-      return false;
-    }
-  }
-
+  ViewRaster views(gl, mesh, grid);
+  statistics.FlippedOrientation = views.Orientation < 0;
   const std::string common = VoxelizeCommon;
   const GLuint raster = Build(context,
     objects,
@@ -313,150 +513,28 @@ bool VoxelizeToLanes(HeadlessGL& context,
   gl.Disable(GL_BLEND);
   gl.Enable(GL_COLOR_LOGIC_OP);
   gl.LogicOp(GL_OR);
-
-  const double limit2 = BoundaryLimit2(grid);
-  Lanes boundary[3] = { Lanes(gl), Lanes(gl), Lanes(gl) };
-  Lanes front[3] = { Lanes(gl), Lanes(gl), Lanes(gl) };
-  Lanes back[3] = { Lanes(gl), Lanes(gl), Lanes(gl) };
-  Lanes solid[3] = { Lanes(gl), Lanes(gl), Lanes(gl) };
-  const int64_t numTriangles = static_cast<int64_t>(mesh.Triangles.size() / 3);
-  std::vector<GpuTriangle> records;
-  std::vector<GpuBoundaryTriangle> boundaryRecords[3];
   if (boundaryZ)
   {
-    // Each triangle in its boundary view (VoxelizerRules.h, BoundaryTriangle).
-    for (int64_t t = 0; t < numTriangles; ++t)
-    {
-      BoundaryTriangle setup;
-      if (SetupBoundaryTriangle(mesh, t, grid, setup))
-      {
-        boundaryRecords[setup.View].push_back(Pack(setup));
-      }
-    }
+    views.SetUpBoundary();
   }
-  records.reserve(solidZ ? numTriangles : 0);
-  int64_t far = 0;
+  std::vector<GpuTriangle> records;
+  records.reserve(solidZ ? mesh.Triangles.size() / 3 : 0);
   for (int a = 0; a < 3; ++a)
   {
-    const int b = (a + 1) % 3, c = (a + 2) % 3;
-    records.clear();
-    for (int64_t t = 0; solidZ && t < numTriangles; ++t)
-    {
-      ProjectedTriangle p;
-      bool isFar = false;
-      if (!ProjectTriangle(mesh, t, grid, a, orientation, p, isFar))
-      {
-        far += isFar;
-        continue;
-      }
-      GpuTriangle g{};
-      for (int k = 0; k < 3; ++k)
-      {
-        g.X[k] = p.X[k];
-        g.Y[k] = p.Y[k];
-        g.Z[k] = p.Z[k];
-        for (int d = 0; d < 3; ++d)
-        {
-          g.P[k][d] = p.P[k][d];
-        }
-        g.Flags[k + 1] = p.Owns[k];
-      }
-      g.X[3] = p.Area;
-      g.Flags[0] = p.Entering;
-      records.push_back(g);
-    }
-    UploadRecords(gl, objects.Buffers[0], 0, records);
-    const std::vector<GpuBoundaryTriangle>& boundaryView = boundaryRecords[a];
-    UploadRecords(gl, objects.Buffers[3], 1, boundaryView);
-
-    gl.UseProgram(raster);
-    gl.Uniform1i(Uniform(gl, raster, "Nb"), n[b]);
-    gl.Uniform1i(Uniform(gl, raster, "Nc"), n[c]);
-    gl.Uniform1i(Uniform(gl, raster, "Na"), n[a]);
-    gl.Uniform3i(Uniform(gl, raster, "Axes"), a, b, c);
-    SetGridUniforms(gl, raster, grid, whole);
-    gl.Uniform1d(Uniform(gl, raster, "Limit2"), limit2);
-    gl.Uniform1d(Uniform(gl, raster, "Reach"), BoundaryReach(grid, a));
-    gl.Viewport(0, 0, n[b], n[c]);
-    const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
-    if (boundaryZ)
-    {
-      boundary[a].Create(n[b], n[c], n[a]);
-      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, boundary[a].Id, 0);
-      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, 0, 0);
-      gl.DrawBuffers(1, buffers);
-      if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      {
-        error = "the boundary lane framebuffer is incomplete";
-        return false;
-      }
-      gl.Uniform1i(Uniform(gl, raster, "Mode"), 0);
-      gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(boundaryView.size()));
-    }
     if (solidZ)
     {
-      front[a].Create(n[b], n[c], 2 * n[a] + 1 + SolidGuard);
-      back[a].Create(n[b], n[c], 2 * n[a] + 1 + SolidGuard);
-      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, front[a].Id, 0);
-      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, back[a].Id, 0);
-      gl.DrawBuffers(2, buffers);
-      if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      {
-        error = "the solid lane framebuffer is incomplete";
-        return false;
-      }
-      gl.Uniform1i(Uniform(gl, raster, "Mode"), 1);
-      gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(records.size()));
-      gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
-      // The [front, back] intervals of this view.
-      solid[a].Create(n[b], n[c], 2 * n[a] + 1 + SolidGuard);
-      gl.UseProgram(fill);
-      front[a].Bind(0, GL_READ_ONLY);
-      back[a].Bind(1, GL_READ_ONLY);
-      solid[a].Bind(2, GL_READ_WRITE);
-      gl.Uniform2i(Uniform(gl, fill, "Lanes"), n[b], n[c]);
-      gl.Uniform1i(Uniform(gl, fill, "Texels"), solid[a].Texels);
-      gl.DispatchCompute((n[b] + 7) / 8, (n[c] + 7) / 8, 1);
-      gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+      views.SetUpSolid(a, records);
+    }
+    UploadRecords(gl, objects.Buffers[0], 0, records);
+    UploadRecords(gl, objects.Buffers[3], 1, views.BoundaryRecords[a]);
+    if (!views.Rasterize(a, raster, fill, records, boundaryZ, solidZ, error))
+    {
+      return false;
     }
   }
   gl.Disable(GL_COLOR_LOGIC_OP);
-  statistics.FarTriangles = far / 3;
-
-  // The views rotated into z-lanes and combined.
-  if (boundaryZ)
-  {
-    boundaryZ->Create(n[0], n[1], n[2]);
-  }
-  if (solidZ)
-  {
-    solidZ->Create(n[0], n[1], n[2]);
-  }
-  gl.UseProgram(combine);
-  for (int a = 0; a < 3; ++a)
-  {
-    if (boundaryZ)
-    {
-      boundary[a].Bind(a, GL_READ_ONLY);
-    }
-    if (solidZ)
-    {
-      solid[a].Bind(3 + a, GL_READ_ONLY);
-    }
-  }
-  if (boundaryZ)
-  {
-    boundaryZ->Bind(6, GL_WRITE_ONLY);
-  }
-  if (solidZ)
-  {
-    solidZ->Bind(7, GL_WRITE_ONLY);
-  }
-  SetGridUniforms(gl, combine, grid, whole);
-  gl.Uniform1i(Uniform(gl, combine, "WantBoundary"), boundaryZ != nullptr);
-  gl.Uniform1i(Uniform(gl, combine, "WantSolid"), solidZ != nullptr);
-  gl.DispatchCompute((n[0] + 7) / 8, (n[1] + 7) / 8, (n[2] + 127) / 128);
-  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  statistics.FarTriangles = views.Far / 3;
+  views.Combine(combine, boundaryZ, solidZ);
   return NoGLError(gl, "while voxelizing", error);
 }
 } // namespace
@@ -502,6 +580,245 @@ bool VoxelizeGPU(HeadlessGL& context,
   return true;
 }
 
+namespace
+{
+/// ChamferGPU's passes over the distance array, which is bound a slab of whole texels
+/// (128 slices) at a time: a texel's invocation writes only its own 128 slices.
+class ChamferPasses
+{
+public:
+  ChamferPasses(HeadlessGL& context, Objects& objects, const SampleGrid& grid)
+    : Context(context)
+    , GL(context.GL())
+    , GLObjects(objects)
+    , Grid(grid)
+    , Nx(grid.Whole.Size(0))
+    , Ny(grid.Whole.Size(1))
+    , Nz(grid.Whole.Size(2))
+    , Texels((grid.Whole.Size(2) + 127) / 128)
+  {
+  }
+
+  /// Whether the lanes and a slab of the distance array fit the GPU's limits.
+  bool CheckLimits(std::string& error)
+  {
+    const GLFunctions& gl = this->GL;
+    if (!vtkdf::CheckLimits(gl, this->Nx, this->Ny, this->Texels, error))
+    {
+      return false;
+    }
+    const int64_t slice = int64_t(this->Nx) * this->Ny;
+    const int64_t slabSlices = SlabSlices(gl, slice, 4, this->Nz, this->Alignment);
+    this->TexelsPerSlab = slabSlices >= this->Nz
+      ? this->Texels
+      : static_cast<int>(std::min<int64_t>(slabSlices / 128, this->Texels));
+    if (this->TexelsPerSlab < 1)
+    {
+      error = "128 slices of the distance array (" + std::to_string(slice * 512 / 1048576) +
+        " MiB) exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
+        std::to_string(MaxStorageBlock(gl) / 1048576) + " MiB)";
+      return false;
+    }
+    return true;
+  }
+
+  /// The seed and layer programs, the distance array (every voxel unreached) and the
+  /// counts of a batch of layers.
+  bool Setup(int32_t unreached, std::string& error)
+  {
+    const GLFunctions& gl = this->GL;
+    Objects& objects = this->GLObjects;
+    this->Seed = Build(this->Context, objects, { { GL_COMPUTE_SHADER, ChamferSeed_comp } }, error);
+    this->Layer =
+      Build(this->Context, objects, { { GL_COMPUTE_SHADER, ChamferLayer_comp } }, error);
+    if (!this->Seed || !this->Layer)
+    {
+      return false;
+    }
+    if (!objects.VAO)
+    {
+      gl.GenVertexArrays(1, &objects.VAO);
+      gl.GenBuffers(4, objects.Buffers);
+      gl.GenFramebuffers(1, &objects.FBO);
+    }
+    this->Distances = objects.Buffers[1];
+    this->Counts = objects.Buffers[2];
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, this->Distances);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, this->Voxels() * 4, nullptr, GL_DYNAMIC_COPY);
+    gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32I, GL_RED_INTEGER, GL_INT, &unreached);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, this->Counts);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, Batch * 4, nullptr, GL_DYNAMIC_READ);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, this->Counts);
+    this->SeedSlab[0] = Uniform(gl, this->Seed, "TexelBase");
+    this->SeedSlab[1] = Uniform(gl, this->Seed, "DistanceBase");
+    this->LayerSlab[0] = Uniform(gl, this->Layer, "TexelBase");
+    this->LayerSlab[1] = Uniform(gl, this->Layer, "DistanceBase");
+    return true;
+  }
+
+  /// Layer 0: the zero set's voxels get 0; returns how many there are.
+  uint32_t SeedZeroSet(const Lanes& boundaryZ)
+  {
+    const GLFunctions& gl = this->GL;
+    const uint32_t zeros[Batch] = {};
+    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeros), zeros);
+    gl.UseProgram(this->Seed);
+    boundaryZ.Bind(0, GL_READ_ONLY);
+    SetGridUniforms(gl, this->Seed, this->Grid, this->Grid.Whole);
+    gl.Uniform1i(Uniform(gl, this->Seed, "Texels"), this->Texels);
+    gl.Uniform1i(Uniform(gl, this->Seed, "Value"), 0);
+    gl.Uniform1i(Uniform(gl, this->Seed, "Negate"), 0);
+    this->DispatchSlabs(this->SeedSlab);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, this->Counts);
+    uint32_t zeroSet = 0;
+    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeroSet), &zeroSet);
+    return zeroSet;
+  }
+
+  /// The layers from the zero set, in batches between which the counts are read back
+  /// and progress is told; an abort leaves result.Aborted set.
+  void Propagate(const Lanes& boundaryZ,
+    ChamferMetric metric,
+    int maximumLayers,
+    const ProgressCallback& progress,
+    ChamferResult& result);
+
+  /// The solid's voxels negated.
+  void Negate(const Lanes& solidZ)
+  {
+    const GLFunctions& gl = this->GL;
+    gl.UseProgram(this->Seed);
+    solidZ.Bind(0, GL_READ_ONLY);
+    gl.Uniform1i(Uniform(gl, this->Seed, "Negate"), 1);
+    this->DispatchSlabs(this->SeedSlab);
+  }
+
+  void ReadDistances(int32_t* distance)
+  {
+    this->GL.BindBuffer(GL_SHADER_STORAGE_BUFFER, this->Distances);
+    this->GL.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, this->Voxels() * 4, distance);
+  }
+
+private:
+  static constexpr int Batch = 8;
+  int64_t Voxels() const { return int64_t(this->Nx) * this->Ny * this->Nz; }
+
+  /// Runs the current program over every lane texel, one slab of texels at a time, with
+  /// the slab's part of the distance array bound; `slabUniforms` are the program's
+  /// TexelBase and DistanceBase locations.
+  void DispatchSlabs(const GLint slabUniforms[2])
+  {
+    const GLFunctions& gl = this->GL;
+    const int64_t slice = int64_t(this->Nx) * this->Ny;
+    const GLuint groupsX = (this->Nx + 7) / 8, groupsY = (this->Ny + 7) / 8;
+    const GLint texelBase = slabUniforms[0], distanceBase = slabUniforms[1];
+    for (int t0 = 0; t0 < this->Texels; t0 += this->TexelsPerSlab)
+    {
+      const int t1 = std::min(this->Texels, t0 + this->TexelsPerSlab);
+      const int64_t from = 128 * int64_t(t0) * slice;
+      const int64_t to = std::min<int64_t>(128 * int64_t(t1), this->Nz) * slice;
+      gl.Uniform1i(texelBase, t0);
+      gl.Uniform1i(distanceBase,
+        static_cast<int>(BindVoxelRange(gl, 0, this->Distances, from, to, 4, 4, this->Alignment)));
+      gl.DispatchCompute(groupsX, groupsY, t1 - t0);
+    }
+    gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  }
+
+  HeadlessGL& Context;
+  const GLFunctions& GL;
+  Objects& GLObjects;
+  const SampleGrid& Grid;
+  const int Nx, Ny, Nz, Texels;
+  int TexelsPerSlab = 1;
+  GLint Alignment = 0;
+  GLuint Seed = 0, Layer = 0, Distances = 0, Counts = 0;
+  GLint SeedSlab[2] = { -1, -1 }, LayerSlab[2] = { -1, -1 };
+};
+
+void ChamferPasses::Propagate(const Lanes& boundaryZ,
+  ChamferMetric metric,
+  int maximumLayers,
+  const ProgressCallback& progress,
+  ChamferResult& result)
+{
+  const GLFunctions& gl = this->GL;
+  const int nx = this->Nx, ny = this->Ny, nz = this->Nz;
+  Lanes first(gl), second(gl), accumulated(gl);
+  first.Create(nx, ny, nz);
+  second.Create(nx, ny, nz);
+  accumulated.Create(nx, ny, nz);
+  for (const Lanes* copy : { &first, &accumulated })
+  {
+    gl.CopyImageSubData(boundaryZ.Id,
+      GL_TEXTURE_2D_ARRAY,
+      0,
+      0,
+      0,
+      0,
+      copy->Id,
+      GL_TEXTURE_2D_ARRAY,
+      0,
+      0,
+      0,
+      0,
+      nx,
+      ny,
+      this->Texels);
+  }
+  Lanes* current = &first;
+  Lanes* next = &second;
+  gl.UseProgram(this->Layer);
+  SetGridUniforms(gl, this->Layer, this->Grid, this->Grid.Whole);
+  gl.Uniform1i(Uniform(gl, this->Layer, "Texels"), this->Texels);
+  gl.Uniform1i(Uniform(gl, this->Layer, "Metric"), static_cast<int>(metric));
+  const GLint layerLocation = Uniform(gl, this->Layer, "Layer");
+  const GLint slotLocation = Uniform(gl, this->Layer, "CountSlot");
+  const uint32_t zeros[Batch] = {};
+  bool done = result.ZeroSet == 0;
+  for (int start = 1; !done && (maximumLayers <= 0 || start <= maximumLayers); start += Batch)
+  {
+    const int end =
+      maximumLayers > 0 ? std::min(start + Batch - 1, maximumLayers) : start + Batch - 1;
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, this->Counts);
+    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeros), zeros);
+    for (int l = start; l <= end; ++l)
+    {
+      current->Bind(0, GL_READ_ONLY);
+      next->Bind(1, GL_WRITE_ONLY);
+      accumulated.Bind(2, GL_READ_WRITE);
+      gl.Uniform1i(layerLocation, l);
+      gl.Uniform1i(slotLocation, l - start);
+      this->DispatchSlabs(this->LayerSlab);
+      std::swap(current, next);
+    }
+    uint32_t reached[Batch] = {};
+    gl.BindBuffer(
+      GL_SHADER_STORAGE_BUFFER, this->Counts); // BindBufferRange moved the generic binding
+    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(reached), reached);
+    for (int l = start; l <= end; ++l)
+    {
+      if (reached[l - start] == 0)
+      {
+        done = true; // the front died: later layers are empty too
+        break;
+      }
+      result.Layers = l;
+      result.Reached += reached[l - start];
+    }
+    // Progress per batch (the readback above waited for it): the share of the voxels
+    // reached, or of the layers when MaximumLayers bounds them.
+    const double fraction = maximumLayers > 0 ? double(end) / maximumLayers
+                                              : double(result.Reached) / double(this->Voxels());
+    if (progress && !done && !progress(std::min(1.0, fraction)))
+    {
+      result.Aborted = true;
+      return;
+    }
+  }
+}
+} // namespace
+
 bool ChamferGPU(HeadlessGL& context,
   const ChamferInput& input,
   ChamferMetric metric,
@@ -524,29 +841,14 @@ bool ChamferGPU(HeadlessGL& context,
   }
   const GLFunctions& gl = context.GL();
   Objects objects(gl);
-  const IndexBox& whole = input.Grid.Whole;
-  const int nx = whole.Size(0), ny = whole.Size(1), nz = whole.Size(2);
-  const int texels = (nz + 127) / 128;
-  if (!CheckLimits(gl, nx, ny, texels, error))
+  ChamferPasses passes(context, objects, input.Grid);
+  if (!passes.CheckLimits(error))
   {
     return false;
   }
-  const int64_t voxels = int64_t(nx) * ny * nz, slice = int64_t(nx) * ny;
-  // The distance array is bound a slab of whole texels (128 slices) at a time: a
-  // texel's invocation writes only its own 128 slices.
-  GLint alignment = 0;
-  const int64_t slabSlices = SlabSlices(gl, slice, 4, nz, alignment);
-  const int texelsPerSlab =
-    slabSlices >= nz ? texels : static_cast<int>(std::min<int64_t>(slabSlices / 128, texels));
-  if (texelsPerSlab < 1)
-  {
-    error = "128 slices of the distance array (" + std::to_string(slice * 512 / 1048576) +
-      " MiB) exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
-      std::to_string(MaxStorageBlock(gl) / 1048576) + " MiB)";
-    return false;
-  }
-
   // The zero set (and the solid) as z-lanes.
+  const int nx = input.Grid.Whole.Size(0), ny = input.Grid.Whole.Size(1),
+            nz = input.Grid.Whole.Size(2);
   Lanes boundaryZ(gl), solidZ(gl);
   const bool wantSolid = negateSolid || solidOut;
   bool haveSolid = false;
@@ -576,159 +878,21 @@ bool ChamferGPU(HeadlessGL& context,
       haveSolid = true;
     }
   }
-
-  const GLuint seed = Build(context, objects, { { GL_COMPUTE_SHADER, ChamferSeed_comp } }, error);
-  const GLuint layer = Build(context, objects, { { GL_COMPUTE_SHADER, ChamferLayer_comp } }, error);
-  if (!seed || !layer)
+  if (!passes.Setup(unreached, error))
   {
     return false;
   }
-  if (!objects.VAO)
+  result.ZeroSet = result.Reached = passes.SeedZeroSet(boundaryZ);
+  passes.Propagate(boundaryZ, metric, maximumLayers, progress, result);
+  if (result.Aborted)
   {
-    gl.GenVertexArrays(1, &objects.VAO);
-    gl.GenBuffers(4, objects.Buffers);
-    gl.GenFramebuffers(1, &objects.FBO);
+    return true;
   }
-  const GLuint distances = objects.Buffers[1], counts = objects.Buffers[2];
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, distances);
-  gl.BufferData(GL_SHADER_STORAGE_BUFFER, voxels * 4, nullptr, GL_DYNAMIC_COPY);
-  gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32I, GL_RED_INTEGER, GL_INT, &unreached);
-  constexpr int Batch = 8;
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counts);
-  gl.BufferData(GL_SHADER_STORAGE_BUFFER, Batch * 4, nullptr, GL_DYNAMIC_READ);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counts);
-
-  // Runs the current program over every lane texel, one slab of texels at a time, with
-  // the slab's part of the distance array bound; `slabUniforms` are the program's
-  // TexelBase and DistanceBase locations.
-  const GLuint groupsX = (nx + 7) / 8, groupsY = (ny + 7) / 8;
-  const GLint seedSlab[2] = { Uniform(gl, seed, "TexelBase"), Uniform(gl, seed, "DistanceBase") };
-  const GLint layerSlab[2] = { Uniform(gl, layer, "TexelBase"),
-    Uniform(gl, layer, "DistanceBase") };
-  auto dispatchSlabs = [&](const GLint slabUniforms[2])
-  {
-    const GLint texelBase = slabUniforms[0], distanceBase = slabUniforms[1];
-    for (int t0 = 0; t0 < texels; t0 += texelsPerSlab)
-    {
-      const int t1 = std::min(texels, t0 + texelsPerSlab);
-      const int64_t from = 128 * int64_t(t0) * slice;
-      const int64_t to = std::min<int64_t>(128 * int64_t(t1), nz) * slice;
-      gl.Uniform1i(texelBase, t0);
-      gl.Uniform1i(distanceBase,
-        static_cast<int>(BindVoxelRange(gl, 0, distances, from, to, 4, 4, alignment)));
-      gl.DispatchCompute(groupsX, groupsY, t1 - t0);
-    }
-    gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
-  };
-
-  // Layer 0.
-  const uint32_t zeros[Batch] = {};
-  gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeros), zeros);
-  gl.UseProgram(seed);
-  boundaryZ.Bind(0, GL_READ_ONLY);
-  SetGridUniforms(gl, seed, input.Grid, whole);
-  gl.Uniform1i(Uniform(gl, seed, "Texels"), texels);
-  gl.Uniform1i(Uniform(gl, seed, "Value"), 0);
-  gl.Uniform1i(Uniform(gl, seed, "Negate"), 0);
-  dispatchSlabs(seedSlab);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counts);
-  uint32_t zeroSet = 0;
-  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeroSet), &zeroSet);
-  result.ZeroSet = result.Reached = zeroSet;
-
-  // Layers, in batches between which the counts are read back.
-  Lanes first(gl), second(gl), accumulated(gl);
-  first.Create(nx, ny, nz);
-  second.Create(nx, ny, nz);
-  accumulated.Create(nx, ny, nz);
-  gl.CopyImageSubData(boundaryZ.Id,
-    GL_TEXTURE_2D_ARRAY,
-    0,
-    0,
-    0,
-    0,
-    first.Id,
-    GL_TEXTURE_2D_ARRAY,
-    0,
-    0,
-    0,
-    0,
-    nx,
-    ny,
-    texels);
-  gl.CopyImageSubData(boundaryZ.Id,
-    GL_TEXTURE_2D_ARRAY,
-    0,
-    0,
-    0,
-    0,
-    accumulated.Id,
-    GL_TEXTURE_2D_ARRAY,
-    0,
-    0,
-    0,
-    0,
-    nx,
-    ny,
-    texels);
-  Lanes* current = &first;
-  Lanes* next = &second;
-  gl.UseProgram(layer);
-  SetGridUniforms(gl, layer, input.Grid, whole);
-  gl.Uniform1i(Uniform(gl, layer, "Texels"), texels);
-  gl.Uniform1i(Uniform(gl, layer, "Metric"), static_cast<int>(metric));
-  const GLint layerLocation = Uniform(gl, layer, "Layer");
-  const GLint slotLocation = Uniform(gl, layer, "CountSlot");
-  bool done = zeroSet == 0;
-  for (int start = 1; !done && (maximumLayers <= 0 || start <= maximumLayers); start += Batch)
-  {
-    const int end =
-      maximumLayers > 0 ? std::min(start + Batch - 1, maximumLayers) : start + Batch - 1;
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counts);
-    gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zeros), zeros);
-    for (int l = start; l <= end; ++l)
-    {
-      current->Bind(0, GL_READ_ONLY);
-      next->Bind(1, GL_WRITE_ONLY);
-      accumulated.Bind(2, GL_READ_WRITE);
-      gl.Uniform1i(layerLocation, l);
-      gl.Uniform1i(slotLocation, l - start);
-      dispatchSlabs(layerSlab);
-      std::swap(current, next);
-    }
-    uint32_t reached[Batch] = {};
-    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counts); // BindBufferRange moved the generic binding
-    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(reached), reached);
-    for (int l = start; l <= end; ++l)
-    {
-      if (reached[l - start] == 0)
-      {
-        done = true; // the front died: later layers are empty too
-        break;
-      }
-      result.Layers = l;
-      result.Reached += reached[l - start];
-    }
-    // Progress per batch (the readback above waited for it): the share of the voxels
-    // reached, or of the layers when MaximumLayers bounds them.
-    const double fraction =
-      maximumLayers > 0 ? double(end) / maximumLayers : double(result.Reached) / double(voxels);
-    if (progress && !done && !progress(std::min(1.0, fraction)))
-    {
-      result.Aborted = true;
-      return true;
-    }
-  }
-
   if (negateSolid && haveSolid)
   {
-    gl.UseProgram(seed);
-    solidZ.Bind(0, GL_READ_ONLY);
-    gl.Uniform1i(Uniform(gl, seed, "Negate"), 1);
-    dispatchSlabs(seedSlab);
+    passes.Negate(solidZ);
   }
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, distances);
-  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, voxels * 4, distance);
+  passes.ReadDistances(distance);
   if (boundaryOut)
   {
     boundaryOut->Resize(nx, ny, nz);
