@@ -87,117 +87,174 @@ ScanAxes ChooseScanAxes(const Site& site)
   return axes;
 }
 
-/// Scan-converts one site's domain inside its region; returns distance evaluations.
-int64_t ScanSite(const MeshSites& sites,
-  const Site& site,
-  uint32_t siteIndex,
-  const RangeCulling& culling,
-  const FieldRequest& request,
-  NearestSiteBuffer& nearest)
+/// The scan conversion of one site's domain inside its region.
+class SiteScan
 {
-  const IndexBox& region = culling.Regions[siteIndex];
-  const SampleGrid& grid = request.Grid;
-  const IndexBox& ext = request.Extent;
-  const ScanAxes axes = ChooseScanAxes(site);
-  const int u = axes.Inner, v = axes.Row, w = axes.Slice;
-
-  // Planes with their coefficients in (inner, row, slice) order.
-  IndexPlane planes[MaxDomainPlanes];
-  const int numPlanes = SiteIndexPlanes(sites, site, grid, planes, MaxDomainPlanes);
-  for (int p = 0; p < numPlanes; ++p)
+public:
+  SiteScan(const MeshSites& sites,
+    const Site& site,
+    uint32_t siteIndex,
+    const RangeCulling& culling,
+    const FieldRequest& request,
+    NearestSiteBuffer& nearest)
+    : TheSite(site)
+    , SiteIndex(siteIndex)
+    , Culling(culling)
+    , Region(culling.Regions[siteIndex])
+    , Grid(request.Grid)
+    , Nearest(nearest)
   {
-    const double c[3] = { planes[p].A, planes[p].B, planes[p].C };
-    planes[p].A = c[u], planes[p].B = c[v], planes[p].C = c[w];
-  }
-  DomainSpans domain;
-  domain.Setup(
-    planes, numPlanes, site.Required, region.Lo[u], region.Hi[u], region.Lo[v], region.Hi[v]);
-  double P[3][3];
-  SiteProjector(site, P);
-  // The distance vector is affine in the sample index: d(i, j, k) = d0 + i du + j dv +
-  // k dw (u, v, w the scan axes). Rows start from it in double; the inner loop steps in
-  // float, which is exact enough over a row (the GPU interpolates in float too).
-  double d0[3], du[3], dv[3], dw[3];
-  {
+    const ScanAxes axes = ChooseScanAxes(site);
+    this->U = axes.Inner, this->V = axes.Row, this->W = axes.Slice;
+    const int u = this->U, v = this->V, w = this->W;
+    // Planes with their coefficients in (inner, row, slice) order.
+    IndexPlane planes[MaxDomainPlanes];
+    const int numPlanes = SiteIndexPlanes(sites, site, this->Grid, planes, MaxDomainPlanes);
+    for (int p = 0; p < numPlanes; ++p)
+    {
+      const double c[3] = { planes[p].A, planes[p].B, planes[p].C };
+      planes[p].A = c[u], planes[p].B = c[v], planes[p].C = c[w];
+    }
+    const IndexBox& region = this->Region;
+    this->Domain.Setup(
+      planes, numPlanes, site.Required, region.Lo[u], region.Hi[u], region.Lo[v], region.Hi[v]);
+    double P[3][3];
+    SiteProjector(site, P);
+    // The distance vector is affine in the sample index: d(i, j, k) = d0 + i du + j dv +
+    // k dw (u, v, w the scan axes). Rows start from it in double; the inner loop steps in
+    // float, which is exact enough over a row (the GPU interpolates in float too).
+    const SampleGrid& grid = this->Grid;
     const double r[3] = { site.Anchor[0] - grid.Origin[0],
       site.Anchor[1] - grid.Origin[1],
       site.Anchor[2] - grid.Origin[2] };
     for (int a = 0; a < 3; ++a)
     {
-      d0[a] = P[a][0] * r[0] + P[a][1] * r[1] + P[a][2] * r[2];
-      du[a] = -P[a][u] * grid.Spacing[u];
-      dv[a] = -P[a][v] * grid.Spacing[v];
-      dw[a] = -P[a][w] * grid.Spacing[w];
+      this->D0[a] = P[a][0] * r[0] + P[a][1] * r[1] + P[a][2] * r[2];
+      this->Du[a] = -P[a][u] * grid.Spacing[u];
+      this->Dv[a] = -P[a][v] * grid.Spacing[v];
+      this->Dw[a] = -P[a][w] * grid.Spacing[w];
+      this->Step[a] = static_cast<float>(this->Du[a]);
     }
+    const IndexBox& ext = request.Extent;
+    int64_t stride[3];
+    stride[0] = 1;
+    stride[1] = ext.Size(0);
+    stride[2] = stride[1] * ext.Size(1);
+    this->Base = -(ext.Lo[0] * stride[0] + ext.Lo[1] * stride[1] + ext.Lo[2] * stride[2]);
+    this->StrideU = stride[u], this->StrideV = stride[v], this->StrideW = stride[w];
+    std::fill(this->CacheKey, this->CacheKey + CacheSize, int64_t(-1));
   }
-  const float step[3] = {
-    static_cast<float>(du[0]), static_cast<float>(du[1]), static_cast<float>(du[2])
-  };
-  int64_t stride[3];
-  stride[0] = 1;
-  stride[1] = ext.Size(0);
-  stride[2] = stride[1] * ext.Size(1);
-  const int64_t base = -(ext.Lo[0] * stride[0] + ext.Lo[1] * stride[1] + ext.Lo[2] * stride[2]);
-  const int64_t strideU = stride[u], strideV = stride[v], strideW = stride[w];
-  int64_t evaluations = 0;
 
-  // Whether the site may be the nearest one in a block's cell (RangeCulling's bound),
-  // remembered in a small direct-mapped cache: the slices of a block layer ask about
-  // the same blocks, and a region is too large to hold an entry per block.
-  constexpr int CacheSize = 64;
-  int64_t cacheKey[CacheSize];
-  bool cacheValue[CacheSize];
-  std::fill(cacheKey, cacheKey + CacheSize, int64_t(-1));
-  auto mayWin = [&](const int block[3]) -> bool
+  /// Scans the domain's slices; returns the distance evaluations. The domain contains
+  /// the anchor, so (when the anchor is in the region's rectangle) the slices it covers
+  /// are one run of slices around the anchor's: the scan runs outward from there and
+  /// stops at the first empty slice on each side.
+  int64_t Run()
+  {
+    const int u = this->U, v = this->V, w = this->W;
+    const IndexBox& region = this->Region;
+    double anchor[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      anchor[a] = (this->TheSite.Anchor[a] - this->Grid.Origin[a]) / this->Grid.Spacing[a];
+    }
+    const bool inRect = anchor[u] >= region.Lo[u] && anchor[u] <= region.Hi[u] &&
+      anchor[v] >= region.Lo[v] && anchor[v] <= region.Hi[v];
+    if (!inRect)
+    {
+      for (int k = region.Lo[w]; k <= region.Hi[w]; ++k)
+      {
+        this->Slice(k);
+      }
+      return this->Evaluations;
+    }
+    auto clampSlice = [&](double z)
+    { return static_cast<int>(std::min<double>(std::max<double>(z, region.Lo[w]), region.Hi[w])); };
+    int start = clampSlice(std::round(anchor[w]));
+    bool found = this->Slice(start);
+    if (!found)
+    {
+      for (int k : { clampSlice(std::floor(anchor[w])), clampSlice(std::ceil(anchor[w])) })
+      {
+        if (k != start && this->Slice(k))
+        {
+          start = k;
+          found = true;
+          break;
+        }
+      }
+    }
+    if (found)
+    {
+      for (int k = start + 1; k <= region.Hi[w] && this->Slice(k); ++k)
+      {
+      }
+      for (int k = start - 1; k >= region.Lo[w] && this->Slice(k); --k)
+      {
+      }
+    }
+    return this->Evaluations;
+  }
+
+private:
+  /// Whether the site may be the nearest one in a block's cell (RangeCulling's bound),
+  /// remembered in a small direct-mapped cache: the slices of a block layer ask about
+  /// the same blocks, and a region is too large to hold an entry per block.
+  bool MayWin(const int block[3])
   {
     const int64_t key = block[0] + (int64_t(block[1]) << 21) + (int64_t(block[2]) << 42);
     const int slot = (block[0] + 3 * block[1] + 5 * block[2]) & (CacheSize - 1);
-    if (cacheKey[slot] != key)
+    if (this->CacheKey[slot] != key)
     {
-      cacheKey[slot] = key;
-      cacheValue[slot] = culling.MayWin(block, site.BoundsMin, site.BoundsMax);
+      this->CacheKey[slot] = key;
+      this->CacheValue[slot] =
+        this->Culling.MayWin(block, this->TheSite.BoundsMin, this->TheSite.BoundsMax);
     }
-    return cacheValue[slot];
-  };
+    return this->CacheValue[slot];
+  }
 
-  // A slice is alive when its domain polygon meets a cell where the site may win. The
-  // site's Voronoi region is star-shaped about the site, so the slices that hold a
-  // part of it form one run around the anchor's: the scan stops at the first dead one.
-  // The test is per slice only: a block holds a sample or two of a typical domain, so
-  // testing the blocks of every row costs more than the evaluations it saves.
-  auto scanSlice = [&](int k) -> bool
+  /// Scans slice k when it is alive: when its domain polygon meets a cell where the site
+  /// may win. The site's Voronoi region is star-shaped about the site, so the slices that
+  /// hold a part of it form one run around the anchor's. The test is per slice only: a
+  /// block holds a sample or two of a typical domain, so testing the blocks of every row
+  /// costs more than the evaluations it saves.
+  bool Slice(int k)
   {
+    const int u = this->U, v = this->V, w = this->W;
     double box[4];
-    if (!domain.SliceBox(k, box))
+    if (!this->Domain.SliceBox(k, box))
     {
       return false;
     }
-    const int bu0 = culling.BlockOf(u, box[0]), bu1 = culling.BlockOf(u, box[1]);
-    const int bv0 = culling.BlockOf(v, box[2]), bv1 = culling.BlockOf(v, box[3]);
+    const int bu0 = this->Culling.BlockOf(u, box[0]), bu1 = this->Culling.BlockOf(u, box[1]);
+    const int bv0 = this->Culling.BlockOf(v, box[2]), bv1 = this->Culling.BlockOf(v, box[3]);
     int block[3];
-    block[w] = culling.BlockOfSample(w, k);
+    block[w] = this->Culling.BlockOfSample(w, k);
     bool alive = false;
     for (int bv = bv0; bv <= bv1 && !alive; ++bv)
     {
       for (int bu = bu0; bu <= bu1 && !alive; ++bu)
       {
         block[u] = bu, block[v] = bv;
-        alive = mayWin(block);
+        alive = this->MayWin(block);
       }
     }
     if (!alive)
     {
       return false;
     }
-    domain.BeginSlice(k);
-    const double dk[3] = { d0[0] + k * dw[0], d0[1] + k * dw[1], d0[2] + k * dw[2] };
-    const int64_t sliceStart = base + k * strideW;
+    this->Domain.BeginSlice(k);
+    const double dk[3] = {
+      this->D0[0] + k * this->Dw[0], this->D0[1] + k * this->Dw[1], this->D0[2] + k * this->Dw[2]
+    };
+    const int64_t sliceStart = this->Base + k * this->StrideW;
+    const IndexBox& region = this->Region;
     const int j0 = std::max(region.Lo[v], static_cast<int>(std::ceil(box[2])));
     const int j1 = std::min(region.Hi[v], static_cast<int>(std::floor(box[3])));
     for (int j = j0; j <= j1; ++j)
     {
       double xl, xr;
-      if (!domain.RowSpan(j, xl, xr))
+      if (!this->Domain.RowSpan(j, xl, xr))
       {
         continue;
       }
@@ -207,65 +264,56 @@ int64_t ScanSite(const MeshSites& sites,
       {
         continue;
       }
-      const float d[3] = { static_cast<float>(dk[0] + j * dv[0] + i0 * du[0]),
-        static_cast<float>(dk[1] + j * dv[1] + i0 * du[1]),
-        static_cast<float>(dk[2] + j * dv[2] + i0 * du[2]) };
-      int64_t at = sliceStart + j * strideV + i0 * strideU;
-      for (int i = i0; i <= i1; ++i, at += strideU)
-      {
-        const float t = static_cast<float>(i - i0);
-        const float dx = d[0] + t * step[0], dy = d[1] + t * step[1], dz = d[2] + t * step[2];
-        nearest.Offer(at, NearestSiteBuffer::Pack(dx * dx + dy * dy + dz * dz, siteIndex));
-      }
-      evaluations += i1 - i0 + 1;
+      this->Row(dk, j, i0, i1, sliceStart + j * this->StrideV + i0 * this->StrideU);
     }
     return true;
-  };
+  }
 
-  // The domain contains the anchor, so (when the anchor is in the region's rectangle)
-  // the slices it covers are one run of slices around the anchor's: scan outward from
-  // there and stop at the first empty slice on each side.
-  double anchor[3];
-  for (int a = 0; a < 3; ++a)
+  /// Offers the site to samples i0..i1 of row j (the first at `at`).
+  void Row(const double dk[3], int j, int i0, int i1, int64_t at)
   {
-    anchor[a] = (site.Anchor[a] - grid.Origin[a]) / grid.Spacing[a];
-  }
-  const bool inRect = anchor[u] >= region.Lo[u] && anchor[u] <= region.Hi[u] &&
-    anchor[v] >= region.Lo[v] && anchor[v] <= region.Hi[v];
-  if (!inRect)
-  {
-    for (int k = region.Lo[w]; k <= region.Hi[w]; ++k)
+    const double* dv = this->Dv;
+    const double* du = this->Du;
+    const float d[3] = { static_cast<float>(dk[0] + j * dv[0] + i0 * du[0]),
+      static_cast<float>(dk[1] + j * dv[1] + i0 * du[1]),
+      static_cast<float>(dk[2] + j * dv[2] + i0 * du[2]) };
+    const float* step = this->Step;
+    for (int i = i0; i <= i1; ++i, at += this->StrideU)
     {
-      scanSlice(k);
+      const float t = static_cast<float>(i - i0);
+      const float dx = d[0] + t * step[0], dy = d[1] + t * step[1], dz = d[2] + t * step[2];
+      this->Nearest.Offer(
+        at, NearestSiteBuffer::Pack(dx * dx + dy * dy + dz * dz, this->SiteIndex));
     }
-    return evaluations;
+    this->Evaluations += i1 - i0 + 1;
   }
-  auto clampSlice = [&](double z)
-  { return static_cast<int>(std::min<double>(std::max<double>(z, region.Lo[w]), region.Hi[w])); };
-  int start = clampSlice(std::round(anchor[w]));
-  bool found = scanSlice(start);
-  if (!found)
-  {
-    for (int k : { clampSlice(std::floor(anchor[w])), clampSlice(std::ceil(anchor[w])) })
-    {
-      if (k != start && scanSlice(k))
-      {
-        start = k;
-        found = true;
-        break;
-      }
-    }
-  }
-  if (found)
-  {
-    for (int k = start + 1; k <= region.Hi[w] && scanSlice(k); ++k)
-    {
-    }
-    for (int k = start - 1; k >= region.Lo[w] && scanSlice(k); --k)
-    {
-    }
-  }
-  return evaluations;
+
+  static constexpr int CacheSize = 64;
+  const Site& TheSite;
+  const uint32_t SiteIndex;
+  const RangeCulling& Culling;
+  const IndexBox& Region;
+  const SampleGrid& Grid;
+  NearestSiteBuffer& Nearest;
+  int U, V, W;
+  DomainSpans Domain;
+  double D0[3], Du[3], Dv[3], Dw[3];
+  float Step[3];
+  int64_t Base, StrideU, StrideV, StrideW;
+  int64_t Evaluations = 0;
+  int64_t CacheKey[CacheSize];
+  bool CacheValue[CacheSize];
+};
+
+/// Scan-converts one site's domain inside its region; returns distance evaluations.
+int64_t ScanSite(const MeshSites& sites,
+  const Site& site,
+  uint32_t siteIndex,
+  const RangeCulling& culling,
+  const FieldRequest& request,
+  NearestSiteBuffer& nearest)
+{
+  return SiteScan(sites, site, siteIndex, culling, request, nearest).Run();
 }
 
 } // namespace

@@ -222,23 +222,20 @@ int64_t SideLabel(const SurfacePatches& patches,
   return 2 * patches.Patch[chosen] + side;
 }
 
-void SegmentRegions(const SegmentInput& input,
-  SegmentResult& result,
-  const ParallelFor& parallelFor)
+namespace
+{
+/// Each sample's side label (2 patch + side; -1: none) and its patch.
+void Label(const SegmentInput& input,
+  const ParallelFor& run,
+  std::vector<int64_t>& label,
+  std::vector<int32_t>& patch)
 {
   const SampleGrid& grid = input.Grid;
   const IndexBox& whole = grid.Whole;
   const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
   const int64_t count = whole.Count();
-  const int64_t stride[3] = { 1, n[0], int64_t(n[0]) * n[1] };
-  const ParallelFor run = parallelFor
-    ? parallelFor
-    : ParallelFor([](int64_t total, int64_t, const std::function<void(int64_t, int64_t)>& body)
-        { body(0, total); });
-
-  // Labels.
-  std::vector<int64_t> label(count);
-  result.Patch.assign(count, -1);
+  label.resize(count);
+  patch.assign(count, -1);
   if (input.Labels)
   {
     run(count,
@@ -248,41 +245,51 @@ void SegmentRegions(const SegmentInput& input,
         for (int64_t v = begin; v < end; ++v)
         {
           label[v] = input.Labels[v];
-          result.Patch[v] = label[v] < 0 ? -1 : static_cast<int32_t>(label[v] / 2);
+          patch[v] = label[v] < 0 ? -1 : static_cast<int32_t>(label[v] / 2);
         }
       });
+    return;
   }
-  else
-  {
-    run(n[2],
-      1,
-      [&](int64_t k0, int64_t k1)
+  run(n[2],
+    1,
+    [&](int64_t k0, int64_t k1)
+    {
+      std::vector<int64_t> scratch;
+      for (int64_t k = k0; k < k1; ++k)
       {
-        std::vector<int64_t> scratch;
-        for (int64_t k = k0; k < k1; ++k)
+        for (int j = 0; j < n[1]; ++j)
         {
-          for (int j = 0; j < n[1]; ++j)
+          for (int i = 0; i < n[0]; ++i)
           {
-            for (int i = 0; i < n[0]; ++i)
-            {
-              const int64_t v = i + j * stride[1] + k * stride[2];
-              const double p[3] = { grid.Coordinate(0, whole.Lo[0] + i),
-                grid.Coordinate(1, whole.Lo[1] + j),
-                grid.Coordinate(2, whole.Lo[2] + static_cast<int>(k)) };
-              label[v] = SideLabel(*input.Patches,
-                p,
-                input.ClosestPoint + 3 * v,
-                input.ClosestTriangle[v],
-                input.ClosestFeature[v],
-                scratch);
-              result.Patch[v] = label[v] < 0 ? -1 : static_cast<int32_t>(label[v] / 2);
-            }
+            const int64_t v = i + n[0] * (j + int64_t(n[1]) * k);
+            const double p[3] = { grid.Coordinate(0, whole.Lo[0] + i),
+              grid.Coordinate(1, whole.Lo[1] + j),
+              grid.Coordinate(2, whole.Lo[2] + static_cast<int>(k)) };
+            label[v] = SideLabel(*input.Patches,
+              p,
+              input.ClosestPoint + 3 * v,
+              input.ClosestTriangle[v],
+              input.ClosestFeature[v],
+              scratch);
+            patch[v] = label[v] < 0 ? -1 : static_cast<int32_t>(label[v] / 2);
           }
         }
-      });
-  }
+      }
+    });
+}
 
-  // Support of each label pair: adjacent samples with no surface between them.
+using LabelPair = std::pair<std::pair<int64_t, int64_t>, int64_t>;
+
+/// The support of each label pair: adjacent samples with no surface between them; in the
+/// canonical order, most support first, ties by the labels.
+std::vector<LabelPair> PairSupport(const SegmentInput& input,
+  const std::vector<int64_t>& label,
+  const ParallelFor& run)
+{
+  const SampleGrid& grid = input.Grid;
+  const IndexBox& whole = grid.Whole;
+  const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
+  const int64_t stride[3] = { 1, n[0], int64_t(n[0]) * n[1] };
   std::map<std::pair<int64_t, int64_t>, int64_t> support;
   std::mutex lock;
   run(n[2],
@@ -324,75 +331,89 @@ void SegmentRegions(const SegmentInput& input,
           static_cast<int64_t>(entry.first & 0xffffffffu) }] += entry.second;
       }
     });
-
-  // Canonical order: most support first, ties by the labels.
-  std::vector<std::pair<std::pair<int64_t, int64_t>, int64_t>> pairs(
-    support.begin(), support.end());
+  std::vector<LabelPair> pairs(support.begin(), support.end());
   std::stable_sort(
     pairs.begin(), pairs.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+  return pairs;
+}
 
-  // Union-find over labels; each root knows the sides of the patches its set holds.
-  std::unordered_map<int64_t, int64_t> parent;
-  std::unordered_map<int64_t, std::unordered_map<int64_t, uint8_t>> sides;
-  auto find = [&](int64_t x)
+/// Union-find over labels; each root knows the sides of the patches its set holds, so
+/// that a merge that would join the two sides of one patch is refused.
+class LabelSets
+{
+public:
+  int64_t Find(int64_t x)
   {
-    auto it = parent.find(x);
-    if (it == parent.end())
+    auto it = this->Parent.find(x);
+    if (it == this->Parent.end())
     {
-      parent[x] = x;
-      sides[x][x / 2] = static_cast<uint8_t>(1 << (x % 2));
+      this->Parent[x] = x;
+      this->Sides[x][x / 2] = static_cast<uint8_t>(1 << (x % 2));
       return x;
     }
     int64_t root = x;
-    while (parent[root] != root)
+    while (this->Parent[root] != root)
     {
-      root = parent[root];
+      root = this->Parent[root];
     }
-    while (parent[x] != root)
+    while (this->Parent[x] != root)
     {
-      const int64_t next = parent[x];
-      parent[x] = root;
+      const int64_t next = this->Parent[x];
+      this->Parent[x] = root;
       x = next;
     }
     return root;
-  };
-  result.Merges = result.Refused = 0;
-  for (const auto& entry : pairs)
+  }
+
+  /// Merges the sets of labels x and y; false when that would join a patch's two sides.
+  /// Nothing to do (true) when they are one set already.
+  bool Merge(int64_t x, int64_t y, bool& merged)
   {
-    int64_t a = find(entry.first.first), b = find(entry.first.second);
+    merged = false;
+    int64_t a = this->Find(x), b = this->Find(y);
     if (a == b)
     {
-      continue;
+      return true;
     }
-    auto* small = &sides[a];
-    auto* large = &sides[b];
+    auto* small = &this->Sides[a];
+    auto* large = &this->Sides[b];
     if (small->size() > large->size())
     {
       std::swap(small, large);
       std::swap(a, b); // a: the smaller set
     }
-    bool conflict = false;
     for (const auto& s : *small)
     {
       const auto it = large->find(s.first);
-      conflict = conflict || (it != large->end() && (it->second | s.second) == 3);
-    }
-    if (conflict)
-    {
-      ++result.Refused;
-      continue;
+      if (it != large->end() && (it->second | s.second) == 3)
+      {
+        return false;
+      }
     }
     for (const auto& s : *small)
     {
       (*large)[s.first] |= s.second;
     }
-    sides.erase(a);
-    parent[a] = b;
-    ++result.Merges;
+    this->Sides.erase(a);
+    this->Parent[a] = b;
+    merged = true;
+    return true;
   }
 
-  // Regions numbered by their lowest label among the samples (labels are dense: below
-  // twice the patch count).
+private:
+  std::unordered_map<int64_t, int64_t> Parent;
+  std::unordered_map<int64_t, std::unordered_map<int64_t, uint8_t>> Sides;
+};
+
+/// Regions numbered by their lowest label among the samples (labels are dense: below
+/// twice the patch count); each sample's region.
+void NumberRegions(const SegmentInput& input,
+  const std::vector<int64_t>& label,
+  LabelSets& sets,
+  const ParallelFor& run,
+  SegmentResult& result)
+{
+  const int64_t count = static_cast<int64_t>(label.size());
   const int64_t labels = 2 * input.Patches->PatchCount;
   std::vector<uint8_t> present(labels, 0);
   for (int64_t v = 0; v < count; ++v)
@@ -411,7 +432,7 @@ void SegmentRegions(const SegmentInput& input,
     {
       continue;
     }
-    const int64_t root = find(l);
+    const int64_t root = sets.Find(l);
     auto it = number.find(root);
     if (it == number.end())
     {
@@ -432,6 +453,32 @@ void SegmentRegions(const SegmentInput& input,
         result.Region[v] = label[v] >= 0 ? regionOfLabel[label[v]] : -1;
       }
     });
+}
+} // namespace
+
+void SegmentRegions(const SegmentInput& input,
+  SegmentResult& result,
+  const ParallelFor& parallelFor)
+{
+  const ParallelFor run = parallelFor
+    ? parallelFor
+    : ParallelFor([](int64_t total, int64_t, const std::function<void(int64_t, int64_t)>& body)
+        { body(0, total); });
+  std::vector<int64_t> label;
+  Label(input, run, label, result.Patch);
+  const std::vector<LabelPair> pairs = PairSupport(input, label, run);
+  LabelSets sets;
+  result.Merges = result.Refused = 0;
+  for (const auto& entry : pairs)
+  {
+    bool merged = false;
+    if (!sets.Merge(entry.first.first, entry.first.second, merged))
+    {
+      ++result.Refused;
+    }
+    result.Merges += merged;
+  }
+  NumberRegions(input, label, sets, run, result);
 }
 
 } // namespace vtkdf

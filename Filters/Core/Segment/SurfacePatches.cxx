@@ -12,13 +12,20 @@ void SurfacePatches::Build(const std::vector<double>& points, const std::vector<
 {
   this->Points = &points;
   this->Ids = triangles;
-  const int64_t pointCount = static_cast<int64_t>(points.size() / 3);
-  const int64_t triangleCount = static_cast<int64_t>(triangles.size() / 3);
+  this->MergePositions();
+  const std::vector<uint8_t> valid = this->TrianglesWithArea();
+  this->IndexCorners(valid);
+  this->Orient(valid, this->Links(valid));
+}
 
-  // Merged ids: the used points sorted by position, each group keyed by its lowest id.
+/// Merged ids: the used points sorted by position, each group keyed by its lowest id.
+void SurfacePatches::MergePositions()
+{
+  const std::vector<double>& points = *this->Points;
+  const int64_t pointCount = static_cast<int64_t>(points.size() / 3);
   this->Keys.resize(pointCount);
   std::vector<uint8_t> used(pointCount, 0);
-  for (const int64_t id : triangles)
+  for (const int64_t id : this->Ids)
   {
     used[id] = 1;
   }
@@ -48,10 +55,12 @@ void SurfacePatches::Build(const std::vector<double>& points, const std::vector<
       this->Keys[order[i]] = this->Keys[order[i - 1]]; // the group's first, its lowest id
     }
   }
+}
 
-  // Triangles with area; their corners per merged point.
-  this->Patch.assign(triangleCount, -1);
-  this->Flipped.assign(triangleCount, 0);
+/// Per triangle: whether it has three distinct points and an area.
+std::vector<uint8_t> SurfacePatches::TrianglesWithArea() const
+{
+  const int64_t triangleCount = static_cast<int64_t>(this->Ids.size() / 3);
   std::vector<uint8_t> valid(triangleCount, 0);
   for (int64_t t = 0; t < triangleCount; ++t)
   {
@@ -70,6 +79,14 @@ void SurfacePatches::Build(const std::vector<double>& points, const std::vector<
     };
     valid[t] = n[0] != 0 || n[1] != 0 || n[2] != 0;
   }
+  return valid;
+}
+
+/// The valid triangles' corners per merged point, in triangle order.
+void SurfacePatches::IndexCorners(const std::vector<uint8_t>& valid)
+{
+  const int64_t pointCount = static_cast<int64_t>(this->Keys.size());
+  const int64_t triangleCount = static_cast<int64_t>(valid.size());
   this->CornerStart.assign(pointCount + 1, 0);
   for (int64_t t = 0; t < triangleCount; ++t)
   {
@@ -83,23 +100,27 @@ void SurfacePatches::Build(const std::vector<double>& points, const std::vector<
     this->CornerStart[p + 1] += this->CornerStart[p];
   }
   this->CornerTriangles.resize(this->CornerStart.back());
+  std::vector<int64_t> fill(this->CornerStart.begin(), this->CornerStart.end() - 1);
+  for (int64_t t = 0; t < triangleCount; ++t)
   {
-    std::vector<int64_t> fill(this->CornerStart.begin(), this->CornerStart.end() - 1);
-    for (int64_t t = 0; t < triangleCount; ++t)
+    for (int k = 0; k < 3 && valid[t]; ++k)
     {
-      for (int k = 0; k < 3 && valid[t]; ++k)
-      {
-        this->CornerTriangles[fill[this->Key(t, k)]++] = t; // in triangle order
-      }
+      this->CornerTriangles[fill[this->Key(t, k)]++] = t;
     }
   }
+}
 
+/// Manifold edges (exactly two uses) link two triangles; `Same` when both run the same
+/// way, so that one of them must be flipped for the patch to be oriented.
+std::vector<SurfacePatches::Link> SurfacePatches::Links(const std::vector<uint8_t>& valid) const
+{
   // Edges: (lower key, higher key, triangle, whether the triangle runs low -> high).
   struct EdgeUse
   {
     int64_t Low, High, Triangle;
     bool Forward;
   };
+  const int64_t triangleCount = static_cast<int64_t>(valid.size());
   std::vector<EdgeUse> uses;
   uses.reserve(3 * triangleCount);
   for (int64_t t = 0; t < triangleCount; ++t)
@@ -117,13 +138,6 @@ void SurfacePatches::Build(const std::vector<double>& points, const std::vector<
       return x.Low != y.Low ? x.Low < y.Low
                             : (x.High != y.High ? x.High < y.High : x.Triangle < y.Triangle);
     });
-  // Manifold edges (exactly two uses) link two triangles; `same` when both run the same
-  // way, so that one of them must be flipped for the patch to be oriented.
-  struct Link
-  {
-    int64_t A, B;
-    bool Same;
-  };
   std::vector<Link> links;
   for (size_t i = 0; i < uses.size();)
   {
@@ -139,6 +153,15 @@ void SurfacePatches::Build(const std::vector<double>& points, const std::vector<
     }
     i = j;
   }
+  return links;
+}
+
+/// Patches: breadth-first from the lowest unvisited triangle. A link whose two triangles'
+/// orientations disagree once both are set is cut, and the search runs again until no
+/// link disagrees (each run cuts at least one more, so it ends).
+void SurfacePatches::Orient(const std::vector<uint8_t>& valid, const std::vector<Link>& links)
+{
+  const int64_t triangleCount = static_cast<int64_t>(valid.size());
   std::vector<int64_t> linkStart(triangleCount + 1, 0), linkOf;
   for (const Link& l : links)
   {
@@ -150,18 +173,14 @@ void SurfacePatches::Build(const std::vector<double>& points, const std::vector<
     linkStart[t + 1] += linkStart[t];
   }
   linkOf.resize(linkStart.back());
+  std::vector<int64_t> fill(linkStart.begin(), linkStart.end() - 1);
+  for (size_t l = 0; l < links.size(); ++l)
   {
-    std::vector<int64_t> fill(linkStart.begin(), linkStart.end() - 1);
-    for (size_t l = 0; l < links.size(); ++l)
-    {
-      linkOf[fill[links[l].A]++] = static_cast<int64_t>(l);
-      linkOf[fill[links[l].B]++] = static_cast<int64_t>(l);
-    }
+    linkOf[fill[links[l].A]++] = static_cast<int64_t>(l);
+    linkOf[fill[links[l].B]++] = static_cast<int64_t>(l);
   }
-
-  // Patches: breadth-first from the lowest unvisited triangle. A link whose two
-  // triangles' orientations disagree once both are set is cut, and the search runs
-  // again until no link disagrees (each run cuts at least one more, so it ends).
+  this->Patch.assign(triangleCount, -1);
+  this->Flipped.assign(triangleCount, 0);
   std::vector<uint8_t> cut(links.size(), 0);
   for (;;)
   {

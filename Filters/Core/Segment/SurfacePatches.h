@@ -56,6 +56,18 @@ public:
   int64_t CornerCount() const { return static_cast<int64_t>(this->CornerTriangles.size()); }
 
 private:
+  // Build's steps.
+  struct Link
+  {
+    int64_t A, B; // the two triangles of a manifold edge
+    bool Same;    // they run the edge the same way: one must be flipped
+  };
+  void MergePositions();
+  std::vector<uint8_t> TrianglesWithArea() const;
+  void IndexCorners(const std::vector<uint8_t>& valid);
+  std::vector<Link> Links(const std::vector<uint8_t>& valid) const;
+  void Orient(const std::vector<uint8_t>& valid, const std::vector<Link>& links);
+
   const std::vector<double>* Points = nullptr;
   std::vector<int64_t> Ids;         // the triangles' point ids
   std::vector<int64_t> Keys;        // per point: the lowest id of its position
