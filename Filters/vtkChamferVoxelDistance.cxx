@@ -120,23 +120,9 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   request.Metric = static_cast<vtkdf::ChamferMetric>(this->Metric);
   request.MaximumLayers = this->MaximumLayers;
   request.Signed = this->Signed;
-  const int nx = grid.Whole.Size(0), ny = grid.Whole.Size(1), nz = grid.Whole.Size(2);
-  // Three views of lanes (voxelizing), three lane grids and one bit plane per bit of the
-  // largest layer index (propagating; no metric needs more than nx + ny + nz layers),
-  // the int32 field.
-  int64_t largestLayer = int64_t(nx) + ny + nz;
-  largestLayer =
-    this->MaximumLayers > 0 ? std::min<int64_t>(largestLayer, this->MaximumLayers) : largestLayer;
-  int planes = 0;
-  while ((int64_t(1) << planes) <= largestLayer)
-  {
-    ++planes;
-  }
-  const double bytes =
-    double(grid.Whole.Count()) * (6 / 8.0 + (3 + planes) / 8.0 + 4 + (this->OutputMasks ? 2 : 0));
   vtkdf::HeadlessGL* gl = nullptr;
   vtkdf::MeshInput input;
-  if (!this->CheckMemory(bytes, grid.Whole) || !this->ChooseBackend(gl) ||
+  if (!this->CheckMemory(this->EstimateBytes(grid.Whole), grid.Whole) || !this->ChooseBackend(gl) ||
     (mesh && !this->ReadMesh(mesh, grid, input)))
   {
     return 0;
@@ -144,26 +130,17 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
 
   // The zero set, and the solid when a sign is wanted: read from the image, or
   // voxelized (on the GPU, the voxelization stays there for the propagation).
-  vtkdf::BitVolume boundary(nx, ny, nz), solid;
+  vtkdf::BitVolume boundary(grid.Whole.Size(0), grid.Whole.Size(1), grid.Whole.Size(2)), solid;
   bool haveSolid = this->Signed;
-  std::string error;
   if (image)
   {
-    bool found = false;
-    solid.Resize(nx, ny, nz);
-    if (!ReadMask(image, "Boundary", true, boundary, found, error) ||
-      !ReadMask(image, "Solid", false, solid, haveSolid, error))
+    if (!this->ReadMasks(image, boundary, solid, haveSolid))
     {
-      vtkErrorMacro(<< error);
       return 0;
-    }
-    if (this->Signed && !haveSolid)
-    {
-      vtkWarningMacro("Signed is on but the input image has no Solid array: the distances are "
-                      "unsigned.");
     }
     timer.End("masks");
   }
+  std::string error;
   auto distance = vtkdf::NewArray<vtkIntArray>("ChamferDistance", grid.Whole.Count());
   vtkdf::ChamferReport report;
   const vtkdf::Execution execution = this->MakeExecution(timer);
@@ -220,6 +197,44 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   this->FinishTiming(gl, timer);
   this->UpdateProgress(1.0);
   return 1;
+}
+
+double vtkChamferVoxelDistance::EstimateBytes(const vtkdf::IndexBox& voxels) const
+{
+  // Three views of lanes (voxelizing), three lane grids and one bit plane per bit of the
+  // largest layer index (propagating; no metric needs more than nx + ny + nz layers),
+  // the int32 field.
+  int64_t largestLayer = int64_t(voxels.Size(0)) + voxels.Size(1) + voxels.Size(2);
+  largestLayer =
+    this->MaximumLayers > 0 ? std::min<int64_t>(largestLayer, this->MaximumLayers) : largestLayer;
+  int planes = 0;
+  while ((int64_t(1) << planes) <= largestLayer)
+  {
+    ++planes;
+  }
+  return double(voxels.Count()) * (6 / 8.0 + (3 + planes) / 8.0 + 4 + (this->OutputMasks ? 2 : 0));
+}
+
+bool vtkChamferVoxelDistance::ReadMasks(vtkImageData* image,
+  vtkdf::BitVolume& boundary,
+  vtkdf::BitVolume& solid,
+  bool& haveSolid)
+{
+  std::string error;
+  bool found = false;
+  solid.Resize(boundary.Size(0), boundary.Size(1), boundary.Size(2));
+  if (!ReadMask(image, "Boundary", true, boundary, found, error) ||
+    !ReadMask(image, "Solid", false, solid, haveSolid, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  if (this->Signed && !haveSolid)
+  {
+    vtkWarningMacro("Signed is on but the input image has no Solid array: the distances are "
+                    "unsigned.");
+  }
+  return true;
 }
 
 bool vtkChamferVoxelDistance::CheckProperties()

@@ -27,6 +27,13 @@
 #define vtkChamferVoxelDistance_h
 
 #include "vtkDistanceFieldAlgorithm.h"
+
+#ifndef __VTK_WRAP__
+namespace vtkdf
+{
+class BitVolume;
+}
+#endif
 #include "vtkDistanceFieldsModule.h" // For export macro
 
 class VTKDISTANCEFIELDS_EXPORT vtkChamferVoxelDistance : public vtkDistanceFieldAlgorithm
@@ -78,6 +85,16 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   bool CheckProperties() override;
+#ifndef __VTK_WRAP__
+  /// The bytes a run on these voxels needs (lanes, bit planes of the layers, the field).
+  double EstimateBytes(const vtkdf::IndexBox& voxels) const;
+  /// The Boundary mask (required) and Solid mask (optional: `haveSolid`) of an image
+  /// input as lanes; false with the error reported.
+  bool ReadMasks(vtkImageData* image,
+    vtkdf::BitVolume& boundary,
+    vtkdf::BitVolume& solid,
+    bool& haveSolid);
+#endif
 
   int Metric = CHESSBOARD18;
   int MaximumLayers = 0;

@@ -105,29 +105,23 @@ vtkTypeBool vtkDistanceFieldBlend::ProcessRequest(vtkInformation* request,
     [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
-int vtkDistanceFieldBlend::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+bool vtkDistanceFieldBlend::CheckInputs(vtkImageData* first, vtkImageData* second)
 {
-  vtkImageData* first = vtkImageData::GetData(inputVector[0], 0);
-  vtkImageData* second = vtkImageData::GetData(inputVector[1], 0);
-  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  output->Initialize();
   if (!(this->T >= 0 && this->T <= 1))
   {
     vtkErrorMacro("T must lie in [0, 1]; it is " << this->T << ".");
-    return 0;
+    return false;
   }
   if (!first || !second)
   {
     vtkErrorMacro("Two inputs are needed (ports 0 and 1).");
-    return 0;
+    return false;
   }
   std::string error;
   if (!IsSegmented(first, "first", error) || !IsSegmented(second, "second", error))
   {
     vtkErrorMacro(<< "Cannot blend: " << error << ".");
-    return 0;
+    return false;
   }
   int dims[2][3];
   double origin[2][3], spacing[2][3];
@@ -146,7 +140,7 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation*,
       vtkErrorMacro("Cannot blend fields on different grids: dimensions "
         << dims[0][0] << "x" << dims[0][1] << "x" << dims[0][2] << " and " << dims[1][0] << "x"
         << dims[1][1] << "x" << dims[1][2] << ", origins and spacings must be equal.");
-      return 0;
+      return false;
     }
   }
   for (const char* name : { "RegionSides", "Delta", "RegionOffset" })
@@ -155,10 +149,24 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation*,
     {
       vtkErrorMacro("Cannot blend fields whose regions do not mean the same: their "
         << name << " differ (segment both with the same region table, Delta and RegionOffset).");
-      return 0;
+      return false;
     }
   }
+  return true;
+}
 
+int vtkDistanceFieldBlend::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkImageData* first = vtkImageData::GetData(inputVector[0], 0);
+  vtkImageData* second = vtkImageData::GetData(inputVector[1], 0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  output->Initialize();
+  if (!this->CheckInputs(first, second))
+  {
+    return 0;
+  }
   const vtkIdType n = first->GetNumberOfPoints();
   // Plain copies when the arrays are of other types (e.g. read from files).
   auto floats = [](vtkDataArray* array)
@@ -177,14 +185,9 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation*,
   vtkSmartPointer<vtkFloatArray> db = floats(second->GetPointData()->GetArray("Distance"));
   vtkSmartPointer<vtkIntArray> ra = ints(first->GetPointData()->GetArray("RegionIndex"));
   vtkSmartPointer<vtkIntArray> rb = ints(second->GetPointData()->GetArray("RegionIndex"));
-  vtkNew<vtkFloatArray> distance, segmented;
-  vtkNew<vtkIntArray> region;
-  distance->SetName("Distance");
-  segmented->SetName("SegmentedDistance");
-  region->SetName("RegionIndex");
-  vtkdf::AllocateTuples(distance, n);
-  vtkdf::AllocateTuples(segmented, n);
-  vtkdf::AllocateTuples(region, n);
+  auto distance = vtkdf::NewArray<vtkFloatArray>("Distance", n);
+  auto segmented = vtkdf::NewArray<vtkFloatArray>("SegmentedDistance", n);
+  auto region = vtkdf::NewArray<vtkIntArray>("RegionIndex", n);
   static_assert(sizeof(int) == sizeof(int32_t), "int is 32 bits");
   vtkdf::SegmentedSamples a, b;
   a.Distance = da->GetPointer(0);
@@ -197,30 +200,19 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation*,
   {
     grid.Spacing[c] = std::abs(first->GetSpacing()[c]);
   }
-  vtkdf::BlendSegmented(a,
+  vtkdf::BlendSegmentedFields(a,
     b,
     this->T,
     grid,
+    FieldValues(first, "Delta")[0],
+    FieldValues(first, "RegionOffset")[0],
     distance->GetPointer(0),
     reinterpret_cast<int32_t*>(region->GetPointer(0)),
+    segmented->GetPointer(0),
     vtkdf::SMPFor);
-  const double delta = FieldValues(first, "Delta")[0];
-  const double offset = FieldValues(first, "RegionOffset")[0];
-  float* f = segmented->GetPointer(0);
-  const float* d = distance->GetPointer(0);
-  const int* r = region->GetPointer(0);
-  vtkdf::SMPFor(n,
-    4096,
-    [&](int64_t begin, int64_t end)
-    {
-      for (int64_t v = begin; v < end; ++v)
-      {
-        f[v] = static_cast<float>(std::min(double(d[v]), delta) + offset * r[v]);
-      }
-    });
-  output->SetDimensions(dims[0]);
-  output->SetOrigin(origin[0]);
-  output->SetSpacing(spacing[0]);
+  output->SetDimensions(first->GetDimensions());
+  output->SetOrigin(first->GetOrigin());
+  output->SetSpacing(first->GetSpacing());
   output->GetPointData()->SetScalars(segmented);
   output->GetPointData()->AddArray(region);
   output->GetPointData()->AddArray(distance);

@@ -45,6 +45,9 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Whether T and the inputs can be blended (two segmented fields on one grid with the
+  /// same regions); else false with the error reported.
+  bool CheckInputs(vtkImageData* first, vtkImageData* second);
 
   double T = 0.5;
 

@@ -232,4 +232,29 @@ void BlendSegmented(const SegmentedSamples& first,
     });
 }
 
+void BlendSegmentedFields(const SegmentedSamples& first,
+  const SegmentedSamples& second,
+  double t,
+  const BlendGrid& grid,
+  double delta,
+  double offset,
+  float* distance,
+  int32_t* region,
+  float* segmented,
+  const ParallelFor& parallelFor)
+{
+  BlendSegmented(first, second, t, grid, distance, region, parallelFor);
+  const int64_t count = static_cast<int64_t>(grid.Dims[0]) * grid.Dims[1] * grid.Dims[2];
+  parallelFor(count,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t v = begin; v < end; ++v)
+      {
+        segmented[v] =
+          static_cast<float>(std::min(double(distance[v]), delta) + offset * region[v]);
+      }
+    });
+}
+
 } // namespace vtkdf

@@ -62,6 +62,19 @@ void BlendSegmented(const SegmentedSamples& first,
   int32_t* region,
   const ParallelFor& parallelFor = ParallelFor());
 
+/// BlendSegmented, then the blended field's SegmentedDistance, min(d, delta) + offset r
+/// (the fields' shared delta and region offset), into `segmented`.
+void BlendSegmentedFields(const SegmentedSamples& first,
+  const SegmentedSamples& second,
+  double t,
+  const BlendGrid& grid,
+  double delta,
+  double offset,
+  float* distance,
+  int32_t* region,
+  float* segmented,
+  const ParallelFor& parallelFor);
+
 /// The exact Euclidean distance from every sample of `grid` to the nearest sample whose
 /// region is `which` (infinity when there is none), into `out` (Felzenszwalb and
 /// Huttenlocher's separable transform on squared distances).
