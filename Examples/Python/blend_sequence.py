@@ -8,13 +8,18 @@ in the colour of the region on the viewer's side, so the wall and both chambers 
 
 usage: /usr/bin/python3 blend_sequence.py OUT_DIR [FRAMES] [RESOLUTION]
        (needs an X display: xvfb-run -a ...)
-Writes OUT_DIR/blend_00.png ... and prints the time of each stage.
+Writes OUT_DIR/blend_00.png ... and prints the time of each stage. It also checks what it
+shows, and exits with status 1 when a check fails: each field has three regions; the
+blend's ends are the two fields exactly; along the +x axis the chamber's outer interface
+moves linearly from the ball's radius to the box's; every frame draws the shapes.
 """
 import math
 import os
 import sys
 import time
 
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 from vtkmodules.vtkIOImage import vtkPNGWriter
@@ -137,6 +142,40 @@ grab.SetInput(window)
 grab.ReadFrontBufferOff()
 writer = vtkPNGWriter()
 writer.SetInputConnection(grab.GetOutputPort())
+failures = []
+
+
+def check(ok, what):
+    print(("ok      " if ok else "FAILED  ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def arrays(image):
+    point_data = image.GetPointData()
+    return (vtk_to_numpy(point_data.GetArray("Distance")),
+            vtk_to_numpy(point_data.GetArray("RegionIndex")))
+
+
+def chamber_radius(image):
+    """Where the chamber at +x ends along the +x axis (the samples nearest y = z = 0): the
+    last chamber sample plus its distance to the surface."""
+    distance, region = arrays(image)
+    distance = distance.reshape(n, n, n)  # z, y, x
+    region = region.reshape(n, n, n)
+    j = k = int(round((0.0 - lo) / spacing))
+    i0 = int(math.floor((0.0 - lo) / spacing)) + 1  # the first sample with x > 0
+    chamber = region[k, j, i0]
+    i = i0
+    while i + 1 < n and region[k, j, i + 1] == chamber:
+        i += 1
+    return lo + i * spacing + float(distance[k, j, i])
+
+
+for field in fields:
+    check(field.GetFieldData().GetArray("RegionCount").GetValue(0) == 3,
+          "a walled shape's field has three regions (outside and two chambers)")
+background = np.array([0.1, 0.1, 0.15]) * 255
 for k in range(frames):
     t = k / (frames - 1) if frames > 1 else 0.0
     blend.SetT(t)
@@ -152,4 +191,21 @@ for k in range(frames):
     writer.Write()
     print(f"t = {t:.3f}: blend {blended:.3f} s, render {rendered:.3f} s "
           f"({mapper.GetLastNumberOfSlices()} slices)")
+    output = blend.GetOutput()
+    if t in (0.0, 1.0):
+        end = arrays(fields[0 if t == 0.0 else 1])
+        check(all(np.array_equal(a, b) for a, b in zip(arrays(output), end)),
+              f"t = {t:g}: the blend is the {'first' if t == 0.0 else 'second'} field exactly")
+    radius = chamber_radius(output)
+    expected = (1 - t) * ball((1, 0, 0)) + t * rounded_box((1, 0, 0))
+    check(abs(radius - expected) <= spacing,
+          f"t = {t:.3f}: the chamber ends at x = {radius:.3f} along +x, expected "
+          f"{expected:.3f} within a spacing ({spacing:.3f})")
+    pixels = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())[:, :3]
+    covered = float(np.mean(np.any(np.abs(pixels - background) > 2, axis=1)))
+    check(mapper.GetLastNumberOfSlices() > 0 and covered > 0.05,
+          f"t = {t:.3f}: the frame shows the shapes ({100 * covered:.0f}% of the pixels)")
 print(f"wrote {frames} frames to {out}")
+if failures:
+    print(f"{len(failures)} checks failed")
+    sys.exit(1)
