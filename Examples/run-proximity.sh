@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Proximity by chamfer distance (paper 001 §6.3): writes out/proximity.png, a bunny
+# Proximity by chamfer distance (Martinek et al. (VMV 2011) §6.3): writes out/proximity.png, a bunny
 # next to a cow, its vertices coloured by the cow's chamfer field.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -2,7 +2,7 @@
  * @class   vtkSegmentedDistanceContour
  * @brief   The surface of a segmented distance field, boundaries and junctions kept.
  *
- * The polygonizer of paper 004 (section 3.3, eqs. 5-7) for the output of
+ * The polygonizer of Yamazaki et al. (SMI 2003) (section 3.3, eqs. 5-7) for the output of
  * vtkSegmentedDistanceField: an interface point on every grid edge between two regions
  * whose samples' distances add up to at most the edge's length, where eq. 6 puts it; the
  * points joined cell by cell (Filters/Core/Segment/SegmentContour.h): by marching cubes

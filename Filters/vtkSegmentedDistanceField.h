@@ -2,7 +2,7 @@
  * @class   vtkSegmentedDistanceField
  * @brief   Segmented distance field of a surface that may be open or non-manifold.
  *
- * Implements section 3.3 of Yamazaki, Kase and Ikeuchi (paper 004): a signed distance
+ * Implements section 3.3 of Yamazaki, Kase and Ikeuchi (SMI 2003): a signed distance
  * can only represent closed 2-manifolds; the segmented distance
  *   f(p) = min(d(p), Delta) + RegionOffset * r(p)
  * (d the exact unsigned distance, r the region index) also represents boundaries and

@@ -2,7 +2,7 @@
  * @class   vtkSegmentedDistanceVolumeMapper
  * @brief   Pre-integrated slice-based rendering of segmented and signed distance fields.
  *
- * The renderer of paper 004 (section 4) through VTK's OpenGL layer. The volume is cut
+ * The renderer of Yamazaki et al. (SMI 2003) (section 4) through VTK's OpenGL layer. The volume is cut
  * by view-aligned slices (SampleDistance apart, or NumberOfSlices of them), drawn back
  * to front; a fragment of a slice stands for the slab between its slice and the next
  * one along its ray. It samples the field where the ray enters and where it leaves the

@@ -1,5 +1,5 @@
 #version 450 core
-// One wavefront layer of the chamfer transform (paper 001 §5.2), one invocation per
+// One wavefront layer of the chamfer transform (Martinek et al. (VMV 2011) §5.2), one invocation per
 // lane texel (128 voxels of a z-lane):
 //   next = (n(cur) | face neighbours | edge neighbours) & ~A,   A |= next,
 // with n(w) = (w << 1) | (w >> 1) carried across texels and n'(w) = n(w) | w; the face

@@ -1,6 +1,6 @@
 // Builds a site's domain polygon on one slice (the same clipping as SliceDomain.h) and
 // emits it into that slice's layer, with the site's distance vector at every corner:
-// the rasterizer interpolates it exactly (linear factorization, paper 000 section 3).
+// the rasterizer interpolates it exactly (linear factorization, Sud et al. (I3D 2006) section 3).
 layout(points, invocations = 32) in;
 layout(triangle_strip, max_vertices = 32) out;
 

@@ -3,7 +3,7 @@
 //DF::SlabCommon
 
 // One fragment of a view-aligned slice stands for the slab between this slice and the
-// next one along its ray (paper 004, section 4). It samples the field where the ray
+// next one along its ray (Yamazaki et al., SMI 2003, section 4). It samples the field where the ray
 // enters and leaves the slab, and decides what the paper's vertex generation diagram
 // tabulated: whether an interface lies in the slab (two regions, eq. 7), where (eq. 6)
 // and in which colour (the region on the viewer's side).

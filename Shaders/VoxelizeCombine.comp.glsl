@@ -1,5 +1,5 @@
 #version 450 core
-// The three views rotated into z-lanes (paper 001 §4.1: voxel (i, j, k) is bit i[A] of
+// The three views rotated into z-lanes (Martinek et al. (VMV 2011) §4.1: voxel (i, j, k) is bit i[A] of
 // lane (i[B], i[C]) of view A): OR of the boundary views, AND of the solid ones (whose
 // lanes hold half-voxel bins: voxel k is bin 2k+1, after the guard bins). One
 // invocation per z-lane texel (128 voxels).

@@ -1,4 +1,4 @@
-"""Metamorphosis of non-manifold surfaces (paper 004, section 5.2 and Figs. 9-10): a
+"""Metamorphosis of non-manifold surfaces (Yamazaki et al., SMI 2003, section 5.2 and Figs. 9-10): a
 ball divided by an inner wall blends into a rounded box divided the same way. Each is a
 closed surface with a junction circle where the wall meets the shell, so its segmented
 distance field has three regions (outside and two chambers) that a signed distance field

@@ -1,4 +1,4 @@
-"""Proximity by chamfer distance (paper 001 §6.3): the chamfer field of one mesh (the
+"""Proximity by chamfer distance (Martinek et al. (VMV 2011) §6.3): the chamfer field of one mesh (the
 cow), and a second mesh (a bunny next to it) whose vertices are coloured by the field's
 value there, in spacings: red where the bunny comes close to the cow.
 

@@ -1,4 +1,4 @@
-// Benchmark (not a test): voxelization and chamfer distance, the shape of paper 001's
+// Benchmark (not a test): voxelization and chamfer distance, the shape of Martinek et al.'s
 // Tables 1 and 2, next to VTK's own route to a Manhattan field
 // (vtkPolyDataToImageStencil + vtkImageStencilToImage + vtkImageCityBlockDistance) on
 // the same grid.

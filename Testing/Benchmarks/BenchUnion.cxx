@@ -1,5 +1,5 @@
 // BenchUnion: timings of the union closest-point query and of the penetration depth
-// (paper 003), CPU and GPU, on the scenes of the paper's section 2.3 and 3:
+// (Kim et al., JGT 2002), CPU and GPU, on the scenes of the paper's section 2.3 and 3:
 //   - 45 convex pieces of 40 faces and 70 of 30 (the paper: 0.1 s and 0.07 s a query on a
 //     GeForce 3): one query from inside (the median of repeats), and many queries at once
 //     (queries per second);

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# Benchmark (not a test): vtkdf linfac on the large shared meshes, both backends.
-# usage: Testing/Benchmarks/linfac.sh [BUILD_DIR] [MESH_DIR] [SIZES] [BACKENDS] [REPS]
+# Benchmark (not a test): vtkdf linfac on large meshes (bunny_75k, armadillo_52k,
+# dragon_871k from MESH_DIR), both backends.
+# usage: Testing/Benchmarks/linfac.sh BUILD_DIR MESH_DIR [SIZES] [BACKENDS] [REPS]
 # Each configuration runs REPS times (default 3) and the fastest run is reported: page
 # faults and other load make single runs on a small VM vary by 30% or more.
 set -euo pipefail
 build=${1:-build}
-meshes=${2:-../shared/meshes}
+meshes=${2:?usage: Testing/Benchmarks/linfac.sh BUILD_DIR MESH_DIR (see the usage line above)}
 sizes=${3:-"64 128 256"}
 backends=${4:-"cpu gpu"}
 reps=${5:-3}

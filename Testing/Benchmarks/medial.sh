@@ -2,10 +2,10 @@
 # Benchmark (not a test): field + medial axis (vtkdf medial --timing) on armadillo_52k and
 # bunny_75k at 128^3 and 256^3, both backends (on the GPU from a mesh, field and medial
 # pass are one fused GPU pass: their sum is in field_s).
-# usage: Testing/Benchmarks/medial.sh [BUILD_DIR] [MESH_DIR] [SIZES] [BACKENDS]
+# usage: Testing/Benchmarks/medial.sh BUILD_DIR MESH_DIR [SIZES] [BACKENDS]
 set -euo pipefail
 build=${1:-build}
-meshes=${2:-../shared/meshes}
+meshes=${2:?usage: Testing/Benchmarks/medial.sh BUILD_DIR MESH_DIR (see the usage line above)}
 sizes=${3:-"128 256"}
 backends=${4:-"cpu gpu"}
 out=$(mktemp -d)

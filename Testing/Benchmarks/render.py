@@ -1,5 +1,5 @@
 """Frame rates of vtkSegmentedDistanceVolumeMapper next to VTK's GPU ray caster on the
-same field, window and camera (issue 15's benchmark; the paper's Table 1 gives 12.3 fps
+same field, window and camera (Yamazaki et al.'s Table 1 gives 12.3 fps
 at 128^3 / 256 slices and 1.5 fps at 256^3 / 256 slices on a GeForce4):
 - the bunny's signed field (vtkLinearFactorDistanceField) at N^3;
 - mapper surface (RegionAware, lit) and mapper composite (pre-integrated distance
@@ -12,7 +12,7 @@ at 512^2 and 1920x1080. Each figure is the mean of FRAMES frames after a first o
 
 usage: xvfb-run -a -s "-screen 0 1920x1200x24 -noreset" /usr/bin/python3 render.py \
          BUILD MESHES [SIZES] [SLICES] [FRAMES]
-  e.g. ... render.py build ../shared/meshes 128,256 32,64,128,256 3
+  e.g. ... render.py build MESH_DIR 128,256 32,64,128,256 3
 """
 import math
 import sys

@@ -2,10 +2,10 @@
 # Benchmark (not a test): the segmented field (vtkdf segment, with --surface) next to the
 # plain signed field (vtkdf linfac --signed) on the same grid: the overhead of
 # segmentation, its stages, and the polygonization.
-# usage: Testing/Benchmarks/segment.sh [BUILD_DIR] [MESH_DIR] [SIZES] [BACKENDS] [MESHES]
+# usage: Testing/Benchmarks/segment.sh BUILD_DIR MESH_DIR [SIZES] [BACKENDS] [MESHES]
 set -euo pipefail
 build=${1:-build}
-meshes=${2:-../shared/meshes}
+meshes=${2:?usage: Testing/Benchmarks/segment.sh BUILD_DIR MESH_DIR (see the usage line above)}
 sizes=${3:-"128 256"}
 backends=${4:-"cpu gpu"}
 names=${5:-"max3ds_export snowden bunny_75k"}

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Benchmark (not a test): the signed field with SignMode = WindingNumber against
-# PseudoNormal (issue 16), vtkdf linfac --sign winding|pseudonormal, both backends.
-# usage: Testing/Benchmarks/winding.sh [BUILD_DIR] [MESH_DIR] [SIZES] [BACKENDS] [REPS] [MESHES]
+# PseudoNormal, vtkdf linfac --sign winding|pseudonormal, both backends.
+# usage: Testing/Benchmarks/winding.sh BUILD_DIR MESH_DIR [SIZES] [BACKENDS] [REPS] [MESHES]
 # Columns: each mode's time (best of REPS), the winding sign stage alone, the ratio of
 # the two times, the samples decided by blocks and by the exact sum, and the fraction of
 # samples whose sign differs between the two modes.
 set -euo pipefail
 build=${1:-build}
-meshes=${2:-../shared/meshes}
+meshes=${2:?usage: Testing/Benchmarks/winding.sh BUILD_DIR MESH_DIR (see the usage line above)}
 sizes=${3:-"128 256"}
 backends=${4:-"cpu gpu"}
 reps=${5:-3}

@@ -1,6 +1,6 @@
 // The exact closest point on the boundary of a union of convex polytopes
 // (Filters/Core/Union/UnionClosestPoint.h), VTK-free:
-// - the cases of issue 13: two unit cubes side by side (from (0.9, 0.5, 0.5): 0.5, not
+// - touching pieces: two unit cubes side by side (from (0.9, 0.5, 0.5): 0.5, not
 //   0.1), a block of 27 touching cubes, O exactly on a shared face, nested pieces, a
 //   piece holding O alone, O outside;
 // - random unions (seeded) of rotated boxes and octahedra, and of 5 to 70 hulls of 8 to

@@ -58,7 +58,7 @@ struct SampleGrid
   double Coordinate(int a, int index) const { return Origin[a] + index * Spacing[a]; }
   double MinSpacing() const { return std::fmin(Spacing[0], std::fmin(Spacing[1], Spacing[2])); }
 
-  /// The default grid of shared/docs/GRID.md: bounds padded by padding * longest side,
+  /// The default grid (docs/grid.md): bounds padded by padding * longest side,
   /// isotropic spacing, `resolution` samples along the longest padded side.
   static SampleGrid FromBounds(const double bounds[6], int resolution, double padding)
   {

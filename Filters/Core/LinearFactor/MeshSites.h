@@ -1,4 +1,4 @@
-// MeshSites: a polygon mesh decomposed into the sites of paper 000 (vertices, edges,
+// MeshSites: a polygon mesh decomposed into the sites of Sud et al. (I3D 2006) (vertices, edges,
 // triangles), each with the convex domain that bounds its Voronoi region.
 //
 // Every domain is an intersection of half-spaces. On a slice it becomes the convex

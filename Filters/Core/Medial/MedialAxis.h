@@ -1,4 +1,4 @@
-// MedialAxis: the theta-simplified medial axis of a distance field (paper 000 §6.3, the
+// MedialAxis: the theta-simplified medial axis of a distance field (Sud et al., I3D 2006, §6.3, the
 // separation-angle criterion of Foskey, Lin and Manocha's theta-SMA), without VTK types.
 //
 // The estimator works on the 2x2x2 cells of the grid. Each corner x_k of a cell has a

@@ -1,4 +1,4 @@
-// SegmentContour: the interfaces of a segmented distance field as triangles (paper 004,
+// SegmentContour: the interfaces of a segmented distance field as triangles (Yamazaki et al. (SMI 2003),
 // section 3.3: eqs. 5-7), keeping boundaries and junctions, without VTK types.
 //
 // A grid edge between samples a and b (spacing w) holds an interface point when their

@@ -1,4 +1,4 @@
-// SegmentRegions: the region index of every sample of a grid (paper 004, section 3.3.2,
+// SegmentRegions: the region index of every sample of a grid (Yamazaki et al., SMI 2003, section 3.3.2,
 // steps 2-6), from the exact unsigned field and each sample's closest feature, without
 // VTK types.
 //

@@ -6,7 +6,7 @@
 // so SurfacePatches sees one patch for the spout and one for the body, and the pocket
 // inside the body and outside the spout belongs to both the spout's outer side and the
 // body's inner side. Cut, the spout's part inside the body is a patch of its own and
-// the crossing a junction line, as paper 004's segmentation expects.
+// the crossing a junction line, as Yamazaki et al.'s segmentation expects.
 //
 // The cut is CGAL's autorefinement (Polygon_mesh_processing::experimental::autorefine,
 // exact predicates): the soup is made a halfedge mesh (points at one position merged,

@@ -1,5 +1,5 @@
 // SurfacePatches: a triangle mesh split into patches along its junction lines and
-// boundaries (paper 004, section 3.3.2, step 1), without VTK types.
+// boundaries (Yamazaki et al., SMI 2003, section 3.3.2, step 1), without VTK types.
 //
 // Points at the same position are one point (soups share no ids). Two triangles are in
 // one patch when they are connected across edges used by exactly two triangles whose

@@ -1,5 +1,5 @@
 // PenetrationDepth: the penetration depth of two solids given as unions of convex pieces
-// (paper 003, Algorithm 3.1), without VTK types.
+// (Kim et al., JGT 2002, Algorithm 3.1), without VTK types.
 //
 // P and Q intersect when 0 is in P - Q = {p - q}, and translating Q by t separates them
 // (up to touching) exactly when t is outside the interior of P - Q: the penetration depth

@@ -1,5 +1,5 @@
 // UnionClosestPoint: the exact closest point to a point O on the boundary of a union of
-// convex polytopes (paper 003's query, on the CPU in double precision), without building
+// convex polytopes (Kim et al.'s query, on the CPU in double precision), without building
 // the union and without VTK types.
 //
 // The boundary of M = union of M_i lies on the pieces' faces. A point x of face f (of
@@ -7,7 +7,7 @@
 // other piece j holds x + e n for small e > 0. On f's plane those points form a convex
 // polygon S_j (M_j's section, where a plane of M_j that faces like n counts only strictly
 // inside, so a piece touching f from inside does not cover it, and one sharing the face
-// from outside does: the two unit cubes side by side of issue 13 give 0.5 from (0.9, 0.5,
+// from outside does: two unit cubes side by side give 0.5 from (0.9, 0.5,
 // 0.5), not 0.1). So the boundary part of f is R_f = f minus the union of the S_j, and
 // the answer is the nearest point of all R_f. On a face's plane the nearest point of R_f
 // to O's projection P is P itself when no S_j holds it, else it lies on the boundary of

@@ -1,4 +1,4 @@
-// UnionClosestPointGPU: paper 003's query on the GPU (Algorithm 2.1), certified on the
+// UnionClosestPointGPU: Kim et al.'s query on the GPU (Algorithm 2.1), certified on the
 // CPU. Without VTK types.
 //
 // Six 90-degree views on the faces of a cube around O, rendered at once into the layers

@@ -378,7 +378,7 @@ bool VoxelizeCPU(const MeshInput& mesh,
   }
   statistics.FarTriangles = far.load() / 3;
 
-  // The views rotated into z-lanes (paper 001 §4.1: the voxel (i, j, k) is bit i[A] of
+  // The views rotated into z-lanes (Martinek et al. (VMV 2011) §4.1: the voxel (i, j, k) is bit i[A] of
   // lane (i[B], i[C]) of view A): OR for the boundary, AND for the solid.
   if (boundary)
   {
