@@ -3,7 +3,7 @@
  * @brief   Chamfer distance transform by wavefront propagation on voxel lanes.
  *
  * Implements the distance transform of Martinek, Grosso and Greiner, "Fast and
- * Efficient 3D Chamfer Distance Transform for Polygonal Meshes" (VMV 2010), §5: layer
+ * Efficient 3D Chamfer Distance Transform for Polygonal Meshes" (VMV 2011), §5: layer
  * n+1 is computed from layer n and the accumulation grid of all earlier layers, a whole
  * voxel lane (64 voxels per word) at a time, with bit shifts and ORs.
  *

@@ -3,7 +3,7 @@
  * @brief   Boundary and solid voxelization of a polygon mesh, on voxel lanes.
  *
  * Implements the voxelization of Martinek, Grosso and Greiner, "Fast and Efficient 3D
- * Chamfer Distance Transform for Polygonal Meshes" (VMV 2010), §4. The voxels are the
+ * Chamfer Distance Transform for Polygonal Meshes" (VMV 2011), §4. The voxels are the
  * samples of the output grid (the default grid of Resolution and Padding, or an
  * explicit one, of any dimensions); voxel (i, j, k) is the cell of one spacing centred
  * on its sample.

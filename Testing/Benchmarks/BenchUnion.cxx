@@ -6,7 +6,7 @@
 //   - the penetration depth of two linked tori of 67 pieces each, and of a CAD-like pair
 //     of 425 pieces (a plate of boxes and the pins through it; the paper: 0.2 s and 2 s).
 // Usage: BenchUnion [--backends cpu,gpu] [--pixels 256] [--queries 1000]
-//          [--write DIR]   (the PD inputs as OBJ files, for `peers pd DIR/tori.obj`)
+//          [--write DIR]   (the PD inputs as OBJ files, for other tools)
 //          [--only 45x40|70x30|tori|plates]
 // Prints one line per measurement. Not a test.
 #include "Union/ConvexHull.h"
