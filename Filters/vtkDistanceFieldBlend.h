@@ -1,6 +1,7 @@
 /**
  * @class   vtkDistanceFieldBlend
- * @brief   Blends two segmented distance fields (metamorphosis, Yamazaki et al. (SMI 2003) section 5.2).
+ * @brief   Blends two segmented distance fields (metamorphosis, Yamazaki et al. (SMI 2003)
+ * section 5.2).
  *
  * Inputs: port 0 and port 1, two outputs of vtkSegmentedDistanceField on the same grid
  * whose regions mean the same (identical `RegionSides`, `Delta` and `RegionOffset`); a

@@ -2,17 +2,16 @@
  * @class   vtkSegmentedDistanceVolumeMapper
  * @brief   Pre-integrated slice-based rendering of segmented and signed distance fields.
  *
- * The renderer of Yamazaki et al. (SMI 2003) (section 4) through VTK's OpenGL layer. The volume is cut
- * by view-aligned slices (SampleDistance apart, or NumberOfSlices of them), drawn back
- * to front; a fragment of a slice stands for the slab between its slice and the next
- * one along its ray. It samples the field where the ray enters and where it leaves the
- * slab, and decides what the paper's vertex generation diagram tabulated: whether an
- * interface lies in the slab (the two samples are in different regions, and eq. 7 holds:
- * an edge of the interface point's cell joins voxels of two regions whose distances add
- * up to at most its length, as the polygonizer tests it, so open boundaries stay open),
- * where (eq. 6: at u / (u + v) of the way, refined to the interpolant's zero by
- * RegionAware sampling), and in which colour (the region on the viewer's side). The
- * decision is evaluated in the shader, exactly, rather than looked up in a quantized
+ * The renderer of Yamazaki et al. (SMI 2003) (section 4) through VTK's OpenGL layer. The volume is
+ * cut by view-aligned slices (SampleDistance apart, or NumberOfSlices of them), drawn back to
+ * front; a fragment of a slice stands for the slab between its slice and the next one along its
+ * ray. It samples the field where the ray enters and where it leaves the slab, and decides what the
+ * paper's vertex generation diagram tabulated: whether an interface lies in the slab (the two
+ * samples are in different regions, and eq. 7 holds: an edge of the interface point's cell joins
+ * voxels of two regions whose distances add up to at most its length, as the polygonizer tests it,
+ * so open boundaries stay open), where (eq. 6: at u / (u + v) of the way, refined to the
+ * interpolant's zero by RegionAware sampling), and in which colour (the region on the viewer's
+ * side). The decision is evaluated in the shader, exactly, rather than looked up in a quantized
  * table: a table of (front, back) pairs at 8 bits was what 2002 hardware could do, and it
  * quantizes the interface position to 1/256 of a region. Slabs in bricks of cells that
  * hold no two regions are skipped after a fetch or two.

@@ -1,5 +1,6 @@
 // SegmentBlend: the blend of two segmented distance fields whose regions mean the same
-// (Yamazaki et al., SMI 2003, section 5.2: metamorphosis by interpolating the fields), without VTK types.
+// (Yamazaki et al., SMI 2003, section 5.2: metamorphosis by interpolating the fields), without VTK
+// types.
 //
 // At a sample where both fields give the same region, the distances are blended; where
 // they give regions a (first) and b (second), the sample lies between the a|b interface's

@@ -1,5 +1,5 @@
-// SegmentContour: the interfaces of a segmented distance field as triangles (Yamazaki et al. (SMI 2003),
-// section 3.3: eqs. 5-7), keeping boundaries and junctions, without VTK types.
+// SegmentContour: the interfaces of a segmented distance field as triangles (Yamazaki et al. (SMI
+// 2003), section 3.3: eqs. 5-7), keeping boundaries and junctions, without VTK types.
 //
 // A grid edge between samples a and b (spacing w) holds an interface point when their
 // regions differ and 0 < d_a + d_b <= w (1 + Tolerance) (eq. 7, the equality allowed: a

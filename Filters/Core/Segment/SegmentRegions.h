@@ -1,6 +1,6 @@
-// SegmentRegions: the region index of every sample of a grid (Yamazaki et al., SMI 2003, section 3.3.2,
-// steps 2-6), from the exact unsigned field and each sample's closest feature, without
-// VTK types.
+// SegmentRegions: the region index of every sample of a grid (Yamazaki et al., SMI 2003,
+// section 3.3.2, steps 2-6), from the exact unsigned field and each sample's closest feature,
+// without VTK types.
 //
 // Labels: each patch has a front (0) and a back (1) side, label 2 patch + side. A sample
 // takes the side of one triangle at its closest feature (a face, an edge or a vertex):

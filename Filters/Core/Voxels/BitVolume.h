@@ -1,6 +1,6 @@
-// BitVolume: a binary voxel grid stored as voxel lanes (Martinek et al. (VMV 2011) §3): the voxels of
-// column (x, y) along z are the bits of one lane, 64 per word, ceil(nz / 64) words per
-// lane. Lanes are stored x fastest, then y. Bits past nz in a lane's last word are zero.
+// BitVolume: a binary voxel grid stored as voxel lanes (Martinek et al. (VMV 2011) §3): the voxels
+// of column (x, y) along z are the bits of one lane, 64 per word, ceil(nz / 64) words per lane.
+// Lanes are stored x fastest, then y. Bits past nz in a lane's last word are zero.
 #ifndef vtkdf_BitVolume_h
 #define vtkdf_BitVolume_h
 

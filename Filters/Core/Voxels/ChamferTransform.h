@@ -1,5 +1,5 @@
-// ChamferTransform: the wavefront chamfer distance transform of Martinek et al. (VMV 2011) §5 on voxel
-// lanes. Layer 0 is the zero set; layer n+1 holds the voxels that are not in any earlier
+// ChamferTransform: the wavefront chamfer distance transform of Martinek et al. (VMV 2011) §5 on
+// voxel lanes. Layer 0 is the zero set; layer n+1 holds the voxels that are not in any earlier
 // layer (the accumulation grid A) and have a neighbour in layer n:
 //   Manhattan:     n(w(x,y)) | w(x+-1,y) | w(x,y+-1)
 //   Chessboard18:  n(w(x,y)) | n'(w(x+-1,y)) | n'(w(x,y+-1)) | w(x+-1,y+-1)

@@ -378,8 +378,8 @@ bool VoxelizeCPU(const MeshInput& mesh,
   }
   statistics.FarTriangles = far.load() / 3;
 
-  // The views rotated into z-lanes (Martinek et al. (VMV 2011) §4.1: the voxel (i, j, k) is bit i[A] of
-  // lane (i[B], i[C]) of view A): OR for the boundary, AND for the solid.
+  // The views rotated into z-lanes (Martinek et al. (VMV 2011) §4.1: the voxel (i, j, k) is bit
+  // i[A] of lane (i[B], i[C]) of view A): OR for the boundary, AND for the solid.
   if (boundary)
   {
     boundary->Resize(n[0], n[1], n[2]);

@@ -1,6 +1,6 @@
 // Voxelizer: boundary and solid voxelization of a triangle mesh into voxel lanes, as in
-// Martinek et al. (VMV 2011) §4, on the CPU. The voxels are the grid's samples; voxel (i, j, k) is the
-// cell of size spacing centred on its sample.
+// Martinek et al. (VMV 2011) §4, on the CPU. The voxels are the grid's samples; voxel (i, j, k) is
+// the cell of size spacing centred on its sample.
 //
 // Three views (along x, y and z) rasterize triangles onto the plane of the other two
 // axes; a lane is the line through a row of sample centres.
