@@ -24,6 +24,11 @@ public:
   static HeadlessGL* Get(std::string& error);
 
   const std::string& Renderer() const { return this->RendererName; }
+  /// The error of a pass that failed on this context, naming the renderer.
+  std::string Failure(const std::string& error) const
+  {
+    return "The GPU backend (" + this->RendererName + ") failed: " + error;
+  }
   const std::string& Platform() const { return this->PlatformName; }
   /// llvmpipe, softpipe, swrast: a rasterizer in software.
   bool IsSoftware() const;

@@ -103,7 +103,7 @@ bool WindingSign(const MeshInput& mesh,
         stats,
         error))
   {
-    error = "The GPU backend (" + gl->Renderer() + ") failed: " + error;
+    error = gl->Failure(error);
     return false;
   }
   report.WindingBlockSamples = stats.BlockSamples;
@@ -181,7 +181,7 @@ bool ComputeLinearFactorField(MeshInput mesh,
   {
     if (!ScanSitesGPU(*gl, local.Sites, range, local.Request, nearest, scanProgress, stats, error))
     {
-      error = "The GPU backend (" + gl->Renderer() + ") failed: " + error;
+      error = gl->Failure(error);
       return false;
     }
   }
@@ -268,7 +268,7 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
     gl, local.Sites, range, local.Request, unused, execution.Progress, stats, error, field.SiteIds);
   if (!ok)
   {
-    error = "The GPU backend (" + gl.Renderer() + ") failed: " + error;
+    error = gl.Failure(error);
   }
   report.Evaluations = stats.Evaluations;
   report.Aborted = stats.Aborted;
@@ -284,7 +284,7 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
       error);
     if (!ok)
     {
-      error = "The GPU backend (" + gl.Renderer() + ") failed: " + error;
+      error = gl.Failure(error);
     }
     else
     {

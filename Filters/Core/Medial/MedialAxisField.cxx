@@ -48,7 +48,7 @@ bool ComputeMedialAxis(const MedialInput& field,
   {
     if (!MedialAxisGPU(*gl, field, arrays.Medial, cosine.data(), arrays.Count, error))
     {
-      error = "The GPU backend (" + gl->Renderer() + ") failed: " + error + ".";
+      error = gl->Failure(error) + ".";
       return false;
     }
   }
@@ -95,7 +95,7 @@ bool ComputeMedialAxis(MeshInput mesh,
             arrays.Count,
             passError))
       {
-        passError = "The GPU backend (" + gl->Renderer() + ") failed: " + passError + ".";
+        passError = gl->Failure(passError) + ".";
         return false;
       }
       return true;

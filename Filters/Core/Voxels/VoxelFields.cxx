@@ -154,7 +154,7 @@ bool ComputeChamferField(MeshInput mesh,
         error,
         execution.Part(0.1, 0.95).Progress))
   {
-    error = "The GPU backend (" + gl->Renderer() + ") failed: " + error + ".";
+    error = gl->Failure(error) + ".";
     return false;
   }
   if (report.Result.Aborted)
@@ -209,7 +209,7 @@ bool ComputeChamferField(const BitVolume& boundary,
           error,
           progress))
     {
-      error = "The GPU backend (" + gl->Renderer() + ") failed: " + error + ".";
+      error = gl->Failure(error) + ".";
       return false;
     }
   }
