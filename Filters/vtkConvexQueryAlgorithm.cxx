@@ -54,6 +54,7 @@ bool vtkConvexQueryAlgorithm::ChooseBackend(vtkdf::HeadlessGL*& gl)
   }
   this->LastBackend = gl ? BACKEND_GPU : BACKEND_CPU;
   this->LastRenderer = gl ? gl->Renderer() : "cpu";
+  this->LastPlatform = gl ? gl->Platform() : "cpu";
   return true;
 }
 
@@ -97,6 +98,7 @@ void vtkConvexQueryAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Certify: " << this->Certify << "\n";
   os << indent << "LastBackend: " << this->LastBackend << "\n";
   os << indent << "LastRenderer: " << this->LastRenderer << "\n";
+  os << indent << "LastPlatform: " << this->LastPlatform << "\n";
   os << indent << "LastPasses: " << this->LastPasses << "\n";
   os << indent << "LastFacesVisited: " << this->LastFacesVisited << "\n";
 }

@@ -95,6 +95,9 @@ public:
   /// rendering rounds (summed over the queries), and the faces the exact search visited.
   vtkGetMacro(LastBackend, int);
   const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
+  /// How the last GPU run got its context ("EGL device", "EGL surfaceless", "OSMesa"),
+  /// or "cpu".
+  const char* GetLastPlatform() const { return this->LastPlatform.c_str(); }
   vtkGetMacro(LastPasses, vtkTypeInt64);
   vtkGetMacro(LastFacesVisited, vtkTypeInt64);
 
@@ -136,6 +139,7 @@ protected:
   bool Certify = true;
   int LastBackend = BACKEND_CPU;
   std::string LastRenderer;
+  std::string LastPlatform;
   vtkTypeInt64 LastPasses = 0;
   vtkTypeInt64 LastFacesVisited = 0;
 

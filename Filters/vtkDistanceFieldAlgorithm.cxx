@@ -325,6 +325,7 @@ void vtkDistanceFieldAlgorithm::FinishTiming(vtkdf::HeadlessGL* gl, const vtkdf:
   this->LastStageTimes = text.str();
   this->LastBackend = gl ? "gpu" : "cpu";
   this->LastRenderer = gl ? gl->Renderer() : "cpu";
+  this->LastPlatform = gl ? gl->Platform() : "cpu";
 }
 
 bool vtkDistanceFieldAlgorithm::ChooseBackend(vtkdf::HeadlessGL*& gl)
@@ -548,6 +549,7 @@ void vtkDistanceFieldAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
      << (this->MemoryLimit > 0 ? "" : " (half of physical memory)") << "\n";
   os << indent << "LastBackend: " << this->LastBackend << "\n";
   os << indent << "LastRenderer: " << this->LastRenderer << "\n";
+  os << indent << "LastPlatform: " << this->LastPlatform << "\n";
   os << indent << "LastTime: " << this->LastTime << "\n";
   os << indent << "LastStageTimes: " << this->LastStageTimes << "\n";
 }

@@ -97,6 +97,9 @@ public:
   const char* GetLastBackend() const { return this->LastBackend.c_str(); }
   /// GL_RENDERER of the last GPU run, or "cpu".
   const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
+  /// How the last GPU run got its context ("EGL device", "EGL surfaceless", "OSMesa"),
+  /// or "cpu".
+  const char* GetLastPlatform() const { return this->LastPlatform.c_str(); }
   /// Seconds the last run spent computing (input conversion and arrays included, no I/O).
   vtkGetMacro(LastTime, double);
   /// Seconds per stage of the last run, as "name:seconds,name:seconds,..." (the stages
@@ -203,6 +206,7 @@ protected:
 
   std::string LastBackend = "none";
   std::string LastRenderer = "none";
+  std::string LastPlatform = "none";
   double LastTime = 0;
   std::string LastStageTimes;
 

@@ -52,7 +52,11 @@ std::string EGLErrorText()
 }
 } // namespace
 
-struct HeadlessGL::Scope::Saved
+// The caller's current GLX or EGL context (VTK's render window, a ParaView view),
+// released for the lifetime of this object and made current again at its end: making
+// our context current while another API's context is current on the thread fails
+// (Mesa: EGL_BAD_ACCESS), and the caller expects to find its own context afterwards.
+struct CallerContext
 {
   EGLDisplay EglDisplay = EGL_NO_DISPLAY;
   EGLContext EglContext = EGL_NO_CONTEXT;
@@ -61,53 +65,62 @@ struct HeadlessGL::Scope::Saved
   ::Display* GlxDisplay = nullptr;
   GLXContext GlxContext = nullptr;
   GLXDrawable GlxDraw = 0, GlxRead = 0;
+
+  CallerContext()
+  {
+    // Only ask a library already in the process: otherwise it has no current context,
+    // and asking would make libepoxy load (or fail to load) it.
+    if (Loaded("libGL.so.1") || Loaded("libGLX.so.0"))
+    {
+      this->GlxContext = glXGetCurrentContext();
+      if (this->GlxContext)
+      {
+        this->GlxDisplay = glXGetCurrentDisplay();
+        this->GlxDraw = glXGetCurrentDrawable();
+        this->GlxRead = glXGetCurrentReadDrawable();
+        glXMakeContextCurrent(this->GlxDisplay, 0, 0, nullptr);
+      }
+    }
+    if (Loaded("libEGL.so.1"))
+    {
+      this->EglApi = eglQueryAPI();
+      this->EglContext = eglGetCurrentContext();
+      if (this->EglContext != EGL_NO_CONTEXT)
+      {
+        this->EglDisplay = eglGetCurrentDisplay();
+        this->EglDraw = eglGetCurrentSurface(EGL_DRAW);
+        this->EglRead = eglGetCurrentSurface(EGL_READ);
+        eglMakeCurrent(this->EglDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      }
+    }
+  }
+  ~CallerContext()
+  {
+    if (this->EglContext != EGL_NO_CONTEXT)
+    {
+      eglBindAPI(this->EglApi);
+      eglMakeCurrent(this->EglDisplay, this->EglDraw, this->EglRead, this->EglContext);
+    }
+    if (this->GlxContext)
+    {
+      glXMakeContextCurrent(this->GlxDisplay, this->GlxDraw, this->GlxRead, this->GlxContext);
+    }
+  }
+  CallerContext(const CallerContext&) = delete;
+  CallerContext& operator=(const CallerContext&) = delete;
 };
 
 HeadlessGL::Scope::Scope(HeadlessGL& gl)
-  : GL(gl)
-  , Previous(new Saved)
+  : Caller(new CallerContext)
+  , GL(gl)
 {
-  // Only look for a GLX context when libGL is in the process: otherwise there is none,
-  // and asking would make libepoxy load (or fail to load) libGL.
-  if (Loaded("libGL.so.1") || Loaded("libGLX.so.0"))
-  {
-    this->Previous->GlxContext = glXGetCurrentContext();
-    if (this->Previous->GlxContext)
-    {
-      this->Previous->GlxDisplay = glXGetCurrentDisplay();
-      this->Previous->GlxDraw = glXGetCurrentDrawable();
-      this->Previous->GlxRead = glXGetCurrentReadDrawable();
-      glXMakeContextCurrent(this->Previous->GlxDisplay, 0, 0, nullptr);
-    }
-  }
-  if (!gl.UsesOSMesa || Loaded("libEGL.so.1"))
-  {
-    this->Previous->EglApi = eglQueryAPI();
-    this->Previous->EglContext = eglGetCurrentContext();
-    if (this->Previous->EglContext != EGL_NO_CONTEXT)
-    {
-      this->Previous->EglDisplay = eglGetCurrentDisplay();
-      this->Previous->EglDraw = eglGetCurrentSurface(EGL_DRAW);
-      this->Previous->EglRead = eglGetCurrentSurface(EGL_READ);
-      eglMakeCurrent(this->Previous->EglDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    }
-  }
   this->Current = gl.MakeCurrent();
 }
 
 HeadlessGL::Scope::~Scope()
 {
   this->GL.Release();
-  Saved& p = *this->Previous;
-  if (p.EglContext != EGL_NO_CONTEXT)
-  {
-    eglBindAPI(p.EglApi);
-    eglMakeCurrent(p.EglDisplay, p.EglDraw, p.EglRead, p.EglContext);
-  }
-  if (p.GlxContext)
-  {
-    glXMakeContextCurrent(p.GlxDisplay, p.GlxDraw, p.GlxRead, p.GlxContext);
-  }
+  // Caller, destroyed next, makes the caller's context current again.
 }
 
 HeadlessGL* HeadlessGL::Get(std::string& error)
@@ -120,6 +133,8 @@ HeadlessGL* HeadlessGL::Get(std::string& error)
   if (!tried)
   {
     tried = true;
+    // Each route makes its new context current to check it.
+    CallerContext caller;
     std::unique_ptr<HeadlessGL> gl(new HeadlessGL);
     const char* forced = std::getenv("VTKDF_GL_PLATFORM");
     const std::string only = forced ? forced : "";

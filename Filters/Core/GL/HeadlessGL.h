@@ -14,6 +14,7 @@
 
 namespace vtkdf
 {
+struct CallerContext;
 
 class HeadlessGL
 {
@@ -29,6 +30,7 @@ public:
   {
     return "The GPU backend (" + this->RendererName + ") failed: " + error;
   }
+  /// The route that gave the context: "EGL device", "EGL surfaceless" or "OSMesa".
   const std::string& Platform() const { return this->PlatformName; }
   /// llvmpipe, softpipe, swrast: a rasterizer in software.
   bool IsSoftware() const;
@@ -55,10 +57,9 @@ public:
     Scope& operator=(const Scope&) = delete;
 
   private:
+    std::unique_ptr<CallerContext> Caller; // released first, restored last
     HeadlessGL& GL;
     bool Current = false;
-    struct Saved;
-    std::unique_ptr<Saved> Previous;
   };
 
   /// The GL entry points of this context (call them while a Scope is alive).

@@ -1,0 +1,85 @@
+"""A render through ParaView with the plugin loaded, checked by numbers, then a GPU filter
+run after it (run under xvfb-run pvbatch): pvbatch render_then_gpu.py PLUGIN MESH PNG.
+
+The field's zero contour is drawn in red on white; the screenshot must have the red
+surface over a plausible share of the pixels, white corners, and red (lit) pixels only
+where it is covered. Then the first GPU filter of the process runs while ParaView's GLX
+context is current: it must get its own EGL context (not fall back to OSMesa, which it did
+when creating the context did not release the caller's) and leave ParaView's context
+working: a second render gives the same picture."""
+import sys
+
+import numpy as np
+from paraview import simple
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+plugin, mesh_file, png = sys.argv[1:4]
+simple.LoadPlugin(plugin, remote=True)
+mesh = simple.XMLPolyDataReader(FileName=[mesh_file])
+field = simple.LinearFactorDistanceField(Input=mesh, Resolution=40, SignMode="PseudoNormal",
+                                         Backend="CPU")
+contour = simple.Contour(Input=field, ContourBy=["POINTS", "Distance"], Isosurfaces=[0.0])
+view = simple.CreateView("RenderView")
+view.ViewSize = [320, 320]
+view.Background = [1, 1, 1]
+view.OrientationAxesVisibility = 0
+try:
+    view.UseColorPaletteForBackground = 0
+except AttributeError:
+    pass
+display = simple.Show(contour, view)
+simple.ColorBy(display, None)
+display.DiffuseColor = [1, 0, 0]
+display.AmbientColor = [1, 0, 0]
+view.CameraPosition = [0, 5, 40]
+view.CameraFocalPoint = [0, 5, 0]
+view.CameraViewUp = [0, 1, 0]
+simple.ResetCamera(view)
+
+
+def picture(path):
+    simple.SaveScreenshot(path, view, ImageResolution=[320, 320])
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height, _ = image.GetDimensions()
+    rgb = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int)
+    return rgb.reshape(height, width, 3)
+
+
+def check(rgb, label):
+    white = (rgb >= 250).all(axis=2)
+    red = (rgb[:, :, 0] > rgb[:, :, 1] + 40) & (rgb[:, :, 0] > rgb[:, :, 2] + 40)
+    covered = (~white).mean()
+    corners = [white[0, 0], white[0, -1], white[-1, 0], white[-1, -1]]
+    print(f"{label}: {covered:.1%} of the pixels covered, {red.sum() / max(1, (~white).sum()):.1%} "
+          f"of them red, corners white: {all(corners)}")
+    return 0.1 <= covered <= 0.7 and red.sum() >= 0.8 * (~white).sum() and all(corners)
+
+
+first = picture(png)
+ok = check(first, "render")
+print(f"contour: {contour.GetDataInformation().GetNumberOfCells()} triangles")
+
+gpu = simple.LinearFactorDistanceField(Input=mesh, Resolution=16, SignMode="PseudoNormal",
+                                       Backend="GPU")
+gpu.UpdatePipeline()
+gpu.UpdatePropertyInformation()
+platform = gpu.GetProperty("LastPlatform").GetElement(0)
+renderer = gpu.GetProperty("LastRenderer").GetElement(0)
+points = gpu.GetDataInformation().GetNumberOfPoints()
+print(f"GPU filter after the render: {points} points on {renderer} through {platform}")
+ok = ok and points > 0 and platform.startswith("EGL")
+
+second = picture(png.replace(".png", "-again.png"))
+same = np.abs(second - first).max() <= 2
+print(f"render after the GPU filter: {'the same picture' if same else 'differs'}")
+ok = ok and check(second, "render again") and same
+print("PASS" if ok else "FAIL")
+# The view goes before the interpreter ends: exiting with a view alive makes ParaView's
+# finalization use a GLX context that is gone (an X error, exit status 1).
+simple.Delete(view)
+del view
+sys.exit(0 if ok else 1)
