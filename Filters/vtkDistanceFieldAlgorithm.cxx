@@ -283,19 +283,9 @@ int vtkDistanceFieldAlgorithm::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector*)
 {
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
-  {
-    // Every voxel may depend on every other: ask for the whole image.
-    int whole[6];
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
-    return 1;
-  }
-  // Every sample may depend on every cell: ask for the whole mesh.
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  // Every sample may depend on every cell of a mesh, every voxel on every other voxel of
+  // an image: ask for the whole input.
+  vtkdf::RequestWholeInput(inputVector[0]->GetInformationObject(0));
   return 1;
 }
 

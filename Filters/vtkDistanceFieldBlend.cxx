@@ -86,9 +86,7 @@ int vtkDistanceFieldBlend::RequestUpdateExtent(vtkInformation*,
     vtkInformation* in = inputVector[port]->GetInformationObject(0);
     if (in)
     {
-      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-        in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
-        6);
+      vtkdf::RequestWholeInput(in);
     }
   }
   return 1;

@@ -3,8 +3,10 @@
 #include "vtkAlgorithm.h"
 #include "vtkDataObject.h"
 #include "vtkErrorCode.h"
+#include "vtkInformation.h"
 #include "vtkSMPTools.h"
 #include "vtkSetGet.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "GL/HeadlessGL.h"
 
@@ -66,6 +68,19 @@ void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)
   {
     std::rethrow_exception(first);
   }
+}
+
+void RequestWholeInput(vtkInformation* input)
+{
+  if (input->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    input->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      input->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
+      6);
+  }
+  input->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  input->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  input->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
 }
 
 vtkTypeBool ProcessRequestOrEmpty(vtkAlgorithm* filter,

@@ -12,6 +12,7 @@
 #include <string>
 
 class vtkAlgorithm;
+class vtkInformation;
 
 namespace vtkdf
 {
@@ -45,6 +46,12 @@ vtkTypeBool ProcessRequestOrEmpty(vtkAlgorithm* filter,
   bool newRun,
   const std::function<vtkTypeBool()>& process,
   const std::function<void(unsigned long)>& setErrorCode);
+
+/// Asks an input for all of its data: the whole extent of an image, piece 0 of 1 of
+/// anything, no ghost levels. A distributed pipeline (ParaView's MPI engine) otherwise
+/// passes each rank's piece upstream, and an image source that can produce sub-extents
+/// then makes only that piece, although every voxel here may depend on every other.
+void RequestWholeInput(vtkInformation* input);
 
 } // namespace vtkdf
 

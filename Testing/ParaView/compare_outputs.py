@@ -1,5 +1,7 @@
-"""Checks that two folders of outputs (the ParaView plugin's and the system-VTK build's)
-hold the same files with equal data bit for bit: python3 compare_outputs.py A B. Images
+"""Checks that two folders of outputs (the ParaView plugin's and the system-VTK build's,
+or one process's and several's) hold the same outputs (by name: a .pvti, assembled from
+its pieces, stands for the .vti of the same name) with equal data bit for bit:
+python3 compare_outputs.py A B. Images
 must have the same extent, origin and spacing; poly data the same points and cells;
 both the same point, cell and field arrays (names, types, components, bytes)."""
 import os
@@ -7,11 +9,15 @@ import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPolyDataReader
+from vtkmodules.vtkIOXML import (vtkXMLImageDataReader, vtkXMLPImageDataReader,
+                                 vtkXMLPolyDataReader)
 
 
 def read(path):
-    reader = vtkXMLImageDataReader() if path.endswith(".vti") else vtkXMLPolyDataReader()
+    """A .vti, a .vtp, or a .pvti assembled from its pieces."""
+    readers = {".vti": vtkXMLImageDataReader, ".vtp": vtkXMLPolyDataReader,
+               ".pvti": vtkXMLPImageDataReader}
+    reader = readers[os.path.splitext(path)[1]]()
     reader.SetFileName(path)
     reader.Update()
     return reader.GetOutput()
@@ -44,27 +50,44 @@ def geometry(data):
     return tuple(parts)
 
 
-first, second = sys.argv[1:3]
-names = sorted(os.listdir(first))
-failures = []
-if names != sorted(os.listdir(second)):
-    failures.append(f"different files: {names} and {sorted(os.listdir(second))}")
-for name in names:
-    a, b = read(os.path.join(first, name)), read(os.path.join(second, name))
-    if a.GetNumberOfPoints() == 0:
-        failures.append(f"{name}: empty")
-        continue
-    if geometry(a) != geometry(b):
-        failures.append(f"{name}: the grids or geometries differ")
-    arrays_a, arrays_b = arrays(a), arrays(b)
-    if sorted(arrays_a) != sorted(arrays_b):
-        failures.append(f"{name}: arrays {sorted(arrays_a)} and {sorted(arrays_b)}")
-    differing = [key[1] for key in arrays_a if key in arrays_b and arrays_a[key] != arrays_b[key]]
-    if differing:
-        failures.append(f"{name}: arrays differ: {differing}")
-    print(f"{name}: {a.GetNumberOfPoints()} points, {len(arrays_a)} arrays "
-          f"({', '.join(sorted(key[1] for key in arrays_a))}): "
-          f"{'differ' if differing else 'equal bit for bit'}")
-for failure in failures:
-    print("FAIL:", failure)
-sys.exit(1 if failures else 0)
+def outputs(folder):
+    """The output files of a folder by name without extension (a .pvti's pieces are in
+    its own subfolder)."""
+    return {os.path.splitext(name)[0]: os.path.join(folder, name)
+            for name in os.listdir(folder) if os.path.splitext(name)[1] in (".vti", ".vtp", ".pvti")}
+
+
+def compare(first_folder, second_folder):
+    """Prints each output's comparison; returns the failures."""
+    first, second = outputs(first_folder), outputs(second_folder)
+    names = sorted(first)
+    failures = []
+    if names != sorted(second):
+        failures.append(f"different outputs: {names} and {sorted(second)}")
+    for name in names:
+        if name not in second:
+            continue
+        a, b = read(first[name]), read(second[name])
+        if a.GetNumberOfPoints() == 0:
+            failures.append(f"{name}: empty")
+            continue
+        if geometry(a) != geometry(b):
+            failures.append(f"{name}: the grids or geometries differ")
+        arrays_a, arrays_b = arrays(a), arrays(b)
+        if sorted(arrays_a) != sorted(arrays_b):
+            failures.append(f"{name}: arrays {sorted(arrays_a)} and {sorted(arrays_b)}")
+        differing = [key[1] for key in arrays_a
+                     if key in arrays_b and arrays_a[key] != arrays_b[key]]
+        if differing:
+            failures.append(f"{name}: arrays differ: {differing}")
+        print(f"{name}: {a.GetNumberOfPoints()} points, {len(arrays_a)} arrays "
+              f"({', '.join(sorted(key[1] for key in arrays_a))}): "
+              f"{'differ' if differing else 'equal bit for bit'}")
+    return failures
+
+
+if __name__ == "__main__":
+    failures = compare(sys.argv[1], sys.argv[2])
+    for failure in failures:
+        print("FAIL:", failure)
+    sys.exit(1 if failures else 0)

@@ -1,0 +1,63 @@
+"""Runs cases.py's image cases under mpiexec -n R pvbatch --symmetric for R = 1 and each
+R given, and checks that the assembled .pvti outputs of R ranks equal the 1-rank outputs
+bit for bit, and that the filters that produce sub-extents (the linear factorization, the
+voxelizer) computed only a slab on each rank (the extents every rank prints):
+python3 check_distributed.py MPIEXEC PVBATCH PLUGIN DATA_DIR OUT_DIR R... (the mesh
+arrives whole on every rank; DF_PVBATCH_PYTHONPATH: python3-paraview's modules)."""
+import ast
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+from compare_outputs import compare
+
+SLAB_FILTERS = ("linfac_", "voxelizer")
+
+mpiexec, pvbatch, plugin, data, out = sys.argv[1:6]
+rank_counts = [int(r) for r in sys.argv[6:]]
+here = os.path.dirname(os.path.abspath(__file__))
+environment = dict(os.environ, PYTHONPATH=os.environ.get("DF_PVBATCH_PYTHONPATH", ""),
+                   OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                   OMPI_MCA_rmaps_base_oversubscribe="1")
+
+
+def run(ranks):
+    folder = os.path.join(out, str(ranks))
+    shutil.rmtree(folder, ignore_errors=True)
+    os.makedirs(folder)
+    command = [mpiexec, "-n", str(ranks)]
+    if os.geteuid() == 0:
+        command.append("--allow-run-as-root")
+    command += [pvbatch, "--symmetric", os.path.join(here, "run_in_paraview.py"), plugin,
+                data, folder, "distributed"]
+    result = subprocess.run(command, capture_output=True, text=True, timeout=900,
+                            env=environment)
+    if result.returncode != 0:
+        print(result.stdout + result.stderr)
+        sys.exit(f"FAIL: {ranks} ranks: exit status {result.returncode}")
+    extents = {}
+    # The ranks share stdout: their lines may run together.
+    for case, rank, extent in re.findall(
+            r"([a-z0-9_]+): rank (\d+) of \d+ computed extent (\([-0-9, ]+\))", result.stdout):
+        extents.setdefault(case, {})[int(rank)] = ast.literal_eval(extent)
+    return folder, extents
+
+
+failures = []
+serial, serial_extents = run(1)
+for ranks in rank_counts:
+    folder, extents = run(ranks)
+    print(f"== {ranks} ranks against 1")
+    for case, by_rank in sorted(extents.items()):
+        whole = serial_extents[case][0]
+        print(f"{case}: " + ", ".join(f"rank {r} {by_rank[r]}" for r in sorted(by_rank)))
+        if len(by_rank) != ranks:
+            failures.append(f"{case}: {len(by_rank)} of {ranks} ranks reported")
+        if case.startswith(SLAB_FILTERS) and any(e == whole for e in by_rank.values()):
+            failures.append(f"{case}: a rank computed the whole extent {whole}")
+    failures += [f"{ranks} ranks: {f}" for f in compare(serial, folder)]
+for failure in failures:
+    print("FAIL:", failure)
+sys.exit(1 if failures else 0)
