@@ -1,10 +1,10 @@
-// Length of the interpolated distance vector; the depth test keeps the nearest site.
+// The site's distance at the sample; the depth test keeps the nearest site. The vector
+// is evaluated here rather than interpolated across the polygon, whose corners depend on
+// the extent's culling: the same sample then gets the same bits in any extent.
 
-uniform vec3 spacing;
 uniform int layerBase;
 uniform float depthScale;
 
-in vec3 distanceVector;
 flat in int siteIndex;
 layout(location = 0) out float outDistance;
 layout(location = 1) out int outSite;
@@ -15,7 +15,8 @@ void main()
   // The formula of a triangle (edge) is exact only inside its prism (slab): test those
   // planes exactly here, since the polygon was widened against sub-pixel snapping.
   int required = int(s.axis.w);
-  vec3 rel = vec3(gl_FragCoord.xy - 0.5, float(gl_Layer + layerBase)) - s.anchor.xyz / spacing;
+  vec3 indexPos = vec3(gl_FragCoord.xy - 0.5, float(gl_Layer + layerBase)) + vec3(extentLo);
+  vec3 rel = indexPos - s.anchor.xyz / spacing;
   for (int p = 0; p < required; ++p)
   {
     vec4 pl = planes[s.lo.w + p];
@@ -24,7 +25,7 @@ void main()
       discard;
     }
   }
-  float d = length(distanceVector);
+  float d = length(distanceVectorAt(s, indexPos));
   gl_FragDepth = clamp(d * depthScale, 0.0, 1.0);
   outDistance = d;
   outSite = siteIndex;

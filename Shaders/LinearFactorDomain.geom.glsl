@@ -1,6 +1,6 @@
 // Builds a site's domain polygon on one slice (the same clipping as SliceDomain.h) and
-// emits it into that slice's layer, with the site's distance vector at every corner:
-// the rasterizer interpolates it exactly (linear factorization, Sud et al. (I3D 2006) section 3).
+// emits it into that slice's layer: its fragments are the samples where the site's
+// distance is evaluated (linear factorization, Sud et al. (I3D 2006) section 3).
 layout(points, invocations = 32) in;
 layout(triangle_strip, max_vertices = 32) out;
 
@@ -16,36 +16,20 @@ uniform int blockSize;
 uniform float minSpacing;
 
 uniform ivec2 viewportSize;
-uniform vec3 spacing;
 uniform int layerBase;
 uniform int layerCount;
 uniform float margin; // extra widening (sample units) against sub-pixel snapping
 
 flat in ivec2 vSiteAndSlice[];
-out vec3 distanceVector;
 flat out int siteIndex;
 
-vec3 distanceVectorAt(GpuSite s, vec3 indexPos)
-{
-  vec3 r = s.anchor.xyz - indexPos * spacing;
-  int type = int(s.anchor.w);
-  if (type == 1)
-  {
-    return r - dot(r, s.axis.xyz) * s.axis.xyz;
-  }
-  if (type == 2)
-  {
-    return dot(r, s.axis.xyz) * s.axis.xyz;
-  }
-  return r;
-}
-
-// Whether a site within [lo, hi] (world, relative to the extent's first sample) may be
-// the nearest somewhere in block b's cell (its samples widened by half a spacing). The
-// bound is widened by 1e-5 (relative) and 1e-4 spacing against float rounding.
+// Whether a site within [lo, hi] (world, relative to the whole grid's first sample) may
+// be the nearest somewhere in block b's cell (its samples widened by half a spacing;
+// blocks count from the extent's first sample). The bound is widened by 1e-5 (relative)
+// and 1e-4 spacing against float rounding.
 bool mayWin(ivec3 b, vec3 lo, vec3 hi)
 {
-  vec3 cellLo = (vec3(b * blockSize) - 0.5) * spacing;
+  vec3 cellLo = (vec3(b * blockSize + extentLo) - 0.5) * spacing;
   vec3 cellHi = cellLo + float(blockSize) * spacing;
   vec3 gap = max(max(lo - cellHi, cellLo - hi), vec3(0.0));
   float bound = blockBound[b.x + blockCounts.x * (b.y + blockCounts.y * b.z)];
@@ -76,7 +60,8 @@ void main()
   bufA[1] = vec2(hi.x, lo.y);
   bufA[2] = hi;
   bufA[3] = vec2(lo.x, hi.y);
-  vec3 anchorIndex = s.anchor.xyz / spacing;
+  // The polygon is built in extent indices.
+  vec3 anchorIndex = s.anchor.xyz / spacing - vec3(extentLo);
   int count = min(s.hi.w, MaxPlanes);
   for (int p = 0; p < count && n > 0; ++p)
   {
@@ -141,7 +126,6 @@ void main()
     vec2 window = q + 0.5;
     gl_Position = vec4(window / vec2(viewportSize) * 2.0 - 1.0, 0.0, 1.0);
     gl_Layer = k - layerBase;
-    distanceVector = distanceVectorAt(s, vec3(q, float(k)));
     siteIndex = id;
     EmitVertex();
   }

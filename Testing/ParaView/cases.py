@@ -4,8 +4,7 @@ system-VTK build's Python package, whose outputs must be equal bit for bit.
 A case names a filter by its proxy name (the class name without "vtk"), its inputs by
 property name (a file of Testing/Data, or "case:port" for an earlier case's output), its
 properties by their C++ names (enumerations by the words of their SetXToY() methods) and
-the output ports it writes, with their file extensions; distributed=False keeps a case
-out of the comparison of one process with several (run_in_paraview.py distributed)."""
+the output ports it writes, with their file extensions."""
 
 CASES = [
     dict(name="linfac_pseudonormal", filter="LinearFactorDistanceField",
@@ -13,15 +12,11 @@ CASES = [
          properties=dict(Resolution=24, SignMode="PseudoNormal", Backend="CPU",
                          ComputeClosestFeature=1, ComputeClosestPoint=1),
          outputs={0: "vti"}),
-    # Not in the distributed comparison: the GPU scan works relative to the requested
-    # extent (its first sample, its size, its culling blocks), so on a slab a few
-    # near-ties between sites resolve otherwise than on the whole grid (4 of 3840
-    # samples here, distances apart by 4e-7 relative).
     dict(name="linfac_winding_gpu", filter="LinearFactorDistanceField",
          inputs={"Input": "aneurysm.vtp"},
          properties=dict(Resolution=16, SignMode="WindingNumber", Backend="GPU",
                          ComputeWindingNumber=1, ComputeClosestPoint=1),
-         outputs={0: "vti"}, distributed=False),
+         outputs={0: "vti"}),
     dict(name="linfac_explicit", filter="LinearFactorDistanceField",
          inputs={"Input": "trefoil_knot.vtp"},
          properties=dict(ExplicitGrid=1, GridOrigin=[-0.6, -0.6, -0.3],

@@ -21,8 +21,7 @@ process = vtkProcessModule.GetProcessModule()
 rank, ranks = process.GetPartitionId(), process.GetNumberOfLocalPartitions()
 made = {}
 for case in CASES:
-    if distributed and ("vti" not in case["outputs"].values()
-                        or not case.get("distributed", True)):
+    if distributed and "vti" not in case["outputs"].values():
         continue
     inputs = {}
     for name, source in case["inputs"].items():

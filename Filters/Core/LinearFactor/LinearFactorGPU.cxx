@@ -180,9 +180,10 @@ bool DomainScan::BuildPrograms(std::string& error)
   return true;
 }
 
-/// Sites and their planes, relative to the extent's first sample (small numbers keep
-/// float precision), planes in sample-index units relative to the site's anchor; the
-/// sites' bounds (rounded outward to float) and the blocks' bounds, for the slice test.
+/// Sites and their planes, relative to the whole grid's first sample (so that a sample's
+/// bits do not depend on the extent), planes in sample-index units relative to the site's
+/// anchor; the sites' bounds (rounded outward to float) and the blocks' bounds, for the
+/// slice test.
 void DomainScan::UploadSites()
 {
   const GLFunctions& gl = this->GL;
@@ -194,7 +195,7 @@ void DomainScan::UploadSites()
   planes.reserve(4 * this->Sites.Planes.size());
   for (int a = 0; a < 3; ++a)
   {
-    this->Base[a] = grid.Coordinate(a, ext.Lo[a]);
+    this->Base[a] = grid.Coordinate(a, grid.Whole.Lo[a]);
   }
   const double* base = this->Base;
   IndexPlane indexPlanes[GpuMaxPlanes];
@@ -323,11 +324,16 @@ void DomainScan::SetUniforms()
     gl.GetUniformLocation(program, "blockCounts"), blockCounts[0], blockCounts[1], blockCounts[2]);
   gl.Uniform1i(gl.GetUniformLocation(program, "blockSize"), RangeCulling::BlockSize);
   gl.Uniform1f(gl.GetUniformLocation(program, "minSpacing"), static_cast<float>(grid.MinSpacing()));
-  // The depth of a fragment is its distance over the largest one a site can have here.
+  gl.Uniform3i(gl.GetUniformLocation(program, "extentLo"),
+    this->Extent.Lo[0] - grid.Whole.Lo[0],
+    this->Extent.Lo[1] - grid.Whole.Lo[1],
+    this->Extent.Lo[2] - grid.Whole.Lo[2]);
+  // The depth of a fragment is its distance over the largest one a site can have in the
+  // whole grid (not the extent: equal distances must give equal depths in any extent).
   double diagonal = 0;
   for (int a = 0; a < 3; ++a)
   {
-    diagonal += std::pow(this->Extent.Size(a) * grid.Spacing[a], 2);
+    diagonal += std::pow(grid.Whole.Size(a) * grid.Spacing[a], 2);
   }
   double reach = 2 * std::sqrt(diagonal) + 1e-30;
   for (const Site& s : this->Sites.Sites)
