@@ -94,6 +94,11 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
 {
   vtkdf::StageTimer timer;
   vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
+  // The whole mesh, gathered when a distributed run partitioned it (vtkDistanceFieldPartitions.h).
+  if (!this->InputMesh(mesh))
+  {
+    return 0;
+  }
   vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);

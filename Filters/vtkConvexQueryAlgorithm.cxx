@@ -2,11 +2,15 @@
 
 #include "vtkDemandDrivenPipeline.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "GL/HeadlessGL.h"
 #include "vtkConvexPieces.h"
 #include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldPartitions.h"
 
 int vtkConvexQueryAlgorithm::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -58,12 +62,50 @@ bool vtkConvexQueryAlgorithm::ChooseBackend(vtkdf::HeadlessGL*& gl)
   return true;
 }
 
+int vtkConvexQueryAlgorithm::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  for (int port = 0; port < this->GetNumberOfInputPorts(); ++port)
+  {
+    vtkInformation* in = inputVector[port]->GetInformationObject(0);
+    if (!in)
+    {
+      continue;
+    }
+    vtkdf::RequestWholeInput(in);
+    if (this->IsQueryPort(port))
+    {
+      int piece = 0, pieces = 1;
+      vtkdf::MeshPiece(piece, pieces);
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), piece);
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), pieces);
+    }
+  }
+  return 1;
+}
+
 bool vtkConvexQueryAlgorithm::ReadPieces(vtkDataObject* input,
   const char* solid,
   int port,
   vtkdf::ConvexPieceInput& pieces)
 {
   std::string error;
+  vtkPolyData* mesh = vtkPolyData::SafeDownCast(input);
+  if (mesh && !vtkdf::SameMeshOnEveryRank(mesh))
+  {
+    error = "The pieces differ between the ranks of this distributed run (the mesh was "
+            "partitioned upstream): every rank needs every piece";
+    if (solid)
+    {
+      vtkErrorMacro("Solid " << solid << " (input " << port << "): " << error << ".");
+    }
+    else
+    {
+      vtkErrorMacro(<< error << ".");
+    }
+    return false;
+  }
   if (!pieces.Read(input, this->PieceArray, this->UseConvexHulls, error))
   {
     if (solid)

@@ -113,6 +113,11 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// The pieces (solids) whole on every input port, the queries' port excepted: in a
+  /// distributed run each rank takes its own piece of the queries (IsQueryPort).
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Whether input `port` holds query points, split across the ranks of a distributed run.
+  virtual bool IsQueryPort(int /*port*/) { return false; }
 
   /// Checks the properties before a run; reports the first invalid one and returns false.
   virtual bool CheckProperties();
@@ -125,7 +130,8 @@ protected:
 
   /// The pieces of `input` on `port` (checked, or replaced by their hulls with a
   /// warning); false with the error reported. `solid` ("P", "Q") names the input in the
-  /// messages of a filter that takes two.
+  /// messages of a filter that takes two. Collective in a distributed run: a mesh that
+  /// differs between the ranks (partitioned upstream) is an error.
   bool ReadPieces(vtkDataObject* input,
     const char* solid,
     int port,

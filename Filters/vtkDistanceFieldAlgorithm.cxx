@@ -7,6 +7,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -17,6 +18,7 @@
 #include "GL/HeadlessGL.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldMeshInput.h"
+#include "vtkDistanceFieldPartitions.h"
 
 #include <vtksys/SystemInformation.hxx>
 
@@ -76,6 +78,37 @@ bool vtkDistanceFieldAlgorithm::MeshBounds(vtkPolyData* mesh, double bounds[6], 
   return this->BoundsValid;
 }
 
+bool vtkDistanceFieldAlgorithm::InputMesh(vtkPolyData*& mesh)
+{
+  if (!mesh)
+  {
+    return true;
+  }
+  if (!(this->WholeInput == mesh && this->WholeInputTime == mesh->GetMTime()))
+  {
+    this->WholeInput = mesh;
+    this->WholeInputTime = mesh->GetMTime();
+    vtkdf::WholeMesh whole;
+    this->WholeError.clear();
+    vtkdf::AssembleWholeMesh(mesh, whole, this->WholeError);
+    this->WholeMesh = whole.Mesh;
+    this->WholeCellIds = std::move(whole.CellIds);
+    this->WholeParts = whole.Parts;
+    if (this->WholeParts > 1)
+    {
+      vtkDebugMacro("Gathered the mesh from " << this->WholeParts << " ranks.");
+    }
+  }
+  if (!this->WholeError.empty())
+  {
+    vtkErrorMacro(<< this->WholeError << ".");
+    mesh = nullptr;
+    return false;
+  }
+  mesh = this->WholeMesh;
+  return true;
+}
+
 bool vtkDistanceFieldAlgorithm::ReadMesh(vtkPolyData* input,
   const vtkdf::SampleGrid& grid,
   vtkdf::MeshInput& mesh)
@@ -89,6 +122,17 @@ bool vtkDistanceFieldAlgorithm::ReadMesh(vtkPolyData* input,
   }
   vtkdf::IgnoredCells ignored;
   vtkdf::CopyMesh(input, bounds, vtkdf::GridFrame::For(grid), mesh, ignored);
+  if (input == this->WholeMesh && !this->WholeCellIds.empty())
+  {
+    // The whole mesh's cells in global-id order: report their global ids.
+    for (auto* cells : { &mesh.TriangleCells, &mesh.SegmentCells, &mesh.VertexCells })
+    {
+      for (int64_t& cell : *cells)
+      {
+        cell = this->WholeCellIds[cell];
+      }
+    }
+  }
   const std::string warning = ignored.Sentence();
   if (!warning.empty())
   {
@@ -200,8 +244,36 @@ int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkdf::SampleGrid grid;
   const char* what = "The grid";
-  if (this->AcceptsImageInput && inInfo &&
-    vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  const bool imageInput = this->AcceptsImageInput && inInfo &&
+    vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT()));
+  vtkPolyData* input = nullptr;
+  if (!imageInput)
+  {
+    // The default grid depends on the mesh's bounds, which are known only once the input
+    // has executed (the grid must be known here for streaming requests to make sense),
+    // and a distributed run assembles the whole mesh on every rank, collectively, here:
+    // bring the input up to date now.
+    if (vtkAlgorithm* upstream = this->GetInputAlgorithm(0, 0))
+    {
+      // The request RequestUpdateExtent makes next, so that the input is not made twice.
+      const int port = this->GetInputConnection(0, 0)->GetIndex();
+      int piece = 0, pieces = 1;
+      vtkdf::MeshPiece(piece, pieces);
+      vtkNew<vtkInformationVector> requests;
+      requests->SetNumberOfInformationObjects(upstream->GetNumberOfOutputPorts());
+      vtkInformation* request = requests->GetInformationObject(port);
+      request->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), piece);
+      request->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), pieces);
+      request->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+      upstream->Update(port, requests);
+    }
+    input = vtkPolyData::GetData(inputVector[0], 0);
+    if (!this->InputMesh(input))
+    {
+      return 0;
+    }
+  }
+  if (imageInput)
   {
     // An image input: the output has its grid.
     int whole[6] = { 0, -1, 0, -1, 0, -1 };
@@ -234,14 +306,6 @@ int vtkDistanceFieldAlgorithm::RequestInformation(vtkInformation*,
   }
   else
   {
-    // The default grid depends on the input's bounds, which are known only once the
-    // input has executed: bring it up to date now (as the grid must be known here for
-    // streaming requests to make sense).
-    if (vtkAlgorithm* upstream = this->GetInputAlgorithm(0, 0))
-    {
-      upstream->Update(this->GetInputConnection(0, 0)->GetIndex());
-    }
-    vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
     double bounds[6];
     std::string error;
     const bool empty = !input || input->GetNumberOfCells() == 0 || input->GetNumberOfPoints() == 0;
@@ -283,9 +347,18 @@ int vtkDistanceFieldAlgorithm::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector*)
 {
-  // Every sample may depend on every cell of a mesh, every voxel on every other voxel of
-  // an image: ask for the whole input.
-  vtkdf::RequestWholeInput(inputVector[0]->GetInformationObject(0));
+  // Every voxel may depend on every other voxel of an image: ask for all of it. Every
+  // sample may depend on every cell of a mesh: ask for the whole mesh, or, in a
+  // distributed run, for this rank's piece, which InputMesh gathers with the others'.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkdf::RequestWholeInput(inInfo);
+  if (!vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    int piece = 0, pieces = 1;
+    vtkdf::MeshPiece(piece, pieces);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), piece);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), pieces);
+  }
   return 1;
 }
 

@@ -22,9 +22,11 @@
 
 #include "vtkDistanceFieldsModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
+#include "vtkSmartPointer.h" // For the whole mesh
 
 #include <initializer_list> // For enum names
 #include <string>           // For the renderer string
+#include <vector>           // For the whole mesh's cell ids
 
 class vtkImageData;
 #ifndef __VTK_WRAP__
@@ -145,6 +147,14 @@ protected:
   /// infinite coordinate, or no cell uses any point.
   bool MeshBounds(vtkPolyData* mesh, double bounds[6], std::string& error);
 
+  /// Replaces a mesh input (`mesh`, this rank's piece) by the whole mesh every rank must
+  /// work on: the input itself, or, when the ranks of a distributed run hold different
+  /// pieces or the mesh carries global ids, the gathered mesh in global-id order
+  /// (vtkDistanceFieldPartitions.h). Computed once per version of the input; collective
+  /// in a distributed run (RequestInformation calls it on every rank). False, with the
+  /// error reported, when a partitioned mesh has no global ids; a null mesh stays null.
+  bool InputMesh(vtkPolyData*& mesh);
+
 #ifndef __VTK_WRAP__
   /// The GL context to run on (null: the CPU), from Backend; false, with the error
   /// reported, when the GPU is asked for and there is none.
@@ -215,6 +225,13 @@ private:
   vtkPolyData* BoundsMesh = nullptr;
   vtkMTimeType BoundsTime = 0;
   bool BoundsValid = false;
+  // InputMesh's result for WholeInput at WholeInputTime.
+  vtkPolyData* WholeInput = nullptr;
+  vtkMTimeType WholeInputTime = 0;
+  vtkSmartPointer<vtkPolyData> WholeMesh;
+  std::vector<vtkIdType> WholeCellIds; // global cell ids of WholeMesh's cells (or empty)
+  int WholeParts = 1;
+  std::string WholeError;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
   std::string BoundsError;
 

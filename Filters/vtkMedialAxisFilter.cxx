@@ -18,6 +18,7 @@
 #include "GL/HeadlessGL.h"
 #include "Medial/MedialAxisField.h"
 #include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldPartitions.h"
 
 #include <utility>
 
@@ -71,6 +72,11 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
 {
   vtkdf::StageTimer timer;
   vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
+  // The whole mesh, gathered when a distributed run partitioned it (vtkDistanceFieldPartitions.h).
+  if (!this->InputMesh(mesh))
+  {
+    return 0;
+  }
   vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
@@ -154,7 +160,12 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   output->GetPointData()->AddArray(radius);
   output->GetPointData()->SetActiveScalars("Medial");
   // Port 1: one vertex per medial voxel.
-  this->WriteMedialPoints(field.Grid, medial, angle, radius, arrays.Count, points);
+  if (vtkdf::IsFirstRank())
+  {
+    // Every rank computes the whole grid: in a distributed run rank 0 alone outputs the
+    // points, so that the ranks' outputs do not repeat them.
+    this->WriteMedialPoints(field.Grid, medial, angle, radius, arrays.Count, points);
+  }
   this->LastMedialCount = arrays.Count;
   this->FinishTiming(gl, timer);
   return 1;

@@ -16,6 +16,7 @@
 #include "Union/PenetrationDepth.h"
 #include "vtkConvexPieces.h"
 #include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldPartitions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -46,6 +47,10 @@ int vtkPenetrationDepth::RequestData(vtkInformation*,
     !this->ChooseBackend(gl))
   {
     return 0;
+  }
+  if (!vtkdf::IsFirstRank())
+  {
+    return 1; // in a distributed run, rank 0 gives the one answer
   }
   this->UpdateProgress(0.1);
 

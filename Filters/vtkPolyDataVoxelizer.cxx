@@ -27,6 +27,11 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
 {
   vtkdf::StageTimer timer;
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  // The whole mesh, gathered when a distributed run partitioned it (vtkDistanceFieldPartitions.h).
+  if (!this->InputMesh(input))
+  {
+    return 0;
+  }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();

@@ -19,6 +19,7 @@
 #include "Segment/SegmentContour.h"
 #include "vtkDistanceFieldArrays.h"
 #include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldPartitions.h"
 
 #include <cmath>
 #include <vector>
@@ -54,6 +55,10 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
   {
     vtkErrorMacro("FeatureAngle must be in (0, 180] degrees; it is " << this->FeatureAngle << ".");
     return 0;
+  }
+  if (!vtkdf::IsFirstRank())
+  {
+    return 1; // the segmented field is whole on every rank: rank 0 outputs the surface, once
   }
   std::string error;
   vtkDataArray* values = vtkdf::SampleArray(field, "SegmentedDistance", 1, error);

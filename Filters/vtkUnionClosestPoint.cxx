@@ -23,6 +23,7 @@
 #include "Union/UnionQuery.h"
 #include "vtkConvexPieces.h"
 #include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldPartitions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -146,6 +147,10 @@ int vtkUnionClosestPoint::RequestData(vtkInformation*,
     !this->ReadQueries(inputVector[1], o) || !this->ChooseBackend(gl))
   {
     return 0;
+  }
+  if (!vtkPointSet::GetData(inputVector[1], 0) && !vtkdf::IsFirstRank())
+  {
+    return 1; // QueryPoint in a distributed run: rank 0 answers it, once
   }
   vtkdf::UnionClosestPoint query;
   query.Tolerance = pieces.Tolerance;

@@ -83,6 +83,7 @@ protected:
   ~vtkUnionClosestPoint() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  bool IsQueryPort(int port) override { return port == 1; }
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The query points: input 1's points, or QueryPoint; false with the error reported

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 packages="cmake g++ make pkg-config libvtk9-dev python3-vtk9 python3-numpy libegl-dev
   libegl1-mesa-dev libgl1-mesa-dri libgles-dev libosmesa6-dev libepoxy-dev libglm-dev libqhull-dev
   libcgal-dev libgmp-dev libmpfr-dev
-  xvfb xauth
+  xvfb xauth openmpi-bin
   clang libclang-rt-14-dev dpkg-dev file"
 missing=""
 for p in $packages; do

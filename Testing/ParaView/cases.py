@@ -4,7 +4,9 @@ system-VTK build's Python package, whose outputs must be equal bit for bit.
 A case names a filter by its proxy name (the class name without "vtk"), its inputs by
 property name (a file of Testing/Data, or "case:port" for an earlier case's output), its
 properties by their C++ names (enumerations by the words of their SetXToY() methods) and
-the output ports it writes, with their file extensions."""
+the output ports it writes, with their file extensions. "partitioned:FILE" is the file
+partitioned across the ranks by ParaView (distributed_only: such cases run only in
+run_in_paraview.py's distributed mode)."""
 
 CASES = [
     dict(name="linfac_pseudonormal", filter="LinearFactorDistanceField",
@@ -23,6 +25,17 @@ CASES = [
                          GridSpacing=[0.05, 0.06, 0.07], GridDimensions=[25, 21, 9],
                          Culling="NonManifold", MaximumDistance=0.2, Backend="CPU"),
          outputs={0: "vti"}),
+    # The mesh partitioned across the ranks (ids generated while it is whole on rank 0,
+    # then RedistributeDataSet): gathered and put in global-id order on every rank.
+    dict(name="linfac_partitioned", filter="LinearFactorDistanceField",
+         inputs={"Input": "partitioned:bunny_small.vtp"},
+         properties=dict(Resolution=24, SignMode="WindingNumber", Backend="CPU",
+                         ComputeClosestPoint=1),
+         outputs={0: "vti"}, distributed_only=True),
+    dict(name="segmented_partitioned", filter="SegmentedDistanceField",
+         inputs={"Input": "partitioned:teapot.vtp"},
+         properties=dict(Resolution=20, Backend="CPU"),
+         outputs={0: "vti"}, distributed_only=True),
     dict(name="voxelizer", filter="PolyDataVoxelizer",
          inputs={"Input": "cow.vtp"},
          properties=dict(Resolution=40, Mode="Both", Backend="CPU"),

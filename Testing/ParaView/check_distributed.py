@@ -1,9 +1,11 @@
 """Runs cases.py's image cases under mpiexec -n R pvbatch --symmetric for R = 1 and each
 R given, and checks that the assembled .pvti outputs of R ranks equal the 1-rank outputs
-bit for bit, and that the filters that produce sub-extents (the linear factorization, the
-voxelizer) computed only a slab on each rank (the extents every rank prints):
-python3 check_distributed.py MPIEXEC PVBATCH PLUGIN DATA_DIR OUT_DIR R... (the mesh
-arrives whole on every rank; DF_PVBATCH_PYTHONPATH: python3-paraview's modules)."""
+bit for bit (the mesh whole, or partitioned across the ranks with global ids), that the
+filters that produce sub-extents (the linear factorization, the voxelizer) computed only
+a slab on each rank (the extents every rank prints), and that a mesh partitioned without
+global ids is refused:
+python3 check_distributed.py MPIEXEC PVBATCH PLUGIN DATA_DIR OUT_DIR R...
+(DF_PVBATCH_PYTHONPATH: python3-paraview's modules)."""
 import ast
 import os
 import re
@@ -58,6 +60,18 @@ for ranks in rank_counts:
         if case.startswith(SLAB_FILTERS) and any(e == whole for e in by_rank.values()):
             failures.append(f"{case}: a rank computed the whole extent {whole}")
     failures += [f"{ranks} ranks: {f}" for f in compare(serial, folder)]
+# A mesh partitioned without global ids is refused on every rank, with the message.
+command = [mpiexec, "-n", "2"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
+result = subprocess.run(command + [pvbatch, "--symmetric",
+                                   os.path.join(here, "refuse_partitioned.py"), plugin],
+                        capture_output=True, text=True, timeout=300, env=environment)
+output = result.stdout + result.stderr
+refused = (result.returncode == 0 and output.count("output has 0 points") == 2 and
+           "is partitioned across the 2 ranks" in output)
+print(f"== a partitioned mesh without global ids: {'refused' if refused else 'NOT refused'}")
+if not refused:
+    print(output)
+    failures.append("a partitioned mesh without global ids was not refused on both ranks")
 for failure in failures:
     print("FAIL:", failure)
 sys.exit(1 if failures else 0)

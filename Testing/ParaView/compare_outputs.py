@@ -10,13 +10,13 @@ import sys
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import (vtkXMLImageDataReader, vtkXMLPImageDataReader,
-                                 vtkXMLPolyDataReader)
+                                 vtkXMLPolyDataReader, vtkXMLPPolyDataReader)
 
 
 def read(path):
-    """A .vti, a .vtp, or a .pvti assembled from its pieces."""
+    """A .vti, a .vtp, or a .pvti or .pvtp assembled from its pieces."""
     readers = {".vti": vtkXMLImageDataReader, ".vtp": vtkXMLPolyDataReader,
-               ".pvti": vtkXMLPImageDataReader}
+               ".pvti": vtkXMLPImageDataReader, ".pvtp": vtkXMLPPolyDataReader}
     reader = readers[os.path.splitext(path)[1]]()
     reader.SetFileName(path)
     reader.Update()
@@ -54,7 +54,7 @@ def outputs(folder):
     """The output files of a folder by name without extension (a .pvti's pieces are in
     its own subfolder)."""
     return {os.path.splitext(name)[0]: os.path.join(folder, name)
-            for name in os.listdir(folder) if os.path.splitext(name)[1] in (".vti", ".vtp", ".pvti")}
+            for name in os.listdir(folder) if os.path.splitext(name)[1] in (".vti", ".vtp", ".pvti", ".pvtp")}
 
 
 def compare(first_folder, second_folder):

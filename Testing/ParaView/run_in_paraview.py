@@ -2,8 +2,9 @@
 pvbatch [--symmetric] run_in_paraview.py PLUGIN DATA_DIR OUT_DIR [distributed]
 
 Each output port goes to OUT_DIR/<case>_<port>.<extension>. With "distributed" (under
-mpiexec ... pvbatch --symmetric), only the image outputs are written, by ParaView's
-parallel writer (.pvti: one piece a rank), and every rank prints the extent it computed."""
+mpiexec ... pvbatch --symmetric), the outputs are written by ParaView's parallel writers
+(.pvti, .pvtp: one piece a rank), and every rank prints the extent of each image it
+computed."""
 import os
 import sys
 
@@ -21,11 +22,18 @@ process = vtkProcessModule.GetProcessModule()
 rank, ranks = process.GetPartitionId(), process.GetNumberOfLocalPartitions()
 made = {}
 for case in CASES:
-    if distributed and "vti" not in case["outputs"].values():
+    if case.get("distributed_only") and not distributed:
         continue
     inputs = {}
     for name, source in case["inputs"].items():
-        if ":" in source:
+        if source.startswith("partitioned:"):
+            # Global ids while the mesh is whole (on rank 0: a one-piece file gives the
+            # other ranks nothing), then a part of it on every rank.
+            reader = simple.XMLPolyDataReader(FileName=[os.path.join(data_dir, source[12:])])
+            ids = simple.GenerateGlobalIds(Input=reader)
+            parts = simple.RedistributeDataSet(Input=ids)
+            inputs[name] = simple.ExtractSurface(Input=parts)
+        elif ":" in source:
             earlier, port = source.split(":")
             inputs[name] = simple.OutputPort(made[earlier], int(port))
         else:
@@ -33,15 +41,17 @@ for case in CASES:
     proxy = getattr(simple, case["filter"])(**inputs, **case["properties"])
     made[case["name"]] = proxy
     for port, extension in case["outputs"].items():
-        if distributed and extension != "vti":
-            continue
         if distributed:
-            path = os.path.join(out_dir, f"{case['name']}_{port}.pvti")
-            writer = simple.XMLPImageDataWriter(Input=simple.OutputPort(proxy, port),
-                                                FileName=path)
+            # One piece a rank, assembled by the reader of the .pvti/.pvtp.
+            path = os.path.join(out_dir, f"{case['name']}_{port}.p{extension}")
+            write = (simple.XMLPImageDataWriter if extension == "vti"
+                     else simple.XMLPPolyDataWriter)
+            writer = write(Input=simple.OutputPort(proxy, port), FileName=path)
             writer.UpdatePipeline()
-            extent = proxy.GetClientSideObject().GetOutputDataObject(port).GetExtent()
-            print(f"{case['name']}: rank {rank} of {ranks} computed extent {extent}", flush=True)
+            output = proxy.GetClientSideObject().GetOutputDataObject(port)
+            if extension == "vti":
+                print(f"{case['name']}: rank {rank} of {ranks} computed extent "
+                      f"{output.GetExtent()}", flush=True)
             simple.Delete(writer)
         else:
             path = os.path.join(out_dir, f"{case['name']}_{port}.{extension}")

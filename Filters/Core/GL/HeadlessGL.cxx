@@ -6,6 +6,7 @@
 #include <epoxy/gl.h>
 #include <epoxy/glx.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <dlfcn.h>
@@ -42,6 +43,25 @@ bool Loaded(const char* soname)
     return true;
   }
   return false;
+}
+
+/// This process's rank among the processes of a distributed run on its node, from the
+/// launchers' environment (OpenMPI, MPICH, Slurm); 0 when there is none.
+int NodeLocalRank()
+{
+  for (const char* name : { "OMPI_COMM_WORLD_LOCAL_RANK", "MPI_LOCALRANKID", "SLURM_LOCALID" })
+  {
+    if (const char* value = std::getenv(name))
+    {
+      char* end = nullptr;
+      const long rank = std::strtol(value, &end, 10);
+      if (end != value && rank >= 0 && rank < 1 << 20)
+      {
+        return static_cast<int>(rank);
+      }
+    }
+  }
+  return 0;
 }
 
 std::string EGLErrorText()
@@ -260,6 +280,13 @@ bool HeadlessGL::TryEGLDevice(std::string& why)
       {
         ordered.push_back(devices[d]);
       }
+    }
+    // The ranks of a distributed run on one node spread over its GPUs: rank r of the node
+    // starts with hardware device r modulo their number.
+    if (pass == 0 && ordered.size() > 1)
+    {
+      const size_t first = static_cast<size_t>(NodeLocalRank()) % ordered.size();
+      std::rotate(ordered.begin(), ordered.begin() + first, ordered.end());
     }
   }
   for (EGLDeviceEXT device : ordered)

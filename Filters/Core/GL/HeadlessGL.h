@@ -21,7 +21,9 @@ class HeadlessGL
 public:
   /// The process-wide context, created on first use; nullptr (and `error`) when no
   /// route gives OpenGL 4.5 core. Set VTKDF_GL_PLATFORM=device|surfaceless|osmesa to
-  /// force one route.
+  /// force one route. On a node with several GPUs, the processes of a distributed run
+  /// take them in turn by their node-local rank (OMPI_COMM_WORLD_LOCAL_RANK,
+  /// MPI_LOCALRANKID or SLURM_LOCALID).
   static HeadlessGL* Get(std::string& error);
 
   const std::string& Renderer() const { return this->RendererName; }
