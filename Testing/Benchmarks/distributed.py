@@ -71,5 +71,6 @@ if rank == 0:
     print(f"{name} {resolution}^3, {ranks} rank(s) x {threads} thread(s)"
           f"{', mesh partitioned' if partitioned else ''}: {sorted(times)[1]:.2f} s "
           f"(slowest rank, median of 3), rank 0's slab {extent}, peak memory per rank "
-          + ", ".join(f"{m:.0f} MiB" for m in memories), flush=True)
+          + ", ".join(f"{m:.0f} MiB" for m in memories)
+          + f"; rank 0's stages {f.GetLastStageTimes()}", flush=True)
 controller.Finalize()
