@@ -8,15 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
-missing=""
-for p in paraview paraview-dev xvfb xauth; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
-done
-if [ -n "$missing" ]; then
-  echo "installing:$missing"
-  apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing >/dev/null
-fi
+./Testing/install-packages.sh paraview paraview-dev xvfb xauth
 build="$root/build-paraview"
 unpacked="$build/python3-paraview"
 if [ ! -d "$unpacked/usr/lib/python3/dist-packages/paraview" ]; then

@@ -9,14 +9,6 @@ packages="cmake g++ make pkg-config libvtk9-dev python3-vtk9 python3-numpy libeg
   libcgal-dev libgmp-dev libmpfr-dev
   xvfb xauth openmpi-bin
   clang libclang-rt-14-dev dpkg-dev file"
-missing=""
-for p in $packages; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
-done
-if [ -n "$missing" ]; then
-  echo "installing:$missing"
-  apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing >/dev/null
-fi
+./Testing/install-packages.sh $packages
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
 cmake --build build -j "$(nproc)"
