@@ -229,7 +229,12 @@ bool ConvexPieceInput::Read(vtkDataObject* input,
   }
   if (cells.empty())
   {
-    error = "The input has no polygons: there is no union of convex pieces.";
+    auto* mesh = vtkPolyData::SafeDownCast(input);
+    error = mesh && mesh->GetNumberOfPoints() > 0
+      ? "The input has " + std::to_string(mesh->GetNumberOfPoints()) +
+        " points but no polygons: there is no union of convex pieces (UseConvexHulls takes "
+        "the hull of each piece's polygons, not of points alone)."
+      : std::string("The input has no polygons: there is no union of convex pieces.");
     return false;
   }
 
@@ -265,9 +270,30 @@ bool ConvexPieceInput::Read(vtkDataObject* input,
   {
     single = single || piece.Mesh->GetPoints()->GetDataType() != VTK_DOUBLE;
   }
-  this->ConvexityTolerance = (single ? 1e-6 : 1e-9) * diagonal;
+  const double relativeTolerance = single ? 1e-6 : 1e-9;
+  this->ConvexityTolerance = relativeTolerance * diagonal;
   for (size_t p = 0; p < cells.size(); ++p)
   {
+    // Points repeated a rounding apart (an exported hull's unshared points) made one,
+    // within the convexity tolerance relative to the piece's own size; the slivers
+    // between them dropped.
+    double pieceLo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL },
+           pieceHi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+    for (const auto& face : cells[p].Faces)
+    {
+      for (const int64_t id : face)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          pieceLo[a] = std::min(pieceLo[a], points[p][3 * id + a]);
+          pieceHi[a] = std::max(pieceHi[a], points[p][3 * id + a]);
+        }
+      }
+    }
+    const double pieceDiagonal = std::sqrt((pieceHi[0] - pieceLo[0]) * (pieceHi[0] - pieceLo[0]) +
+      (pieceHi[1] - pieceLo[1]) * (pieceHi[1] - pieceLo[1]) +
+      (pieceHi[2] - pieceLo[2]) * (pieceHi[2] - pieceLo[2]));
+    MergeNearCorners(points[p], cells[p].Faces, relativeTolerance * pieceDiagonal);
     ConvexPiece piece;
     std::string why;
     if (piece.Build(points[p], cells[p].Faces, this->ConvexityTolerance, why))

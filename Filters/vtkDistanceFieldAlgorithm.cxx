@@ -4,6 +4,7 @@
 #include "vtkCellArray.h"
 #include "vtkDataSet.h"
 #include "vtkErrorCode.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -106,7 +107,50 @@ bool vtkDistanceFieldAlgorithm::InputMesh(vtkPolyData*& mesh)
     return false;
   }
   mesh = this->WholeMesh;
+  if (mesh && mesh->GetNumberOfCells() == 0 && mesh->GetNumberOfPoints() > 0)
+  {
+    const std::string refusal = this->PointCloudRefusal();
+    if (!refusal.empty())
+    {
+      vtkErrorMacro("The input has " << mesh->GetNumberOfPoints()
+                                     << " points but no polygons: " << refusal << ".");
+      mesh = nullptr;
+      return false;
+    }
+    if (!(this->PointSitesInput == mesh && this->PointSitesTime == mesh->GetMTime()))
+    {
+      this->PointSitesInput = mesh;
+      this->PointSitesTime = mesh->GetMTime();
+      const vtkIdType count = mesh->GetNumberOfPoints();
+      vtkNew<vtkIdTypeArray> offsets, connectivity;
+      offsets->SetNumberOfValues(count + 1);
+      connectivity->SetNumberOfValues(count);
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        offsets->SetValue(i, i);
+        connectivity->SetValue(i, i);
+      }
+      offsets->SetValue(count, count);
+      vtkNew<vtkCellArray> vertices;
+      vertices->SetData(offsets, connectivity);
+      this->PointSites = vtkSmartPointer<vtkPolyData>::New();
+      this->PointSites->SetPoints(mesh->GetPoints());
+      this->PointSites->SetVerts(vertices);
+      vtkWarningMacro("The input has " << count
+                                       << " points and no cells: each point is taken as a "
+                                          "point site (the field is the distance to the "
+                                          "nearest point; its id is the ClosestCellId).");
+    }
+    mesh = this->PointSites;
+  }
   return true;
+}
+
+std::string vtkDistanceFieldAlgorithm::PointCloudRefusal()
+{
+  return std::string(this->GetClassName()) +
+    " needs a surface (polygons or triangle strips); only vtkLinearFactorDistanceField "
+    "with SignMode Unsigned takes points alone";
 }
 
 bool vtkDistanceFieldAlgorithm::ReadMesh(vtkPolyData* input,
@@ -120,8 +164,12 @@ bool vtkDistanceFieldAlgorithm::ReadMesh(vtkPolyData* input,
     vtkErrorMacro("Invalid input: " << error << ".");
     return false;
   }
-  vtkdf::IgnoredCells ignored;
-  vtkdf::CopyMesh(input, bounds, vtkdf::GridFrame::For(grid), mesh, ignored);
+  vtkdf::MeshCopyReport report;
+  if (!vtkdf::CopyMesh(input, bounds, vtkdf::GridFrame::For(grid), mesh, report, error))
+  {
+    vtkErrorMacro("Invalid input: " << error << ".");
+    return false;
+  }
   if (input == this->WholeMesh && !this->WholeCellIds.empty())
   {
     // The whole mesh's cells in global-id order: report their global ids.
@@ -133,7 +181,7 @@ bool vtkDistanceFieldAlgorithm::ReadMesh(vtkPolyData* input,
       }
     }
   }
-  const std::string warning = ignored.Sentence();
+  const std::string warning = report.Warnings();
   if (!warning.empty())
   {
     vtkWarningMacro(<< warning);

@@ -155,6 +155,12 @@ protected:
   /// error reported, when a partitioned mesh has no global ids; a null mesh stays null.
   bool InputMesh(vtkPolyData*& mesh);
 
+  /// Why this filter cannot take a point cloud (a mesh with points and no cells), as the
+  /// end of a sentence that starts "The input has N points but no polygons: "; "" when
+  /// it takes each point as a point site, as if it were a vertex cell of the point's id
+  /// (InputMesh then hands on such a mesh, made once per version of the input).
+  virtual std::string PointCloudRefusal();
+
 #ifndef __VTK_WRAP__
   /// The GL context to run on (null: the CPU), from Backend; false, with the error
   /// reported, when the GPU is asked for and there is none.
@@ -232,6 +238,10 @@ private:
   std::vector<vtkIdType> WholeCellIds; // global cell ids of WholeMesh's cells (or empty)
   int WholeParts = 1;
   std::string WholeError;
+  // The point sites of a point cloud (InputMesh), and what they were made of.
+  vtkSmartPointer<vtkPolyData> PointSites;
+  vtkPolyData* PointSitesInput = nullptr;
+  vtkMTimeType PointSitesTime = 0;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
   std::string BoundsError;
 

@@ -4,13 +4,12 @@
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
-#include "vtkIdList.h"
-#include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPolygon.h"
 
 #include "vtkDistanceFieldExecution.h"
+
+#include "Polygons/PolygonTriangulation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -141,21 +140,26 @@ namespace
 class CellCopy
 {
 public:
-  CellCopy(vtkPolyData* input, const GridFrame& frame, MeshInput& mesh, IgnoredCells& ignored)
+  CellCopy(vtkPolyData* input, const GridFrame& frame, MeshInput& mesh, MeshCopyReport& report)
     : Input(input)
     , Frame(frame)
     , Mesh(mesh)
-    , Ignored(ignored)
+    , Ignored(report)
   {
   }
 
-  void Run()
+  /// False and `error` when a polygon has no triangulation.
+  bool Run(std::string& error)
   {
     vtkIdType cellId = 0;
     this->Vertices(cellId);
     this->Lines(cellId);
-    this->Polygons(cellId);
+    if (!this->Polygons(cellId, error))
+    {
+      return false;
+    }
     this->Strips(cellId);
+    return true;
   }
 
 private:
@@ -191,7 +195,7 @@ private:
     }
   }
 
-  void Polygons(vtkIdType& cellId)
+  bool Polygons(vtkIdType& cellId, std::string& error)
   {
     vtkIdType count;
     const vtkIdType* ids;
@@ -206,45 +210,49 @@ private:
       {
         this->Triangle(ids[0], ids[1], ids[2], cellId);
       }
-      else
+      else if (!this->Polygon(count, ids, cellId, error))
       {
-        this->Polygon(count, ids, cellId);
+        return false;
       }
     }
+    return true;
   }
 
-  /// Concave polygons need an ear-cut; a fan covers what the ear-cut rejects.
-  void Polygon(vtkIdType count, const vtkIdType* ids, vtkIdType cellId)
+  /// Ear clipping in the polygon's best-fit plane (concave polygons included); never a
+  /// fan, which covers area outside a concave polygon.
+  bool Polygon(vtkIdType count, const vtkIdType* ids, vtkIdType cellId, std::string& error)
   {
-    this->Cut->GetPointIds()->SetNumberOfIds(count);
-    this->Cut->GetPoints()->SetNumberOfPoints(count);
+    this->Corners.resize(3 * count);
     for (vtkIdType i = 0; i < count; ++i)
     {
       const double* world = &this->Mesh.Points[3 * ids[i]];
-      const double local[3] = { this->Frame.ToLocal(0, world[0]),
-        this->Frame.ToLocal(1, world[1]),
-        this->Frame.ToLocal(2, world[2]) };
-      this->Cut->GetPointIds()->SetId(i, i);
-      this->Cut->GetPoints()->SetPoint(i, local);
-    }
-    if (this->Cut->Triangulate(this->Triangles) &&
-      this->Triangles->GetNumberOfIds() == 3 * (count - 2))
-    {
-      for (vtkIdType t = 0; t < this->Triangles->GetNumberOfIds(); t += 3)
+      for (int a = 0; a < 3; ++a)
       {
-        this->Triangle(ids[this->Triangles->GetId(t)],
-          ids[this->Triangles->GetId(t + 1)],
-          ids[this->Triangles->GetId(t + 2)],
-          cellId);
+        this->Corners[3 * i + a] = this->Frame.ToLocal(a, world[a]);
       }
     }
-    else
+    if (!this->Cut.Triangulate(this->Corners.data(), count))
     {
-      for (vtkIdType i = 1; i + 1 < count; ++i)
+      error = "polygon cell " + std::to_string(cellId) + " (" + std::to_string(count) +
+        " corners) has no triangulation along its edges: " + this->Cut.Problem() +
+        ". Split it into simple polygons or triangles";
+      return false;
+    }
+    if (this->Cut.Planarity() > PolygonPlanarityTolerance)
+    {
+      ++this->Ignored.NonPlanarPolygons;
+      if (this->Cut.Planarity() > this->Ignored.FarthestPlanarity)
       {
-        this->Triangle(ids[0], ids[i], ids[i + 1], cellId);
+        this->Ignored.FarthestPlanarity = this->Cut.Planarity();
+        this->Ignored.FarthestNonPlanarCell = cellId;
       }
     }
+    const std::vector<int64_t>& corners = this->Cut.Triangles();
+    for (size_t t = 0; t < corners.size(); t += 3)
+    {
+      this->Triangle(ids[corners[t]], ids[corners[t + 1]], ids[corners[t + 2]], cellId);
+    }
+    return true;
   }
 
   void Strips(vtkIdType& cellId)
@@ -278,20 +286,21 @@ private:
   vtkPolyData* Input;
   const GridFrame& Frame;
   MeshInput& Mesh;
-  IgnoredCells& Ignored;
-  vtkNew<vtkPolygon> Cut;
-  vtkNew<vtkIdList> Triangles;
+  MeshCopyReport& Ignored;
+  PolygonTriangulation Cut;
+  std::vector<double> Corners;
 };
 } // namespace
 
-void CopyMesh(vtkPolyData* input,
+bool CopyMesh(vtkPolyData* input,
   const double bounds[6],
   const GridFrame& frame,
   MeshInput& mesh,
-  IgnoredCells& ignored)
+  MeshCopyReport& report,
+  std::string& error)
 {
   mesh = MeshInput();
-  ignored = IgnoredCells();
+  report = MeshCopyReport();
   std::copy(bounds, bounds + 6, mesh.Bounds.begin());
   vtkPoints* points = input->GetPoints();
   const vtkIdType numPoints = points ? points->GetNumberOfPoints() : 0;
@@ -305,16 +314,25 @@ void CopyMesh(vtkPolyData* input,
         points->GetPoint(i, &mesh.Points[3 * i]);
       }
     });
-  CellCopy(input, frame, mesh, ignored).Run();
+  return CellCopy(input, frame, mesh, report).Run(error);
 }
 
-std::string IgnoredCells::Sentence() const
+std::string MeshCopyReport::Warnings() const
 {
+  std::ostringstream text;
+  if (this->NonPlanarPolygons)
+  {
+    text << this->NonPlanarPolygons
+         << (this->NonPlanarPolygons == 1 ? " polygon is" : " polygons are") << " not planar (cell "
+         << this->FarthestNonPlanarCell << " lies up to " << this->FarthestPlanarity
+         << " of its size from its best-fit plane): each is taken as the triangles of its "
+            "projection on that plane, through its own corners.";
+  }
   if (!this->ShortPolygons && !this->ShortLines && !this->ShortStrips && !this->EmptyVertices)
   {
-    return std::string();
+    return text.str();
   }
-  std::ostringstream text;
+  text << (this->NonPlanarPolygons ? " " : "");
   text << "Ignored cells it cannot use: " << this->ShortPolygons
        << " polygons with fewer than 3 points, " << this->ShortLines
        << " lines with fewer than 2 points, " << this->ShortStrips

@@ -21,24 +21,30 @@ namespace vtkdf
 /// point.
 bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error);
 
-/// The cells a copy could not use.
-struct IgnoredCells
+/// What a copy could not use, and the polygons it triangulated by the rule for polygons
+/// that are not planar.
+struct MeshCopyReport
 {
   vtkIdType ShortPolygons = 0, ShortLines = 0, ShortStrips = 0, EmptyVertices = 0;
-  /// A sentence naming them, or "" when there are none.
-  std::string Sentence() const;
+  vtkIdType NonPlanarPolygons = 0;
+  vtkIdType FarthestNonPlanarCell = -1; // the polygon farthest from its plane
+  double FarthestPlanarity = 0;         // its distance from the plane over its size
+  /// Sentences naming them, or "" when there are none.
+  std::string Warnings() const;
 };
 
 /// Copies `input` into `mesh`: every point (world coordinates, in double) and the cells
-/// in the filters' numbering (vertices, lines, polygons, strips; polygons ear-cut into
-/// triangles, strips split, polylines into segments), with `bounds` (UsedPointBounds) as
-/// its Bounds. The ear-cut runs in `frame`, the one the cores compute in, so that a mesh
-/// and grid scaled by 2^k are cut alike.
-void CopyMesh(vtkPolyData* input,
+/// in the filters' numbering (vertices, lines, polygons, strips; polygons triangulated by
+/// PolygonTriangulation, strips split, polylines into segments), with `bounds`
+/// (UsedPointBounds) as its Bounds. Polygons are triangulated in `frame`, the one the
+/// cores compute in, so that a mesh and grid scaled by 2^k are cut alike. False and
+/// `error` (naming the cell) when a polygon has no triangulation along its edges.
+bool CopyMesh(vtkPolyData* input,
   const double bounds[6],
   const GridFrame& frame,
   MeshInput& mesh,
-  IgnoredCells& ignored);
+  MeshCopyReport& report,
+  std::string& error);
 
 } // namespace vtkdf
 

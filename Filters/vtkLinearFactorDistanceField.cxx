@@ -130,6 +130,16 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   return 1;
 }
 
+std::string vtkLinearFactorDistanceField::PointCloudRefusal()
+{
+  if (this->SignMode != UNSIGNED || this->ComputeWindingNumber)
+  {
+    return "a sign (SignMode) and the winding number need a surface; with SignMode "
+           "Unsigned the field is the distance to the points";
+  }
+  return std::string();
+}
+
 bool vtkLinearFactorDistanceField::CheckProperties()
 {
   if (!this->Superclass::CheckProperties() ||

@@ -122,6 +122,7 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   bool CheckProperties() override;
+  std::string PointCloudRefusal() override;
 
   int SignMode = UNSIGNED;
   int Culling = CULLING_AUTO;

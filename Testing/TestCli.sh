@@ -48,8 +48,9 @@ run linfac "^vtkdf: linfac dims=[0-9]+x[0-9]+x[0-9]+ $timing culling_factor=[0-9
   linfac "$data/bunny_small.vtp" -o "$out/linfac.vti" --resolution 24 --signed \
   --arrays distance,point --backend cpu --timing --png "$out/linfac.png"
 run medial "^vtkdf: medial dims=[0-9]+x[0-9]+x[0-9]+ $timing medial_voxels=[1-9]" \
-  "$out/medial.vti" "$out/medial.vtp" -- \
-  medial "$out/linfac.vti" -o "$out/medial.vti" --points "$out/medial.vtp" --backend cpu --timing
+  "$out/medial.vti" "$out/medial.vtp" "$out/medial.png" -- \
+  medial "$out/linfac.vti" -o "$out/medial.vti" --points "$out/medial.vtp" --backend cpu --timing \
+  --png "$out/medial.png"
 run voxelize "^vtkdf: voxelize dims=[0-9]+x[0-9]+x[0-9]+ $timing" "$out/voxels.vti" -- \
   voxelize "$data/bunny_small.vtp" -o "$out/voxels.vti" --resolution 24 --backend cpu --timing
 run chamfer "^vtkdf: chamfer dims=[0-9]+x[0-9]+x[0-9]+ $timing layers=[1-9]" "$out/chamfer.vti" -- \
@@ -58,6 +59,11 @@ run segment "^vtkdf: segment dims=[0-9]+x[0-9]+x[0-9]+ $timing regions=2 patches
   "$out/segment.vti" "$out/segment.png" -- \
   segment "$data/plane.vtp" -o "$out/segment.vti" --resolution 20 --backend cpu --timing \
   --png "$out/segment.png" --surface "$out/segment.vtp"
+# Each picture explains itself: its colour bar and the text around it (check_legend.py).
+for picture in signed:linfac grey:medial region:segment; do
+  /usr/bin/python3 "$(dirname "$0")/check_legend.py" "${picture%%:*}" "$out/${picture#*:}.png" ||
+    fail "${picture#*:}.png: no legend"
+done
 [ -s "$out/segment.vtp" ] || fail "segment: $out/segment.vtp not written"
 # The teapot's spout and handle cross its body: cut along the crossings (51 triangles),
 # or not (--uncut: its 4 patches as they are).

@@ -23,8 +23,9 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import (vtkRenderer, vtkRenderWindow, vtkVolume,
+from vtkmodules.vtkRenderingCore import (vtkRenderer, vtkRenderWindow, vtkTextActor, vtkVolume,
                                          vtkVolumeProperty, vtkWindowToImageFilter)
+import vtkmodules.vtkRenderingFreeType  # noqa: F401 (the caption's text)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL render window)
 
 from vtkdistancefields import (vtkDistanceFieldBlend, vtkSegmentedDistanceField,
@@ -127,6 +128,13 @@ volume.SetProperty(prop)
 renderer = vtkRenderer()
 renderer.AddVolume(volume)
 renderer.SetBackground(0.1, 0.1, 0.15)
+# What each frame shows, in its top-left corner.
+caption = vtkTextActor()
+caption.GetTextProperty().SetFontSize(12)
+caption.GetTextProperty().SetColor(0.95, 0.95, 0.95)
+caption.GetTextProperty().SetVerticalJustificationToTop()
+caption.SetDisplayPosition(8, 352)
+renderer.AddActor2D(caption)
 window = vtkRenderWindow()
 window.SetSize(360, 360)
 window.SetMultiSamples(0)
@@ -179,6 +187,9 @@ background = np.array([0.1, 0.1, 0.15]) * 255
 for k in range(frames):
     t = k / (frames - 1) if frames > 1 else 0.0
     blend.SetT(t)
+    caption.SetInput(f"t = {t:.2f}: walled ball (t = 0) to walled box (t = 1)\n"
+                     "translucent surfaces, each in the colour of the\n"
+                     "region on the viewer's side (outside, two chambers)")
     start = time.perf_counter()
     blend.Update()
     blended = time.perf_counter() - start

@@ -12,8 +12,10 @@ from vtkmodules.vtkFiltersCore import vtkProbeFilter
 from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
-                                         vtkRenderWindow, vtkWindowToImageFilter)
+                                         vtkRenderWindow, vtkTextActor, vtkWindowToImageFilter)
+import vtkmodules.vtkRenderingFreeType  # noqa: F401 (the legend's text)
 from vtkmodules.vtkCommonCore import vtkLookupTable
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL render window)
 
@@ -87,6 +89,26 @@ for poly, colour in ((cow, False), (probe.GetOutputPort(), True)):
     if not colour:
         actor.GetProperty().SetColor(0.85, 0.85, 0.8)
     renderer.AddActor(actor)
+# The legend: the colour bar of the bunny's colours, and what the picture shows.
+bar = vtkScalarBarActor()
+bar.SetLookupTable(lut)
+bar.SetTitle("layers")
+bar.SetLabelFormat("%.0f")
+bar.SetNumberOfLabels(4)
+bar.SetPosition(0.86, 0.1)
+bar.SetWidth(0.12)
+bar.SetHeight(0.8)
+for text in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty()):
+    text.SetColor(0, 0, 0)
+    text.ShadowOff()
+renderer.AddActor2D(bar)
+caption = vtkTextActor()
+caption.SetInput("grey: the cow; the bunny's vertices coloured by the cow's chamfer\n"
+                 "distance there, in voxel layers (18-neighbour chessboard metric): red is closest")
+caption.GetTextProperty().SetFontSize(14)
+caption.GetTextProperty().SetColor(0, 0, 0)
+caption.SetDisplayPosition(10, 10)
+renderer.AddActor2D(caption)
 window = vtkRenderWindow()
 window.SetOffScreenRendering(1)
 window.SetSize(640, 480)

@@ -1,4 +1,6 @@
-// SlicePictures: the PNGs vtkdf writes of a field's middle z slice (--png).
+// SlicePictures: the PNGs vtkdf writes of a field's middle z slice (--png), each above a
+// legend: a colour bar with the array's name, its unit and range, what the lines and
+// colours mean, and the slice's axis and position.
 #ifndef vtkdf_SlicePictures_h
 #define vtkdf_SlicePictures_h
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 
 namespace vtkdf
@@ -73,6 +74,76 @@ Polygon Clip(const Polygon& in, const HalfPlane& h, int id)
 
 } // namespace
 
+int64_t MergeNearCorners(const std::vector<double>& points,
+  std::vector<std::vector<int64_t>>& faces,
+  double tolerance)
+{
+  std::vector<int64_t> used;
+  for (const auto& face : faces)
+  {
+    used.insert(used.end(), face.begin(), face.end());
+  }
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  const double* x = points.data();
+  std::sort(used.begin(),
+    used.end(),
+    [x](int64_t a, int64_t b) { return x[3 * a] != x[3 * b] ? x[3 * a] < x[3 * b] : a < b; });
+  // Clusters of points within `tolerance` (a sweep along x), each led by its lowest id.
+  std::map<int64_t, int64_t> parent;
+  std::function<int64_t(int64_t)> find = [&](int64_t id) -> int64_t
+  {
+    auto it = parent.find(id);
+    if (it == parent.end() || it->second == id)
+    {
+      return id;
+    }
+    return it->second = find(it->second);
+  };
+  int64_t merged = 0;
+  for (size_t i = 0; i < used.size(); ++i)
+  {
+    const double* p = x + 3 * used[i];
+    for (size_t j = i + 1; j < used.size() && x[3 * used[j]] - p[0] <= tolerance; ++j)
+    {
+      const double* q = x + 3 * used[j];
+      const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+        (p[2] - q[2]) * (p[2] - q[2]);
+      const int64_t a = find(used[i]), b = find(used[j]);
+      if (d2 <= tolerance * tolerance && a != b)
+      {
+        parent[std::max(a, b)] = std::min(a, b);
+        ++merged;
+      }
+    }
+  }
+  std::vector<std::vector<int64_t>> kept;
+  for (const auto& face : faces)
+  {
+    std::vector<int64_t> corners;
+    for (const int64_t id : face)
+    {
+      const int64_t leader = find(id);
+      if (corners.empty() || corners.back() != leader)
+      {
+        corners.push_back(leader);
+      }
+    }
+    while (corners.size() > 1 && corners.back() == corners.front())
+    {
+      corners.pop_back();
+    }
+    std::vector<int64_t> distinct = corners;
+    std::sort(distinct.begin(), distinct.end());
+    if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() >= 3)
+    {
+      kept.push_back(std::move(corners));
+    }
+  }
+  faces = std::move(kept);
+  return merged;
+}
+
 bool ConvexPiece::Build(const std::vector<double>& points,
   const std::vector<std::vector<int64_t>>& faces,
   double tolerance,
@@ -96,11 +167,7 @@ bool ConvexPiece::Build(const std::vector<double>& points,
       ++edges[{ std::min(x, y), std::max(x, y) }];
     }
   }
-  if (faces.size() < 4 || count == 0)
-  {
-    error = "fewer than 4 faces";
-    return false;
-  }
+  // Open first (the more telling answer when a piece is both), then too few faces.
   for (const auto& e : edges)
   {
     if (e.second != 2)
@@ -109,6 +176,11 @@ bool ConvexPiece::Build(const std::vector<double>& points,
         std::to_string(e.first.second) + " is used by " + std::to_string(e.second) + " faces";
       return false;
     }
+  }
+  if (faces.size() < 4 || count == 0)
+  {
+    error = "fewer than 4 faces";
+    return false;
   }
   for (int a = 0; a < 3; ++a)
   {

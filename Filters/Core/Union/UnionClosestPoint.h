@@ -55,6 +55,16 @@ struct ConvexPiece
   std::vector<double> Corners() const;
 };
 
+/// Merges the corners of a piece's `faces` that lie within `tolerance` of each other
+/// (exported hulls repeat points a rounding apart: an STL file does not share them), each
+/// into the lowest id of its cluster, and drops the faces left with fewer than three
+/// distinct corners (the zero-area slivers between repeated points). Faces
+/// keep their order; a face's consecutive repeats become one corner. Returns how many
+/// points were merged into another.
+int64_t MergeNearCorners(const std::vector<double>& points,
+  std::vector<std::vector<int64_t>>& faces,
+  double tolerance);
+
 struct UnionAnswer
 {
   double Distance = 0; // to the boundary: negative inside the union
