@@ -61,14 +61,14 @@ int PenetrationDepth(int argc, char* argv[])
   if (where.Timing)
   {
     std::printf("vtkdf: pd pairs=%lld pairs_kept=%lld backend=%s renderer=\"%s\" time_s=%.6f "
-                "faces_visited=%lld passes=%d\n",
+                "faces_visited=%lld passes=%lld\n",
       static_cast<long long>(filter->GetLastPairsTotal()),
       static_cast<long long>(filter->GetLastPairsKept()),
       filter->GetLastBackend() == vtkPenetrationDepth::BACKEND_GPU ? "gpu" : "cpu",
       filter->GetLastRenderer(),
       seconds,
       static_cast<long long>(filter->GetLastFacesVisited()),
-      filter->GetLastPasses());
+      static_cast<long long>(filter->GetLastPasses()));
   }
   return WriteXML<vtkXMLPolyDataWriter>(filter->GetOutput(), where.Output) ? 0 : 1;
 }
