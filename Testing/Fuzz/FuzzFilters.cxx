@@ -170,7 +170,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   mesh->SetLines(lines);
   mesh->SetPolys(polys);
   mesh->SetStrips(strips);
+  // ClosestCellId names a cell, or a point of a mesh without cells (a point cloud, whose
+  // points are the sites).
   const vtkIdType cells = mesh->GetNumberOfCells();
+  const vtkIdType sites = cells > 0 ? cells : mesh->GetNumberOfPoints();
 
   {
     vtkNew<vtkLinearFactorDistanceField> filter;
@@ -190,7 +193,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
       {
         Trap(std::isfinite(distance->GetTuple1(v)));
         const double id = ids->GetTuple1(v);
-        Trap(id >= -1 && id < cells);
+        Trap(id >= -1 && id < sites);
       }
     }
   }
