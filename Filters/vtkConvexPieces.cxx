@@ -162,6 +162,26 @@ bool PiecesByArray(vtkPolyData* mesh,
   }
   return true;
 }
+/// The diagonal of the box of the points the faces use (xyz triples in `points`).
+double FacesDiagonal(const std::vector<double>& points,
+  const std::vector<std::vector<int64_t>>& faces)
+{
+  double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  for (const auto& face : faces)
+  {
+    for (const int64_t id : face)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], points[3 * id + a]);
+        hi[a] = std::max(hi[a], points[3 * id + a]);
+      }
+    }
+  }
+  return faces.empty() ? 0
+                       : std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+                           (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
 } // namespace
 
 bool ConvexPieceInput::Read(vtkDataObject* input,
@@ -277,23 +297,8 @@ bool ConvexPieceInput::Read(vtkDataObject* input,
     // Points repeated a rounding apart (an exported hull's unshared points) made one,
     // within the convexity tolerance relative to the piece's own size; the slivers
     // between them dropped.
-    double pieceLo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL },
-           pieceHi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
-    for (const auto& face : cells[p].Faces)
-    {
-      for (const int64_t id : face)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          pieceLo[a] = std::min(pieceLo[a], points[p][3 * id + a]);
-          pieceHi[a] = std::max(pieceHi[a], points[p][3 * id + a]);
-        }
-      }
-    }
-    const double pieceDiagonal = std::sqrt((pieceHi[0] - pieceLo[0]) * (pieceHi[0] - pieceLo[0]) +
-      (pieceHi[1] - pieceLo[1]) * (pieceHi[1] - pieceLo[1]) +
-      (pieceHi[2] - pieceLo[2]) * (pieceHi[2] - pieceLo[2]));
-    MergeNearCorners(points[p], cells[p].Faces, relativeTolerance * pieceDiagonal);
+    MergeNearCorners(
+      points[p], cells[p].Faces, relativeTolerance * FacesDiagonal(points[p], cells[p].Faces));
     ConvexPiece piece;
     std::string why;
     if (piece.Build(points[p], cells[p].Faces, this->ConvexityTolerance, why))
