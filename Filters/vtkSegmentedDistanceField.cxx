@@ -177,6 +177,11 @@ bool vtkSegmentedDistanceField::CheckProperties()
   return true;
 }
 
+bool vtkSegmentedDistanceField::IsSelfIntersectionCutAvailable()
+{
+  return vtkdf::SelfIntersectionCutAvailable();
+}
+
 void vtkSegmentedDistanceField::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -184,7 +189,8 @@ void vtkSegmentedDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RegionOffset: " << this->RegionOffset << "\n";
   os << indent << "ComputeClosestPoint: " << this->ComputeClosestPoint << "\n";
   os << indent << "LastRegionCount: " << this->LastRegionCount << "\n";
-  os << indent << "CutSelfIntersections: " << this->CutSelfIntersections << "\n";
+  os << indent << "CutSelfIntersections: " << this->CutSelfIntersections
+     << " (cut available in this build: " << IsSelfIntersectionCutAvailable() << ")\n";
   os << indent << "LastPatchCount: " << this->LastPatchCount << "\n";
   os << indent << "LastCrossedTriangles: " << this->LastCrossedTriangles << "\n";
   os << indent << "LastCutEdges: " << this->LastCutEdges << "\n";

@@ -73,10 +73,17 @@ public:
   /// junction line between patches (Filters/Core/Segment/SelfIntersections.h, CGAL's
   /// autorefinement). Uncut, the pocket between two crossing sheets belongs to two
   /// patches' sides at once and its interfaces end short of the crossing. When CGAL
-  /// cannot refine the mesh, a warning says so and the field is that of the uncut mesh.
+  /// cannot refine the mesh, or the module was built without CGAL (DF_USE_CGAL=OFF, see
+  /// IsSelfIntersectionCutAvailable), a warning says so and the field is that of the
+  /// uncut mesh.
   vtkSetMacro(CutSelfIntersections, bool);
   vtkGetMacro(CutSelfIntersections, bool);
   vtkBooleanMacro(CutSelfIntersections, bool);
+
+  /// Whether this build can cut crossings: false when it was configured with
+  /// -DDF_USE_CGAL=OFF (BSD-compatible dependencies only, without CGAL's GPL-licensed
+  /// Polygon Mesh Processing). The crossings are still found, and a warning names them.
+  static bool IsSelfIntersectionCutAvailable();
 
   /// What the last run found: regions, patches, the input triangles cut along
   /// crossings, the edges where non-orientable patches were cut, and the region merges

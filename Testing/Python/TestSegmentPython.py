@@ -121,6 +121,8 @@ for cut in (True, False):
     f.Update()
     counts[cut] = (f.GetLastRegionCount(), f.GetLastCrossedTriangles())
 print(f"crossed squares: cut {counts[True]}, uncut {counts[False]} (regions, triangles cut)")
-if counts[True][0] != 4 or counts[True][1] == 0 or counts[False] != (2, 0):
-    print("FAIL")
+# A build configured with -DDF_USE_CGAL=OFF finds the crossing but cannot cut it.
+expected_cut = (4, 4) if vtkSegmentedDistanceField.IsSelfIntersectionCutAvailable() else (2, 0)
+if counts[True] != expected_cut or counts[False] != (2, 0):
+    print("FAIL: expected", expected_cut, "when cut")
     sys.exit(1)

@@ -43,17 +43,13 @@ void BuildSurface(const MeshInput& mesh,
   surface.Triangles = &mesh.Triangles;
   if (request.CutSelfIntersections)
   {
-    std::string cutError;
-    if (!CutSelfIntersections(mesh.Points, mesh.Triangles, surface.Cut, cutError))
-    {
-      report.Warnings.push_back(cutError + ". The field is that of the uncut mesh.");
-    }
-    else if (surface.Cut.FailedGroups > 0)
+    CutSelfIntersections(mesh.Points, mesh.Triangles, surface.Cut);
+    if (surface.Cut.FailedGroups > 0)
     {
       report.Warnings.push_back(std::to_string(surface.Cut.FailedGroups) + " of " +
         std::to_string(surface.Cut.CrossingGroups) + " groups of crossing triangles (" +
         std::to_string(surface.Cut.FailedTriangles) +
-        " triangles) could not be cut along their crossings (CGAL: " + surface.Cut.FailedMessage +
+        " triangles) could not be cut along their crossings (" + surface.Cut.FailedMessage +
         "); there the field is that of the uncut mesh.");
     }
     if (surface.Cut.Cut())
@@ -375,6 +371,15 @@ bool ComputeSegmentedField(MeshInput mesh,
   WriteArrays(result, arrays, delta, offset, execution);
   report.Sides = std::move(result.Sides);
   return true;
+}
+
+bool SelfIntersectionCutAvailable()
+{
+#ifdef DF_HAVE_CGAL
+  return true;
+#else
+  return false;
+#endif
 }
 
 } // namespace vtkdf

@@ -76,6 +76,10 @@ bool ComputeSegmentedField(MeshInput mesh,
   SegmentedFieldReport& report,
   std::string& error);
 
+/// Whether this build cuts crossing triangles (built with DF_USE_CGAL). Without it the
+/// crossings are found and reported (SegmentedFieldReport::Warnings) but left uncut.
+bool SelfIntersectionCutAvailable();
+
 } // namespace vtkdf
 
 #endif

@@ -1,15 +1,10 @@
-// CGAL's checks stay on in release builds: a mesh it cannot refine then throws (and is
-// reported) instead of running on unchecked.
-#define CGAL_DEBUG 1
-
 #include "Segment/SelfIntersections.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/corefinement.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/box_intersection_d.h>
+#include "Segment/ExactPredicates.h"
+#include "Segment/TriangleCrossings.h"
+#ifdef DF_HAVE_CGAL
+#include "Segment/CrossingRefinement.h"
+#endif
 
 #include <algorithm>
 #include <array>
@@ -23,59 +18,13 @@ namespace vtkdf
 {
 namespace
 {
-namespace PMP = CGAL::Polygon_mesh_processing;
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
-using Face = Mesh::Face_index;
-using ParentMap = Mesh::Property_map<Face, int64_t>;
-using Triple = std::array<size_t, 3>;
-
-// Gives each face the refinement creates the input triangle of the face it splits, and
-// marks that triangle as cut.
-struct ParentVisitor : PMP::Corefinement::Default_visitor<Mesh>
-{
-  ParentMap Parent;
-  std::vector<uint8_t>* WasCut = nullptr;
-  int64_t Current = -1;
-
-  void before_subface_creations(Face split, Mesh&)
-  {
-    this->Current = this->Parent[split];
-    (*this->WasCut)[this->Current] = 1;
-  }
-  void after_subface_created(Face created, Mesh&) { this->Parent[created] = this->Current; }
-};
-
-using Position = std::array<double, 3>;
+using Triple = TriangleCorners;
+using Position = Point3;
 
 Position At(const std::vector<double>& points, int64_t id)
 {
   return { { points[3 * id], points[3 * id + 1], points[3 * id + 2] } };
 }
-
-// While it lives, CGAL's failed checks only throw (the message is the exception's, which
-// the caller reports once) instead of also printing to stderr.
-class QuietCGAL
-{
-public:
-  QuietCGAL()
-    : Error(CGAL::set_error_handler(&QuietCGAL::Ignore))
-    , Warning(CGAL::set_warning_handler(&QuietCGAL::Ignore))
-  {
-  }
-  ~QuietCGAL()
-  {
-    CGAL::set_error_handler(this->Error);
-    CGAL::set_warning_handler(this->Warning);
-  }
-  QuietCGAL(const QuietCGAL&) = delete;
-  QuietCGAL& operator=(const QuietCGAL&) = delete;
-
-private:
-  static void Ignore(const char*, const char*, const char*, int, const char*) {}
-  CGAL::Failure_function Error, Warning;
-};
 
 size_t Root(std::vector<size_t>& parent, size_t i)
 {
@@ -86,116 +35,12 @@ size_t Root(std::vector<size_t>& parent, size_t i)
   return i;
 }
 
-// Refines one group of crossing triangles (`polygons`, ids into `points`; `triangle`:
-// each one's input triangle) and appends the result to `out`. Throws what CGAL throws.
-void RefineGroup(const std::vector<Point>& points,
-  const std::vector<Triple>& polygons,
-  const std::vector<int64_t>& triangle,
-  std::vector<uint8_t>& wasCut,
-  SelfIntersectionCut& out)
-{
-  // Only the group's points, so that the mesh has no isolated vertex.
-  std::vector<Point> soupPoints;
-  std::map<size_t, size_t> newId;
-  std::vector<Triple> oriented;
-  for (const Triple& q : polygons)
-  {
-    Triple ids;
-    for (int k = 0; k < 3; ++k)
-    {
-      const auto found = newId.emplace(q[k], soupPoints.size());
-      if (found.second)
-      {
-        soupPoints.push_back(points[q[k]]);
-      }
-      ids[k] = found.first->second;
-    }
-    oriented.push_back(ids);
-  }
-  const std::vector<Triple> given = oriented;
-  // orient_polygon_soup may reverse polygons and duplicate (non-manifold) points; a
-  // reversed polygon's faces are reversed back on the way out.
-  PMP::orient_polygon_soup(soupPoints, oriented);
-  std::vector<uint8_t> reversed(polygons.size(), 0);
-  for (size_t i = 0; i < given.size(); ++i)
-  {
-    // The same cyclic order of positions (a triangle's three are distinct), or reversed.
-    int k = 0;
-    while (k < 3 && soupPoints[oriented[i][k]] != soupPoints[given[i][0]])
-    {
-      ++k;
-    }
-    if (k == 3)
-    {
-      throw std::runtime_error("orienting the triangles changed a triangle's corners");
-    }
-    reversed[i] = soupPoints[oriented[i][(k + 1) % 3]] != soupPoints[given[i][1]];
-  }
-  Mesh mesh;
-  PMP::polygon_soup_to_polygon_mesh(soupPoints, oriented, mesh);
-  if (mesh.number_of_faces() != oriented.size())
-  {
-    throw std::runtime_error("the triangles do not make a mesh");
-  }
-  ParentMap parent = mesh.add_property_map<Face, int64_t>("f:vtkdf_parent", -1).first;
-  auto flip = mesh.add_property_map<Face, uint8_t>("f:vtkdf_flip", 0).first;
-  size_t i = 0;
-  for (const Face f : mesh.faces()) // added in the polygons' order
-  {
-    parent[f] = triangle[i];
-    flip[f] = reversed[i++];
-  }
-  std::map<int64_t, uint8_t> flipOf;
-  for (const Face f : mesh.faces())
-  {
-    flipOf[parent[f]] = flip[f];
-  }
-
-  ParentVisitor visitor;
-  visitor.Parent = parent;
-  visitor.WasCut = &wasCut;
-  PMP::experimental::autorefine(mesh, PMP::parameters::visitor(visitor));
-
-  // Read back the refined mesh's points and faces.
-  std::map<Mesh::Vertex_index, int64_t> vertexId;
-  for (const auto v : mesh.vertices())
-  {
-    vertexId[v] = static_cast<int64_t>(out.Points.size() / 3);
-    const Point& p = mesh.point(v);
-    out.Points.insert(out.Points.end(), { p.x(), p.y(), p.z() });
-  }
-  for (const Face f : mesh.faces())
-  {
-    std::array<int64_t, 3> ids;
-    int k = 0;
-    for (const auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
-    {
-      if (k == 3)
-      {
-        throw std::runtime_error("the refinement made a face that is not a triangle");
-      }
-      ids[k++] = vertexId[v];
-    }
-    const int64_t t = parent[f];
-    if (k != 3 || t < 0)
-    {
-      throw std::runtime_error("the refinement made a face without a parent triangle");
-    }
-    if (flipOf[t])
-    {
-      std::swap(ids[1], ids[2]);
-    }
-    out.Triangles.insert(out.Triangles.end(), ids.begin(), ids.end());
-    out.Parent.push_back(t);
-  }
-}
-
-/// The triangles as CGAL takes them: one point per position (the used points sorted by
-/// position), the triangles with area, each once (their sorted id triples sorted, the
-/// first of each kept; a repeat is passed through uncut).
+/// The triangles as the crossing search and the refinement take them: one point per position (the
+/// used points sorted by position), the triangles with area, each once (their sorted id triples
+/// sorted, the first of each kept; a repeat is passed through uncut).
 struct Soup
 {
-  std::vector<Point> Points;
+  std::vector<Point3> Points;
   std::vector<Triple> Polygons;
   std::vector<int64_t> PolygonTriangle; // each polygon's input triangle
 
@@ -229,7 +74,7 @@ struct Soup
       const Position p = At(points, used[i]);
       if (i == 0 || p != At(points, used[i - 1]))
       {
-        this->Points.emplace_back(p[0], p[1], p[2]);
+        this->Points.push_back(p);
       }
       soupId[used[i]] = this->Points.size() - 1;
     }
@@ -241,7 +86,9 @@ struct Soup
       };
       std::sort(sorted.begin(), sorted.end());
       if (sorted[0] != sorted[1] && sorted[1] != sorted[2] &&
-        !CGAL::collinear(this->Points[sorted[0]], this->Points[sorted[1]], this->Points[sorted[2]]))
+        !Collinear(this->Points[sorted[0]].data(),
+          this->Points[sorted[1]].data(),
+          this->Points[sorted[2]].data()))
       {
         candidates.emplace_back(sorted, t);
       }
@@ -268,56 +115,39 @@ struct Soup
 };
 
 /// The groups of crossing polygons: the crossing pairs are polygons whose boxes meet,
-/// that share no point and that intersect (an exact predicate); a group holds the
-/// polygons joined by crossings and shared points. Each group is refined on its own, so
-/// that non-manifold edges elsewhere, which CGAL's halfedge mesh would have to duplicate
-/// and its refinement then trips over, do not matter, and a group CGAL refuses leaves the
-/// others cut. False and `error` when the search fails.
-bool FindCrossingGroups(const Soup& soup,
-  std::map<size_t, std::vector<size_t>>& groups,
-  std::string& error)
+/// that share no point and that intersect (exact predicates); a group holds the polygons
+/// joined by crossings and shared points, keyed by its least polygon. Each group is
+/// refined on its own, so that non-manifold edges elsewhere, which CGAL's halfedge mesh
+/// would have to duplicate and its refinement then trips over, do not matter, and a
+/// group CGAL refuses leaves the others cut.
+std::map<size_t, std::vector<size_t>> FindCrossingGroups(const Soup& soup)
 {
   const std::vector<Triple>& polygons = soup.Polygons;
-  const std::vector<Point>& points = soup.Points;
-  using Box = CGAL::Box_intersection_d::
-    Box_with_info_d<double, 3, size_t, CGAL::Box_intersection_d::ID_EXPLICIT>;
-  std::vector<Box> boxes;
-  boxes.reserve(polygons.size());
-  for (size_t i = 0; i < polygons.size(); ++i)
-  {
-    const Triple& q = polygons[i];
-    boxes.emplace_back(points[q[0]].bbox() + points[q[1]].bbox() + points[q[2]].bbox(), i);
-  }
+  const std::vector<Point3>& points = soup.Points;
   std::vector<uint8_t> crossing(polygons.size(), 0);
   std::vector<size_t> group(polygons.size());
   std::iota(group.begin(), group.end(), size_t(0));
-  auto test = [&](const Box& a, const Box& b)
-  {
-    const Triple& p = polygons[a.info()];
-    const Triple& q = polygons[b.info()];
-    for (const size_t u : p)
+  ForEachOverlappingPair(points,
+    polygons,
+    [&](size_t a, size_t b)
     {
-      if (u == q[0] || u == q[1] || u == q[2])
+      const Triple& p = polygons[a];
+      const Triple& q = polygons[b];
+      for (const size_t u : p)
       {
-        return; // neighbours: they meet where they share
+        if (u == q[0] || u == q[1] || u == q[2])
+        {
+          return; // neighbours: they meet where they share
+        }
       }
-    }
-    if (CGAL::do_intersect(Kernel::Triangle_3(points[p[0]], points[p[1]], points[p[2]]),
-          Kernel::Triangle_3(points[q[0]], points[q[1]], points[q[2]])))
-    {
-      crossing[a.info()] = crossing[b.info()] = 1;
-      group[Root(group, a.info())] = Root(group, b.info());
-    }
-  };
-  try
-  {
-    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), test);
-  }
-  catch (const std::exception& e)
-  {
-    error = std::string("finding the crossings failed: ") + e.what();
-    return false;
-  }
+      const Point3 pc[3] = { points[p[0]], points[p[1]], points[p[2]] };
+      const Point3 qc[3] = { points[q[0]], points[q[1]], points[q[2]] };
+      if (TrianglesIntersect(pc, qc))
+      {
+        crossing[a] = crossing[b] = 1;
+        group[Root(group, a)] = Root(group, b);
+      }
+    });
   std::map<size_t, size_t> firstAt; // point -> a crossing triangle that uses it
   for (size_t i = 0; i < polygons.size(); ++i)
   {
@@ -330,25 +160,33 @@ bool FindCrossingGroups(const Soup& soup,
       }
     }
   }
+  std::map<size_t, std::vector<size_t>> byRoot;
   for (size_t i = 0; i < polygons.size(); ++i)
   {
     if (crossing[i])
     {
-      groups[Root(group, i)].push_back(i);
+      byRoot[Root(group, i)].push_back(i);
     }
   }
-  return true;
+  std::map<size_t, std::vector<size_t>> groups;
+  for (auto& g : byRoot)
+  {
+    groups[g.second.front()] = std::move(g.second);
+  }
+  return groups;
 }
 
-/// Refines every group into `out` (in CGAL's order); a group CGAL refuses is counted
-/// and left uncut. `refined` marks the input triangles of the groups that were refined,
-/// `wasCut` those the refinement cut.
+#ifdef DF_HAVE_CGAL
+/// Refines every group into `out` (in the groups' order); a group CGAL refuses is
+/// counted and left uncut. `refined` marks the input triangles of the groups that were
+/// refined, `wasCut` those the refinement cut.
 void RefineGroups(const Soup& soup,
   const std::map<size_t, std::vector<size_t>>& groups,
   std::vector<uint8_t>& wasCut,
   std::vector<uint8_t>& refined,
   SelfIntersectionCut& out)
 {
+  out.CrossingGroups = static_cast<int64_t>(groups.size());
   for (const auto& g : groups)
   {
     std::vector<Triple> members;
@@ -361,7 +199,7 @@ void RefineGroups(const Soup& soup,
     const size_t pointsBefore = out.Points.size(), trianglesBefore = out.Triangles.size();
     try
     {
-      RefineGroup(soup.Points, members, memberTriangle, wasCut, out);
+      RefineCrossingGroup(soup.Points, members, memberTriangle, wasCut, out);
     }
     catch (const std::exception& e)
     {
@@ -377,7 +215,7 @@ void RefineGroups(const Soup& soup,
       if (out.FailedMessage.empty())
       {
         // CGAL's messages run over several lines: one line here.
-        out.FailedMessage = e.what();
+        out.FailedMessage = std::string("CGAL: ") + e.what();
         std::replace(out.FailedMessage.begin(), out.FailedMessage.end(), '\n', ' ');
       }
       continue;
@@ -387,9 +225,28 @@ void RefineGroups(const Soup& soup,
       refined[t] = 1;
     }
   }
-  out.CrossingGroups = static_cast<int64_t>(groups.size());
 }
+#endif
 
+#ifndef DF_HAVE_CGAL
+/// Without CGAL every group is counted and left uncut, with the build as the reason.
+void LeaveGroupsUncut(const std::map<size_t, std::vector<size_t>>& groups, SelfIntersectionCut& out)
+{
+  out.CrossingGroups = static_cast<int64_t>(groups.size());
+  for (const auto& g : groups)
+  {
+    ++out.FailedGroups;
+    out.FailedTriangles += static_cast<int64_t>(g.second.size());
+  }
+  if (out.FailedGroups > 0)
+  {
+    out.FailedMessage = "this build has no refinement: it was configured with "
+                        "-DDF_USE_CGAL=OFF, without CGAL's GPL-licensed Polygon Mesh Processing";
+  }
+}
+#endif
+
+#ifdef DF_HAVE_CGAL
 /// The output in a canonical order, so that it depends on the geometry alone (CGAL's
 /// refinement orders its faces by what it met first, which varies from run to run, and
 /// the patches' and regions' numbers follow the triangles' order): every triangle in its
@@ -448,22 +305,17 @@ void CanonicalOrder(const std::vector<double>& points,
     }
   }
 }
+#endif
 } // namespace
 
-bool CutSelfIntersections(const std::vector<double>& points,
+void CutSelfIntersections(const std::vector<double>& points,
   const std::vector<int64_t>& triangles,
-  SelfIntersectionCut& out,
-  std::string& error)
+  SelfIntersectionCut& out)
 {
   out = SelfIntersectionCut();
-  error.clear();
-  const QuietCGAL quiet;
   const Soup soup(points, triangles);
-  std::map<size_t, std::vector<size_t>> groups;
-  if (!FindCrossingGroups(soup, groups, error))
-  {
-    return false;
-  }
+  const std::map<size_t, std::vector<size_t>> groups = FindCrossingGroups(soup);
+#ifdef DF_HAVE_CGAL
   const size_t triangleCount = triangles.size() / 3;
   std::vector<uint8_t> wasCut(triangleCount, 0), refined(triangleCount, 0);
   RefineGroups(soup, groups, wasCut, refined, out);
@@ -476,10 +328,12 @@ bool CutSelfIntersections(const std::vector<double>& points,
     out.Points.clear();
     out.Triangles.clear();
     out.Parent.clear();
-    return true;
+    return;
   }
   CanonicalOrder(points, triangles, refined, out);
-  return true;
+#else
+  LeaveGroupsUncut(groups, out);
+#endif
 }
 
 } // namespace vtkdf

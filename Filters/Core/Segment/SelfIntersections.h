@@ -8,12 +8,12 @@
 // body's inner side. Cut, the spout's part inside the body is a patch of its own and
 // the crossing a junction line, as Yamazaki et al.'s segmentation expects.
 //
-// The cut is CGAL's autorefinement (Polygon_mesh_processing::experimental::autorefine,
-// exact predicates): the soup is made a halfedge mesh (points at one position merged,
-// non-manifold points duplicated by orient_polygon_soup), refined so that no two
-// triangles cross in their interiors, and read back. Only the crossing triangles go to
-// CGAL, group by group. Triangles without area and repeats of a triangle are passed
-// through uncut.
+// The crossings are found by the project's own code (Segment/TriangleCrossings.h: a
+// bounding-volume hierarchy and exact predicates). The cut is CGAL's autorefinement
+// (Segment/CrossingRefinement.h), group by group: only the crossing triangles go to
+// CGAL. Triangles without area and repeats of a triangle are passed through uncut. A
+// build without CGAL (DF_USE_CGAL=OFF, BSD-compatible dependencies only) finds and
+// counts the crossings the same way and leaves every group uncut.
 #ifndef vtkdf_SelfIntersections_h
 #define vtkdf_SelfIntersections_h
 
@@ -36,8 +36,8 @@ struct SelfIntersectionCut
   int64_t CutTriangles = 0;
   bool Cut() const { return this->CutTriangles > 0; }
   /// Groups of crossing triangles (joined by crossings and shared points), each refined
-  /// on its own; those CGAL refused (their triangles stay uncut), how many triangles
-  /// they hold, and CGAL's first message.
+  /// on its own; those left uncut (refused by CGAL, or every group in a build without
+  /// it), how many triangles they hold, and why (CGAL's first message, or the build).
   int64_t CrossingGroups = 0;
   int64_t FailedGroups = 0;
   int64_t FailedTriangles = 0;
@@ -46,13 +46,11 @@ struct SelfIntersectionCut
 
 /// Cuts `triangles` (3 ids each into `points`, xyz) along their crossings: triangles
 /// that share no point and intersect. Neighbours that also cross elsewhere (a fold
-/// through its own fan) are not found. A group CGAL refuses is counted in `out`
-/// (FailedGroups) and left uncut. False and `error` only when finding the crossings
-/// fails; `out` is then empty.
-bool CutSelfIntersections(const std::vector<double>& points,
+/// through its own fan) are not found. A group that cannot be cut is counted in `out`
+/// (FailedGroups) and left uncut.
+void CutSelfIntersections(const std::vector<double>& points,
   const std::vector<int64_t>& triangles,
-  SelfIntersectionCut& out,
-  std::string& error);
+  SelfIntersectionCut& out);
 
 } // namespace vtkdf
 
