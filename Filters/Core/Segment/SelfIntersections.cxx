@@ -4,24 +4,21 @@
 #include "Segment/TriangleCrossings.h"
 #ifdef DF_HAVE_CGAL
 #include "Segment/CrossingRefinement.h"
+
+#include <exception>
 #endif
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <exception>
 #include <map>
 #include <numeric>
-#include <stdexcept>
 
 namespace vtkdf
 {
 namespace
 {
-using Triple = TriangleCorners;
-using Position = Point3;
-
-Position At(const std::vector<double>& points, int64_t id)
+Point3 At(const std::vector<double>& points, int64_t id)
 {
   return { { points[3 * id], points[3 * id + 1], points[3 * id + 2] } };
 }
@@ -41,7 +38,7 @@ size_t Root(std::vector<size_t>& parent, size_t i)
 struct Soup
 {
   std::vector<Point3> Points;
-  std::vector<Triple> Polygons;
+  std::vector<TriangleCorners> Polygons;
   std::vector<int64_t> PolygonTriangle; // each polygon's input triangle
 
   Soup(const std::vector<double>& points, const std::vector<int64_t>& triangles)
@@ -65,23 +62,23 @@ struct Soup
       used.end(),
       [&](int64_t a, int64_t b)
       {
-        const Position pa = At(points, a), pb = At(points, b);
+        const Point3 pa = At(points, a), pb = At(points, b);
         return pa != pb ? pa < pb : a < b;
       });
     std::vector<size_t> soupId(pointCount, 0);
     for (size_t i = 0; i < used.size(); ++i)
     {
-      const Position p = At(points, used[i]);
+      const Point3 p = At(points, used[i]);
       if (i == 0 || p != At(points, used[i - 1]))
       {
         this->Points.push_back(p);
       }
       soupId[used[i]] = this->Points.size() - 1;
     }
-    std::vector<std::pair<Triple, int64_t>> candidates;
+    std::vector<std::pair<TriangleCorners, int64_t>> candidates;
     for (int64_t t = 0; t < triangleCount; ++t)
     {
-      Triple sorted = {
+      TriangleCorners sorted = {
         soupId[triangles[3 * t]], soupId[triangles[3 * t + 1]], soupId[triangles[3 * t + 2]]
       };
       std::sort(sorted.begin(), sorted.end());
@@ -122,7 +119,7 @@ struct Soup
 /// group CGAL refuses leaves the others cut.
 std::map<size_t, std::vector<size_t>> FindCrossingGroups(const Soup& soup)
 {
-  const std::vector<Triple>& polygons = soup.Polygons;
+  const std::vector<TriangleCorners>& polygons = soup.Polygons;
   const std::vector<Point3>& points = soup.Points;
   std::vector<uint8_t> crossing(polygons.size(), 0);
   std::vector<size_t> group(polygons.size());
@@ -131,8 +128,8 @@ std::map<size_t, std::vector<size_t>> FindCrossingGroups(const Soup& soup)
     polygons,
     [&](size_t a, size_t b)
     {
-      const Triple& p = polygons[a];
-      const Triple& q = polygons[b];
+      const TriangleCorners& p = polygons[a];
+      const TriangleCorners& q = polygons[b];
       for (const size_t u : p)
       {
         if (u == q[0] || u == q[1] || u == q[2])
@@ -189,7 +186,7 @@ void RefineGroups(const Soup& soup,
   out.CrossingGroups = static_cast<int64_t>(groups.size());
   for (const auto& g : groups)
   {
-    std::vector<Triple> members;
+    std::vector<TriangleCorners> members;
     std::vector<int64_t> memberTriangle;
     for (const size_t i : g.second)
     {
@@ -261,7 +258,7 @@ void CanonicalOrder(const std::vector<double>& points,
   struct Piece
   {
     int64_t Parent;
-    std::array<Position, 3> Corners;
+    std::array<Point3, 3> Corners;
     bool operator<(const Piece& other) const
     {
       return this->Parent != other.Parent ? this->Parent < other.Parent
@@ -296,7 +293,7 @@ void CanonicalOrder(const std::vector<double>& points,
     }
     for (; next != pieces.end() && next->Parent == t; ++next)
     {
-      for (const Position& corner : next->Corners)
+      for (const Point3& corner : next->Corners)
       {
         out.Triangles.push_back(static_cast<int64_t>(out.Points.size() / 3));
         out.Points.insert(out.Points.end(), corner.begin(), corner.end());
