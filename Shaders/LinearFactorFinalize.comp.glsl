@@ -43,7 +43,11 @@ void main()
   if (id < 0)
   {
     distance[at - DistanceBase] = uintBitsToFloat(0x7f800000u); // no site: +infinity
-    closest[c] = closest[c + 1] = closest[c + 2] = uintBitsToFloat(0x7fc00000u);
+    // One assignment each: a chained one reads the write-only buffer (NVIDIA refuses it).
+    const float noPoint = uintBitsToFloat(0x7fc00000u);
+    closest[c] = noPoint;
+    closest[c + 1] = noPoint;
+    closest[c + 2] = noPoint;
     return;
   }
   Site s = sites[id];

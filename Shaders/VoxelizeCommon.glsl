@@ -46,34 +46,32 @@ int64_t FloorDiv(int64_t a, int64_t b)
   return a >= 0l ? a / b : -((-a + b - 1l) / b);
 }
 
-int64_t Edge(Tri t, int k, int64_t p, int64_t q)
+// The edge function of the directed edge (x0, y0) -> (x1, y1) at the centre of lane (p, q).
+// The shaders name vector components explicitly: NVIDIA's compiler rejects some dynamic
+// indexing of 64-bit vectors ("invalid operand variable" when the program links).
+int64_t Edge(int64_t x0, int64_t y0, int64_t x1, int64_t y1, int64_t p, int64_t q)
 {
-  int k1 = (k + 1) % 3;
-  return (t.X[k1] - t.X[k]) * (q * Subpixel - t.Y[k]) - (t.Y[k1] - t.Y[k]) * (p * Subpixel - t.X[k]);
+  return (x1 - x0) * (q * Subpixel - y0) - (y1 - y0) * (p * Subpixel - x0);
 }
 
-bool Owns(Tri t, int k)
+// A lane centre on an edge belongs to the triangle whose edge owns it (the tie rule).
+bool Covers(int64_t e, int owns)
 {
-  return (k == 0 ? t.Flags.y : (k == 1 ? t.Flags.z : t.Flags.w)) != 0;
+  return e > 0l || (e == 0l && owns != 0);
 }
 
-bool CoversCentre(Tri t, int64_t p, int64_t q, out int64_t e[3])
+bool CoversCentre(Tri t, int64_t p, int64_t q, out i64vec3 e)
 {
-  for (int k = 0; k < 3; ++k)
-  {
-    e[k] = Edge(t, k, p, q);
-    if (!(e[k] > 0l || (e[k] == 0l && Owns(t, k))))
-    {
-      return false;
-    }
-  }
-  return true;
+  e.x = Edge(t.X.x, t.Y.x, t.X.y, t.Y.y, p, q);
+  e.y = Edge(t.X.y, t.Y.y, t.X.z, t.Y.z, p, q);
+  e.z = Edge(t.X.z, t.Y.z, t.X.x, t.Y.x, p, q);
+  return Covers(e.x, t.Flags.y) && Covers(e.y, t.Flags.z) && Covers(e.z, t.Flags.w);
 }
 
-double DepthAt(Tri t, int64_t e[3])
+double DepthAt(Tri t, i64vec3 e)
 {
   precise double depth =
-    (double(e[1]) * t.Z[0] + double(e[2]) * t.Z[1] + double(e[0]) * t.Z[2]) / double(t.X.w);
+    (double(e.y) * t.Z.x + double(e.z) * t.Z.y + double(e.x) * t.Z.z) / double(t.X.w);
   return depth;
 }
 
@@ -89,27 +87,33 @@ double Dot(dvec3 u, dvec3 v)
   return d;
 }
 
+// Whether lane centre (x, y) lies outside the edge (x0, y0) -> (x1, y1) grown by slack, for a
+// triangle of orientation w.
+bool OutsideGrownEdge(
+  double w, double x0, double y0, double x1, double y1, double slack, double x, double y)
+{
+  precise double e = w * ((x1 - x0) * (y - y0) - (y1 - y0) * (x - x0));
+  return e + slack < 0.0lf;
+}
+
 // The voxels [k0, k1] of lane (p, q) that may lie within reach of the triangle.
 bool BoundaryLaneCandidates(BoundaryTri t, int p, int q, double reach, out int k0, out int k1)
 {
-  double zmin = min(t.Z[0], min(t.Z[1], t.Z[2]));
-  double zmax = max(t.Z[0], max(t.Z[1], t.Z[2]));
+  double zmin = min(t.Z.x, min(t.Z.y, t.Z.z));
+  double zmax = max(t.Z.x, max(t.Z.y, t.Z.z));
   precise double lo = zmin - reach, hi = zmax + reach;
   k0 = 0;
   k1 = -1;
   if (t.X.w != 0.0lf)
   {
-    for (int k = 0; k < 3; ++k)
+    const double x = double(p), y = double(q);
+    if (OutsideGrownEdge(t.X.w, t.X.x, t.Y.x, t.X.y, t.Y.y, t.Slack.x, x, y) ||
+      OutsideGrownEdge(t.X.w, t.X.y, t.Y.y, t.X.z, t.Y.z, t.Slack.y, x, y) ||
+      OutsideGrownEdge(t.X.w, t.X.z, t.Y.z, t.X.x, t.Y.x, t.Slack.z, x, y))
     {
-      int k1e = (k + 1) % 3;
-      precise double e =
-        t.X.w * ((t.X[k1e] - t.X[k]) * (double(q) - t.Y[k]) - (t.Y[k1e] - t.Y[k]) * (double(p) - t.X[k]));
-      if (e + t.Slack[k] < 0.0lf)
-      {
-        return false;
-      }
+      return false;
     }
-    precise double depth = t.Z[0] + t.Y.w * (double(p) - t.X[0]) + t.Z.w * (double(q) - t.Y[0]);
+    precise double depth = t.Z.x + t.Y.w * (x - t.X.x) + t.Z.w * (y - t.Y.x);
     lo = max(depth - t.Slack.w, zmin) - reach;
     hi = min(depth + t.Slack.w, zmax) + reach;
   }
@@ -123,12 +127,8 @@ double SquaredDistanceToSegment(dvec3 p, dvec3 a, dvec3 b)
   precise dvec3 ab = b - a, ap = p - a;
   precise double length2 = Dot(ab, ab), along = Dot(ap, ab);
   precise double t = length2 > 0.0lf ? min(1.0lf, max(0.0lf, along / length2)) : 0.0lf;
-  precise double sum = 0.0lf;
-  for (int k = 0; k < 3; ++k)
-  {
-    precise double e = a[k] + t * ab[k] - p[k];
-    sum += e * e;
-  }
+  precise dvec3 e = a + t * ab - p;
+  precise double sum = e.x * e.x + e.y * e.y + e.z * e.z;
   return sum;
 }
 
@@ -183,11 +183,7 @@ double SquaredDistanceToTriangle(dvec3 p, dvec3 a, dvec3 b, dvec3 c)
     v = vb * denominator;
     w = vc * denominator;
   }
-  precise double sum = 0.0lf;
-  for (int k = 0; k < 3; ++k)
-  {
-    precise double e = a[k] + v * ab[k] + w * ac[k] - p[k];
-    sum += e * e;
-  }
+  precise dvec3 e = a + v * ab + w * ac - p;
+  precise double sum = e.x * e.x + e.y * e.y + e.z * e.z;
   return sum;
 }

@@ -13,9 +13,8 @@ layout(location = 1) out uvec4 Out1;
 
 uvec4 Bit(int i)
 {
-  uvec4 bits = uvec4(0u);
-  bits[i >> 5] = 1u << uint(i & 31);
-  return bits;
+  const uvec4 words = uvec4(0u, 1u, 2u, 3u);
+  return mix(uvec4(0u), uvec4(1u << uint(i & 31)), equal(words, uvec4(uint(i >> 5))));
 }
 
 void main()
@@ -25,7 +24,7 @@ void main()
   if (Mode == 1)
   {
     Tri t = tris[TriIndex];
-    int64_t e[3];
+    i64vec3 e;
     if (!CoversCentre(t, p, q, e))
     {
       discard;
@@ -50,10 +49,9 @@ void main()
   uvec4 bits = uvec4(0u);
   for (int k = k0; k <= k1; ++k)
   {
-    ivec3 ijk;
-    ijk[Axes.x] = k;
-    ijk[Axes.y] = int(p);
-    ijk[Axes.z] = int(q);
+    const ivec3 axis = ivec3(0, 1, 2);
+    ivec3 ijk = k * ivec3(equal(axis, ivec3(Axes.x))) + int(p) * ivec3(equal(axis, ivec3(Axes.y))) +
+      int(q) * ivec3(equal(axis, ivec3(Axes.z)));
     precise dvec3 centre = Origin + dvec3(Lo + ijk) * Spacing;
     if (SquaredDistanceToTriangle(centre, b.P0.xyz, b.P1.xyz, b.P2.xyz) <= Limit2)
     {
