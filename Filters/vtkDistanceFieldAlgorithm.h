@@ -51,7 +51,7 @@ public:
   /// Where a filter runs (the values of vtkdf::BackendValue, vtkDistanceFieldExecution.h).
   enum BackendType
   {
-    BACKEND_AUTO = 0, ///< the GPU when a hardware-accelerated context exists, else the CPU
+    BACKEND_AUTO = 0, ///< the faster backend as measured: the CPU (docs/benchmarks.md)
     BACKEND_GPU = 1,  ///< the GPU, even a software rasterizer; an error when there is none
     BACKEND_CPU = 2   ///< vtkSMPTools on the CPU
   };

@@ -22,7 +22,8 @@ class HeadlessGL;
 /// its BackendType, where VTK's wrapping finds them).
 enum BackendValue
 {
-  BackendAuto = 0, // the GPU when a hardware-accelerated context exists, else the CPU
+  BackendAuto = 0, // each family's choice (the distance fields: the CPU; the convex
+                   // queries: the GPU when a hardware-accelerated context exists)
   BackendGPU = 1,  // the GPU, even a software rasterizer; an error when there is none
   BackendCPU = 2   // the CPU
 };

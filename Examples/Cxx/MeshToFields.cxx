@@ -35,7 +35,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName(argv[1]);
 
-  // Exact signed distance with closest points (Backend Auto: the GPU when there is one).
+  // Exact signed distance with closest points (Backend Auto: the CPU, measured faster).
   vtkNew<vtkLinearFactorDistanceField> distance;
   distance->SetInputConnection(reader->GetOutputPort());
   distance->SetResolution(resolution);
