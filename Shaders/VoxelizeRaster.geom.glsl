@@ -1,8 +1,9 @@
 // Covers the lanes a triangle may touch with a screen-aligned rectangle, once per lane
 // texel layer (128 bits of lane each) its bits may fall in; the fragment shader decides
 // every bit. Boundary (Mode 0) draws the BoundaryTri records of this view, solid (Mode 1)
-// the Tri records. 32 invocations of up to 8 layers each: up to 256 layers per triangle.
-layout(points, invocations = 32) in;
+// the Tri records. RasterInvocations (defined before this source from the grid's deepest
+// lanes) invocations of up to 8 layers each: every layer of the grid, no idle invocation.
+layout(points, invocations = RasterInvocations) in;
 layout(triangle_strip, max_vertices = 32) out;
 
 uniform int Mode; // 0: boundary, 1: solid
@@ -45,7 +46,7 @@ void main()
   // Rectangle edges half-way between lane centres: exactly lanes p0..p1, q0..q1.
   float x0 = 2.0 * (float(p0) / float(Nb)) - 1.0, x1 = 2.0 * (float(p1 + 1) / float(Nb)) - 1.0;
   float y0 = 2.0 * (float(q0) / float(Nc)) - 1.0, y1 = 2.0 * (float(q1 + 1) / float(Nc)) - 1.0;
-  for (int layer = first / 128 + gl_InvocationID; layer <= last / 128; layer += 32)
+  for (int layer = first / 128 + gl_InvocationID; layer <= last / 128; layer += RasterInvocations)
   {
     vec2 corners[4] = vec2[4](vec2(x0, y0), vec2(x1, y0), vec2(x0, y1), vec2(x1, y1));
     for (int c = 0; c < 4; ++c)

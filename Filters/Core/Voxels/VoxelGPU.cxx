@@ -438,6 +438,19 @@ public:
   Lanes Boundary[3], Front[3], Back[3], Solid[3];
 };
 
+/// Geometry invocations per triangle for this grid. Each covers up to 8 lane layers (its 32
+/// vertices), so the deepest lanes (the solid's half-voxel bins) fix how many are needed;
+/// more would start idle invocations, which still cost the triangle's set-up.
+int RasterInvocations(const SampleGrid& grid)
+{
+  int layers = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    layers = std::max(layers, (2 * grid.Whole.Size(a) + 1 + SolidGuard + 127) / 128);
+  }
+  return (layers + 7) / 8;
+}
+
 /// Whether the GPU can voxelize the mesh on the grid; else false and `error`.
 bool CheckVoxelizer(HeadlessGL& context,
   const MeshInput& mesh,
@@ -457,6 +470,13 @@ bool CheckVoxelizer(HeadlessGL& context,
   }
   const IndexBox& whole = grid.Whole;
   const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
+  if (RasterInvocations(grid) > 32) // GL_MAX_GEOMETRY_SHADER_INVOCATIONS is at least 32
+  {
+    error = "the GPU voxelizer takes at most 16382 samples along an axis (256 lane layers of "
+            "128 half-voxel bins); this grid has " +
+      std::to_string(std::max(n[0], std::max(n[1], n[2])));
+    return false;
+  }
   for (int a = 0; a < 3; ++a)
   {
     if (!CheckLimits(gl, n[(a + 1) % 3], n[(a + 2) % 3], (2 * n[a] + 3 + 127) / 128, error))
@@ -490,7 +510,9 @@ bool VoxelizeToLanes(HeadlessGL& context,
   const GLuint raster = Build(context,
     objects,
     { { GL_VERTEX_SHADER, common + VoxelizeRaster_vert },
-      { GL_GEOMETRY_SHADER, common + VoxelizeRaster_geom },
+      { GL_GEOMETRY_SHADER,
+        common + "#define RasterInvocations " + std::to_string(RasterInvocations(grid)) + "\n" +
+          VoxelizeRaster_geom },
       { GL_FRAGMENT_SHADER, common + VoxelizeRaster_frag } },
     error);
   const GLuint fill =
