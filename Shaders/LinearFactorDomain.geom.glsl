@@ -1,7 +1,7 @@
 // Builds a site's domain polygon on one slice (the same clipping as SliceDomain.h) and
 // emits it into that slice's layer: its fragments are the samples where the site's
 // distance is evaluated (linear factorization, Sud et al. (I3D 2006) section 3).
-layout(points, invocations = 32) in;
+layout(points) in; // one point per site and slice
 layout(triangle_strip, max_vertices = 32) out;
 
 const int MaxPlanes = 28;
@@ -45,7 +45,7 @@ int blockOf(float index, int count)
 void main()
 {
   int id = vSiteAndSlice[0].x;
-  int k = vSiteAndSlice[0].y + gl_InvocationID;
+  int k = vSiteAndSlice[0].y;
   GpuSite s = sites[id];
   if (k < s.lo.z || k > s.hi.z || k < layerBase || k >= layerBase + layerCount)
   {
