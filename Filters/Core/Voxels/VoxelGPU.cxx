@@ -72,6 +72,18 @@ GpuBoundaryTriangle Pack(const BoundaryTriangle& t)
   return g;
 }
 
+/// Texels of 128 bits along a lane of `bits` bits.
+int LaneTexels(int bits)
+{
+  return std::max(1, (bits + 127) / 128);
+}
+
+/// The solid's half-voxel bins along a lane of `n` voxels (guard bins first).
+int SolidBins(int n)
+{
+  return 2 * n + 1 + SolidGuard;
+}
+
 /// A lane texture: RGBA32UI 2D array, Nx x Ny lanes of Texels x 128 bits.
 class Lanes
 {
@@ -94,7 +106,7 @@ public:
   {
     this->Nx = nx;
     this->Ny = ny;
-    this->Texels = std::max(1, (bits + 127) / 128);
+    this->Texels = LaneTexels(bits);
     this->GL.GenTextures(1, &this->Id);
     this->GL.BindTexture(GL_TEXTURE_2D_ARRAY, this->Id);
     this->GL.TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA32UI, nx, ny, this->Texels);
@@ -361,8 +373,8 @@ public:
     {
       Lanes& front = this->Front[a];
       Lanes& back = this->Back[a];
-      front.Create(n[b], n[c], 2 * n[a] + 1 + SolidGuard);
-      back.Create(n[b], n[c], 2 * n[a] + 1 + SolidGuard);
+      front.Create(n[b], n[c], SolidBins(n[a]));
+      back.Create(n[b], n[c], SolidBins(n[a]));
       gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, front.Id, 0);
       gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, back.Id, 0);
       gl.DrawBuffers(2, buffers);
@@ -375,7 +387,7 @@ public:
       gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(records.size()));
       gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
       // The [front, back] intervals of this view.
-      this->Solid[a].Create(n[b], n[c], 2 * n[a] + 1 + SolidGuard);
+      this->Solid[a].Create(n[b], n[c], SolidBins(n[a]));
       gl.UseProgram(fill);
       front.Bind(0, GL_READ_ONLY);
       back.Bind(1, GL_READ_ONLY);
@@ -446,7 +458,7 @@ int RasterInvocations(const SampleGrid& grid)
   int layers = 1;
   for (int a = 0; a < 3; ++a)
   {
-    layers = std::max(layers, (2 * grid.Whole.Size(a) + 1 + SolidGuard + 127) / 128);
+    layers = std::max(layers, LaneTexels(SolidBins(grid.Whole.Size(a))));
   }
   return (layers + 7) / 8;
 }
@@ -479,7 +491,7 @@ bool CheckVoxelizer(HeadlessGL& context,
   }
   for (int a = 0; a < 3; ++a)
   {
-    if (!CheckLimits(gl, n[(a + 1) % 3], n[(a + 2) % 3], (2 * n[a] + 3 + 127) / 128, error))
+    if (!CheckLimits(gl, n[(a + 1) % 3], n[(a + 2) % 3], LaneTexels(SolidBins(n[a])), error))
     {
       return false;
     }
