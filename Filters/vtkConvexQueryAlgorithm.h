@@ -61,7 +61,7 @@ public:
   /// Where the query runs (the values of vtkDistanceFieldAlgorithm's BackendType).
   enum BackendType
   {
-    BACKEND_AUTO = 0, ///< the GPU when a hardware-accelerated context exists, else the CPU
+    BACKEND_AUTO = 0, ///< the faster backend as measured: today the CPU
     BACKEND_GPU = 1,  ///< the GPU, even a software rasterizer; an error when there is none
     BACKEND_CPU = 2   ///< exact, on the CPU
   };

@@ -442,11 +442,7 @@ void vtkDistanceFieldAlgorithm::FinishTiming(vtkdf::HeadlessGL* gl, const vtkdf:
 bool vtkDistanceFieldAlgorithm::ChooseBackend(vtkdf::HeadlessGL*& gl)
 {
   std::string error;
-  // Auto is the CPU: on the one hardware GPU measured (an NVIDIA H100 beside 16 CPU
-  // threads) every GPU path of these filters was slower than its CPU path, up to 100 times
-  // on a large mesh (docs/benchmarks.md). The GPU runs when it is asked for.
-  const int backend = this->Backend == BACKEND_AUTO ? BACKEND_CPU : this->Backend;
-  if (!vtkdf::ChooseContext(backend, gl, error))
+  if (!vtkdf::ChooseContext(this->Backend, gl, error))
   {
     vtkErrorMacro(<< error);
     return false;

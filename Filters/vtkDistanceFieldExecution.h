@@ -22,15 +22,14 @@ class HeadlessGL;
 /// its BackendType, where VTK's wrapping finds them).
 enum BackendValue
 {
-  BackendAuto = 0, // each family's choice (the distance fields: the CPU; the convex
-                   // queries: the GPU when a hardware-accelerated context exists)
+  BackendAuto = 0, // where the filters were measured fastest: today the CPU for all
   BackendGPU = 1,  // the GPU, even a software rasterizer; an error when there is none
   BackendCPU = 2   // the CPU
 };
 
 /// The GPU context for a Backend: `gl` is the context (GPU: any, even a software
-/// rasterizer; Auto: a hardware-accelerated one) or null for the CPU. False, with
-/// `error`, when Backend is GPU and there is no context.
+/// rasterizer) or null for the CPU (CPU, Auto). False, with `error`, when Backend is GPU
+/// and there is no context.
 bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error);
 
 /// vtkSMPTools::For behind the cores' ParallelFor hook. An exception thrown by `body`

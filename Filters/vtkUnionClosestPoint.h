@@ -20,8 +20,8 @@
  * U is a boundary point; with Certify (default) the faces nearer than U are then searched
  * exactly on the CPU and the answer is exact (ErrorBound 0, Certified 1); without it the
  * answer is U's point, with an image-space estimate in ErrorBound that a gap of free space
- * narrower than a pixel can exceed (Certified 0). Auto: the GPU when a hardware-accelerated
- * context exists, else the CPU.
+ * narrower than a pixel can exceed (Certified 0). Auto: the CPU (on an NVIDIA H100 the GPU's
+ * batches of queries were 50-60 times slower than the CPU's, docs/benchmarks.md).
  *
  * Input 0, the pieces, in the forms vtkConvexQueryAlgorithm describes.
  * Input 1 (optional): a vtkPointSet whose points are the queries; without it, the

@@ -188,18 +188,6 @@ HeadlessGL* HeadlessGL::Get(std::string& error)
   return instance.get();
 }
 
-bool HeadlessGL::IsSoftware() const
-{
-  for (const char* name : { "llvmpipe", "softpipe", "swrast", "Software Rasterizer" })
-  {
-    if (this->RendererName.find(name) != std::string::npos)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
 bool HeadlessGL::CreateEGLContext(void* display, std::string& why)
 {
   EGLDisplay dpy = static_cast<EGLDisplay>(display);

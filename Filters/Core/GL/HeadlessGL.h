@@ -34,8 +34,6 @@ public:
   }
   /// The route that gave the context: "EGL device", "EGL surfaceless" or "OSMesa".
   const std::string& Platform() const { return this->PlatformName; }
-  /// llvmpipe, softpipe, swrast: a rasterizer in software.
-  bool IsSoftware() const;
 
   /// Makes the context current on this thread for the lifetime of the scope, after
   /// saving and releasing whatever GLX or EGL context was current (VTK's render window,
