@@ -42,7 +42,7 @@ PYTHONPATH="$python_dir" /usr/bin/python3 Examples/Downstream/downstream_field.p
 
 step "Debian packages"
 cmake -S . -B build-deb -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX=/usr \
-  -DBUILD_TESTING=OFF -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+  -DBUILD_TESTING=OFF -DPython3_EXECUTABLE=/usr/bin/python3 -DDF_WERROR="${DF_WERROR:-OFF}" >/dev/null
 cmake --build build-deb -j "$(nproc)" >/dev/null
 (cd build-deb && rm -f ./*.deb && cpack -G DEB >/dev/null)
 for deb in build-deb/*.deb; do

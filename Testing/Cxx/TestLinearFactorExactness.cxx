@@ -18,6 +18,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkXMLPolyDataReader.h"
@@ -297,38 +298,55 @@ double Compare(const std::string& label, vtkImageData* field, const Reference& r
   field->GetSpacing(spacing);
   const double h = std::min(spacing[0], std::min(spacing[1], spacing[2]));
   const double tol = 1e-3 * h;
+  // Per sample, in parallel (the brute force is the test's cost): the distance error, the
+  // closest point's error where the nearest cell is unique (else -1), whether the cell id
+  // is wrong there, and the sign (-1 not checked, 0 right, 1 wrong).
+  const vtkIdType n = field->GetNumberOfPoints();
+  std::vector<double> error(n), pointError(n, -1);
+  std::vector<signed char> wrongCell(n, 0), wrongSign(n, -1);
+  vtkSMPTools::For(0,
+    n,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        double x[3], best, closest[3], second;
+        vtkIdType cell = -1;
+        field->GetPoint(i, x);
+        ref.Query(x, best, closest, cell, second);
+        const double value = distance->GetValue(i);
+        error[i] = std::fabs(std::fabs(value) - best);
+        // The closest point may be any of several at the same distance: check that it is
+        // at the right distance from x and lies on the mesh.
+        double cp[3], onMesh, unused[3], unusedSecond;
+        vtkIdType unusedCell;
+        for (int a = 0; a < 3; ++a)
+        {
+          cp[a] = points->GetComponent(i, a);
+        }
+        ref.Query(cp, onMesh, unused, unusedCell, unusedSecond);
+        if (second - best > tol)
+        {
+          wrongCell[i] = cells->GetValue(i) != cell;
+          pointError[i] =
+            std::max(onMesh, std::fabs(std::sqrt(vtkMath::Distance2BetweenPoints(cp, x)) - best));
+        }
+        if (checkSign && best > tol)
+        {
+          const bool inside = std::fabs(ref.Winding(x)) > 0.5;
+          wrongSign[i] = inside != (value < 0);
+        }
+      }
+    });
   double worst = 0, worstPoint = 0;
   vtkIdType wrongCells = 0, wrongSigns = 0, signChecked = 0;
-  for (vtkIdType i = 0; i < field->GetNumberOfPoints(); ++i)
+  for (vtkIdType i = 0; i < n; ++i)
   {
-    double x[3], best, closest[3], second;
-    vtkIdType cell = -1;
-    field->GetPoint(i, x);
-    ref.Query(x, best, closest, cell, second);
-    const double value = distance->GetValue(i);
-    worst = std::max(worst, std::fabs(std::fabs(value) - best));
-    // The closest point may be any of several at the same distance: check that it is
-    // at the right distance from x and lies on the mesh.
-    double cp[3], onMesh, unused[3], unusedSecond;
-    vtkIdType unusedCell;
-    for (int a = 0; a < 3; ++a)
-    {
-      cp[a] = points->GetComponent(i, a);
-    }
-    ref.Query(cp, onMesh, unused, unusedCell, unusedSecond);
-    const double pointError =
-      std::max(onMesh, std::fabs(std::sqrt(vtkMath::Distance2BetweenPoints(cp, x)) - best));
-    if (second - best > tol)
-    {
-      wrongCells += cells->GetValue(i) != cell;
-      worstPoint = std::max(worstPoint, pointError);
-    }
-    if (checkSign && best > tol)
-    {
-      const bool inside = std::fabs(ref.Winding(x)) > 0.5;
-      wrongSigns += inside != (value < 0);
-      ++signChecked;
-    }
+    worst = std::max(worst, error[i]);
+    worstPoint = std::max(worstPoint, pointError[i]);
+    wrongCells += wrongCell[i];
+    wrongSigns += wrongSign[i] == 1;
+    signChecked += wrongSign[i] >= 0;
   }
   std::printf("%-44s max|err| %.2e h, closest point %.2e h, wrong cell ids %lld%s\n",
     label.c_str(),
