@@ -10,8 +10,12 @@
 namespace vtkdf
 {
 
-/// Squared distance from p to segment ab (a point when a = b).
-inline double SquaredDistanceToSegment(const double p[3], const double a[3], const double b[3])
+/// Squared distance from p to segment ab (a point when a = b); the closest point goes to
+/// `closest` when given.
+inline double SquaredDistanceToSegment(const double p[3],
+  const double a[3],
+  const double b[3],
+  double* closest = nullptr)
 {
   double ab[3], ap[3];
   double length2 = 0, along = 0;
@@ -28,17 +32,22 @@ inline double SquaredDistanceToSegment(const double p[3], const double a[3], con
   {
     const double e = a[k] + t * ab[k] - p[k];
     d2 += e * e;
+    if (closest)
+    {
+      closest[k] = a[k] + t * ab[k];
+    }
   }
   return d2;
 }
 
 /// Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection,
 /// 5.1.5); a degenerate triangle (collinear corners, repeated points) counts as the
-/// segments it is made of.
+/// segments it is made of. The closest point goes to `closest` when given.
 inline double SquaredDistanceToTriangle(const double p[3],
   const double a[3],
   const double b[3],
-  const double c[3])
+  const double c[3],
+  double* closest = nullptr)
 {
   double ab[3], ac[3], ap[3], bp[3], cp[3];
   for (int k = 0; k < 3; ++k)
@@ -88,8 +97,16 @@ inline double SquaredDistanceToTriangle(const double p[3],
     const double area2 = va + vb + vc;
     if (!(area2 > 0))
     {
-      return std::min(SquaredDistanceToSegment(p, a, b),
-        std::min(SquaredDistanceToSegment(p, b, c), SquaredDistanceToSegment(p, c, a)));
+      double onEdge[3][3];
+      const double d2[3] = { SquaredDistanceToSegment(p, a, b, onEdge[0]),
+        SquaredDistanceToSegment(p, b, c, onEdge[1]),
+        SquaredDistanceToSegment(p, c, a, onEdge[2]) };
+      const int e = d2[0] <= d2[1] ? (d2[0] <= d2[2] ? 0 : 2) : (d2[1] <= d2[2] ? 1 : 2);
+      if (closest)
+      {
+        std::copy(onEdge[e], onEdge[e] + 3, closest);
+      }
+      return d2[e];
     }
     const double denominator = 1 / area2;
     v = vb * denominator, w = vc * denominator;
@@ -99,6 +116,10 @@ inline double SquaredDistanceToTriangle(const double p[3],
   {
     const double e = a[k] + v * ab[k] + w * ac[k] - p[k];
     d2sum += e * e;
+    if (closest)
+    {
+      closest[k] = a[k] + v * ab[k] + w * ac[k];
+    }
   }
   return d2sum;
 }

@@ -3,8 +3,6 @@
 #include "Segment/ExactPredicates.h"
 
 #include <algorithm>
-#include <cstdint>
-#include <numeric>
 
 namespace vtkdf
 {
@@ -113,188 +111,6 @@ bool SegmentMeetsTriangle(const Point3& a, const Point3& b, int sa, int sb, cons
   return !(Opposite(e0, e1) || Opposite(e1, e2) || Opposite(e2, e0));
 }
 
-struct Box
-{
-  std::array<double, 3> Min, Max;
-
-  bool Meets(const Box& other) const
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      if (this->Max[k] < other.Min[k] || other.Max[k] < this->Min[k])
-      {
-        return false;
-      }
-    }
-    return true;
-  }
-  void Add(const Box& other)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      this->Min[k] = std::min(this->Min[k], other.Min[k]);
-      this->Max[k] = std::max(this->Max[k], other.Max[k]);
-    }
-  }
-};
-
-/// A bounding-volume hierarchy over the triangles' boxes: each node's triangles are a
-/// range of Order, split at the median of the boxes' centres along the range's longest
-/// side until at most LeafSize remain.
-class BoxTree
-{
-public:
-  BoxTree(const std::vector<Point3>& points, const std::vector<TriangleCorners>& triangles)
-  {
-    this->Boxes.resize(triangles.size());
-    for (size_t t = 0; t < triangles.size(); ++t)
-    {
-      Box& box = this->Boxes[t];
-      box.Min = box.Max = points[triangles[t][0]];
-      for (int c = 1; c < 3; ++c)
-      {
-        const Point3& p = points[triangles[t][c]];
-        for (int k = 0; k < 3; ++k)
-        {
-          box.Min[k] = std::min(box.Min[k], p[k]);
-          box.Max[k] = std::max(box.Max[k], p[k]);
-        }
-      }
-    }
-    this->Order.resize(triangles.size());
-    std::iota(this->Order.begin(), this->Order.end(), size_t(0));
-    if (!triangles.empty())
-    {
-      this->Build(0, triangles.size());
-    }
-  }
-
-  void ForEachOverlappingPair(const std::function<void(size_t, size_t)>& report) const
-  {
-    if (!this->Nodes.empty())
-    {
-      this->SelfJoin(0, report);
-    }
-  }
-
-private:
-  static constexpr size_t LeafSize = 4;
-  struct Node
-  {
-    Box Bounds;
-    size_t Begin, End; // the node's range of Order
-    int64_t Left = -1; // children's indices in Nodes, -1 for a leaf
-    int64_t Right = -1;
-  };
-  std::vector<Box> Boxes;
-  std::vector<size_t> Order;
-  std::vector<Node> Nodes;
-
-  int64_t Build(size_t begin, size_t end)
-  {
-    const int64_t index = static_cast<int64_t>(this->Nodes.size());
-    this->Nodes.push_back(Node{ this->Boxes[this->Order[begin]], begin, end });
-    Box centres{ { 0, 0, 0 }, { 0, 0, 0 } };
-    for (size_t i = begin; i < end; ++i)
-    {
-      const Box& box = this->Boxes[this->Order[i]];
-      this->Nodes[index].Bounds.Add(box);
-      for (int k = 0; k < 3; ++k)
-      {
-        const double centre = 0.5 * (box.Min[k] + box.Max[k]);
-        centres.Min[k] = i == begin ? centre : std::min(centres.Min[k], centre);
-        centres.Max[k] = i == begin ? centre : std::max(centres.Max[k], centre);
-      }
-    }
-    if (end - begin <= LeafSize)
-    {
-      return index;
-    }
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-    {
-      if (centres.Max[k] - centres.Min[k] > centres.Max[axis] - centres.Min[axis])
-      {
-        axis = k;
-      }
-    }
-    const size_t middle = begin + (end - begin) / 2;
-    // Ties broken by the triangle's index, so that the tree depends on the input alone.
-    std::nth_element(this->Order.begin() + begin,
-      this->Order.begin() + middle,
-      this->Order.begin() + end,
-      [&](size_t a, size_t b)
-      {
-        const double ca = this->Boxes[a].Min[axis] + this->Boxes[a].Max[axis];
-        const double cb = this->Boxes[b].Min[axis] + this->Boxes[b].Max[axis];
-        return ca != cb ? ca < cb : a < b;
-      });
-    const int64_t left = this->Build(begin, middle);
-    const int64_t right = this->Build(middle, end);
-    this->Nodes[index].Left = left;
-    this->Nodes[index].Right = right;
-    return index;
-  }
-
-  void Report(size_t a, size_t b, const std::function<void(size_t, size_t)>& report) const
-  {
-    if (this->Boxes[a].Meets(this->Boxes[b]))
-    {
-      report(std::min(a, b), std::max(a, b));
-    }
-  }
-
-  void SelfJoin(int64_t n, const std::function<void(size_t, size_t)>& report) const
-  {
-    const Node& node = this->Nodes[n];
-    if (node.Left < 0)
-    {
-      for (size_t i = node.Begin; i < node.End; ++i)
-      {
-        for (size_t k = i + 1; k < node.End; ++k)
-        {
-          this->Report(this->Order[i], this->Order[k], report);
-        }
-      }
-      return;
-    }
-    this->SelfJoin(node.Left, report);
-    this->SelfJoin(node.Right, report);
-    this->Join(node.Left, node.Right, report);
-  }
-
-  void Join(int64_t m, int64_t n, const std::function<void(size_t, size_t)>& report) const
-  {
-    const Node& a = this->Nodes[m];
-    const Node& b = this->Nodes[n];
-    if (!a.Bounds.Meets(b.Bounds))
-    {
-      return;
-    }
-    if (a.Left < 0 && b.Left < 0)
-    {
-      for (size_t i = a.Begin; i < a.End; ++i)
-      {
-        for (size_t k = b.Begin; k < b.End; ++k)
-        {
-          this->Report(this->Order[i], this->Order[k], report);
-        }
-      }
-      return;
-    }
-    // Descend the larger node (or the one that is not a leaf).
-    if (b.Left < 0 || (a.Left >= 0 && a.End - a.Begin >= b.End - b.Begin))
-    {
-      this->Join(a.Left, n, report);
-      this->Join(a.Right, n, report);
-    }
-    else
-    {
-      this->Join(m, b.Left, report);
-      this->Join(m, b.Right, report);
-    }
-  }
-};
 } // namespace
 
 bool TrianglesIntersect(const Point3 p[3], const Point3 q[3])
@@ -336,10 +152,110 @@ bool TrianglesIntersect(const Point3 p[3], const Point3 q[3])
   return false;
 }
 
+bool SegmentIntersectsTriangle(const Point3& a, const Point3& b, const Point3 t[3])
+{
+  const int sa = Orient3D(t[0].data(), t[1].data(), t[2].data(), a.data());
+  const int sb = Orient3D(t[0].data(), t[1].data(), t[2].data(), b.data());
+  if (sa != 0 || sb != 0)
+  {
+    return SegmentMeetsTriangle(a, b, sa, sb, t);
+  }
+  // In t's plane: an end inside t, or the segment across one of t's edges.
+  int i = 0, j = 1;
+  ProjectionAxes(t, i, j);
+  if (InTriangle2D(a, t, i, j) || InTriangle2D(b, t, i, j))
+  {
+    return true;
+  }
+  for (int e = 0; e < 3; ++e)
+  {
+    if (SegmentsMeet2D(a, b, t[e], t[(e + 1) % 3], i, j))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool SegmentsIntersect(const Point3& a, const Point3& b, const Point3& c, const Point3& d)
+{
+  if (Orient3D(a.data(), b.data(), c.data(), d.data()) != 0)
+  {
+    return false;
+  }
+  // Coplanar: a projection that keeps the plane one to one (from three corners that are
+  // not collinear) or, when all four lie on one line, keeps the line one to one (the
+  // axis along which the four spread most, and any other).
+  const Point3* triples[4][3] = { { &a, &b, &c }, { &a, &b, &d }, { &c, &d, &a }, { &c, &d, &b } };
+  for (const auto& triple : triples)
+  {
+    if (!Collinear(triple[0]->data(), triple[1]->data(), triple[2]->data()))
+    {
+      const Point3 t[3] = { *triple[0], *triple[1], *triple[2] };
+      int i = 0, j = 1;
+      ProjectionAxes(t, i, j);
+      return SegmentsMeet2D(a, b, c, d, i, j);
+    }
+  }
+  int axis = 0;
+  double widest = -1;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double low = std::min(std::min(a[k], b[k]), std::min(c[k], d[k]));
+    const double high = std::max(std::max(a[k], b[k]), std::max(c[k], d[k]));
+    if (high - low > widest)
+    {
+      widest = high - low;
+      axis = k;
+    }
+  }
+  return SegmentsMeet2D(a, b, c, d, axis, (axis + 1) % 3);
+}
+
+bool ClosedTrianglesIntersect(const Point3 p[3], const Point3 q[3])
+{
+  const bool flatP = Collinear(p[0].data(), p[1].data(), p[2].data());
+  const bool flatQ = Collinear(q[0].data(), q[1].data(), q[2].data());
+  if (!flatP && !flatQ)
+  {
+    return TrianglesIntersect(p, q);
+  }
+  // A triangle with collinear corners is the union of its edges.
+  for (int e = 0; e < 3; ++e)
+  {
+    const Point3& a = p[e];
+    const Point3& b = p[(e + 1) % 3];
+    if (!flatP)
+    {
+      if (SegmentIntersectsTriangle(q[e], q[(e + 1) % 3], p))
+      {
+        return true;
+      }
+      continue;
+    }
+    if (!flatQ)
+    {
+      if (SegmentIntersectsTriangle(a, b, q))
+      {
+        return true;
+      }
+      continue;
+    }
+    for (int f = 0; f < 3; ++f)
+    {
+      if (SegmentsIntersect(a, b, q[f], q[(f + 1) % 3]))
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 void ForEachOverlappingPair(const std::vector<Point3>& points,
   const std::vector<TriangleCorners>& triangles,
   const std::function<void(size_t, size_t)>& report)
 {
-  BoxTree(points, triangles).ForEachOverlappingPair(report);
+  TriangleBoxTree(points, triangles).ForEachOverlappingPair(report);
 }
 } // namespace vtkdf

@@ -1,0 +1,337 @@
+#include "Proximity/MeshProximity.h"
+
+#include "Common/PointTriangleDistance.h"
+#include "Common/TriangleBoxTree.h"
+#include "Segment/TriangleCrossings.h"
+#include "Winding/WindingNumber.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <vector>
+
+namespace vtkdf
+{
+namespace
+{
+/// Squared distance between the closed segments p0p1 and q0q1, with closest points:
+/// the distance's minimum over both parameters, each clamped to [0, 1] (Ericson,
+/// Real-Time Collision Detection, 5.1.9). Parallel segments take s = 0 first; the
+/// corner-to-triangle distances cover what that choice may miss.
+double SquaredSegmentDistance(const double* p0,
+  const double* p1,
+  const double* q0,
+  const double* q1,
+  double* onP,
+  double* onQ)
+{
+  double d1[3], d2[3], r[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    d1[k] = p1[k] - p0[k];
+    d2[k] = q1[k] - q0[k];
+    r[k] = p0[k] - q0[k];
+  }
+  auto dot = [](const double* u, const double* v)
+  { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  auto clamp = [](double x) { return std::min(1.0, std::max(0.0, x)); };
+  const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
+  double s = 0, t = 0;
+  if (a > 0 && e > 0)
+  {
+    const double b = dot(d1, d2), c = dot(d1, r);
+    const double denominator = a * e - b * b;
+    s = denominator > 0 ? clamp((b * f - c * e) / denominator) : 0;
+    t = (b * s + f) / e;
+    if (t < 0)
+    {
+      t = 0;
+      s = clamp(-c / a);
+    }
+    else if (t > 1)
+    {
+      t = 1;
+      s = clamp((b - c) / a);
+    }
+  }
+  else if (a > 0)
+  {
+    s = clamp(-dot(d1, r) / a);
+  }
+  else if (e > 0)
+  {
+    t = clamp(f / e);
+  }
+  double d2sum = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    onP[k] = p0[k] + s * d1[k];
+    onQ[k] = q0[k] + t * d2[k];
+    d2sum += (onP[k] - onQ[k]) * (onP[k] - onQ[k]);
+  }
+  return d2sum;
+}
+
+/// One model: its triangles as the box tree and the exact predicates take them.
+struct Model
+{
+  std::vector<Point3> Points;
+  std::vector<TriangleCorners> Triangles;
+
+  bool Load(const MeshInput& mesh, const char* name, std::string& error)
+  {
+    if (mesh.Triangles.empty())
+    {
+      error = std::string("model ") + name + " has no triangle";
+      return false;
+    }
+    const size_t points = mesh.Points.size() / 3;
+    this->Points.resize(points);
+    for (size_t i = 0; i < points; ++i)
+    {
+      this->Points[i] = { { mesh.Points[3 * i], mesh.Points[3 * i + 1], mesh.Points[3 * i + 2] } };
+    }
+    this->Triangles.resize(mesh.Triangles.size() / 3);
+    for (size_t t = 0; t < this->Triangles.size(); ++t)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const int64_t id = mesh.Triangles[3 * t + c];
+        if (id < 0 || static_cast<size_t>(id) >= points)
+        {
+          error = std::string("model ") + name + ": triangle " + std::to_string(t) +
+            " uses point " + std::to_string(id) + ", not one of its " + std::to_string(points);
+          return false;
+        }
+        const Point3& x = this->Points[id];
+        if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+        {
+          error = std::string("model ") + name + ": point " + std::to_string(id) +
+            " has a coordinate that is not finite";
+          return false;
+        }
+        this->Triangles[t][c] = static_cast<size_t>(id);
+      }
+    }
+    return true;
+  }
+
+  void Corners(size_t t, Point3 out[3]) const
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      out[c] = this->Points[this->Triangles[t][c]];
+    }
+  }
+  void Corners(size_t t, double out[9]) const
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      std::copy(this->Points[this->Triangles[t][c]].begin(),
+        this->Points[this->Triangles[t][c]].end(),
+        out + 3 * c);
+    }
+  }
+};
+
+/// Whether a vertex of `inner` lies inside `outer` by the winding number of outer's
+/// triangles.
+bool AnyVertexInside(const Model& inner, const MeshInput& outer)
+{
+  WindingNumber winding;
+  winding.Build(outer.Points, outer.Triangles);
+  std::vector<bool> tested(inner.Points.size(), false);
+  for (const TriangleCorners& triangle : inner.Triangles)
+  {
+    for (const size_t id : triangle)
+    {
+      if (!tested[id])
+      {
+        tested[id] = true;
+        if (winding.Inside(inner.Points[id].data()))
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+/// The nearest pair of triangles of two models that do not intersect, searched from the
+/// nearest pairs of nodes on; pairs whose boxes are farther than `bound` (squared) are
+/// not searched. False when no pair is within the bound.
+bool NearestPair(const Model& a,
+  const TriangleBoxTree& treeA,
+  const Model& b,
+  const TriangleBoxTree& treeB,
+  double bound,
+  ProximityResult& result)
+{
+  struct NodePair
+  {
+    double Bound;
+    int64_t A, B;
+    bool operator>(const NodePair& other) const { return this->Bound > other.Bound; }
+  };
+  std::priority_queue<NodePair, std::vector<NodePair>, std::greater<NodePair>> queue;
+  const auto& nodesA = treeA.Nodes();
+  const auto& nodesB = treeB.Nodes();
+  queue.push({ nodesA[0].Bounds.SquaredDistance(nodesB[0].Bounds), 0, 0 });
+  double best = bound;
+  bool found = false;
+  while (!queue.empty())
+  {
+    const NodePair pair = queue.top();
+    queue.pop();
+    if (pair.Bound > best)
+    {
+      break;
+    }
+    const auto& na = nodesA[pair.A];
+    const auto& nb = nodesB[pair.B];
+    if (na.IsLeaf() && nb.IsLeaf())
+    {
+      for (size_t i = na.Begin; i < na.End; ++i)
+      {
+        const size_t s = treeA.Order()[i];
+        double p[9];
+        a.Corners(s, p);
+        for (size_t k = nb.Begin; k < nb.End; ++k)
+        {
+          const size_t t = treeB.Order()[k];
+          if (treeA.Boxes()[s].SquaredDistance(treeB.Boxes()[t]) > best)
+          {
+            continue;
+          }
+          double q[9], onP[3], onQ[3];
+          b.Corners(t, q);
+          ++result.DistanceTests;
+          const double d2 = SquaredTriangleDistance(p, q, onP, onQ);
+          if (d2 < best || (!found && d2 <= best))
+          {
+            best = d2;
+            found = true;
+            result.Separation = std::sqrt(d2);
+            std::copy(onP, onP + 3, result.ClosestA.begin());
+            std::copy(onQ, onQ + 3, result.ClosestB.begin());
+            result.ClosestTriangleA = static_cast<int64_t>(s);
+            result.ClosestTriangleB = static_cast<int64_t>(t);
+          }
+        }
+      }
+      continue;
+    }
+    // Split the larger node (or the one that is not a leaf).
+    auto push = [&](int64_t m, int64_t n)
+    {
+      const double d2 = nodesA[m].Bounds.SquaredDistance(nodesB[n].Bounds);
+      if (d2 <= best)
+      {
+        queue.push({ d2, m, n });
+      }
+    };
+    if (nb.IsLeaf() || (!na.IsLeaf() && na.Size() >= nb.Size()))
+    {
+      push(na.Left, pair.B);
+      push(na.Right, pair.B);
+    }
+    else
+    {
+      push(pair.A, nb.Left);
+      push(pair.A, nb.Right);
+    }
+  }
+  return found;
+}
+} // namespace
+
+double SquaredTriangleDistance(const double p[9], const double q[9], double onP[3], double onQ[3])
+{
+  double best = HUGE_VAL, x[3], y[3];
+  auto keep = [&](double d2, const double* u, const double* v)
+  {
+    if (d2 < best)
+    {
+      best = d2;
+      std::copy(u, u + 3, onP);
+      std::copy(v, v + 3, onQ);
+    }
+  };
+  for (int c = 0; c < 3; ++c)
+  {
+    keep(SquaredDistanceToTriangle(p + 3 * c, q, q + 3, q + 6, y), p + 3 * c, y);
+    keep(SquaredDistanceToTriangle(q + 3 * c, p, p + 3, p + 6, x), x, q + 3 * c);
+  }
+  for (int e = 0; e < 3; ++e)
+  {
+    const double* p0 = p + 3 * e;
+    const double* p1 = p + 3 * ((e + 1) % 3);
+    for (int f = 0; f < 3; ++f)
+    {
+      const double d2 = SquaredSegmentDistance(p0, p1, q + 3 * f, q + 3 * ((f + 1) % 3), x, y);
+      keep(d2, x, y);
+    }
+  }
+  return best;
+}
+
+bool ComputeMeshProximity(const MeshInput& a,
+  const MeshInput& b,
+  const ProximityOptions& options,
+  ProximityResult& result,
+  std::string& error)
+{
+  result = ProximityResult();
+  Model modelA, modelB;
+  if (!modelA.Load(a, "A", error) || !modelB.Load(b, "B", error))
+  {
+    return false;
+  }
+  const TriangleBoxTree treeA(modelA.Points, modelA.Triangles);
+  const TriangleBoxTree treeB(modelB.Points, modelB.Triangles);
+
+  treeA.ForEachOverlappingPair(treeB,
+    [&](size_t s, size_t t)
+    {
+      Point3 p[3], q[3];
+      modelA.Corners(s, p);
+      modelB.Corners(t, q);
+      ++result.ContactTests;
+      if (ClosedTrianglesIntersect(p, q))
+      {
+        result.ContactA = static_cast<int64_t>(s);
+        result.ContactB = static_cast<int64_t>(t);
+        return false;
+      }
+      return true;
+    });
+  if (result.ContactA >= 0)
+  {
+    result.Colliding = true;
+    result.Separation = 0;
+    return true;
+  }
+  if (options.Containment)
+  {
+    result.AInsideB = AnyVertexInside(modelA, b);
+    result.BInsideA = AnyVertexInside(modelB, a);
+    if (result.AInsideB || result.BInsideA)
+    {
+      result.Colliding = true;
+      result.Separation = 0;
+      return true;
+    }
+  }
+  if (options.Separation)
+  {
+    // A bound below the true separation finds nothing: the search runs again unbounded.
+    const double bound = options.UpperBound * options.UpperBound;
+    if (!(bound < HUGE_VAL) || !NearestPair(modelA, treeA, modelB, treeB, bound, result))
+    {
+      NearestPair(modelA, treeA, modelB, treeB, HUGE_VAL, result);
+    }
+  }
+  return true;
+}
+} // namespace vtkdf
