@@ -72,6 +72,12 @@ double SquaredSegmentDistance(const double* p0,
   return d2sum;
 }
 
+double Distance2(const double* a, const double* b)
+{
+  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+    (a[2] - b[2]) * (a[2] - b[2]);
+}
+
 /// One model: its triangles as the box tree and the exact predicates take them.
 struct Model
 {
@@ -244,7 +250,128 @@ bool NearestPair(const Model& a,
   }
   return found;
 }
+/// The nearest triangle of `model` to x: the squared distance, the closest point and the
+/// triangle, the nearer child first and nodes farther than the best pruned.
+double NearestTriangle(const Model& model,
+  const TriangleBoxTree& tree,
+  const double x[3],
+  double closest[3],
+  int64_t& triangle)
+{
+  const Box point{ { { x[0], x[1], x[2] } }, { { x[0], x[1], x[2] } } };
+  double best = HUGE_VAL;
+  std::vector<int64_t> stack{ 0 };
+  while (!stack.empty())
+  {
+    const auto& node = tree.Nodes()[stack.back()];
+    stack.pop_back();
+    if (node.Bounds.SquaredDistance(point) > best)
+    {
+      continue;
+    }
+    if (node.IsLeaf())
+    {
+      for (size_t i = node.Begin; i < node.End; ++i)
+      {
+        const size_t t = tree.Order()[i];
+        double c[9], on[3];
+        model.Corners(t, c);
+        const double d2 = SquaredDistanceToTriangle(x, c, c + 3, c + 6, on);
+        if (d2 < best)
+        {
+          best = d2;
+          std::copy(on, on + 3, closest);
+          triangle = static_cast<int64_t>(t);
+        }
+      }
+      continue;
+    }
+    const double left = tree.Nodes()[node.Left].Bounds.SquaredDistance(point);
+    const double right = tree.Nodes()[node.Right].Bounds.SquaredDistance(point);
+    // The nearer child on top of the stack.
+    stack.push_back(left <= right ? node.Right : node.Left);
+    stack.push_back(left <= right ? node.Left : node.Right);
+  }
+  return best;
+}
 } // namespace
+
+std::vector<std::array<double, 3>> FaceSamples(const double p[9], double step)
+{
+  double longest = 0;
+  for (int e = 0; e < 3; ++e)
+  {
+    longest = std::max(longest, std::sqrt(Distance2(p + 3 * e, p + 3 * ((e + 1) % 3))));
+  }
+  const double divisions = std::ceil(longest / step);
+  const int64_t n = divisions >= 1 ? static_cast<int64_t>(divisions) : 1;
+  std::vector<std::array<double, 3>> samples;
+  samples.reserve(static_cast<size_t>((n + 1) * (n + 2) / 2));
+  for (int64_t i = 0; i <= n; ++i)
+  {
+    for (int64_t j = 0; i + j <= n; ++j)
+    {
+      const double u = double(i) / n, v = double(j) / n;
+      samples.push_back({ { p[0] + u * (p[3] - p[0]) + v * (p[6] - p[0]),
+        p[1] + u * (p[4] - p[1]) + v * (p[7] - p[1]),
+        p[2] + u * (p[5] - p[2]) + v * (p[8] - p[2]) } });
+    }
+  }
+  return samples;
+}
+
+bool ComputePenetration(const MeshInput& a,
+  const MeshInput& b,
+  double step,
+  PenetrationResult& result,
+  std::string& error)
+{
+  result = PenetrationResult();
+  if (!(step > 0) || !std::isfinite(step))
+  {
+    error =
+      "the step of the face samples must be positive and finite; it is " + std::to_string(step);
+    return false;
+  }
+  Model modelA, modelB;
+  if (!modelA.Load(a, "A", error) || !modelB.Load(b, "B", error))
+  {
+    return false;
+  }
+  const TriangleBoxTree treeB(modelB.Points, modelB.Triangles);
+  WindingNumber winding;
+  winding.Build(b.Points, b.Triangles);
+  auto sample = [&](const double x[3])
+  {
+    ++result.Samples;
+    if (!winding.Inside(x))
+    {
+      return;
+    }
+    ++result.SamplesInside;
+    double closest[3];
+    int64_t triangle = -1;
+    const double depth = std::sqrt(NearestTriangle(modelB, treeB, x, closest, triangle));
+    if (depth > result.Depth || result.TriangleB < 0)
+    {
+      result.Depth = depth;
+      std::copy(x, x + 3, result.Deepest.begin());
+      std::copy(closest, closest + 3, result.ClosestOnB.begin());
+      result.TriangleB = triangle;
+    }
+  };
+  // The lattices hold the corners: every vertex is a sample.
+  for (size_t t = 0; t < modelA.Triangles.size(); ++t)
+  {
+    double p[9];
+    modelA.Corners(t, p);
+    for (const auto& x : FaceSamples(p, step))
+    {
+      sample(x.data());
+    }
+  }
+  return true;
+}
 
 double SquaredTriangleDistance(const double p[9], const double q[9], double onP[3], double onQ[3])
 {

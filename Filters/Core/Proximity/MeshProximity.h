@@ -16,6 +16,10 @@
 //   hierarchies' boxes) does not exclude, nearest pairs of nodes first. Between two
 //   triangles that do not intersect it is the least of the six corner-to-triangle and
 //   nine edge-to-edge distances, in double precision.
+// - Penetration: the largest distance to B's surface over A's surface samples inside B
+//   (a barycentric lattice on each triangle, corners included: FaceSamples), each at its
+//   exact distance (the nearest triangle through B's hierarchy), with the deepest sample
+//   and the direction to its closest point on B: the paper's penetration estimate.
 #ifndef vtkdf_MeshProximity_h
 #define vtkdf_MeshProximity_h
 
@@ -24,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace vtkdf
 {
@@ -64,6 +69,31 @@ bool ComputeMeshProximity(const MeshInput& a,
   const MeshInput& b,
   const ProximityOptions& options,
   ProximityResult& result,
+  std::string& error);
+
+/// The points of a triangle's lattice with `step`: with L its longest edge and
+/// n = max(1, ceil(L / step)), the points p0 + (i / n)(p1 - p0) + (j / n)(p2 - p0) for
+/// i, j >= 0 and i + j <= n (the corners included), in that order of i, then j.
+std::vector<std::array<double, 3>> FaceSamples(const double p[9], double step);
+
+struct PenetrationResult
+{
+  /// The largest distance to B's surface over A's samples inside B, 0 when none is.
+  double Depth = 0;
+  /// The deepest sample of A, its closest point on B and that point's triangle of B
+  /// (-1 when no sample is inside).
+  std::array<double, 3> Deepest{ { 0, 0, 0 } }, ClosestOnB{ { 0, 0, 0 } };
+  int64_t TriangleB = -1;
+  int64_t Samples = 0, SamplesInside = 0;
+};
+
+/// The penetration of a into b: FaceSamples(step) of each of a's triangles (step > 0;
+/// the corners among them) inside b by b's winding number (|w| > 1/2), at their exact distances to
+/// b's triangles. False with `error` on invalid meshes (as ComputeMeshProximity) or step.
+bool ComputePenetration(const MeshInput& a,
+  const MeshInput& b,
+  double step,
+  PenetrationResult& result,
   std::string& error);
 
 /// Squared distance between the closed triangles p and q (9 coordinates each) when they
