@@ -11,7 +11,8 @@ set(classes
   "${df_root}/Filters/vtkSegmentedDistanceContour"
   "${df_root}/Filters/vtkConvexQueryAlgorithm"
   "${df_root}/Filters/vtkUnionClosestPoint"
-  "${df_root}/Filters/vtkPenetrationDepth")
+  "${df_root}/Filters/vtkPenetrationDepth"
+  "${df_root}/Filters/vtkDistanceFieldProximity")
 vtk_module_add_module(DistanceFields::vtkDistanceFields
   CLASSES ${classes}
   SOURCES "${df_root}/Filters/vtkDistanceFieldMeshInput.cxx"

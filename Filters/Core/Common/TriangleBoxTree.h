@@ -80,23 +80,43 @@ public:
     this->TriangleBoxes.resize(triangles.size());
     for (size_t t = 0; t < triangles.size(); ++t)
     {
-      Box& box = this->TriangleBoxes[t];
-      box.Min = box.Max = points[triangles[t][0]];
-      for (int c = 1; c < 3; ++c)
-      {
-        const Point3& p = points[triangles[t][c]];
-        for (int k = 0; k < 3; ++k)
-        {
-          box.Min[k] = std::min(box.Min[k], p[k]);
-          box.Max[k] = std::max(box.Max[k], p[k]);
-        }
-      }
+      this->TriangleBoxes[t] = TriangleBox(points, triangles[t]);
     }
     this->TriangleOrder.resize(triangles.size());
     std::iota(this->TriangleOrder.begin(), this->TriangleOrder.end(), size_t(0));
     if (!triangles.empty())
     {
       this->Build(0, triangles.size());
+    }
+  }
+
+  /// The same triangles at new coordinates (a deforming mesh: same topology): the
+  /// triangles' and nodes' boxes recomputed, the hierarchy's order kept. Every search
+  /// stays exact; only the pruning may loosen as the mesh moves away from the pose the
+  /// order was built for.
+  void Refit(const std::vector<Point3>& points, const std::vector<TriangleCorners>& triangles)
+  {
+    for (size_t t = 0; t < triangles.size(); ++t)
+    {
+      this->TriangleBoxes[t] = TriangleBox(points, triangles[t]);
+    }
+    // Children come after their parent in Nodes(): the last node first.
+    for (size_t n = this->TreeNodes.size(); n-- > 0;)
+    {
+      Node& node = this->TreeNodes[n];
+      if (node.IsLeaf())
+      {
+        node.Bounds = this->TriangleBoxes[this->TriangleOrder[node.Begin]];
+        for (size_t i = node.Begin + 1; i < node.End; ++i)
+        {
+          node.Bounds.Add(this->TriangleBoxes[this->TriangleOrder[i]]);
+        }
+      }
+      else
+      {
+        node.Bounds = this->TreeNodes[node.Left].Bounds;
+        node.Bounds.Add(this->TreeNodes[node.Right].Bounds);
+      }
     }
   }
 
@@ -130,6 +150,21 @@ public:
   }
 
 private:
+  static Box TriangleBox(const std::vector<Point3>& points, const TriangleCorners& triangle)
+  {
+    Box box{ points[triangle[0]], points[triangle[0]] };
+    for (int c = 1; c < 3; ++c)
+    {
+      const Point3& p = points[triangle[c]];
+      for (int k = 0; k < 3; ++k)
+      {
+        box.Min[k] = std::min(box.Min[k], p[k]);
+        box.Max[k] = std::max(box.Max[k], p[k]);
+      }
+    }
+    return box;
+  }
+
   std::vector<Box> TriangleBoxes;
   std::vector<size_t> TriangleOrder;
   std::vector<Node> TreeNodes;

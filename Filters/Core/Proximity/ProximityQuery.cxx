@@ -1,0 +1,726 @@
+#include "Proximity/ProximityQuery.h"
+
+#include "Proximity/ProximitySearch.h"
+#include "Segment/TriangleCrossings.h"
+#include "Winding/WindingNumber.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace vtkdf
+{
+struct ProximityModel::Data
+{
+  InsideRule Rule = InsideRule::WindingNumber;
+  bool Loaded = false, Reused = false;
+  std::vector<int64_t> TriangleIds;
+  TriangleModel Model;
+  std::vector<bool> Used; // points that a triangle uses
+  std::array<double, 6> Bounds{ { 0, -1, 0, -1, 0, -1 } };
+  std::unique_ptr<TriangleBoxTree> Tree;
+  WindingNumber Winding; // InsideRule::WindingNumber
+  // InsideRule::PseudoNormal: each triangle's three sides' edge ids (side c from corner c
+  // to corner c + 1), and the normals of the faces, vertices and edges.
+  // Points at identical coordinates are one vertex (Canonical: the least such id), as
+  // the linear factorization's sites merge them; Outward is -1 for a mesh whose signed
+  // volume is negative (oriented inward), so that its pseudonormals point out.
+  std::vector<std::array<int64_t, 3>> Sides;
+  std::vector<size_t> Canonical;
+  std::vector<Point3> FaceNormals, VertexNormals, EdgeNormals;
+  double Outward = 1;
+
+  bool MergePoints();
+  void BuildEdges();
+  void ComputeNormals();
+  bool Inside(const double x[3], const double closest[3], int64_t triangle, double d2) const;
+};
+
+namespace
+{
+double Dot(const double* u, const double* v)
+{
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+/// The unit vector along v, or 0 for a zero vector.
+Point3 Unit(const Point3& v)
+{
+  const double length = std::sqrt(Dot(v.data(), v.data()));
+  return length > 0 ? Point3{ { v[0] / length, v[1] / length, v[2] / length } }
+                    : Point3{ { 0, 0, 0 } };
+}
+} // namespace
+
+/// Canonical ids for the points; true when they changed since the last call.
+bool ProximityModel::Data::MergePoints()
+{
+  const auto& points = this->Model.Points;
+  std::vector<size_t> order(points.size());
+  for (size_t i = 0; i < order.size(); ++i)
+  {
+    order[i] = i;
+  }
+  std::sort(order.begin(),
+    order.end(),
+    [&](size_t a, size_t b) { return points[a] != points[b] ? points[a] < points[b] : a < b; });
+  std::vector<size_t> canonical(points.size());
+  for (size_t k = 0; k < order.size(); ++k)
+  {
+    canonical[order[k]] =
+      k > 0 && points[order[k]] == points[order[k - 1]] ? canonical[order[k - 1]] : order[k];
+  }
+  const bool changed = canonical != this->Canonical;
+  this->Canonical.swap(canonical);
+  return changed;
+}
+
+void ProximityModel::Data::BuildEdges()
+{
+  std::map<std::pair<size_t, size_t>, int64_t> edges;
+  this->Sides.resize(this->Model.Triangles.size());
+  for (size_t t = 0; t < this->Model.Triangles.size(); ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const size_t u = this->Canonical[this->Model.Triangles[t][c]];
+      const size_t v = this->Canonical[this->Model.Triangles[t][(c + 1) % 3]];
+      const auto key = std::make_pair(std::min(u, v), std::max(u, v));
+      const auto found = edges.emplace(key, static_cast<int64_t>(edges.size())).first;
+      this->Sides[t][c] = found->second;
+    }
+  }
+  this->EdgeNormals.resize(edges.size());
+}
+
+// Bærentzen and Aanæs, "Signed distance computation using the angle weighted
+// pseudonormal" (IEEE TVCG 11(3), 2005): a vertex's normal is the sum of its faces'
+// normals weighted by their angles there, an edge's the sum of its faces' normals.
+void ProximityModel::Data::ComputeNormals()
+{
+  const auto& points = this->Model.Points;
+  this->FaceNormals.resize(this->Model.Triangles.size());
+  this->VertexNormals.assign(points.size(), Point3{ { 0, 0, 0 } });
+  std::fill(this->EdgeNormals.begin(), this->EdgeNormals.end(), Point3{ { 0, 0, 0 } });
+  double volume = 0;
+  for (size_t t = 0; t < this->Model.Triangles.size(); ++t)
+  {
+    const auto& corners = this->Model.Triangles[t];
+    const double* p0 = points[corners[0]].data();
+    const double* p1 = points[corners[1]].data();
+    const double* p2 = points[corners[2]].data();
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      u[k] = p1[k] - p0[k];
+      v[k] = p2[k] - p0[k];
+    }
+    const Point3 n =
+      Unit({ { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] } });
+    this->FaceNormals[t] = n;
+    volume += p0[0] * (p1[1] * p2[2] - p1[2] * p2[1]) - p0[1] * (p1[0] * p2[2] - p1[2] * p2[0]) +
+      p0[2] * (p1[0] * p2[1] - p1[1] * p2[0]);
+    for (int c = 0; c < 3; ++c)
+    {
+      const double* here = points[corners[c]].data();
+      const double* next = points[corners[(c + 1) % 3]].data();
+      const double* previous = points[corners[(c + 2) % 3]].data();
+      double e[3], f[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        e[k] = next[k] - here[k];
+        f[k] = previous[k] - here[k];
+      }
+      const double le = std::sqrt(Dot(e, e)), lf = std::sqrt(Dot(f, f));
+      const double angle =
+        le > 0 && lf > 0 ? std::acos(std::max(-1.0, std::min(1.0, Dot(e, f) / (le * lf)))) : 0;
+      Point3& vertex = this->VertexNormals[this->Canonical[corners[c]]];
+      Point3& edge = this->EdgeNormals[this->Sides[t][c]];
+      for (int k = 0; k < 3; ++k)
+      {
+        vertex[k] += angle * n[k];
+        edge[k] += n[k];
+      }
+    }
+  }
+  this->Outward = volume < 0 ? -1 : 1;
+}
+
+bool ProximityModel::Data::Inside(const double x[3],
+  const double closest[3],
+  int64_t triangle,
+  double d2) const
+{
+  if (this->Rule == InsideRule::WindingNumber)
+  {
+    return this->Winding.Inside(x);
+  }
+  if (!(d2 > 0))
+  {
+    return false; // on the surface
+  }
+  // The closest point's feature: a corner, a side, or the face, with a tolerance far
+  // below any distance that matters (a point near a side may take the side's normal:
+  // both give the same sign there).
+  double p[9];
+  this->Model.Corners(static_cast<size_t>(triangle), p);
+  double longest = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double* u = p + 3 * c;
+    const double* v = p + 3 * ((c + 1) % 3);
+    const double e[3] = { v[0] - u[0], v[1] - u[1], v[2] - u[2] };
+    longest = std::max(longest, Dot(e, e));
+  }
+  const double tolerance = 1e-24 * longest;
+  const auto& corners = this->Model.Triangles[static_cast<size_t>(triangle)];
+  const double* normal = this->FaceNormals[static_cast<size_t>(triangle)].data();
+  bool found = false;
+  for (int c = 0; c < 3 && !found; ++c)
+  {
+    const double* q = p + 3 * c;
+    const double gap = (closest[0] - q[0]) * (closest[0] - q[0]) +
+      (closest[1] - q[1]) * (closest[1] - q[1]) + (closest[2] - q[2]) * (closest[2] - q[2]);
+    if (gap <= tolerance)
+    {
+      normal = this->VertexNormals[this->Canonical[corners[c]]].data();
+      found = true;
+    }
+  }
+  for (int c = 0; c < 3 && !found; ++c)
+  {
+    if (SquaredDistanceToSegment(closest, p + 3 * c, p + 3 * ((c + 1) % 3)) <= tolerance)
+    {
+      normal = this->EdgeNormals[this->Sides[static_cast<size_t>(triangle)][c]].data();
+      found = true;
+    }
+  }
+  const double away[3] = { x[0] - closest[0], x[1] - closest[1], x[2] - closest[2] };
+  return this->Outward * Dot(away, normal) < 0;
+}
+
+ProximityModel::ProximityModel()
+  : D(new Data)
+{
+}
+
+ProximityModel::~ProximityModel() = default;
+
+bool ProximityModel::ReusedTopology() const
+{
+  return this->D->Reused;
+}
+
+int64_t ProximityModel::NumberOfPoints() const
+{
+  return static_cast<int64_t>(this->D->Model.Points.size());
+}
+
+int64_t ProximityModel::NumberOfTriangles() const
+{
+  return static_cast<int64_t>(this->D->Model.Triangles.size());
+}
+
+bool ProximityModel::Load(const MeshInput& mesh,
+  const char* name,
+  InsideRule rule,
+  std::string& error)
+{
+  Data& d = *this->D;
+  const bool same = d.Loaded && d.Rule == rule && d.TriangleIds == mesh.Triangles &&
+    d.Model.Points.size() == mesh.Points.size() / 3;
+  d.Loaded = false;
+  if (!d.Model.Load(mesh, name, error))
+  {
+    return false;
+  }
+  d.Rule = rule;
+  d.Reused = same;
+  if (same)
+  {
+    d.Tree->Refit(d.Model.Points, d.Model.Triangles);
+  }
+  else
+  {
+    d.TriangleIds = mesh.Triangles;
+    d.Tree.reset(new TriangleBoxTree(d.Model.Points, d.Model.Triangles));
+    d.Used.assign(d.Model.Points.size(), false);
+    for (const auto& corners : d.Model.Triangles)
+    {
+      for (const size_t id : corners)
+      {
+        d.Used[id] = true;
+      }
+    }
+  }
+  // The edges follow the merged points, which the coordinates may change.
+  if (rule == InsideRule::PseudoNormal && (d.MergePoints() || !same))
+  {
+    d.BuildEdges();
+  }
+  d.Bounds = d.Tree->Nodes()[0].Bounds.Min[0] <= d.Tree->Nodes()[0].Bounds.Max[0]
+    ? std::array<double, 6>{ { d.Tree->Nodes()[0].Bounds.Min[0],
+        d.Tree->Nodes()[0].Bounds.Max[0],
+        d.Tree->Nodes()[0].Bounds.Min[1],
+        d.Tree->Nodes()[0].Bounds.Max[1],
+        d.Tree->Nodes()[0].Bounds.Min[2],
+        d.Tree->Nodes()[0].Bounds.Max[2] } }
+    : std::array<double, 6>{ { 0, -1, 0, -1, 0, -1 } };
+  if (rule == InsideRule::WindingNumber)
+  {
+    d.Winding.Build(mesh.Points, mesh.Triangles);
+  }
+  else
+  {
+    d.ComputeNormals();
+  }
+  d.Loaded = true;
+  return true;
+}
+
+namespace
+{
+/// The squared distance from x to model m, its closest point and triangle, and whether x
+/// is inside m.
+struct PointQuery
+{
+  double D2 = HUGE_VAL;
+  double Closest[3] = { 0, 0, 0 };
+  int64_t Triangle = -1;
+  bool Inside = false;
+
+  PointQuery() = default;
+  /// `knownInside`: the winding number already said so.
+  PointQuery(const ProximityModel::Data& m, const double x[3], bool knownInside = false)
+  {
+    this->D2 = NearestTriangle(m.Model, *m.Tree, x, this->Closest, this->Triangle);
+    this->Inside = knownInside || m.Inside(x, this->Closest, this->Triangle, this->D2);
+  }
+};
+
+bool InRegion(const std::array<double, 6>& region, const double x[3])
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (x[k] < region[2 * k] || x[k] > region[2 * k + 1])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool BoxMeetsRegion(const Box& box, const std::array<double, 6>& region)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (box.Max[k] < region[2 * k] || box.Min[k] > region[2 * k + 1])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// Lattice divisions of a triangle for `step` (FaceSamples' n).
+int64_t Divisions(const double p[9], double step)
+{
+  double longest = 0;
+  for (int e = 0; e < 3; ++e)
+  {
+    const double* u = p + 3 * e;
+    const double* v = p + 3 * ((e + 1) % 3);
+    longest = std::max(longest,
+      std::sqrt((u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
+        (u[2] - v[2]) * (u[2] - v[2])));
+  }
+  const double divisions = std::ceil(longest / step);
+  return divisions >= 1 ? static_cast<int64_t>(divisions) : 1;
+}
+
+void RunFor(const Execution& execution,
+  int64_t n,
+  int64_t grain,
+  const std::function<void(int64_t, int64_t)>& body)
+{
+  if (execution.For)
+  {
+    execution.For(n, grain, body);
+  }
+  else if (n > 0)
+  {
+    body(0, n);
+  }
+}
+
+void Keep(PenetrationSide& side, const ContactSample& sample, const double closest[3], int64_t t)
+{
+  if (sample.Depth > side.Depth || side.TriangleOfOther < 0)
+  {
+    side.Depth = sample.Depth;
+    side.Deepest = sample.Point;
+    std::copy(closest, closest + 3, side.ClosestOnOther.begin());
+    side.Normal = sample.Normal;
+    side.TriangleOfOther = t;
+  }
+}
+
+ContactSample MakeSample(const double x[3],
+  const PointQuery& query,
+  int64_t triangle,
+  int64_t vertex)
+{
+  ContactSample sample;
+  sample.Point = { { x[0], x[1], x[2] } };
+  sample.Depth = std::sqrt(query.D2);
+  const Point3 towards{
+    { query.Closest[0] - x[0], query.Closest[1] - x[1], query.Closest[2] - x[2] }
+  };
+  sample.Normal = Unit(towards);
+  sample.Triangle = triangle;
+  sample.Vertex = vertex;
+  return sample;
+}
+
+/// The signed distances of `self`'s points to `other` (NaN for the points no triangle
+/// uses), with each point's query kept for the penetration.
+void PointDistances(const ProximityModel::Data& self,
+  const ProximityModel::Data& other,
+  const Execution& execution,
+  std::vector<double>& distances,
+  std::vector<PointQuery>& queries)
+{
+  const int64_t n = static_cast<int64_t>(self.Model.Points.size());
+  distances.assign(static_cast<size_t>(n), std::nan(""));
+  queries.assign(static_cast<size_t>(n), PointQuery());
+  RunFor(execution,
+    n,
+    256,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t i = begin; i < end; ++i)
+      {
+        if (!self.Used[static_cast<size_t>(i)])
+        {
+          continue;
+        }
+        const PointQuery query(other, self.Model.Points[static_cast<size_t>(i)].data());
+        queries[static_cast<size_t>(i)] = query;
+        const double distance = std::sqrt(query.D2);
+        distances[static_cast<size_t>(i)] = query.Inside ? -distance : distance;
+      }
+    });
+}
+
+/// The penetration of `self` into `other`: its vertices (from their queries) and face
+/// samples in `region` inside `other`.
+void Penetrate(const ProximityModel::Data& self,
+  const ProximityModel::Data& other,
+  const std::vector<PointQuery>& vertexQueries,
+  const std::array<double, 6>& region,
+  double step,
+  bool keepContacts,
+  const Execution& execution,
+  PenetrationSide& side,
+  int64_t& queries)
+{
+  side = PenetrationSide();
+  for (size_t i = 0; i < self.Model.Points.size(); ++i)
+  {
+    const double* x = self.Model.Points[i].data();
+    if (!self.Used[i] || !InRegion(region, x))
+    {
+      continue;
+    }
+    ++side.Samples;
+    const PointQuery& query = vertexQueries[i];
+    if (query.Inside)
+    {
+      ++side.SamplesInside;
+      const ContactSample sample = MakeSample(x, query, -1, static_cast<int64_t>(i));
+      Keep(side, sample, query.Closest, query.Triangle);
+      if (keepContacts)
+      {
+        side.Contacts.push_back(sample);
+      }
+    }
+  }
+  // The face samples other than the corners, in blocks of triangles whose results are
+  // merged in order: the report does not depend on the threads.
+  const int64_t triangles = static_cast<int64_t>(self.Model.Triangles.size());
+  const int64_t blockSize = 64;
+  const int64_t blocks = (triangles + blockSize - 1) / blockSize;
+  std::vector<PenetrationSide> parts(static_cast<size_t>(blocks));
+  std::vector<int64_t> partQueries(static_cast<size_t>(blocks), 0);
+  RunFor(execution,
+    blocks,
+    1,
+    [&](int64_t first, int64_t last)
+    {
+      for (int64_t block = first; block < last; ++block)
+      {
+        PenetrationSide& part = parts[static_cast<size_t>(block)];
+        const int64_t end = std::min(triangles, (block + 1) * blockSize);
+        for (int64_t t = block * blockSize; t < end; ++t)
+        {
+          if (!BoxMeetsRegion(self.Tree->Boxes()[static_cast<size_t>(t)], region))
+          {
+            continue;
+          }
+          double p[9];
+          self.Model.Corners(static_cast<size_t>(t), p);
+          const int64_t n = Divisions(p, step);
+          for (int64_t i = 0; i <= n; ++i)
+          {
+            for (int64_t j = 0; i + j <= n; ++j)
+            {
+              if ((i == 0 && j == 0) || i == n || j == n)
+              {
+                continue; // a corner: a vertex, already counted
+              }
+              const double u = double(i) / n, v = double(j) / n;
+              const double x[3] = { p[0] + u * (p[3] - p[0]) + v * (p[6] - p[0]),
+                p[1] + u * (p[4] - p[1]) + v * (p[7] - p[1]),
+                p[2] + u * (p[5] - p[2]) + v * (p[8] - p[2]) };
+              if (!InRegion(region, x))
+              {
+                continue;
+              }
+              ++part.Samples;
+              // The winding number decides before the distance is needed.
+              const bool winding = other.Rule == InsideRule::WindingNumber;
+              if (winding && !other.Winding.Inside(x))
+              {
+                continue;
+              }
+              ++partQueries[static_cast<size_t>(block)];
+              const PointQuery query(other, x, winding);
+              if (!query.Inside)
+              {
+                continue;
+              }
+              ++part.SamplesInside;
+              const ContactSample sample = MakeSample(x, query, t, -1);
+              Keep(part, sample, query.Closest, query.Triangle);
+              if (keepContacts)
+              {
+                part.Contacts.push_back(sample);
+              }
+            }
+          }
+        }
+      }
+    });
+  for (size_t block = 0; block < parts.size(); ++block)
+  {
+    const PenetrationSide& part = parts[block];
+    side.Samples += part.Samples;
+    side.SamplesInside += part.SamplesInside;
+    queries += partQueries[block];
+    if (part.TriangleOfOther >= 0 && (part.Depth > side.Depth || side.TriangleOfOther < 0))
+    {
+      side.Depth = part.Depth;
+      side.Deepest = part.Deepest;
+      side.ClosestOnOther = part.ClosestOnOther;
+      side.Normal = part.Normal;
+      side.TriangleOfOther = part.TriangleOfOther;
+    }
+    side.Contacts.insert(side.Contacts.end(), part.Contacts.begin(), part.Contacts.end());
+  }
+}
+
+/// Face samples (corners excluded) that `self`'s triangles meeting `region` would take.
+double CountFaceSamples(const ProximityModel::Data& self,
+  const std::array<double, 6>& region,
+  double step)
+{
+  double count = 0;
+  for (size_t t = 0; t < self.Model.Triangles.size(); ++t)
+  {
+    if (BoxMeetsRegion(self.Tree->Boxes()[t], region))
+    {
+      double p[9];
+      self.Model.Corners(t, p);
+      const double n = static_cast<double>(Divisions(p, step));
+      count += (n + 1) * (n + 2) / 2 - 3;
+    }
+  }
+  return count;
+}
+} // namespace
+
+bool ComputeProximity(const ProximityModel& modelA,
+  const ProximityModel& modelB,
+  const ProximityRequest& request,
+  ProximityReport& report,
+  const Execution& execution,
+  std::string& error)
+{
+  report = ProximityReport();
+  const ProximityModel::Data& a = modelA.Get();
+  const ProximityModel::Data& b = modelB.Get();
+  if (!a.Loaded || !b.Loaded)
+  {
+    error = "both models must be loaded before a query";
+    return false;
+  }
+  if (a.Rule != request.Rule || b.Rule != request.Rule)
+  {
+    error = "the models were loaded for another inside rule than the request's";
+    return false;
+  }
+  if (!(request.ContactMargin >= 0) || !std::isfinite(request.ContactMargin))
+  {
+    error = "the contact margin must be finite and at least 0; it is " +
+      std::to_string(request.ContactMargin);
+    return false;
+  }
+  if (!(request.Step >= 0) || !std::isfinite(request.Step))
+  {
+    error = "the step must be finite and at least 0 (0: from the resolution); it is " +
+      std::to_string(request.Step);
+    return false;
+  }
+  if (request.Step == 0 && (request.Resolution < 1 || request.Resolution > 65536))
+  {
+    error = "the resolution must be 1 to 65536; it is " + std::to_string(request.Resolution);
+    return false;
+  }
+
+  // The interaction region, and the step from it.
+  std::array<double, 6> hull;
+  double longest = 0, regionLongest = 0;
+  bool empty = false;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double m = request.ContactMargin;
+    report.Region[2 * k] = std::max(a.Bounds[2 * k], b.Bounds[2 * k]) - m;
+    report.Region[2 * k + 1] = std::min(a.Bounds[2 * k + 1], b.Bounds[2 * k + 1]) + m;
+    hull[2 * k] = std::min(a.Bounds[2 * k], b.Bounds[2 * k]);
+    hull[2 * k + 1] = std::max(a.Bounds[2 * k + 1], b.Bounds[2 * k + 1]);
+    empty = empty || report.Region[2 * k] > report.Region[2 * k + 1];
+    longest = std::max(longest, hull[2 * k + 1] - hull[2 * k]);
+    regionLongest = std::max(regionLongest, report.Region[2 * k + 1] - report.Region[2 * k]);
+  }
+  if (empty)
+  {
+    report.Region = { { 0, -1, 0, -1, 0, -1 } };
+  }
+  report.Step = request.Step > 0
+    ? request.Step
+    : (empty || regionLongest <= 0 ? longest : regionLongest) / request.Resolution;
+  if (!(report.Step > 0))
+  {
+    // Both models are one point: any positive step samples them.
+    report.Step = 1;
+  }
+  if (!empty)
+  {
+    const double samples = CountFaceSamples(a, report.Region, report.Step) +
+      CountFaceSamples(b, report.Region, report.Step);
+    if (samples > static_cast<double>(request.MaximumSamples))
+    {
+      error = "the face samples at step " + std::to_string(report.Step) + " would number " +
+        std::to_string(static_cast<long long>(samples)) + ", over the limit of " +
+        std::to_string(request.MaximumSamples) + ": take a coarser step (a lower resolution)";
+      return false;
+    }
+  }
+
+  // Contact: a pair of triangles with a point in common.
+  ProximityResult& contact = report.Contact;
+  a.Tree->ForEachOverlappingPair(*b.Tree,
+    [&](size_t s, size_t t)
+    {
+      Point3 p[3], q[3];
+      a.Model.Corners(s, p);
+      b.Model.Corners(t, q);
+      ++contact.ContactTests;
+      if (ClosedTrianglesIntersect(p, q))
+      {
+        contact.ContactA = static_cast<int64_t>(s);
+        contact.ContactB = static_cast<int64_t>(t);
+        return false;
+      }
+      return true;
+    });
+  if (!execution.Report(0.1))
+  {
+    error = "aborted";
+    return false;
+  }
+
+  // Every point's distance to the other model: the fields where the points need them.
+  std::vector<PointQuery> queriesA, queriesB;
+  PointDistances(a, b, execution, report.DistanceA, queriesA);
+  PointDistances(b, a, execution, report.DistanceB, queriesB);
+  report.PointQueries += static_cast<int64_t>(std::count(a.Used.begin(), a.Used.end(), true) +
+    std::count(b.Used.begin(), b.Used.end(), true));
+  execution.EndStage("point distances");
+  if (!execution.Report(0.3))
+  {
+    error = "aborted";
+    return false;
+  }
+
+  // Penetration, both ways, over the region's samples.
+  if (!empty)
+  {
+    Penetrate(a,
+      b,
+      queriesA,
+      report.Region,
+      report.Step,
+      request.Contacts,
+      execution,
+      report.AInB,
+      report.PointQueries);
+    if (!execution.Report(0.6))
+    {
+      error = "aborted";
+      return false;
+    }
+    Penetrate(b,
+      a,
+      queriesB,
+      report.Region,
+      report.Step,
+      request.Contacts,
+      execution,
+      report.BInA,
+      report.PointQueries);
+  }
+  execution.EndStage("penetration");
+  contact.AInsideB = report.AInB.SamplesInside > 0;
+  contact.BInsideA = report.BInA.SamplesInside > 0;
+  contact.Colliding = contact.ContactA >= 0 || contact.AInsideB || contact.BInsideA;
+  if (contact.Colliding)
+  {
+    contact.Separation = 0;
+  }
+  else
+  {
+    // Apart: the separation, from the least of the points' distances as the bound.
+    double bound = HUGE_VAL;
+    for (const auto* distances : { &report.DistanceA, &report.DistanceB })
+    {
+      for (const double d : *distances)
+      {
+        bound = std::isnan(d) ? bound : std::min(bound, std::fabs(d));
+      }
+    }
+    if (!NearestPair(a.Model, *a.Tree, b.Model, *b.Tree, bound * bound, contact))
+    {
+      NearestPair(a.Model, *a.Tree, b.Model, *b.Tree, HUGE_VAL, contact);
+    }
+    execution.EndStage("separation");
+  }
+  if (!execution.Report(1.0))
+  {
+    error = "aborted";
+    return false;
+  }
+  return true;
+}
+} // namespace vtkdf

@@ -1,0 +1,140 @@
+// ProximityQuery: the proximity of two deforming triangle meshes, frame after frame,
+// without VTK types: the family's entry point (vtkDistanceFieldProximity adapts it).
+// After Sud et al., "Interactive 3D distance field computation using linear
+// factorization" (ACM I3D 2006), section 6.2: each model's distance field is evaluated
+// where the other's surface needs it, inside the region where the two can interact.
+//
+// Here the fields are not sampled on a dense grid: every value the query uses is the
+// exact distance of one point to the other model (its nearest triangle through the box
+// hierarchy), so a value is only computed where it is read. The grid survives as the
+// step h of the face samples: Resolution samples along the interaction region's longest
+// side, as a grid of that resolution would have.
+//
+// One query gives:
+// - Colliding, decided exactly (MeshProximity.h): a pair of triangles with a point in
+//   common, or a point of one model inside the other;
+// - when apart: the exact separation and a closest pair of points, searched with the
+//   least of the vertices' distances to the other model as the starting bound;
+// - each model's penetration into the other: its vertices and face samples (a
+//   barycentric lattice of step h on each triangle) inside the interaction region and
+//   inside the other model, each at its exact distance, the deepest with the direction
+//   to its closest point (the contact normal);
+// - every point's signed distance to the other model (negative inside).
+// "Inside" is the winding number's |w| > 1/2 (right on open meshes and soups) or the
+// sign of the angle-weighted pseudonormal at the closest feature.
+#ifndef vtkdf_ProximityQuery_h
+#define vtkdf_ProximityQuery_h
+
+#include "Common/MeshInput.h"
+#include "Common/Parallel.h"
+#include "Proximity/MeshProximity.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace vtkdf
+{
+enum class InsideRule
+{
+  WindingNumber, // |w| > 1/2, the generalized winding number (Winding/WindingNumber.h)
+  PseudoNormal   // (x - c) . n < 0, n the angle-weighted pseudonormal of the closest feature
+};
+
+/// One model, prepared for queries and kept between frames: its triangles, their box
+/// hierarchy, and what the inside rule needs (the winding number's hierarchy, or the
+/// pseudonormals and the edges they are summed over).
+class ProximityModel
+{
+public:
+  ProximityModel();
+  ~ProximityModel();
+  ProximityModel(const ProximityModel&) = delete;
+  ProximityModel& operator=(const ProximityModel&) = delete;
+
+  /// Takes `mesh`'s triangles. When they and the number of points are those of the
+  /// previous Load with the same rule (a deforming mesh), the topology is kept (the
+  /// hierarchy's order, refitted to the new coordinates; the edges) and only what
+  /// depends on the coordinates is recomputed. False with `error` (naming the model by
+  /// `name`) when the mesh has no triangle, a triangle uses a point that does not
+  /// exist, or a point has a coordinate that is not finite.
+  bool Load(const MeshInput& mesh, const char* name, InsideRule rule, std::string& error);
+
+  /// Whether the last Load kept the previous topology.
+  bool ReusedTopology() const;
+  int64_t NumberOfPoints() const;
+  int64_t NumberOfTriangles() const;
+
+  struct Data;
+  const Data& Get() const { return *this->D; }
+
+private:
+  std::unique_ptr<Data> D;
+};
+
+struct ProximityRequest
+{
+  InsideRule Rule = InsideRule::WindingNumber;
+  /// The interaction region: the overlap of the models' bounding boxes, each grown by
+  /// ContactMargin (>= 0) on every side.
+  double ContactMargin = 0;
+  /// The face samples' step h: Step when > 0, else the region's longest side over
+  /// Resolution (the union of the boxes when the region is empty).
+  double Step = 0;
+  int Resolution = 64;
+  /// List every sample inside the other model (ProximityReport's Contacts), not only the
+  /// deepest.
+  bool Contacts = true;
+  /// The most face samples a query may take (a step far below the triangles' size
+  /// otherwise asks for billions): more is an error, not a slow run.
+  int64_t MaximumSamples = 50000000;
+};
+
+/// A point of one model inside the other.
+struct ContactSample
+{
+  std::array<double, 3> Point, Normal; // Normal: the unit direction to the closest point
+  double Depth;                        // the exact distance to the other model
+  int64_t Triangle;                    // its triangle in its own model
+  int64_t Vertex;                      // its point id when it is a vertex, else -1
+};
+
+/// One model's penetration into the other.
+struct PenetrationSide
+{
+  double Depth = 0; // the largest distance to the other over the samples inside it
+  std::array<double, 3> Deepest{ { 0, 0, 0 } }, ClosestOnOther{ { 0, 0, 0 } };
+  std::array<double, 3> Normal{ { 0, 0, 0 } }; // from Deepest to ClosestOnOther, unit
+  int64_t TriangleOfOther = -1;                // -1 when no sample is inside
+  int64_t Samples = 0, SamplesInside = 0;      // in the region, vertices included
+  std::vector<ContactSample> Contacts;         // vertices first, then by triangle
+};
+
+struct ProximityReport
+{
+  /// Colliding, the contact pair, and (apart) the separation with its closest points.
+  ProximityResult Contact;
+  std::array<double, 6> Region{ { 0, -1, 0, -1, 0, -1 } }; // empty when Min > Max
+  double Step = 0;
+  PenetrationSide AInB, BInA;
+  /// Each point's signed distance to the other model (negative inside it).
+  std::vector<double> DistanceA, DistanceB;
+  /// Exact point-to-model distances evaluated (the fields' samples that were read).
+  int64_t PointQueries = 0;
+};
+
+/// One frame's query between prepared models a and b. Runs its loops with
+/// `execution.For` when set; the report does not depend on the number of threads. False
+/// with `error` when the request is invalid (margin, step, resolution) or the samples
+/// would exceed MaximumSamples, or when `execution` asks to abort.
+bool ComputeProximity(const ProximityModel& a,
+  const ProximityModel& b,
+  const ProximityRequest& request,
+  ProximityReport& report,
+  const Execution& execution,
+  std::string& error);
+} // namespace vtkdf
+
+#endif

@@ -1,0 +1,316 @@
+#include "vtkDistanceFieldProximity.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDemandDrivenPipeline.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "Proximity/ProximityQuery.h"
+#include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldMeshInput.h"
+
+#include <chrono>
+#include <cmath>
+
+vtkStandardNewMacro(vtkDistanceFieldProximity);
+
+vtkDistanceFieldProximity::vtkDistanceFieldProximity()
+  : ModelA(new vtkdf::ProximityModel)
+  , ModelB(new vtkdf::ProximityModel)
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(4);
+}
+
+vtkDistanceFieldProximity::~vtkDistanceFieldProximity() = default;
+
+int vtkDistanceFieldProximity::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+vtkTypeBool vtkDistanceFieldProximity::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  return vtkdf::ProcessRequestOrEmpty(
+    this,
+    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()),
+    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); },
+    [this](unsigned long code) { this->SetErrorCode(code); });
+}
+
+bool vtkDistanceFieldProximity::CheckProperties()
+{
+  if (this->SignMode != PSEUDO_NORMAL && this->SignMode != WINDING_NUMBER)
+  {
+    vtkErrorMacro(
+      "SignMode must be 1 (PseudoNormal) or 2 (WindingNumber); it is " << this->SignMode << ".");
+    return false;
+  }
+  if (this->Resolution < 1 || this->Resolution > 65536)
+  {
+    vtkErrorMacro("Resolution must be 1 to 65536; it is " << this->Resolution << ".");
+    return false;
+  }
+  if (!(this->Spacing >= 0) || !std::isfinite(this->Spacing))
+  {
+    vtkErrorMacro(
+      "Spacing must be finite and at least 0 (0: from Resolution); it is " << this->Spacing << ".");
+    return false;
+  }
+  if (!(this->ContactMargin >= 0) || !std::isfinite(this->ContactMargin))
+  {
+    vtkErrorMacro(
+      "ContactMargin must be finite and at least 0; it is " << this->ContactMargin << ".");
+    return false;
+  }
+  if (this->MaximumSamples < 1)
+  {
+    vtkErrorMacro("MaximumSamples must be at least 1; it is " << this->MaximumSamples << ".");
+    return false;
+  }
+  return true;
+}
+
+int vtkDistanceFieldProximity::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector*)
+{
+  return this->CheckProperties() ? 1 : 0;
+}
+
+int vtkDistanceFieldProximity::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  for (int port = 0; port < 2; ++port)
+  {
+    if (vtkInformation* in = inputVector[port]->GetInformationObject(0))
+    {
+      vtkdf::RequestWholeInput(in);
+    }
+  }
+  return 1;
+}
+
+bool vtkDistanceFieldProximity::LoadModel(vtkPolyData* input,
+  int port,
+  vtkdf::ProximityModel& model)
+{
+  const char* name = port == 0 ? "A" : "B";
+  std::string error;
+  double bounds[6];
+  vtkdf::MeshInput mesh;
+  vtkdf::MeshCopyReport report;
+  // The queries run in world coordinates: the identity frame.
+  if (!input || !vtkdf::UsedPointBounds(input, bounds, error) ||
+    !vtkdf::CopyMesh(input, bounds, vtkdf::GridFrame(), mesh, report, error))
+  {
+    vtkErrorMacro("Model " << name << " (input " << port
+                           << "): " << (input ? error : std::string("no input")) << ".");
+    return false;
+  }
+  const std::string warning = report.Warnings();
+  if (!warning.empty())
+  {
+    vtkWarningMacro("Model " << name << " (input " << port << "): " << warning);
+  }
+  const auto rule = this->SignMode == PSEUDO_NORMAL ? vtkdf::InsideRule::PseudoNormal
+                                                    : vtkdf::InsideRule::WindingNumber;
+  if (!model.Load(mesh, name, rule, error))
+  {
+    vtkErrorMacro("Model " << name << " (input " << port << "): " << error << ".");
+    return false;
+  }
+  return true;
+}
+
+int vtkDistanceFieldProximity::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkPolyData* a = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* b = vtkPolyData::GetData(inputVector[1]);
+  if (!this->CheckProperties() || !this->LoadModel(a, 0, *this->ModelA) ||
+    !this->LoadModel(b, 1, *this->ModelB))
+  {
+    return 0;
+  }
+  this->UpdateProgress(0.05);
+
+  vtkdf::ProximityRequest request;
+  request.Rule = this->SignMode == PSEUDO_NORMAL ? vtkdf::InsideRule::PseudoNormal
+                                                 : vtkdf::InsideRule::WindingNumber;
+  request.ContactMargin = this->ContactMargin;
+  request.Step = this->Spacing;
+  request.Resolution = this->Resolution;
+  request.Contacts = this->ContactPoints;
+  request.MaximumSamples = this->MaximumSamples;
+  vtkdf::Execution execution;
+  execution.For = vtkdf::SMPFor;
+  execution.Progress = [this](double fraction)
+  {
+    this->UpdateProgress(0.05 + 0.9 * fraction);
+    return !this->GetAbortExecute();
+  };
+  vtkdf::ProximityReport report;
+  std::string error;
+  if (!vtkdf::ComputeProximity(*this->ModelA, *this->ModelB, request, report, execution, error))
+  {
+    vtkErrorMacro(<< (error == "aborted" ? std::string("Aborted") : "No answer: " + error) << ".");
+    return 0;
+  }
+
+  this->LastColliding = report.Contact.Colliding;
+  this->LastSeparationDistance = report.Contact.Separation;
+  this->LastPenetrationAB = report.AInB.Depth;
+  this->LastPenetrationBA = report.BInA.Depth;
+  this->LastStep = report.Step;
+  this->LastPointQueries = report.PointQueries;
+  this->LastReusedTopology =
+    (this->ModelA->ReusedTopology() ? 1 : 0) | (this->ModelB->ReusedTopology() ? 2 : 0);
+
+  vtkPolyData* copies[2] = { vtkPolyData::GetData(outputVector, 2),
+    vtkPolyData::GetData(outputVector, 3) };
+  const std::vector<double>* distances[2] = { &report.DistanceA, &report.DistanceB };
+  vtkPolyData* inputs[2] = { a, b };
+  for (int m = 0; m < 2; ++m)
+  {
+    copies[m]->ShallowCopy(inputs[m]);
+    vtkNew<vtkDoubleArray> distance;
+    distance->SetName("DistanceToOther");
+    distance->SetNumberOfValues(static_cast<vtkIdType>(distances[m]->size()));
+    std::copy(distances[m]->begin(), distances[m]->end(), distance->GetPointer(0));
+    copies[m]->GetPointData()->AddArray(distance);
+  }
+  this->WriteContacts(report, vtkPolyData::GetData(outputVector, 1));
+  this->LastSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  this->WriteAnswers(report, vtkPolyData::GetData(outputVector, 0));
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkDistanceFieldProximity::WriteAnswers(const vtkdf::ProximityReport& report,
+  vtkPolyData* output) const
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> lines;
+  vtkNew<vtkIntArray> witness;
+  witness->SetName("Witness");
+  auto line = [&](const std::array<double, 3>& from, const std::array<double, 3>& to, int kind)
+  {
+    const vtkIdType ids[2] = { points->InsertNextPoint(from.data()),
+      points->InsertNextPoint(to.data()) };
+    lines->InsertNextCell(2, ids);
+    witness->InsertNextValue(kind);
+  };
+  const vtkdf::ProximityResult& contact = report.Contact;
+  if (!contact.Colliding && contact.ClosestTriangleA >= 0)
+  {
+    line(contact.ClosestA, contact.ClosestB, 0);
+  }
+  if (report.AInB.TriangleOfOther >= 0)
+  {
+    line(report.AInB.Deepest, report.AInB.ClosestOnOther, 1);
+  }
+  if (report.BInA.TriangleOfOther >= 0)
+  {
+    line(report.BInA.Deepest, report.BInA.ClosestOnOther, 2);
+  }
+  output->SetPoints(points);
+  output->SetLines(lines);
+  output->GetCellData()->AddArray(witness);
+
+  vtkFieldData* fields = output->GetFieldData();
+  auto tuple = [&](const char* name, const double* values, int components)
+  {
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(name);
+    array->SetNumberOfComponents(components);
+    array->InsertNextTuple(values);
+    fields->AddArray(array);
+  };
+  auto scalar = [&](const char* name, double value) { tuple(name, &value, 1); };
+  vtkNew<vtkUnsignedCharArray> colliding;
+  colliding->SetName("Colliding");
+  colliding->InsertNextValue(contact.Colliding ? 1 : 0);
+  fields->AddArray(colliding);
+  scalar("SeparationDistance", contact.Colliding ? 0 : contact.Separation);
+  scalar("MaximumPenetrationAB", report.AInB.Depth);
+  scalar("MaximumPenetrationBA", report.BInA.Depth);
+  tuple("DeepestPointAB", report.AInB.Deepest.data(), 3);
+  tuple("ContactNormalAB", report.AInB.Normal.data(), 3);
+  tuple("DeepestPointBA", report.BInA.Deepest.data(), 3);
+  tuple("ContactNormalBA", report.BInA.Normal.data(), 3);
+  scalar("Step", report.Step);
+  tuple("InteractionRegion", report.Region.data(), 6);
+  scalar("PointQueries", static_cast<double>(report.PointQueries));
+  scalar("ReusedTopology", this->LastReusedTopology);
+  scalar("FrameSeconds", this->LastSeconds);
+}
+
+void vtkDistanceFieldProximity::WriteContacts(const vtkdf::ProximityReport& report,
+  vtkPolyData* output) const
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> vertices;
+  vtkNew<vtkDoubleArray> depth;
+  depth->SetName("Depth");
+  vtkNew<vtkDoubleArray> normal;
+  normal->SetName("Normal");
+  normal->SetNumberOfComponents(3);
+  vtkNew<vtkIntArray> model;
+  model->SetName("Model");
+  const vtkdf::PenetrationSide* sides[2] = { &report.AInB, &report.BInA };
+  for (int m = 0; m < 2; ++m)
+  {
+    for (const vtkdf::ContactSample& sample : sides[m]->Contacts)
+    {
+      const vtkIdType id = points->InsertNextPoint(sample.Point.data());
+      vertices->InsertNextCell(1, &id);
+      depth->InsertNextValue(sample.Depth);
+      normal->InsertNextTuple(sample.Normal.data());
+      model->InsertNextValue(m);
+    }
+  }
+  output->SetPoints(points);
+  output->SetVerts(vertices);
+  output->GetPointData()->AddArray(depth);
+  output->GetPointData()->AddArray(normal);
+  output->GetPointData()->AddArray(model);
+}
+
+void vtkDistanceFieldProximity::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SignMode: " << this->SignMode << "\n";
+  os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "Spacing: " << this->Spacing << "\n";
+  os << indent << "ContactMargin: " << this->ContactMargin << "\n";
+  os << indent << "ContactPoints: " << this->ContactPoints << "\n";
+  os << indent << "MaximumSamples: " << this->MaximumSamples << "\n";
+  os << indent << "LastColliding: " << this->LastColliding << "\n";
+  os << indent << "LastSeparationDistance: " << this->LastSeparationDistance << "\n";
+  os << indent << "LastPenetrationAB: " << this->LastPenetrationAB << "\n";
+  os << indent << "LastPenetrationBA: " << this->LastPenetrationBA << "\n";
+  os << indent << "LastStep: " << this->LastStep << "\n";
+  os << indent << "LastPointQueries: " << this->LastPointQueries << "\n";
+  os << indent << "LastReusedTopology: " << this->LastReusedTopology << "\n";
+  os << indent << "LastSeconds: " << this->LastSeconds << "\n";
+}
