@@ -30,8 +30,14 @@ struct ProximityModel::Data
   std::vector<size_t> Canonical;
   std::vector<Point3> FaceNormals, VertexNormals, EdgeNormals;
   double Outward = 1;
+  // Whether the triangles, on the merged points, make a closed chain: every edge used as
+  // often in one direction as in the other, and no triangle repeated with the same
+  // orientation (the winding number counts those once). Then w is an integer off the
+  // surface and constant on any ball that the surface does not meet.
+  bool Closed = false;
 
   bool MergePoints();
+  bool IsClosedChain() const;
   void BuildEdges();
   void ComputeNormals();
   bool Inside(const double x[3], const double closest[3], int64_t triangle, double d2) const;
@@ -74,6 +80,44 @@ bool ProximityModel::Data::MergePoints()
   const bool changed = canonical != this->Canonical;
   this->Canonical.swap(canonical);
   return changed;
+}
+
+bool ProximityModel::Data::IsClosedChain() const
+{
+  std::vector<std::array<size_t, 3>> oriented;
+  std::vector<std::pair<size_t, size_t>> sides;
+  oriented.reserve(this->Model.Triangles.size());
+  sides.reserve(3 * this->Model.Triangles.size());
+  for (const auto& corners : this->Model.Triangles)
+  {
+    std::array<size_t, 3> t{
+      { this->Canonical[corners[0]], this->Canonical[corners[1]], this->Canonical[corners[2]] }
+    };
+    for (int c = 0; c < 3; ++c)
+    {
+      if (t[c] != t[(c + 1) % 3])
+      {
+        sides.emplace_back(t[c], t[(c + 1) % 3]);
+      }
+    }
+    // The same cyclic order starts at its least corner.
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    oriented.push_back(t);
+  }
+  std::sort(oriented.begin(), oriented.end());
+  if (std::adjacent_find(oriented.begin(), oriented.end()) != oriented.end())
+  {
+    return false;
+  }
+  // Balanced edges: the sorted sides equal the sorted reversed sides.
+  std::vector<std::pair<size_t, size_t>> reversed(sides.size());
+  std::transform(sides.begin(),
+    sides.end(),
+    reversed.begin(),
+    [](const std::pair<size_t, size_t>& e) { return std::make_pair(e.second, e.first); });
+  std::sort(sides.begin(), sides.end());
+  std::sort(reversed.begin(), reversed.end());
+  return sides == reversed;
 }
 
 void ProximityModel::Data::BuildEdges()
@@ -254,10 +298,14 @@ bool ProximityModel::Load(const MeshInput& mesh,
       }
     }
   }
-  // The edges follow the merged points, which the coordinates may change.
-  if (rule == InsideRule::PseudoNormal && (d.MergePoints() || !same))
+  // The edges and the chain follow the merged points, which the coordinates may change.
+  if (d.MergePoints() || !same)
   {
-    d.BuildEdges();
+    d.Closed = d.IsClosedChain();
+    if (rule == InsideRule::PseudoNormal)
+    {
+      d.BuildEdges();
+    }
   }
   d.Bounds = d.Tree->Nodes()[0].Bounds.Min[0] <= d.Tree->Nodes()[0].Bounds.Max[0]
     ? std::array<double, 6>{ { d.Tree->Nodes()[0].Bounds.Min[0],
@@ -291,13 +339,47 @@ struct PointQuery
   bool Inside = false;
 
   PointQuery() = default;
-  /// `knownInside`: the winding number already said so.
-  PointQuery(const ProximityModel::Data& m, const double x[3], bool knownInside = false)
+  /// The nearest triangle, from `hint`'s distance when it is a triangle's index.
+  PointQuery(const ProximityModel::Data& m, const double x[3], int64_t hint)
+    : Triangle(hint)
   {
     this->D2 = NearestTriangle(m.Model, *m.Tree, x, this->Closest, this->Triangle);
-    this->Inside = knownInside || m.Inside(x, this->Closest, this->Triangle, this->D2);
+  }
+  /// With whether x is inside m by m's rule.
+  PointQuery(const ProximityModel::Data& m, const double x[3])
+    : PointQuery(m, x, -1)
+  {
+    this->Inside = m.Inside(x, this->Closest, this->Triangle, this->D2);
   }
 };
+
+/// A point whose side of the other model is known, with its exact squared distance to it
+/// (0 when not computed).
+struct KnownPoint
+{
+  const double* X;
+  double D2;
+  bool Inside;
+  int64_t Triangle;
+};
+
+/// The side of x from a known point y that a ball free of the surface joins to it: one
+/// centred at y of radius d_y, or at x of radius d_x (`d2x`, 0 when not known), with a
+/// margin far above the roundings of the squared distances.
+const KnownPoint* SameSide(const std::vector<KnownPoint>& known, const double x[3], double d2x)
+{
+  const double shrink = 1 - 1e-9;
+  for (auto it = known.rbegin(); it != known.rend(); ++it)
+  {
+    const double gap2 = (x[0] - it->X[0]) * (x[0] - it->X[0]) +
+      (x[1] - it->X[1]) * (x[1] - it->X[1]) + (x[2] - it->X[2]) * (x[2] - it->X[2]);
+    if (gap2 < shrink * std::max(it->D2, d2x))
+    {
+      return &*it;
+    }
+  }
+  return nullptr;
+}
 
 bool InRegion(const std::array<double, 6>& region, const double x[3])
 {
@@ -413,6 +495,9 @@ void PointDistances(const ProximityModel::Data& self,
     });
 }
 
+/// How many of the samples evaluated last in a triangle stay known points.
+constexpr size_t RecentSamples = 4;
+
 /// The penetration of `self` into `other`: its vertices (from their queries) and face
 /// samples in `region` inside `other`.
 void Penetrate(const ProximityModel::Data& self,
@@ -423,7 +508,8 @@ void Penetrate(const ProximityModel::Data& self,
   bool keepContacts,
   const Execution& execution,
   PenetrationSide& side,
-  int64_t& queries)
+  int64_t& queries,
+  int64_t& windings)
 {
   side = PenetrationSide();
   for (size_t i = 0; i < self.Model.Points.size(); ++i)
@@ -453,11 +539,17 @@ void Penetrate(const ProximityModel::Data& self,
   const int64_t blocks = (triangles + blockSize - 1) / blockSize;
   std::vector<PenetrationSide> parts(static_cast<size_t>(blocks));
   std::vector<int64_t> partQueries(static_cast<size_t>(blocks), 0);
+  std::vector<int64_t> partWinding(static_cast<size_t>(blocks), 0);
+  const bool chain = other.Rule == InsideRule::WindingNumber && other.Closed;
   RunFor(execution,
     blocks,
     1,
     [&](int64_t first, int64_t last)
     {
+      std::vector<KnownPoint> known;
+      known.reserve(3 + RecentSamples);
+      std::array<std::array<double, 3>, RecentSamples> recent;
+      size_t recentNext = 0;
       for (int64_t block = first; block < last; ++block)
       {
         PenetrationSide& part = parts[static_cast<size_t>(block)];
@@ -471,6 +563,15 @@ void Penetrate(const ProximityModel::Data& self,
           double p[9];
           self.Model.Corners(static_cast<size_t>(t), p);
           const int64_t n = Divisions(p, step);
+          // The corners are known points; the samples evaluated last join them.
+          known.clear();
+          for (const size_t id : self.Model.Triangles[static_cast<size_t>(t)])
+          {
+            const PointQuery& corner = vertexQueries[id];
+            known.push_back(
+              { self.Model.Points[id].data(), corner.D2, corner.Inside, corner.Triangle });
+          }
+          int64_t hint = known[0].Triangle;
           for (int64_t i = 0; i <= n; ++i)
           {
             for (int64_t j = 0; i + j <= n; ++j)
@@ -488,14 +589,54 @@ void Penetrate(const ProximityModel::Data& self,
                 continue;
               }
               ++part.Samples;
-              // The winding number decides before the distance is needed.
-              const bool winding = other.Rule == InsideRule::WindingNumber;
-              if (winding && !other.Winding.Inside(x))
+              PointQuery query;
+              if (chain)
               {
-                continue;
+                // A closed chain: the side from a known point joined by a ball free of
+                // the surface, else the winding number; the distance only when needed.
+                const KnownPoint* same = SameSide(known, x, 0);
+                if (same && !same->Inside)
+                {
+                  continue;
+                }
+                query = PointQuery(other, x, known.back().Triangle);
+                ++partQueries[static_cast<size_t>(block)];
+                same = same ? same : SameSide(known, x, query.D2);
+                if (same)
+                {
+                  query.Inside = same->Inside;
+                }
+                else
+                {
+                  query.Inside = other.Winding.Inside(x);
+                  ++partWinding[static_cast<size_t>(block)];
+                }
+                if (known.size() == 3 + RecentSamples)
+                {
+                  known.erase(known.begin() + 3); // the corners stay
+                }
+                known.push_back({ nullptr, query.D2, query.Inside, query.Triangle });
+                std::copy(x, x + 3, recent[recentNext].data());
+                known.back().X = recent[recentNext].data();
+                recentNext = (recentNext + 1) % recent.size();
               }
-              ++partQueries[static_cast<size_t>(block)];
-              const PointQuery query(other, x, winding);
+              else
+              {
+                // The winding number decides before the distance is needed.
+                const bool winding = other.Rule == InsideRule::WindingNumber;
+                if (winding)
+                {
+                  ++partWinding[static_cast<size_t>(block)];
+                  if (!other.Winding.Inside(x))
+                  {
+                    continue;
+                  }
+                }
+                query = PointQuery(other, x, hint);
+                ++partQueries[static_cast<size_t>(block)];
+                hint = query.Triangle;
+                query.Inside = winding || other.Inside(x, query.Closest, query.Triangle, query.D2);
+              }
               if (!query.Inside)
               {
                 continue;
@@ -518,6 +659,7 @@ void Penetrate(const ProximityModel::Data& self,
     side.Samples += part.Samples;
     side.SamplesInside += part.SamplesInside;
     queries += partQueries[block];
+    windings += partWinding[block];
     if (part.TriangleOfOther >= 0 && (part.Depth > side.Depth || side.TriangleOfOther < 0))
     {
       side.Depth = part.Depth;
@@ -675,7 +817,8 @@ bool ComputeProximity(const ProximityModel& modelA,
       request.Contacts,
       execution,
       report.AInB,
-      report.PointQueries);
+      report.PointQueries,
+      report.InsideEvaluations);
     if (!execution.Report(0.6))
     {
       error = "aborted";
@@ -689,7 +832,8 @@ bool ComputeProximity(const ProximityModel& modelA,
       request.Contacts,
       execution,
       report.BInA,
-      report.PointQueries);
+      report.PointQueries,
+      report.InsideEvaluations);
   }
   execution.EndStage("penetration");
   contact.AInsideB = report.AInB.SamplesInside > 0;

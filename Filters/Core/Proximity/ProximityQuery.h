@@ -121,8 +121,11 @@ struct ProximityReport
   PenetrationSide AInB, BInA;
   /// Each point's signed distance to the other model (negative inside it).
   std::vector<double> DistanceA, DistanceB;
-  /// Exact point-to-model distances evaluated (the fields' samples that were read).
-  int64_t PointQueries = 0;
+  /// Exact point-to-model distances evaluated (the fields' samples that were read), and
+  /// winding numbers evaluated for face samples. On a closed model the side of a sample
+  /// joined to a known point by a ball free of the surface (centred at either, of its
+  /// distance as radius) is that point's: most samples need neither.
+  int64_t PointQueries = 0, InsideEvaluations = 0;
 };
 
 /// One frame's query between prepared models a and b. Runs its loops with

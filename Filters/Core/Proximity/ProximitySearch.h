@@ -167,7 +167,9 @@ inline bool NearestPair(const TriangleModel& a,
   return found;
 }
 /// The nearest triangle of `model` to x: the squared distance, the closest point and the
-/// triangle, the nearer child first and nodes farther than the best pruned.
+/// triangle, the nearer child first and nodes farther than the best pruned. When
+/// `triangle` comes in as a triangle's index (a neighbour's nearest, say), the search
+/// starts from its distance: the answer is the same nearest distance, found sooner.
 inline double NearestTriangle(const TriangleModel& model,
   const TriangleBoxTree& tree,
   const double x[3],
@@ -176,11 +178,19 @@ inline double NearestTriangle(const TriangleModel& model,
 {
   const Box point{ { { x[0], x[1], x[2] } }, { { x[0], x[1], x[2] } } };
   double best = HUGE_VAL;
-  std::vector<int64_t> stack{ 0 };
-  while (!stack.empty())
+  if (triangle >= 0)
   {
-    const auto& node = tree.Nodes()[stack.back()];
-    stack.pop_back();
+    double c[9];
+    model.Corners(static_cast<size_t>(triangle), c);
+    best = SquaredDistanceToTriangle(x, c, c + 3, c + 6, closest);
+  }
+  // A median split halves every node: the depth stays below 64 for any count.
+  int64_t stack[130];
+  int depth = 0;
+  stack[depth++] = 0;
+  while (depth > 0)
+  {
+    const auto& node = tree.Nodes()[stack[--depth]];
     if (node.Bounds.SquaredDistance(point) > best)
     {
       continue;
@@ -205,8 +215,8 @@ inline double NearestTriangle(const TriangleModel& model,
     const double left = tree.Nodes()[node.Left].Bounds.SquaredDistance(point);
     const double right = tree.Nodes()[node.Right].Bounds.SquaredDistance(point);
     // The nearer child on top of the stack.
-    stack.push_back(left <= right ? node.Right : node.Left);
-    stack.push_back(left <= right ? node.Left : node.Right);
+    stack[depth++] = left <= right ? node.Right : node.Left;
+    stack[depth++] = left <= right ? node.Left : node.Right;
   }
   return best;
 }
