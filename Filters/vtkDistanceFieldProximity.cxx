@@ -18,6 +18,7 @@
 #include "Proximity/ProximityQuery.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldMeshInput.h"
+#include "vtkDistanceFieldPartitions.h"
 
 #include <chrono>
 #include <cmath>
@@ -144,8 +145,27 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
   const auto start = std::chrono::steady_clock::now();
   vtkPolyData* a = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* b = vtkPolyData::GetData(inputVector[1]);
-  if (!this->CheckProperties() || !this->LoadModel(a, 0, *this->ModelA) ||
-    !this->LoadModel(b, 1, *this->ModelB))
+  if (!this->CheckProperties())
+  {
+    return 0;
+  }
+  // A distributed run: every rank holds both models whole (collective), rank 0 answers.
+  vtkPolyData* inputs[2] = { a, b };
+  for (int port = 0; port < 2; ++port)
+  {
+    if (inputs[port] && !vtkdf::SameMeshOnEveryRank(inputs[port]))
+    {
+      vtkErrorMacro("Model " << (port == 0 ? "A" : "B") << " (input " << port
+                             << ") differs between the ranks of this distributed run (it was "
+                                "partitioned upstream): every rank needs both models whole.");
+      return 0;
+    }
+  }
+  if (!vtkdf::IsFirstRank())
+  {
+    return 1;
+  }
+  if (!this->LoadModel(a, 0, *this->ModelA) || !this->LoadModel(b, 1, *this->ModelB))
   {
     return 0;
   }
@@ -186,7 +206,6 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
   vtkPolyData* copies[2] = { vtkPolyData::GetData(outputVector, 2),
     vtkPolyData::GetData(outputVector, 3) };
   const std::vector<double>* distances[2] = { &report.DistanceA, &report.DistanceB };
-  vtkPolyData* inputs[2] = { a, b };
   for (int m = 0; m < 2; ++m)
   {
     copies[m]->ShallowCopy(inputs[m]);
@@ -197,9 +216,9 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
     copies[m]->GetPointData()->AddArray(distance);
   }
   this->WriteContacts(report, vtkPolyData::GetData(outputVector, 1));
+  this->WriteAnswers(report, vtkPolyData::GetData(outputVector, 0));
   this->LastSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  this->WriteAnswers(report, vtkPolyData::GetData(outputVector, 0));
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -261,7 +280,6 @@ void vtkDistanceFieldProximity::WriteAnswers(const vtkdf::ProximityReport& repor
   tuple("InteractionRegion", report.Region.data(), 6);
   scalar("PointQueries", static_cast<double>(report.PointQueries));
   scalar("ReusedTopology", this->LastReusedTopology);
-  scalar("FrameSeconds", this->LastSeconds);
 }
 
 void vtkDistanceFieldProximity::WriteContacts(const vtkdf::ProximityReport& report,

@@ -29,7 +29,8 @@
  *   point on B), and BA alike;
  * - `Step`, `InteractionRegion`, `PointQueries` (the exact distances evaluated),
  *   `ReusedTopology` (0: the first frame or new cells; 1: A and 2: B kept their
- *   topology), `FrameSeconds`.
+ *   topology, 3: both). The run's time is GetLastSeconds() (not in the output, which
+ *   depends on the inputs alone).
  * Output 1: the contacts, every sample of one model inside the other as a vertex with
  * point arrays `Depth`, `Normal` (the direction to the other's closest point) and
  * `Model` (0: a point of A inside B, 1: of B inside A).
@@ -47,8 +48,9 @@
  * maximum penetration of each surface into the other (the paper's estimate, which is not
  * a separating translation) and the contacts.
  *
- * The queries run on the CPU (vtkSMPTools). A failure leaves every output empty and a
- * non-zero GetErrorCode().
+ * The queries run on the CPU (vtkSMPTools). In a distributed run (ParaView's MPI
+ * engine) every rank must hold both models whole; rank 0 answers, the other ranks'
+ * outputs are empty. A failure leaves every output empty and a non-zero GetErrorCode().
  */
 #ifndef vtkDistanceFieldProximity_h
 #define vtkDistanceFieldProximity_h

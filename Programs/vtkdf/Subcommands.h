@@ -21,6 +21,8 @@ int Blend(int argc, char* argv[]);
 int Union(int argc, char* argv[]);
 /// vtkdf pd (vtkPenetrationDepth).
 int PenetrationDepth(int argc, char* argv[]);
+/// vtkdf proximity (vtkDistanceFieldProximity).
+int Proximity(int argc, char* argv[]);
 /// vtkdf render (vtkSegmentedDistanceVolumeMapper).
 int Render(int argc, char* argv[]);
 } // namespace vtkdfcli

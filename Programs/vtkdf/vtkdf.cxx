@@ -20,6 +20,9 @@
 //   vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls] [--backend ...]
 //         [--pixels N] [--uncertified] [--timing]
 //         (penetration depth; P, Q: convex pieces in the forms union takes)
+//   vtkdf proximity A B -o OUT.vtp [--contacts OUT.vtp] [--models A.vtp B.vtp]
+//         [--resolution N | --spacing H] [--margin M] [--sign winding|pseudonormal]
+//         [--no-contacts] [--backend auto|cpu] [--timing]
 //   vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H] ...
 //         (vtkSegmentedDistanceVolumeMapper; needs an X server)
 //
@@ -60,6 +63,7 @@ int main(int argc, char* argv[])
     { "blend", vtkdfcli::Blend },
     { "union", vtkdfcli::Union },
     { "pd", vtkdfcli::PenetrationDepth },
+    { "proximity", vtkdfcli::Proximity },
     { "render", vtkdfcli::Render } };
   for (const auto& entry : subcommands)
   {

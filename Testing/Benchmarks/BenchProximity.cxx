@@ -5,12 +5,17 @@
 // - FCL's mesh-mesh distance() (BVHModel<OBBRSS>, built each frame, and refitted), when
 //   the program was built with FCL (Debian's libfcl-dev): time and value when apart;
 // - VTK's vtkCollisionDetectionFilter (contacts between triangles only): time and
-//   whether it agrees on contact.
+//   whether it agrees on contact;
+// - vtkPenetrationDepth (the minimum separating translation of convex solids) on two
+//   boxes and on the bunnies' hulls, next to the maximum penetration.
 // Prints figures; asserts nothing.
 // Usage: BenchProximity MESH_DIR [FRAMES] [RESOLUTIONS, e.g. 128,256]
 #include "vtkDistanceFieldProximity.h"
+#include "vtkPenetrationDepth.h"
 
+#include "vtkCleanPolyData.h"
 #include "vtkCollisionDetectionFilter.h"
+#include "vtkCubeSource.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -35,14 +40,14 @@
 #include <cstdlib>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
 {
 double Now()
 {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-    .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 /// The mesh's triangles scaled into a unit box centred at the origin.
@@ -65,13 +70,15 @@ vtkSmartPointer<vtkPolyData> ReadUnit(const std::string& path)
     double x[3];
     mesh->GetPoint(i, x);
     points->InsertNextPoint((x[0] - 0.5 * (b[0] + b[1])) / size,
-      (x[1] - 0.5 * (b[2] + b[3])) / size, (x[2] - 0.5 * (b[4] + b[5])) / size);
+      (x[1] - 0.5 * (b[2] + b[3])) / size,
+      (x[2] - 0.5 * (b[4] + b[5])) / size);
   }
   mesh->SetPoints(points);
   return mesh;
 }
 
-/// Frame f of 100: A waves in place; B, turned half a turn and breathing, swings along x
+/// Frame f of 100: A waves in place; B, turned half a turn about the vertical (y) and
+/// breathing, swings along x
 /// from 1.2 (apart) to -0.3 (deep inside A) and back, twice.
 void Pose(vtkPolyData* rest, int f, vtkPolyData* a, vtkPolyData* b)
 {
@@ -86,7 +93,7 @@ void Pose(vtkPolyData* rest, int f, vtkPolyData* a, vtkPolyData* b)
     double x[3];
     rest->GetPoint(i, x);
     pa->InsertNextPoint(x[0] + 0.04 * std::sin(6 * x[1] + 0.2 * f), x[1], x[2]);
-    pb->InsertNextPoint(-x[0] * breath + centre, -x[1] * breath + 0.05, x[2] * breath);
+    pb->InsertNextPoint(-x[0] * breath + centre, x[1] * breath + 0.05, -x[2] * breath);
   }
   a->ShallowCopy(rest);
   a->SetPoints(pa);
@@ -141,8 +148,10 @@ int main(int argc, char* argv[])
   }
   auto rest = ReadUnit(std::string(argv[1]) + "/bunny_small.vtp");
   std::printf("two bunny_small (%lld triangles each), %d frames, %d threads (%s)\n",
-    static_cast<long long>(rest->GetNumberOfCells()), frames,
-    vtkSMPTools::GetEstimatedNumberOfThreads(), vtkSMPTools::GetBackend());
+    static_cast<long long>(rest->GetNumberOfCells()),
+    frames,
+    vtkSMPTools::GetEstimatedNumberOfThreads(),
+    vtkSMPTools::GetBackend());
 
   std::vector<double> separation(frames, 0);
   std::vector<int> colliding(frames, 0);
@@ -184,12 +193,16 @@ int main(int argc, char* argv[])
       }
       std::printf("resolution %4d contacts %-3s  per frame: mean %.1f ms, max %.1f ms%s  "
                   "exact point queries %.0f, contact samples %.0f  colliding in %d frames\n",
-        resolution, contacts ? "on" : "off", 1e3 * total / frames, 1e3 * worst,
-        contacts ? (" (a fresh filter each frame: " + std::to_string(1e3 * fresh / frames) +
-                     " ms)")
+        resolution,
+        contacts ? "on" : "off",
+        1e3 * total / frames,
+        1e3 * worst,
+        contacts ? (" (a fresh filter each frame: " + std::to_string(1e3 * fresh / frames) + " ms)")
                      .c_str()
                  : "",
-        queries / frames, inside / frames, touching);
+        queries / frames,
+        inside / frames,
+        touching);
     }
   }
 
@@ -217,7 +230,59 @@ int main(int argc, char* argv[])
     }
     std::printf("vtkCollisionDetectionFilter (first contact): mean %.1f ms a frame, contact "
                 "in %d frames, agrees with Colliding in %d of %d (it has no containment)\n",
-      1e3 * total / frames, contactsFrames, agree, frames);
+      1e3 * total / frames,
+      contactsFrames,
+      agree,
+      frames);
+  }
+  // vtkPenetrationDepth on the same pairs: the minimum separating translation of convex
+  // solids (the bunnies through their hulls), next to the maximum penetration here.
+  {
+    auto box = [](double x0)
+    {
+      vtkNew<vtkCubeSource> cube;
+      cube->SetBounds(x0, x0 + 1, 0.2, 0.8, 0.2, 0.8);
+      vtkNew<vtkCleanPolyData> clean;
+      clean->SetInputConnection(cube->GetOutputPort());
+      vtkNew<vtkTriangleFilter> triangles;
+      triangles->SetInputConnection(clean->GetOutputPort());
+      triangles->Update();
+      auto mesh = vtkSmartPointer<vtkPolyData>::New();
+      mesh->DeepCopy(triangles->GetOutput());
+      return mesh;
+    };
+    vtkNew<vtkPolyData> a, b;
+    Pose(rest, 25, a, b);
+    const std::pair<vtkSmartPointer<vtkPolyData>, vtkSmartPointer<vtkPolyData>> pairs[2] = {
+      { box(0), box(0.7) }, { a.Get(), b.Get() }
+    };
+    const char* names[2] = { "boxes overlapping by 0.3", "bunnies, frame 25 (PD of hulls)" };
+    for (int k = 0; k < 2; ++k)
+    {
+      vtkNew<vtkDistanceFieldProximity> proximity;
+      proximity->SetResolution(128);
+      proximity->SetModelAData(pairs[k].first);
+      proximity->SetModelBData(pairs[k].second);
+      double t0 = Now();
+      proximity->Update();
+      const double proximitySeconds = Now() - t0;
+      vtkNew<vtkPenetrationDepth> depth;
+      depth->SetSolidPData(pairs[k].first);
+      depth->SetSolidQData(pairs[k].second);
+      depth->SetBackendToCPU();
+      depth->SetUseConvexHulls(k == 1);
+      t0 = Now();
+      depth->Update();
+      const double depthSeconds = Now() - t0;
+      std::printf("%s: proximity (128) max penetration AB %.6f BA %.6f in %.1f ms; "
+                  "vtkPenetrationDepth %.6f in %.1f ms\n",
+        names[k],
+        proximity->GetLastPenetrationAB(),
+        proximity->GetLastPenetrationBA(),
+        1e3 * proximitySeconds,
+        depth->GetLastPenetrationDepth(),
+        1e3 * depthSeconds);
+    }
   }
 #ifdef DF_HAVE_FCL
   {
@@ -241,14 +306,17 @@ int main(int argc, char* argv[])
       if (!colliding[f])
       {
         ++apart;
-        worst = std::max(worst, std::fabs(result.min_distance - separation[f]) /
-            std::max(1e-300, separation[f]));
+        worst = std::max(
+          worst, std::fabs(result.min_distance - separation[f]) / std::max(1e-300, separation[f]));
       }
     }
     std::printf("FCL distance (BVHModel<OBBRSS> built each frame): build %.1f ms + query %.1f ms "
                 "a frame; on the %d frames apart its distance differs from "
                 "SeparationDistance by at most %.3g relative\n",
-      1e3 * build / frames, 1e3 * query / frames, apart, worst);
+      1e3 * build / frames,
+      1e3 * query / frames,
+      apart,
+      worst);
   }
 #else
   std::printf("FCL: not built in (install libfcl-dev and reconfigure)\n");

@@ -12,6 +12,7 @@
 //   interaction region inside the other (exact winding number), at its distance to every
 //   triangle, within 1e-3 step; the contact normal within 1 degree of the direction to the
 //   closest point;
+// - without the contacts' list (ContactPoints off), the same answers and deepest points;
 // - a deforming sequence through one filter equals a fresh filter on every frame, with
 //   the topology reused after the first;
 // - bad input (an empty model, a NaN coordinate, too many samples) is refused with a
@@ -669,6 +670,31 @@ double Compare(const char* name, vtkPolyData* a, vtkPolyData* b, int resolution,
   };
   normal("ContactNormalAB", r.NormalAB, r.DepthAB);
   normal("ContactNormalBA", r.NormalBA, r.DepthBA);
+  // Without the contacts' list (fewer exact distances), the same answers.
+  {
+    vtkNew<vtkDistanceFieldProximity> lean;
+    Configure(lean, resolution);
+    lean->SetContactMargin(margin);
+    lean->SetContactPoints(false);
+    lean->SetModelAData(a);
+    lean->SetModelBData(b);
+    lean->Update();
+    for (const char* array :
+      { "Colliding", "SeparationDistance", "MaximumPenetrationAB", "MaximumPenetrationBA" })
+    {
+      Check(Field(lean->GetOutput(0), array) == Field(out, array),
+        std::string(name) + ": " + array + " without the contacts");
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      Check(Field(lean->GetOutput(0), "DeepestPointAB", k) == Field(out, "DeepestPointAB", k) &&
+          Field(lean->GetOutput(0), "DeepestPointBA", k) == Field(out, "DeepestPointBA", k),
+        std::string(name) + ": the deepest points without the contacts");
+    }
+    Check(lean->GetOutput(1)->GetNumberOfPoints() == 0, std::string(name) + ": no contact listed");
+    Check(lean->GetLastPointQueries() <= f->GetLastPointQueries(),
+      std::string(name) + ": no more exact distances without the contacts");
+  }
   // The contacts: every sample inside the other, with its depth; the deepest among them.
   vtkPolyData* contacts = f->GetOutput(1);
   Check(contacts->GetNumberOfPoints() == r.InsideAB + r.InsideBA, std::string(name) + ": contacts");

@@ -85,7 +85,11 @@ CASES = [
          inputs={"SolidP": "hubo_ankle_convex4.vtp", "SolidQ": "hubo_ankle_convex4.vtp"},
          properties=dict(Backend="CPU"),
          outputs={0: "vtp"}),
+    dict(name="proximity", filter="DistanceFieldProximity",
+         inputs={"Source": "bunny_small.vtp", "Target": "teapot.vtp"},
+         properties=dict(Resolution=48, SignMode="WindingNumber", ContactMargin=0.5),
+         outputs={0: "vtp", 1: "vtp", 2: "vtp", 3: "vtp"}),
 ]
 
 # The input port of each input property (the C++ classes take SetInputConnection(port)).
-INPUT_PORTS = {"Input": 0, "Target": 1, "Query": 1, "SolidP": 0, "SolidQ": 1}
+INPUT_PORTS = {"Input": 0, "Source": 0, "Target": 1, "Query": 1, "SolidP": 0, "SolidQ": 1}

@@ -572,6 +572,24 @@ void Penetrate(const ProximityModel::Data& self,
               { self.Model.Points[id].data(), corner.D2, corner.Inside, corner.Triangle });
           }
           int64_t hint = known[0].Triangle;
+          // Without the contacts' list only the deepest matters: an inside sample whose
+          // distance cannot exceed the deepest so far (by the triangle inequality from a
+          // known point, d(x) <= d(y) + |x - y|) needs no exact distance.
+          auto cannotDeepen = [&](const double x[3])
+          {
+            if (keepContacts || part.TriangleOfOther < 0)
+            {
+              return false;
+            }
+            double bound = HUGE_VAL;
+            for (const KnownPoint& y : known)
+            {
+              const double gap2 = (x[0] - y.X[0]) * (x[0] - y.X[0]) +
+                (x[1] - y.X[1]) * (x[1] - y.X[1]) + (x[2] - y.X[2]) * (x[2] - y.X[2]);
+              bound = std::min(bound, std::sqrt(y.D2) + std::sqrt(gap2));
+            }
+            return bound * (1 + 1e-12) <= part.Depth;
+          };
           for (int64_t i = 0; i <= n; ++i)
           {
             for (int64_t j = 0; i + j <= n; ++j)
@@ -597,6 +615,11 @@ void Penetrate(const ProximityModel::Data& self,
                 const KnownPoint* same = SameSide(known, x, 0);
                 if (same && !same->Inside)
                 {
+                  continue;
+                }
+                if (same && cannotDeepen(x))
+                {
+                  ++part.SamplesInside;
                   continue;
                 }
                 query = PointQuery(other, x, known.back().Triangle);
@@ -629,6 +652,11 @@ void Penetrate(const ProximityModel::Data& self,
                   ++partWinding[static_cast<size_t>(block)];
                   if (!other.Winding.Inside(x))
                   {
+                    continue;
+                  }
+                  if (cannotDeepen(x))
+                  {
+                    ++part.SamplesInside;
                     continue;
                   }
                 }

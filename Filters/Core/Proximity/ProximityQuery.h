@@ -85,7 +85,8 @@ struct ProximityRequest
   double Step = 0;
   int Resolution = 64;
   /// List every sample inside the other model (ProximityReport's Contacts), not only the
-  /// deepest.
+  /// deepest. Without the list, a sample that cannot be deeper than the deepest so far
+  /// (its distance bounded from a known point's) is counted inside without its distance.
   bool Contacts = true;
   /// The most face samples a query may take (a step far below the triangles' size
   /// otherwise asks for billions): more is an error, not a slow run.
