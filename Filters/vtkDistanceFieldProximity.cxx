@@ -8,6 +8,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -149,7 +150,11 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
   {
     return 0;
   }
-  // A distributed run: every rank holds both models whole (collective), rank 0 answers.
+  // A distributed run: every rank holds both models whole (collective); each takes its
+  // share of the face samples, and rank 0 puts the shares together and answers.
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  const int rank = controller ? controller->GetLocalProcessId() : 0;
   vtkPolyData* inputs[2] = { a, b };
   for (int port = 0; port < 2; ++port)
   {
@@ -160,10 +165,6 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
                                 "partitioned upstream): every rank needs both models whole.");
       return 0;
     }
-  }
-  if (!vtkdf::IsFirstRank())
-  {
-    return 1;
   }
   if (!this->LoadModel(a, 0, *this->ModelA) || !this->LoadModel(b, 1, *this->ModelB))
   {
@@ -179,12 +180,15 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
   request.Resolution = this->Resolution;
   request.Contacts = this->ContactPoints;
   request.MaximumSamples = this->MaximumSamples;
+  request.Share = rank;
+  request.Shares = ranks;
   vtkdf::Execution execution;
   execution.For = vtkdf::SMPFor;
-  execution.Progress = [this](double fraction)
+  execution.Progress = [this, ranks](double fraction)
   {
     this->UpdateProgress(0.05 + 0.9 * fraction);
-    return !this->GetAbortExecute();
+    // A rank that stopped alone would leave the others waiting in the gather.
+    return ranks > 1 || !this->GetAbortExecute();
   };
   vtkdf::ProximityReport report;
   std::string error;
@@ -192,6 +196,28 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
   {
     vtkErrorMacro(<< (error == "aborted" ? std::string("Aborted") : "No answer: " + error) << ".");
     return 0;
+  }
+  if (ranks > 1)
+  {
+    std::vector<double> mine = vtkdf::PackProximityShare(report);
+    vtkNew<vtkDoubleArray> send, received;
+    send->SetArray(mine.data(), static_cast<vtkIdType>(mine.size()), 1);
+    controller->GatherV(send, received, 0);
+    if (rank != 0)
+    {
+      return 1; // rank 0 answers for all
+    }
+    std::vector<vtkdf::ProximityReport> shares;
+    if (!vtkdf::UnpackProximityShares(received->GetPointer(0),
+          static_cast<size_t>(received->GetNumberOfValues()),
+          report,
+          shares) ||
+      shares.size() != static_cast<size_t>(ranks))
+    {
+      vtkErrorMacro("The ranks' shares of the answer could not be read back.");
+      return 0;
+    }
+    vtkdf::MergeProximityShares(shares, report);
   }
 
   this->LastColliding = report.Contact.Colliding;

@@ -49,8 +49,10 @@
  * a separating translation) and the contacts.
  *
  * The queries run on the CPU (vtkSMPTools). In a distributed run (ParaView's MPI
- * engine) every rank must hold both models whole; rank 0 answers, the other ranks'
- * outputs are empty. A failure leaves every output empty and a non-zero GetErrorCode().
+ * engine) every rank must hold both models whole; each rank takes its share of the face
+ * samples, and rank 0 gathers the shares and answers, equal bit for bit to one process;
+ * the other ranks' outputs are empty. A failure leaves every output empty and a non-zero
+ * GetErrorCode().
  */
 #ifndef vtkDistanceFieldProximity_h
 #define vtkDistanceFieldProximity_h

@@ -18,6 +18,7 @@
 #include "CoreTest.h"
 #include "ExactDistance.h"
 #include "Proximity/MeshProximity.h"
+#include "Proximity/ProximityQuery.h"
 #include "Segment/TriangleCrossings.h"
 #include "Winding/WindingNumber.h"
 
@@ -27,6 +28,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace vtkdf;
@@ -656,6 +658,80 @@ int main()
     const MeshInput a = Soup(random, 150, 0, 1);
     const double offset = 0.6 + 0.1 * trial;
     Compare(Named("soups, offset", offset), a, Soup(random, 150, offset, 1));
+  }
+
+  // A query split into shares (a distributed run), packed, unpacked and merged, equals
+  // the query in one call bit for bit, whatever the number of shares.
+  {
+    const MeshInput a = Sphere(origin, 1, 3), b = Moved(Sphere(origin, 0.7, 3), 0.6, 0.2, 0.1);
+    const MeshInput far = Moved(Sphere(origin, 0.7, 3), 2.5, 0.2, 0.1);
+    for (const MeshInput* other : { &b, &far })
+    {
+      ProximityModel ma, mb;
+      std::string error;
+      Check(ma.Load(a, "A", InsideRule::WindingNumber, error) &&
+          mb.Load(*other, "B", InsideRule::WindingNumber, error),
+        "models: %s",
+        error.c_str());
+      ProximityRequest request;
+      request.Resolution = 40;
+      ProximityReport whole;
+      Check(ComputeProximity(ma, mb, request, whole, Execution(), error), "%s", error.c_str());
+      for (int shares : { 2, 3, 7 })
+      {
+        std::vector<double> packed;
+        ProximityReport first;
+        for (int share = 0; share < shares; ++share)
+        {
+          request.Share = share;
+          request.Shares = shares;
+          ProximityReport part;
+          Check(ComputeProximity(ma, mb, request, part, Execution(), error), "%s", error.c_str());
+          const std::vector<double> numbers = PackProximityShare(part);
+          packed.insert(packed.end(), numbers.begin(), numbers.end());
+          if (share == 0)
+          {
+            first = part;
+          }
+        }
+        std::vector<ProximityReport> parts;
+        ProximityReport merged;
+        Check(UnpackProximityShares(packed.data(), packed.size(), first, parts) &&
+            parts.size() == static_cast<size_t>(shares),
+          "%d shares unpacked",
+          shares);
+        MergeProximityShares(parts, merged);
+        bool same = merged.Contact.Colliding == whole.Contact.Colliding &&
+          merged.Contact.Separation == whole.Contact.Separation &&
+          merged.Contact.ClosestA == whole.Contact.ClosestA &&
+          merged.PointQueries == whole.PointQueries && merged.DistanceA == whole.DistanceA &&
+          merged.DistanceB == whole.DistanceB;
+        for (const auto& sides :
+          { std::make_pair(&merged.AInB, &whole.AInB), std::make_pair(&merged.BInA, &whole.BInA) })
+        {
+          const PenetrationSide& x = *sides.first;
+          const PenetrationSide& y = *sides.second;
+          same = same && x.Depth == y.Depth && x.Deepest == y.Deepest && x.Normal == y.Normal &&
+            x.Samples == y.Samples && x.SamplesInside == y.SamplesInside &&
+            x.Contacts.size() == y.Contacts.size();
+          for (size_t k = 0; same && k < x.Contacts.size(); ++k)
+          {
+            same = x.Contacts[k].Point == y.Contacts[k].Point &&
+              x.Contacts[k].Depth == y.Contacts[k].Depth &&
+              x.Contacts[k].Vertex == y.Contacts[k].Vertex;
+          }
+        }
+        std::printf("%-40s colliding %d, %zu + %zu contacts: %s\n",
+          Named(other == &b ? "shares, overlapping" : "shares, apart", shares).c_str(),
+          whole.Contact.Colliding ? 1 : 0,
+          whole.AInB.Contacts.size(),
+          whole.BInA.Contacts.size(),
+          same ? "equal" : "DIFFERENT");
+        Check(same, "%d shares differ from one call", shares);
+      }
+      request.Share = 0;
+      request.Shares = 1;
+    }
   }
 
   // Invalid input: an error, not a result.

@@ -88,6 +88,11 @@ struct ProximityRequest
   /// deepest. Without the list, a sample that cannot be deeper than the deepest so far
   /// (its distance bounded from a known point's) is counted inside without its distance.
   bool Contacts = true;
+  /// A distributed query: this call takes share `Share` of `Shares` of the face samples
+  /// (consecutive blocks of triangles; the vertices are the first share's). Every share
+  /// computes the rest alike; MergeProximityShares puts the shares' reports together into
+  /// the report of one call, bit for bit.
+  int Share = 0, Shares = 1;
   /// The most face samples a query may take (a step far below the triangles' size
   /// otherwise asks for billions): more is an error, not a slow run.
   int64_t MaximumSamples = 50000000;
@@ -139,6 +144,23 @@ bool ComputeProximity(const ProximityModel& a,
   ProximityReport& report,
   const Execution& execution,
   std::string& error);
+
+/// The report of one call from the reports of its shares, in share order (each from
+/// ComputeProximity with Share = its index; the first holds the point distances).
+/// Consumes `shares`.
+void MergeProximityShares(std::vector<ProximityReport>& shares, ProximityReport& merged);
+
+/// A share's report as numbers, for a transport between processes (without the point
+/// distances and the region, which every share computes alike).
+std::vector<double> PackProximityShare(const ProximityReport& report);
+
+/// The shares' reports from the concatenation of PackProximityShare's numbers, in share
+/// order; the region, step and (for the first) the point distances from `local`. False
+/// when the numbers are not such a concatenation.
+bool UnpackProximityShares(const double* data,
+  size_t count,
+  const ProximityReport& local,
+  std::vector<ProximityReport>& shares);
 } // namespace vtkdf
 
 #endif
