@@ -14,6 +14,8 @@ second=()
 [ "$sub" = union ] && result="$out/$sub.vtp"
 # pd: the bad input is P; Q is a good solid.
 [ "$sub" = pd ] && result="$out/$sub.vtp" && second=("$data/hubo_ankle_convex4.vtp")
+# proximity: the bad input is model A; model B is the teapot.
+[ "$sub" = proximity ] && result="$out/$sub.vtp" && second=("$data/teapot.vtp")
 rm -f "$result"
 # shellcheck disable=SC2086 # the options are words
 timeout 120 "$vtkdf" "$sub" "$path" "${second[@]}" -o "$result" $options > "$out/$sub.stdout" 2> "$out/$sub.stderr"

@@ -18,14 +18,14 @@ from vtkmodules.util.misc import calldata_type  # noqa: E402
 from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter  # noqa: E402
 from vtkdistancefields import (vtkChamferVoxelDistance, vtkLinearFactorDistanceField,  # noqa: E402
-                               vtkMedialAxisFilter, vtkPolyDataVoxelizer,
+                               vtkDistanceFieldProximity, vtkMedialAxisFilter, vtkPolyDataVoxelizer,
                                vtkPenetrationDepth, vtkSegmentedDistanceContour,
                                vtkSegmentedDistanceField, vtkUnionClosestPoint)
 
 FILTERS = {"linfac": vtkLinearFactorDistanceField, "voxelize": vtkPolyDataVoxelizer,
            "chamfer": vtkChamferVoxelDistance, "medial": vtkMedialAxisFilter,
            "segment": vtkSegmentedDistanceField, "union": vtkUnionClosestPoint,
-           "pd": vtkPenetrationDepth}
+           "pd": vtkPenetrationDepth, "proximity": vtkDistanceFieldProximity}
 
 
 class NotPassable(Exception):
@@ -74,8 +74,13 @@ def configure(f, sub, options, contour=None):
                  "--mode": ("Mode", ["boundary", "solid", "both"]),
                  "--metric": ("Metric", ["manhattan", "chessboard18", "chessboard26"]),
                  "--region": ("Region", ["inside", "outside", "both"])}
-        if option == "--resolution":
+        if option == "--backend" and sub == "proximity":
+            if value not in ("auto", "cpu"):  # no Backend property: the CPU only
+                raise NotPassable(f"{option} {value}")
+        elif option == "--resolution":
             f.SetResolution(number(value, int))
+        elif option == "--margin":
+            f.SetContactMargin(number(value, float))
         elif option == "--padding":
             f.SetPadding(number(value, float))
         elif option == "--max-distance":
@@ -126,7 +131,7 @@ def read(path):
 
 def run_case(corpus, data, sub, name, path, options, kind, pattern, workdir):
     f = FILTERS[sub]()
-    if sub not in ("union", "pd"):
+    if sub not in ("union", "pd", "proximity"):
         f.SetBackend(f.BACKEND_CPU if sub != "voxelize" else f.BACKEND_AUTO)
     errors, warnings = [], []
 
@@ -155,6 +160,8 @@ def run_case(corpus, data, sub, name, path, options, kind, pattern, workdir):
     f.SetInputData(0, read(path))
     if sub == "pd":  # the bad input is P; Q is a good solid
         f.SetInputData(1, read(os.path.join(data, "hubo_ankle_convex4.vtp")))
+    if sub == "proximity":  # the bad input is model A; model B is the teapot
+        f.SetInputData(1, read(os.path.join(data, "teapot.vtp")))
     f.Update()
     if contour is not None and f.GetErrorCode() == 0:
         f.RemoveAllObservers()
@@ -190,7 +197,8 @@ def main(corpus, data, sub, workdir):
         if not line.strip() or line.startswith("#"):
             continue
         name, subs, input_name, options, expect = [w.strip() for w in line.split("|", 4)]
-        if subs != "all" and sub not in subs.split() or subs == "all" and sub in ("union", "pd"):
+        if subs != "all" and sub not in subs.split() or subs == "all" and sub in ("union", "pd",
+                                                                                 "proximity"):
             continue
         kind, _, pattern = expect.partition(" ")
         path = os.path.join(corpus, input_name)
