@@ -10,6 +10,7 @@
 //   boxes and on the bunnies' hulls, next to the maximum penetration.
 // Prints figures; asserts nothing.
 // Usage: BenchProximity MESH_DIR [FRAMES] [RESOLUTIONS, e.g. 128,256]
+#include "../Cxx/UnitBoxMesh.h"
 #include "vtkDistanceFieldProximity.h"
 #include "vtkPenetrationDepth.h"
 
@@ -48,33 +49,6 @@ namespace
 double Now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// The mesh's triangles scaled into a unit box centred at the origin.
-vtkSmartPointer<vtkPolyData> ReadUnit(const std::string& path)
-{
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(path.c_str());
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(reader->GetOutputPort());
-  triangles->Update();
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->DeepCopy(triangles->GetOutput());
-  double b[6];
-  mesh->GetBounds(b);
-  const double size = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
-  {
-    double x[3];
-    mesh->GetPoint(i, x);
-    points->InsertNextPoint((x[0] - 0.5 * (b[0] + b[1])) / size,
-      (x[1] - 0.5 * (b[2] + b[3])) / size,
-      (x[2] - 0.5 * (b[4] + b[5])) / size);
-  }
-  mesh->SetPoints(points);
-  return mesh;
 }
 
 /// Frame f of 100: A waves in place; B, turned half a turn about the vertical (y) and
@@ -146,7 +120,7 @@ int main(int argc, char* argv[])
   {
     resolutions.push_back(std::atoi(item.c_str()));
   }
-  auto rest = ReadUnit(std::string(argv[1]) + "/bunny_small.vtp");
+  auto rest = testsupport::ReadUnitBoxMesh(std::string(argv[1]) + "/bunny_small.vtp");
   std::printf("two bunny_small (%lld triangles each), %d frames, %d threads (%s)\n",
     static_cast<long long>(rest->GetNumberOfCells()),
     frames,

@@ -18,6 +18,7 @@
 // - bad input (an empty model, a NaN coordinate, too many samples) is refused with a
 //   message.
 // Usage: TestDistanceFieldProximity DATA_DIR winding|pseudonormal
+#include "UnitBoxMesh.h"
 #include "vtkDistanceFieldProximity.h"
 
 #include "vtkCellArray.h"
@@ -63,37 +64,6 @@ void Check(bool ok, const std::string& what)
     std::printf("FAIL: %s\n", what.c_str());
     ++Failures;
   }
-}
-
-/// A mesh of triangles scaled into a unit box centred at the origin.
-vtkSmartPointer<vtkPolyData> ReadUnit(const std::string& path)
-{
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(path.c_str());
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(reader->GetOutputPort());
-  triangles->PassVertsOff();
-  triangles->PassLinesOff();
-  triangles->Update();
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->DeepCopy(triangles->GetOutput());
-  double b[6];
-  mesh->GetBounds(b);
-  const double size = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
-  {
-    double x[3];
-    mesh->GetPoint(i, x);
-    for (int k = 0; k < 3; ++k)
-    {
-      x[k] = (x[k] - 0.5 * (b[2 * k] + b[2 * k + 1])) / size;
-    }
-    points->InsertNextPoint(x);
-  }
-  mesh->SetPoints(points);
-  return mesh;
 }
 
 vtkSmartPointer<vtkPolyData> Box(double x0, double x1, double y0, double y1, double z0, double z1)
@@ -862,9 +832,9 @@ int main(int argc, char* argv[])
   }
   const std::string data = argv[1];
   PseudoNormal = std::string(argv[2]) == "pseudonormal";
-  auto bunny = ReadUnit(data + "/bunny_small.vtp");
-  auto cow = ReadUnit(data + "/cow.vtp");
-  auto teapot = ReadUnit(data + "/teapot.vtp");
+  auto bunny = testsupport::ReadUnitBoxMesh(data + "/bunny_small.vtp");
+  auto cow = testsupport::ReadUnitBoxMesh(data + "/cow.vtp");
+  auto teapot = testsupport::ReadUnitBoxMesh(data + "/teapot.vtp");
 
   const double overlap[3] = { 0.35, 0.1, 0.05 };
   Compare("bunny / bunny overlapping", bunny, Posed(bunny, 0.7, overlap), 24);

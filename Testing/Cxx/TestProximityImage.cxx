@@ -8,6 +8,7 @@
 //
 // usage: TestProximityImage DATA_DIR -V BASELINE.png -T TMPDIR
 #include "TestSupport.h"
+#include "UnitBoxMesh.h"
 #include "vtkDistanceFieldProximity.h"
 
 #include "vtkActor.h"
@@ -37,40 +38,6 @@
 #include <cstdio>
 #include <string>
 
-namespace
-{
-/// The mesh's triangles in a unit box centred at `centre`, turned by `angle` about z.
-vtkSmartPointer<vtkPolyData> Placed(const std::string& path, const double centre[3], double angle)
-{
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(path.c_str());
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(reader->GetOutputPort());
-  triangles->Update();
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->DeepCopy(triangles->GetOutput());
-  double b[6];
-  mesh->GetBounds(b);
-  const double size = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
-  const double c = std::cos(angle), s = std::sin(angle);
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
-  {
-    double x[3];
-    mesh->GetPoint(i, x);
-    for (int k = 0; k < 3; ++k)
-    {
-      x[k] = (x[k] - 0.5 * (b[2 * k] + b[2 * k + 1])) / size;
-    }
-    points->InsertNextPoint(
-      c * x[0] - s * x[1] + centre[0], s * x[0] + c * x[1] + centre[1], x[2] + centre[2]);
-  }
-  mesh->SetPoints(points);
-  return mesh;
-}
-} // namespace
-
 int main(int argc, char* argv[])
 {
   if (!testsupport::HasArguments(argc, argv, 1, "DATA_DIR -V BASELINE -T TMP"))
@@ -79,8 +46,8 @@ int main(int argc, char* argv[])
   }
   const std::string data = argv[1];
   const double atOrigin[3] = { 0, 0, 0 }, beside[3] = { 0.55, 0.05, 0.0 };
-  auto a = Placed(data + "/bunny_small.vtp", atOrigin, 0);
-  auto b = Placed(data + "/cow.vtp", beside, 0.6);
+  auto a = testsupport::ReadUnitBoxMesh(data + "/bunny_small.vtp", 0, atOrigin);
+  auto b = testsupport::ReadUnitBoxMesh(data + "/cow.vtp", 0.6, beside);
   vtkNew<vtkDistanceFieldProximity> proximity;
   proximity->SetModelAData(a);
   proximity->SetModelBData(b);
