@@ -19,6 +19,10 @@
  * query runs, as for vtkUnionClosestPoint: the CPU (exact), or the GPU's six views
  * certified on the CPU (exact) or not (ErrorBound then holds the image-space estimate).
  *
+ * For two arbitrary (non-convex, open, deforming) meshes, vtkDistanceFieldProximity
+ * gives a different answer: each surface's maximum penetration into the other and the
+ * contacts, not a separating translation.
+ *
  * Output: vtkPolyData with the minimum translation vector as a line (from the point of Q
  * farthest against Direction, the one that leaves P last, to that point translated), and
  * field data `PenetrationDepth` (0 when P and Q do not intersect), `Direction` (unit:
