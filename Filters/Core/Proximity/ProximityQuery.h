@@ -103,7 +103,7 @@ struct ContactSample
 {
   std::array<double, 3> Point, Normal; // Normal: the unit direction to the closest point
   double Depth;                        // the exact distance to the other model
-  int64_t Triangle;                    // its triangle in its own model
+  int64_t Triangle;                    // its triangle in its own model (-1 for a vertex)
   int64_t Vertex;                      // its point id when it is a vertex, else -1
 };
 
