@@ -146,8 +146,8 @@ void FillBits(uint64_t* lane, int from, int to)
   }
 }
 
-/// Per lane, the solid intervals, into Front. Paper 001 §4.2 fills from a front bit to
-/// the next back bit with no other bit between. Here a run of front bits followed by a
+/// Per lane, the solid intervals, into Front. Martinek et al. (VMV 2011) §4.2 fill from a
+/// front bit to the next back bit with no other bit between. Here a run of front bits followed by a
 /// run of back bits fills from the run's first front to its last back: the same on
 /// disjoint closed parts, the union of overlapping parts, and an open sheet crossing a
 /// closed part (F F B or F B B along the lane) changes nothing. A bin holding a front
