@@ -6,6 +6,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
@@ -16,7 +17,6 @@
 #include "Union/PenetrationDepth.h"
 #include "vtkConvexPieces.h"
 #include "vtkDistanceFieldExecution.h"
-#include "vtkDistanceFieldPartitions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,33 +39,78 @@ int vtkPenetrationDepth::RequestData(vtkInformation*,
   this->LastIntersecting = false;
   this->LastErrorBound = 0;
   this->LastPasses = 0;
-  this->LastPairsTotal = this->LastPairsKept = this->LastFacesVisited = 0;
+  this->LastPairsTotal = this->LastPairsKept = this->LastPairsBuilt = this->LastFacesVisited = 0;
   vtkdf::ConvexPieceInput solids[2];
   vtkdf::HeadlessGL* gl = nullptr;
+  // A distributed run: every rank builds its block of the sums, rank 0 gathers them all
+  // (in one process's order) and answers: only rank 0 needs a GPU, and chooses it after
+  // the gather (a rank that left before it would leave the others waiting).
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  const int rank = controller ? controller->GetLocalProcessId() : 0;
   if (!this->ReadPieces(vtkDataObject::GetData(inputVector[0], 0), "P", 0, solids[0]) ||
     !this->ReadPieces(vtkDataObject::GetData(inputVector[1], 0), "Q", 1, solids[1]) ||
-    !this->ChooseBackend(gl))
+    (ranks == 1 && !this->ChooseBackend(gl)))
   {
     return 0;
-  }
-  if (!vtkdf::IsFirstRank())
-  {
-    return 1; // in a distributed run, rank 0 gives the one answer
   }
   this->UpdateProgress(0.1);
 
   vtkdf::PenetrationDepth depth;
   depth.Tolerance = 1e-9 * (solids[0].Diagonal + solids[1].Diagonal);
   depth.For = vtkdf::SMPFor;
+  depth.Share = rank;
+  depth.Shares = ranks;
   const double origin[3] = { 0, 0, 0 };
-  vtkdf::PenetrationAnswer answer;
+  vtkdf::UnionClosestPoint sums;
+  std::vector<std::pair<int64_t, int64_t>> pairs;
+  int64_t total = 0;
   std::string error;
+  const bool built =
+    depth.BuildSums(solids[0].Pieces, solids[1].Pieces, origin, sums, pairs, total, error);
+  this->LastPairsBuilt = built ? static_cast<vtkTypeInt64>(sums.Pieces.size()) : 0;
+  if (ranks > 1)
+  {
+    // Every rank takes part in the gather, a failed one too: rank 0 reports it.
+    std::vector<double> mine = vtkdf::PackSums(built, sums.Pieces, pairs);
+    vtkNew<vtkDoubleArray> send, received;
+    send->SetArray(mine.data(), static_cast<vtkIdType>(mine.size()), 1);
+    controller->GatherV(send, received, 0);
+    if (rank != 0)
+    {
+      return 1; // rank 0 answers for all
+    }
+    sums.Pieces.clear();
+    pairs.clear();
+    if (!vtkdf::UnpackSums(received->GetPointer(0),
+          static_cast<size_t>(received->GetNumberOfValues()),
+          ranks,
+          sums.Pieces,
+          pairs,
+          error))
+    {
+      vtkErrorMacro("No Minkowski sum: " << error << ".");
+      return 0;
+    }
+    if (!this->ChooseBackend(gl))
+    {
+      return 0;
+    }
+  }
+  else if (!built)
+  {
+    vtkErrorMacro("No Minkowski sum: " << error << ".");
+    return 0;
+  }
+  this->UpdateProgress(0.5);
+
+  vtkdf::PenetrationAnswer answer;
   vtkdf::UnionGPUSettings settings;
   settings.Resolution = this->ViewResolution;
   settings.Certify = this->Certify;
-  if (!depth.Compute(solids[0].Pieces, solids[1].Pieces, origin, answer, error, gl, settings))
+  if (!depth.Query(sums, pairs, total, origin, answer, error, gl, settings))
   {
-    vtkErrorMacro(<< (gl ? "The GPU query failed: " : "No Minkowski sum: ") << error << ".");
+    vtkErrorMacro(<< (gl ? "The GPU query failed: " : "No answer: ") << error << ".");
     return 0;
   }
   this->UpdateProgress(0.9);
@@ -166,4 +211,5 @@ void vtkPenetrationDepth::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastIntersecting: " << this->LastIntersecting << "\n";
   os << indent << "LastPairsTotal: " << this->LastPairsTotal << "\n";
   os << indent << "LastPairsKept: " << this->LastPairsKept << "\n";
+  os << indent << "LastPairsBuilt: " << this->LastPairsBuilt << "\n";
 }

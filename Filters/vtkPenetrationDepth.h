@@ -23,6 +23,10 @@
  * gives a different answer: each surface's maximum penetration into the other and the
  * contacts, not a separating translation.
  *
+ * In a distributed run (a vtkMultiProcessController with several processes), every rank
+ * holds both solids, builds its block of the kept sums, and rank 0 gathers them (in the
+ * order of one process) and answers; the other ranks' outputs are empty.
+ *
  * Output: vtkPolyData with the minimum translation vector as a line (from the point of Q
  * farthest against Direction, the one that leaves P last, to that point translated), and
  * field data `PenetrationDepth` (0 when P and Q do not intersect), `Direction` (unit:
@@ -68,9 +72,12 @@ public:
 
   ///@{
   /// The last run's work: pairs of pieces and those whose sums were built (the faces of
-  /// the sums the query visited are LastFacesVisited).
+  /// the sums the query visited are LastFacesVisited). In a distributed run the ranks
+  /// share the building: LastPairsBuilt is this rank's part of LastPairsKept (all of it
+  /// in one process).
   vtkGetMacro(LastPairsTotal, vtkTypeInt64);
   vtkGetMacro(LastPairsKept, vtkTypeInt64);
+  vtkGetMacro(LastPairsBuilt, vtkTypeInt64);
   ///@}
 
 protected:
@@ -92,6 +99,7 @@ protected:
   double LastErrorBound = 0;
   vtkTypeInt64 LastPairsTotal = 0;
   vtkTypeInt64 LastPairsKept = 0;
+  vtkTypeInt64 LastPairsBuilt = 0;
 
 private:
   vtkPenetrationDepth(const vtkPenetrationDepth&) = delete;

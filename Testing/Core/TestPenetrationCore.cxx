@@ -11,6 +11,9 @@
 //   overlapping, 99.9 % of it still overlaps, and no direction of 4000 leaves the union
 //   of the sums sooner (each ray's intervals by the separating axes of each pair);
 // - the pairs skipped by the box bound change nothing (the same answer with every pair);
+// - a distributed run's split: the sums built in 2, 3 and 7 shares, each packed, the
+//   packs read back in order, give Compute's answer bit for bit; a failed share and
+//   truncated packs are refused;
 // - with the argument gpu, all of it with the union query on the GPU, certified (and the
 //   tori's image-only depth never below the exact one).
 #include "CoreTest.h"
@@ -320,6 +323,72 @@ void ConvexPairs()
     static_cast<double>(overlapping));
 }
 
+/// The tori's sums built in `shares` blocks, packed, gathered and read back: the same
+/// answer as one Compute, bit for bit.
+void Shares(const std::vector<ConvexPiece>& p,
+  const std::vector<ConvexPiece>& q,
+  const PenetrationAnswer& whole)
+{
+  const double origin[3] = { 0, 0, 0 };
+  std::string error;
+  for (int shares : { 2, 3, 7 })
+  {
+    std::vector<double> gathered;
+    int64_t total = 0;
+    for (int share = 0; share < shares; ++share)
+    {
+      PenetrationDepth depth;
+      depth.Share = share;
+      depth.Shares = shares;
+      UnionClosestPoint sums;
+      std::vector<std::pair<int64_t, int64_t>> pairs;
+      Check(depth.BuildSums(p, q, origin, sums, pairs, total, error), "%s", error.c_str());
+      const std::vector<double> pack = PackSums(true, sums.Pieces, pairs);
+      gathered.insert(gathered.end(), pack.begin(), pack.end());
+    }
+    PenetrationDepth depth;
+    UnionClosestPoint sums;
+    std::vector<std::pair<int64_t, int64_t>> pairs;
+    PenetrationAnswer answer;
+    Check(UnpackSums(gathered.data(), gathered.size(), shares, sums.Pieces, pairs, error) &&
+        depth.Query(sums, pairs, total, origin, answer, error, GPU, Settings()),
+      "%d shares: %s",
+      shares,
+      error.c_str());
+    const bool same = answer.Distance == whole.Distance &&
+      answer.Intersecting == whole.Intersecting && answer.PieceP == whole.PieceP &&
+      answer.PieceQ == whole.PieceQ && answer.PairsKept == whole.PairsKept &&
+      answer.PairsTotal == whole.PairsTotal &&
+      std::equal(answer.Translation, answer.Translation + 3, whole.Translation);
+    Check(same,
+      "tori in %d shares: the answer of one process (%.17g vs %.17g)",
+      shares,
+      answer.Distance,
+      whole.Distance);
+    // Cut short anywhere, or a failed share among them: refused, never a partial union.
+    for (size_t cut : { gathered.size() - 1, gathered.size() / 2, size_t(5) })
+    {
+      UnionClosestPoint partial;
+      pairs.clear();
+      Check(!UnpackSums(gathered.data(), cut, shares, partial.Pieces, pairs, error),
+        "%d shares cut at %zu values: refused",
+        shares,
+        cut);
+    }
+    std::vector<double> failed = PackSums(true, {}, {});
+    const std::vector<double> bad = PackSums(false, {}, { { 3, 4 } });
+    failed.insert(failed.end(), bad.begin(), bad.end());
+    sums.Pieces.clear();
+    pairs.clear();
+    Check(!UnpackSums(failed.data(), failed.size(), 2, sums.Pieces, pairs, error) &&
+        error.find("piece 3 of P and piece 4 of Q") != std::string::npos &&
+        error.find("share 1") != std::string::npos,
+      "a failed share is reported by its pair and share (%s)",
+      error.c_str());
+  }
+  std::printf("tori in 2, 3 and 7 shares: the answer of one process\n");
+}
+
 void Tori()
 {
   // Torus P in the xy plane around the origin; Q in the xz plane around (1, 0, 0), its
@@ -466,6 +535,7 @@ void Tori()
   Check(std::fabs(std::fabs(every.Distance) - answer.Distance) <= 1e-12,
     "tori: the same depth with every pair (%.17g)",
     static_cast<double>(every.Distance));
+  Shares(p, q, answer);
 }
 } // namespace
 

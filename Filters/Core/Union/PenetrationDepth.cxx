@@ -86,6 +86,15 @@ bool PenetrationDepth::BuildSums(const std::vector<ConvexPiece>& p,
     }
   }
 
+  // This share's block of the kept sums.
+  if (this->Shares > 1)
+  {
+    const size_t count = kept.size(), shares = static_cast<size_t>(this->Shares);
+    const size_t share = static_cast<size_t>(this->Share);
+    kept = std::vector<int64_t>(
+      kept.begin() + count * share / shares, kept.begin() + count * (share + 1) / shares);
+  }
+
   // The kept sums' hulls, in parallel (qhull's reentrant API: one context per hull).
   std::vector<ConvexPiece> built(kept.size());
   std::vector<std::string> errors(kept.size());
@@ -129,14 +138,14 @@ bool PenetrationDepth::BuildSums(const std::vector<ConvexPiece>& p,
   }
   for (size_t s = 0; s < kept.size(); ++s)
   {
+    pairs.emplace_back(
+      kept[s] / static_cast<int64_t>(q.size()), kept[s] % static_cast<int64_t>(q.size()));
     if (!errors[s].empty())
     {
       error = errors[s];
       return false;
     }
     sums.Pieces.push_back(std::move(built[s]));
-    pairs.emplace_back(
-      kept[s] / static_cast<int64_t>(q.size()), kept[s] % static_cast<int64_t>(q.size()));
   }
   return true;
 }
@@ -149,14 +158,34 @@ bool PenetrationDepth::Compute(const std::vector<ConvexPiece>& p,
   HeadlessGL* gl,
   const UnionGPUSettings& settings) const
 {
-  answer = PenetrationAnswer();
   UnionClosestPoint sums;
   std::vector<std::pair<int64_t, int64_t>> pairs;
-  if (!this->BuildSums(p, q, origin, sums, pairs, answer.PairsTotal, error))
+  int64_t total = 0;
+  if (!this->BuildSums(p, q, origin, sums, pairs, total, error))
   {
     return false;
   }
+  return this->Query(sums, pairs, total, origin, answer, error, gl, settings);
+}
+
+bool PenetrationDepth::Query(UnionClosestPoint& sums,
+  const std::vector<std::pair<int64_t, int64_t>>& pairs,
+  int64_t total,
+  const double origin[3],
+  PenetrationAnswer& answer,
+  std::string& error,
+  HeadlessGL* gl,
+  const UnionGPUSettings& settings) const
+{
+  answer = PenetrationAnswer();
+  answer.PairsTotal = total;
   answer.PairsKept = static_cast<int64_t>(pairs.size());
+  if (pairs.size() != sums.Pieces.size())
+  {
+    error = "the sums and their pairs differ in number";
+    return false;
+  }
+  sums.Tolerance = this->Tolerance;
   sums.For = this->For; // one query: parallel over its faces
   UnionAnswer closest;
   if (gl)
@@ -186,6 +215,133 @@ bool PenetrationDepth::Compute(const std::vector<ConvexPiece>& p,
   {
     answer.PieceP = pairs[closest.Piece].first;
     answer.PieceQ = pairs[closest.Piece].second;
+  }
+  return true;
+}
+
+// A share: [1, count, then per sum: i, j, faces, per face its corner count and corners,
+// planes (4 a face), Lo, Hi, Centre, InnerRadius], or [0, i, j] for a failed one. Ids
+// and counts are below 2^53: exact as doubles.
+std::vector<double> PackSums(bool built,
+  const std::vector<ConvexPiece>& sums,
+  const std::vector<std::pair<int64_t, int64_t>>& pairs)
+{
+  std::vector<double> data;
+  if (!built)
+  {
+    data = { 0, -1, -1 };
+    if (!pairs.empty())
+    {
+      data[1] = static_cast<double>(pairs.back().first);
+      data[2] = static_cast<double>(pairs.back().second);
+    }
+    return data;
+  }
+  data.push_back(1);
+  data.push_back(static_cast<double>(sums.size()));
+  for (size_t s = 0; s < sums.size(); ++s)
+  {
+    const ConvexPiece& piece = sums[s];
+    data.push_back(static_cast<double>(pairs[s].first));
+    data.push_back(static_cast<double>(pairs[s].second));
+    data.push_back(static_cast<double>(piece.Faces.size()));
+    for (const std::vector<double>& face : piece.Faces)
+    {
+      data.push_back(static_cast<double>(face.size() / 3));
+      data.insert(data.end(), face.begin(), face.end());
+    }
+    data.insert(data.end(), piece.Planes.begin(), piece.Planes.end());
+    data.insert(data.end(), piece.Lo, piece.Lo + 3);
+    data.insert(data.end(), piece.Hi, piece.Hi + 3);
+    data.insert(data.end(), piece.Centre, piece.Centre + 3);
+    data.push_back(piece.InnerRadius);
+  }
+  return data;
+}
+
+bool UnpackSums(const double* data,
+  size_t size,
+  int shares,
+  std::vector<ConvexPiece>& sums,
+  std::vector<std::pair<int64_t, int64_t>>& pairs,
+  std::string& error)
+{
+  size_t at = 0;
+  // The next value as a count no larger than `most` (what the data left can hold).
+  auto count = [&](size_t most, int64_t& value)
+  {
+    if (at >= size)
+    {
+      return false;
+    }
+    const double v = data[at++];
+    if (!(v >= 0 && v <= static_cast<double>(most)) || v != std::floor(v))
+    {
+      return false;
+    }
+    value = static_cast<int64_t>(v);
+    return true;
+  };
+  int share = 0;
+  for (; at < size; ++share)
+  {
+    const double kind = data[at++];
+    if (kind == 0 && at + 2 <= size)
+    {
+      error = "the sum of piece " + std::to_string(static_cast<int64_t>(data[at])) +
+        " of P and piece " + std::to_string(static_cast<int64_t>(data[at + 1])) +
+        " of Q has no hull (share " + std::to_string(share) + ")";
+      return false;
+    }
+    int64_t n = 0;
+    if (kind != 1 || !count(size, n))
+    {
+      error = "share " + std::to_string(share) + " is not a packed share of sums";
+      return false;
+    }
+    for (int64_t s = 0; s < n; ++s)
+    {
+      int64_t i = 0, j = 0, faces = 0;
+      if (!count(size, i) || !count(size, j) || !count(size, faces))
+      {
+        error = "share " + std::to_string(share) + " ends inside a sum";
+        return false;
+      }
+      ConvexPiece piece;
+      piece.Faces.resize(static_cast<size_t>(faces));
+      for (std::vector<double>& face : piece.Faces)
+      {
+        int64_t corners = 0;
+        if (!count(size, corners) || static_cast<size_t>(corners) > (size - at) / 3)
+        {
+          error = "share " + std::to_string(share) + " ends inside a face";
+          return false;
+        }
+        face.assign(data + at, data + at + 3 * corners);
+        at += static_cast<size_t>(3 * corners);
+      }
+      const size_t rest = 4 * static_cast<size_t>(faces) + 10;
+      if (size - at < rest)
+      {
+        error = "share " + std::to_string(share) + " ends inside a sum";
+        return false;
+      }
+      piece.Planes.assign(data + at, data + at + 4 * faces);
+      at += 4 * static_cast<size_t>(faces);
+      std::copy(data + at, data + at + 3, piece.Lo);
+      std::copy(data + at + 3, data + at + 6, piece.Hi);
+      std::copy(data + at + 6, data + at + 9, piece.Centre);
+      piece.InnerRadius = data[at + 9];
+      at += 10;
+      sums.push_back(std::move(piece));
+      pairs.emplace_back(i, j);
+    }
+  }
+  if (share != shares)
+  {
+    error =
+      std::to_string(share) + " shares of sums where " + std::to_string(shares) + " were expected";
+    return false;
   }
   return true;
 }

@@ -54,11 +54,15 @@ public:
   double Tolerance = 1e-9;
   /// The parallel loop over pairs for their hulls (serial when empty).
   ParallelFor For;
+  /// A distributed run's share: BuildSums builds the hulls of block `Share` of `Shares`
+  /// consecutive blocks of the kept pairs only (every share agrees on which are kept).
+  int Share = 0, Shares = 1;
 
-  /// The sums P_i - Q_j that can matter, as pieces of a union, with their pairs; the
-  /// query origin is `origin` (O_Q - O_P; the origin when P and Q share a frame). False
-  /// and `error` when a sum has no three-dimensional hull (cannot happen for
-  /// three-dimensional pieces) or qhull fails.
+  /// The sums P_i - Q_j that can matter (this share's, when Shares > 1), as pieces of a
+  /// union, with their pairs; the query origin is `origin` (O_Q - O_P; the origin when P
+  /// and Q share a frame). False and `error` when a sum has no three-dimensional hull
+  /// (cannot happen for three-dimensional pieces) or qhull fails; then `pairs` ends with
+  /// the pair that failed.
   bool BuildSums(const std::vector<ConvexPiece>& p,
     const std::vector<ConvexPiece>& q,
     const double origin[3],
@@ -76,7 +80,35 @@ public:
     std::string& error,
     HeadlessGL* gl = nullptr,
     const UnionGPUSettings& settings = UnionGPUSettings()) const;
+
+  /// The answer from sums already built (every share's, in share order), as Compute
+  /// gives it; `total` is BuildSums' count of pairs. Sets the sums' Tolerance and For.
+  bool Query(UnionClosestPoint& sums,
+    const std::vector<std::pair<int64_t, int64_t>>& pairs,
+    int64_t total,
+    const double origin[3],
+    PenetrationAnswer& answer,
+    std::string& error,
+    HeadlessGL* gl = nullptr,
+    const UnionGPUSettings& settings = UnionGPUSettings()) const;
 };
+
+/// One share's sums as doubles, for a distributed run to gather: its pairs and pieces
+/// (faces, planes, box, inner ball), every value exact; `built` false packs the failure
+/// (the last pair, the one whose hull failed).
+std::vector<double> PackSums(bool built,
+  const std::vector<ConvexPiece>& sums,
+  const std::vector<std::pair<int64_t, int64_t>>& pairs);
+
+/// Appends the `shares` shares packed one after another in `data` to `sums` and
+/// `pairs`, in order; false and `error` when a share packed a failure (named by its pair
+/// and share) or the data are not `shares` such shares.
+bool UnpackSums(const double* data,
+  size_t size,
+  int shares,
+  std::vector<ConvexPiece>& sums,
+  std::vector<std::pair<int64_t, int64_t>>& pairs,
+  std::string& error);
 
 } // namespace vtkdf
 
