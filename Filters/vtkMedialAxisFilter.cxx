@@ -1,16 +1,19 @@
 #include "vtkMedialAxisFilter.h"
 
 #include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "Common/MeshInput.h"
@@ -18,9 +21,12 @@
 #include "GL/HeadlessGL.h"
 #include "Medial/MedialAxisField.h"
 #include "vtkDistanceFieldArrays.h"
-#include "vtkDistanceFieldPartitions.h"
+#include "vtkDistanceFieldExecution.h"
 
+#include <algorithm>
+#include <array>
 #include <utility>
+#include <vector>
 
 vtkStandardNewMacro(vtkMedialAxisFilter);
 
@@ -52,7 +58,8 @@ vtkMedialAxisFilter::vtkMedialAxisFilter()
 {
   this->SetNumberOfOutputPorts(2);
   this->AcceptsImageInput = true;
-  this->ProducesSubExtents = false; // a pair needs its neighbour: the whole grid
+  // A piece of the grid is computed alone, from the field on it and one voxel around
+  // (a voxel's answer depends on the cells it is a corner of).
 }
 
 int vtkMedialAxisFilter::FillOutputPortInformation(int port, vtkInformation* info)
@@ -64,6 +71,89 @@ int vtkMedialAxisFilter::FillOutputPortInformation(int port, vtkInformation* inf
 vtkPolyData* vtkMedialAxisFilter::GetMedialPoints()
 {
   return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+namespace
+{
+/// The box `extent` grown by one voxel on every side, within `whole`: the voxels whose
+/// cells decide `extent`'s voxels.
+vtkdf::IndexBox Grown(const vtkdf::IndexBox& extent, const vtkdf::IndexBox& whole)
+{
+  vtkdf::IndexBox grown = extent;
+  for (int a = 0; a < 3; ++a)
+  {
+    grown.Lo[a] -= 1;
+    grown.Hi[a] += 1;
+  }
+  return grown.Intersect(whole);
+}
+
+bool Contains(const vtkdf::IndexBox& outer, const vtkdf::IndexBox& inner)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (inner.Lo[a] < outer.Lo[a] || inner.Hi[a] > outer.Hi[a])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// A new array holding `from`'s values (over box `box`) on the voxels of `part`.
+template<typename Array>
+vtkSmartPointer<Array> Crop(Array* from, const vtkdf::IndexBox& box, const vtkdf::IndexBox& part)
+{
+  auto to = vtkdf::NewArray<Array>(from->GetName(), static_cast<vtkIdType>(part.Count()));
+  const vtkIdType nx = box.Size(0), ny = box.Size(1), row = part.Size(0);
+  vtkIdType next = 0;
+  for (int k = part.Lo[2]; k <= part.Hi[2]; ++k)
+  {
+    for (int j = part.Lo[1]; j <= part.Hi[1]; ++j)
+    {
+      const vtkIdType first =
+        (vtkIdType(k - box.Lo[2]) * ny + (j - box.Lo[1])) * nx + (part.Lo[0] - box.Lo[0]);
+      std::copy(from->GetPointer(first), from->GetPointer(first) + row, to->GetPointer(next));
+      next += row;
+    }
+  }
+  return to;
+}
+} // namespace
+
+struct vtkMedialAxisFilter::MedialPart
+{
+  bool Ok = false;
+  bool Aborted = false;
+  vtkdf::HeadlessGL* GL = nullptr;
+  vtkdf::SampleGrid Grid; // Grid.Whole: the voxels computed
+  vtkdf::IndexBox Box;
+  vtkSmartPointer<vtkUnsignedCharArray> Medial;
+  vtkSmartPointer<vtkFloatArray> Angle, Radius;
+};
+
+int vtkMedialAxisFilter::RequestUpdateExtent(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (!vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
+  }
+  // A field input: the requested voxels and their neighbours (one voxel around).
+  vtkdf::SampleGrid grid;
+  vtkdf::IndexBox extent;
+  vtkdf::RequestWholeInput(inInfo);
+  if (GetOutputGrid(outputVector->GetInformationObject(0), grid, extent))
+  {
+    const vtkdf::IndexBox grown = Grown(extent, grid.Whole);
+    const int update[6] = {
+      grown.Lo[0], grown.Hi[0], grown.Lo[1], grown.Hi[1], grown.Lo[2], grown.Hi[2]
+    };
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), update, 6);
+  }
+  return 1;
 }
 
 int vtkMedialAxisFilter::RequestData(vtkInformation*,
@@ -89,86 +179,208 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     vtkWarningMacro("The input mesh is empty: the outputs are empty.");
     return 1;
   }
-  vtkdf::HeadlessGL* gl = nullptr;
-  if (!this->ChooseBackend(gl))
+  if (!mesh && (!image || image->GetNumberOfPoints() == 0))
   {
-    return 0;
+    vtkWarningMacro("The input is empty: the outputs are empty.");
+    return 1;
+  }
+  // This piece of the grid (all of it in one process) and the voxels that decide it.
+  vtkdf::SampleGrid whole;
+  vtkdf::IndexBox piece;
+  if (!GetOutputGrid(outInfo, whole, piece))
+  {
+    vtkWarningMacro("The grid is empty: the outputs are empty.");
+    return 1;
+  }
+  const vtkdf::IndexBox needed = Grown(piece, whole.Whole);
+  MedialPart part;
+  part.Ok = this->ComputePart(mesh, image, whole, needed, timer, part);
+  if (part.Ok)
+  {
+    this->FinishTiming(part.GL, timer);
+  }
+  if (part.Ok && !part.Aborted)
+  {
+    // Port 0: this piece of the grid with Medial, SeparationAngle and Radius.
+    if (!Contains(part.Box, piece))
+    {
+      vtkErrorMacro("The input field covers " << part.Box.Lo[0] << ".." << part.Box.Hi[0] << ", "
+                                              << part.Box.Lo[1] << ".." << part.Box.Hi[1] << ", "
+                                              << part.Box.Lo[2] << ".." << part.Box.Hi[2]
+                                              << ", less than the voxels requested.");
+      part.Ok = false;
+    }
+    else
+    {
+      const bool whole = part.Box.Lo == piece.Lo && part.Box.Hi == piece.Hi;
+      SetOutputExtent(output, part.Grid, piece);
+      output->GetPointData()->AddArray(
+        whole ? part.Medial : Crop(part.Medial.Get(), part.Box, piece));
+      output->GetPointData()->AddArray(
+        whole ? part.Angle : Crop(part.Angle.Get(), part.Box, piece));
+      output->GetPointData()->AddArray(
+        whole ? part.Radius : Crop(part.Radius.Get(), part.Box, piece));
+      output->GetPointData()->SetActiveScalars("Medial");
+    }
+  }
+  // Port 1: a vertex per medial voxel, in voxel order; in a distributed run rank 0 gathers
+  // every rank's voxels (each voxel from the one rank that owns it) and outputs them all.
+  std::vector<double> owned;
+  if (part.Ok && !part.Aborted)
+  {
+    this->OwnedMedialVoxels(part, piece, whole.Whole, owned);
+    this->LastMedialCount = static_cast<vtkIdType>(owned.size() / 3);
+  }
+  if (!this->GatherMedialVoxels(part.Ok && !part.Aborted, owned))
+  {
+    return part.Ok ? 1 : 0; // not rank 0, or a rank failed: no points
+  }
+  this->WriteMedialPoints(whole, owned, points);
+  return 1;
+}
+
+bool vtkMedialAxisFilter::ComputePart(vtkPolyData* mesh,
+  vtkImageData* image,
+  const vtkdf::SampleGrid& whole,
+  const vtkdf::IndexBox& needed,
+  vtkdf::StageTimer& timer,
+  MedialPart& part)
+{
+  if (!this->ChooseBackend(part.GL))
+  {
+    return false;
   }
   vtkdf::MedialInput field;
   field.SeparationAngle = this->SeparationAngle;
   field.Region = static_cast<vtkdf::MedialRegion>(this->Region);
   vtkSmartPointer<vtkFloatArray> distance, closest;
   vtkdf::MeshInput input;
-  vtkdf::IndexBox unused;
   std::string error;
   if (mesh)
   {
-    if (!GetOutputGrid(outInfo, field.Grid, unused))
-    {
-      vtkWarningMacro("The grid is empty: the outputs are empty.");
-      return 1;
-    }
+    field.Grid = whole;
+    part.Box = needed;
     // The field (distances, closest points, nearest sites), the cosines, the outputs.
-    if (!this->CheckMemory(
-          double(field.Grid.Whole.Count()) * (8 + 8 + 1 + 4 + 4 + 16), field.Grid.Whole) ||
+    if (!this->CheckMemory(double(needed.Count()) * (8 + 8 + 1 + 4 + 4 + 16), needed) ||
       !this->ReadMesh(mesh, field.Grid, input))
     {
-      return 0;
+      return false;
     }
   }
-  else if (!image || !GetImageGrid(image, field.Grid))
+  else if (!GetImageGrid(image, field.Grid))
   {
-    vtkWarningMacro("The input is empty: the outputs are empty.");
-    return 1;
+    return false; // not reached: RequestData checked the image
   }
   else if (!this->ReadField(image, field, distance, closest))
   {
-    return 0;
+    return false;
   }
-  const vtkIdType n = static_cast<vtkIdType>(field.Grid.Whole.Count());
-  auto medial = vtkdf::NewArray<vtkUnsignedCharArray>("Medial", n);
-  auto angle = vtkdf::NewArray<vtkFloatArray>("SeparationAngle", n);
-  auto radius = vtkdf::NewArray<vtkFloatArray>("Radius", n);
+  else
+  {
+    part.Box = field.Grid.Whole; // what the input gives: at least `needed`
+  }
+  part.Grid = field.Grid;
+  const vtkIdType n = static_cast<vtkIdType>(part.Box.Count());
+  part.Medial = vtkdf::NewArray<vtkUnsignedCharArray>("Medial", n);
+  part.Angle = vtkdf::NewArray<vtkFloatArray>("SeparationAngle", n);
+  part.Radius = vtkdf::NewArray<vtkFloatArray>("Radius", n);
   vtkdf::MedialArrays arrays;
-  arrays.Medial = medial->GetPointer(0);
-  arrays.SeparationAngle = angle->GetPointer(0);
-  arrays.Radius = radius->GetPointer(0);
+  arrays.Medial = part.Medial->GetPointer(0);
+  arrays.SeparationAngle = part.Angle->GetPointer(0);
+  arrays.Radius = part.Radius->GetPointer(0);
   const vtkdf::Execution execution = this->MakeExecution(timer);
   const bool ok = mesh ? vtkdf::ComputeMedialAxis(std::move(input),
                            this->SignMode == WINDING_NUMBER ? vtkdf::SignMode::WindingNumber
                                                             : vtkdf::SignMode::PseudoNormal,
                            field,
-                           gl,
+                           needed,
+                           part.GL,
                            arrays,
                            execution,
                            error)
-                       : vtkdf::ComputeMedialAxis(field, gl, arrays, execution, error);
+                       : vtkdf::ComputeMedialAxis(field, part.GL, arrays, execution, error);
   if (!ok)
   {
     vtkErrorMacro(<< error);
-    return 0;
+    return false;
   }
-  if (arrays.Aborted)
-  {
-    return 1; // empty outputs
-  }
+  part.Aborted = arrays.Aborted;
+  return true;
+}
 
-  // Port 0: the grid with Medial, SeparationAngle and Radius.
-  SetOutputExtent(output, field.Grid, field.Grid.Whole);
-  output->GetPointData()->AddArray(medial);
-  output->GetPointData()->AddArray(angle);
-  output->GetPointData()->AddArray(radius);
-  output->GetPointData()->SetActiveScalars("Medial");
-  // Port 1: one vertex per medial voxel.
-  if (vtkdf::IsFirstRank())
+void vtkMedialAxisFilter::OwnedMedialVoxels(const MedialPart& part,
+  const vtkdf::IndexBox& piece,
+  const vtkdf::IndexBox& whole,
+  std::vector<double>& owned) const
+{
+  // Pieces of a grid share their boundary planes: a voxel on one belongs to the piece
+  // below it, but on the grid's own last plane.
+  vtkdf::IndexBox mine = piece;
+  for (int a = 0; a < 3; ++a)
   {
-    // Every rank computes the whole grid: in a distributed run rank 0 alone outputs the
-    // points, so that the ranks' outputs do not repeat them.
-    this->WriteMedialPoints(field.Grid, medial, angle, radius, arrays.Count, points);
+    if (mine.Hi[a] < whole.Hi[a])
+    {
+      mine.Hi[a] -= 1;
+    }
   }
-  this->LastMedialCount = arrays.Count;
-  this->FinishTiming(gl, timer);
-  return 1;
+  const vtkIdType nx = part.Box.Size(0), ny = part.Box.Size(1);
+  const double wx = whole.Size(0), wy = whole.Size(1);
+  for (int k = mine.Lo[2]; k <= mine.Hi[2]; ++k)
+  {
+    for (int j = mine.Lo[1]; j <= mine.Hi[1]; ++j)
+    {
+      for (int i = mine.Lo[0]; i <= mine.Hi[0]; ++i)
+      {
+        const vtkIdType v =
+          (vtkIdType(k - part.Box.Lo[2]) * ny + (j - part.Box.Lo[1])) * nx + (i - part.Box.Lo[0]);
+        if (part.Medial->GetValue(v))
+        {
+          // The voxel's index in the whole grid (below 2^53: exact as a double).
+          owned.push_back(((k - whole.Lo[2]) * wy + (j - whole.Lo[1])) * wx + (i - whole.Lo[0]));
+          owned.push_back(part.Angle->GetValue(v));
+          owned.push_back(part.Radius->GetValue(v));
+        }
+      }
+    }
+  }
+}
+
+bool vtkMedialAxisFilter::GatherMedialVoxels(bool ok, std::vector<double>& owned) const
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (!controller || controller->GetNumberOfProcesses() < 2)
+  {
+    return ok;
+  }
+  // Every rank takes part, a failed one too (it sends -1), or the others would wait.
+  std::vector<double> send = ok ? owned : std::vector<double>{ -1 };
+  vtkNew<vtkDoubleArray> mine, all;
+  mine->SetArray(send.data(), static_cast<vtkIdType>(send.size()), 1);
+  controller->GatherV(mine, all, 0);
+  if (controller->GetLocalProcessId() != 0)
+  {
+    return false;
+  }
+  const double* values = all->GetPointer(0);
+  const vtkIdType n = all->GetNumberOfValues();
+  std::vector<std::array<double, 3>> voxels;
+  for (vtkIdType at = 0; at < n; at += 3)
+  {
+    if (values[at] < 0 || at + 3 > n)
+    {
+      return false; // a rank failed and said why
+    }
+    voxels.push_back({ values[at], values[at + 1], values[at + 2] });
+  }
+  std::sort(voxels.begin(),
+    voxels.end(),
+    [](const std::array<double, 3>& a, const std::array<double, 3>& b) { return a[0] < b[0]; });
+  owned.clear();
+  for (const auto& voxel : voxels)
+  {
+    owned.insert(owned.end(), voxel.begin(), voxel.end());
+  }
+  return true;
 }
 
 bool vtkMedialAxisFilter::ReadField(vtkImageData* image,
@@ -184,7 +396,17 @@ bool vtkMedialAxisFilter::ReadField(vtkImageData* image,
     vtkErrorMacro(<< error);
     return false;
   }
-  if (this->Region == INSIDE && distance->GetRange()[0] >= 0)
+  // A piece of the field may lie wholly outside the shape: only the whole field tells.
+  int extent[6], whole[6];
+  image->GetExtent(extent);
+  std::copy(extent, extent + 6, whole);
+  vtkInformation* inInfo = this->GetInputInformation(0, 0);
+  if (inInfo && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  }
+  if (this->Region == INSIDE && distance->GetRange()[0] >= 0 &&
+    std::equal(extent, extent + 6, whole))
   {
     vtkErrorMacro("Region is Inside but the field is unsigned (no negative Distance): compute "
                   "it with SignMode PseudoNormal or WindingNumber, or use Region Outside or "
@@ -202,12 +424,10 @@ bool vtkMedialAxisFilter::ReadField(vtkImageData* image,
 }
 
 void vtkMedialAxisFilter::WriteMedialPoints(const vtkdf::SampleGrid& grid,
-  vtkUnsignedCharArray* medial,
-  vtkFloatArray* angle,
-  vtkFloatArray* radius,
-  vtkIdType count,
+  const std::vector<double>& voxels,
   vtkPolyData* points)
 {
+  const vtkIdType count = static_cast<vtkIdType>(voxels.size() / 3);
   vtkNew<vtkPoints> positions;
   positions->SetDataTypeToDouble();
   positions->SetNumberOfPoints(count);
@@ -216,24 +436,19 @@ void vtkMedialAxisFilter::WriteMedialPoints(const vtkdf::SampleGrid& grid,
   auto pointAngle = vtkdf::NewArray<vtkFloatArray>("SeparationAngle", count);
   auto pointRadius = vtkdf::NewArray<vtkFloatArray>("Radius", count);
   const vtkdf::IndexBox& whole = grid.Whole;
-  const int nx = whole.Size(0), ny = whole.Size(1);
-  vtkIdType next = 0;
-  for (vtkIdType v = 0; v < medial->GetNumberOfTuples(); ++v)
+  const vtkIdType nx = whole.Size(0), ny = whole.Size(1);
+  for (vtkIdType p = 0; p < count; ++p)
   {
-    if (!medial->GetValue(v))
-    {
-      continue;
-    }
+    const vtkIdType v = static_cast<vtkIdType>(voxels[3 * p]);
     const int ijk[3] = { whole.Lo[0] + static_cast<int>(v % nx),
       whole.Lo[1] + static_cast<int>((v / nx) % ny),
-      whole.Lo[2] + static_cast<int>(v / (vtkIdType(nx) * ny)) };
+      whole.Lo[2] + static_cast<int>(v / (nx * ny)) };
     positions->SetPoint(
-      next, grid.Coordinate(0, ijk[0]), grid.Coordinate(1, ijk[1]), grid.Coordinate(2, ijk[2]));
-    pointMedial->SetValue(next, 1);
-    pointAngle->SetValue(next, angle->GetValue(v));
-    pointRadius->SetValue(next, radius->GetValue(v));
-    vertices->InsertNextCell(1, &next);
-    ++next;
+      p, grid.Coordinate(0, ijk[0]), grid.Coordinate(1, ijk[1]), grid.Coordinate(2, ijk[2]));
+    pointMedial->SetValue(p, 1);
+    pointAngle->SetValue(p, static_cast<float>(voxels[3 * p + 1]));
+    pointRadius->SetValue(p, static_cast<float>(voxels[3 * p + 2]));
+    vertices->InsertNextCell(1, &p);
   }
   points->SetPoints(positions);
   points->SetVerts(vertices);

@@ -29,6 +29,13 @@
  * vertex per medial voxel and the same arrays (spheres of radius Radius by glyphing).
  * Both backends give the same voxels and apertures (computed in the same double
  * arithmetic on both).
+ *
+ * A requested piece of the grid (UPDATE_EXTENT) is computed alone, from the field on the
+ * piece and one voxel around it (computed here from a mesh, or asked of the field's
+ * producer), and equals the same voxels of the whole grid bit for bit. Port 1 holds the
+ * medial voxels the piece owns (pieces share boundary planes; a plane belongs to the
+ * piece below it); in a distributed run rank 0 gathers every rank's and alone outputs
+ * them, in voxel order, as one process would.
  */
 #ifndef vtkMedialAxisFilter_h
 #define vtkMedialAxisFilter_h
@@ -36,7 +43,10 @@
 #include "vtkDistanceFieldAlgorithm.h"
 #include "vtkSmartPointer.h" // For ReadField
 
+#include <vector> // For OwnedMedialVoxels
+
 class vtkFloatArray;
+class vtkImageData;
 class vtkUnsignedCharArray;
 #ifndef __VTK_WRAP__
 namespace vtkdf
@@ -91,7 +101,8 @@ public:
   /// The medial voxels as points (output port 1).
   vtkPolyData* GetMedialPoints();
 
-  /// Medial voxels found by the last run.
+  /// Medial voxels found by the last run (in a distributed run: those of this rank's
+  /// piece of the grid).
   vtkGetMacro(LastMedialCount, vtkIdType);
 
 protected:
@@ -99,22 +110,39 @@ protected:
   ~vtkMedialAxisFilter() override = default;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   bool CheckProperties() override;
 
 #ifndef __VTK_WRAP__
+  /// The arrays computed for a box of voxels (the piece and its neighbours).
+  struct MedialPart;
+  /// The medial axis on `needed` (the mesh's field computed there), or on what the
+  /// field input holds; false with the error reported.
+  bool ComputePart(vtkPolyData* mesh,
+    vtkImageData* image,
+    const vtkdf::SampleGrid& whole,
+    const vtkdf::IndexBox& needed,
+    vtkdf::StageTimer& timer,
+    MedialPart& part);
+  /// The medial voxels that `piece` owns (pieces share boundary planes: a plane belongs
+  /// to the piece below it), as (index in `whole`, angle, radius) triples.
+  void OwnedMedialVoxels(const MedialPart& part,
+    const vtkdf::IndexBox& piece,
+    const vtkdf::IndexBox& whole,
+    std::vector<double>& owned) const;
+  /// In a distributed run, rank 0 receives every rank's triples, in voxel order (true on
+  /// rank 0 when every rank succeeded); one process keeps its own (true when `ok`).
+  bool GatherMedialVoxels(bool ok, std::vector<double>& owned) const;
   /// The field of an image input (Distance and ClosestPoint as float), checked against
   /// Region and the memory limit; false with the error reported.
   bool ReadField(vtkImageData* image,
     vtkdf::MedialInput& field,
     vtkSmartPointer<vtkFloatArray>& distance,
     vtkSmartPointer<vtkFloatArray>& closest);
-  /// Output port 1: a vertex at every medial voxel, with its arrays.
+  /// Output port 1: a vertex at every medial voxel (triples as OwnedMedialVoxels makes).
   static void WriteMedialPoints(const vtkdf::SampleGrid& grid,
-    vtkUnsignedCharArray* medial,
-    vtkFloatArray* angle,
-    vtkFloatArray* radius,
-    vtkIdType count,
+    const std::vector<double>& voxels,
     vtkPolyData* points);
 #endif
 

@@ -3,7 +3,9 @@ with VTK's own vtkMPIController as the global controller. Each rank holds a part
 mesh (a range of its cells, with global point and cell ids: their original indices) and
 asks the linear factorization for its piece of the grid; the filter gathers the parts.
 Every rank's slab must equal, bit for bit, the same samples of the field of the whole mesh
-without ids (which every rank also computes), and the slabs must cover the grid."""
+without ids (which every rank also computes), and the slabs must cover the grid. The
+medial axis of the parts likewise: each rank's slab equal to one process's, and rank 0's
+medial points (gathered from the ranks) all of one process's."""
 import os
 import sys
 
@@ -12,11 +14,11 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import VTK_ID_TYPE
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
-from vtkmodules.vtkParallelCore import vtkMultiProcessController
+from vtkmodules.vtkParallelCore import vtkDummyController, vtkMultiProcessController
 from mpi4py import MPI  # noqa: F401 (initializes MPI before VTK's controller uses it)
 from vtkmodules.vtkParallelMPI import vtkMPIController
 
-from vtkdistancefields import vtkLinearFactorDistanceField
+from vtkdistancefields import vtkLinearFactorDistanceField, vtkMedialAxisFilter
 
 controller = vtkMPIController()
 controller.Initialize()
@@ -83,5 +85,49 @@ print(f"rank {rank} of {ranks}: cells {first}..{last - 1}, extent {extent}: "
       f"{'equal to the whole mesh field bit for bit' if ok else 'DIFFERS'}", flush=True)
 # Each rank computed a slab, not the whole grid.
 is_slab = ranks == 1 or tuple(extent) != tuple(full.GetExtent())
+
+# The medial axis of the parts: each rank its slab (from the field on it and one voxel
+# around), rank 0 every medial point, both as the whole mesh's in one process.
+def medial(mesh):
+    m = vtkMedialAxisFilter()
+    m.SetInputData(mesh)
+    m.SetResolution(24)
+    m.SetRegionToBoth()
+    m.SetBackendToCPU()
+    return m
+
+
+distributed = medial(part)
+distributed.UpdatePiece(rank, ranks, 0)
+slab = distributed.GetOutput()
+medial_extent = slab.GetExtent()
+vtkMultiProcessController.SetGlobalController(vtkDummyController())
+alone = medial(whole)
+alone.Update()
+vtkMultiProcessController.SetGlobalController(controller)
+full = alone.GetOutput()
+medial_ok = True
+for name in ("Medial", "SeparationAngle", "Radius"):
+    values = vtk_to_numpy(full.GetPointData().GetArray(name))
+    grid = values.reshape((-1, wy, wx))
+    e = medial_extent
+    expected = grid[e[4]:e[5] + 1, e[2]:e[3] + 1, e[0]:e[1] + 1]
+    got = vtk_to_numpy(slab.GetPointData().GetArray(name))
+    medial_ok = medial_ok and got.tobytes() == np.ascontiguousarray(expected).reshape(-1).tobytes()
+points = distributed.GetOutputDataObject(1)
+every = alone.GetOutputDataObject(1)
+if rank == 0:
+    medial_ok = medial_ok and points.GetNumberOfPoints() == every.GetNumberOfPoints() > 0
+    for get in (lambda d: d.GetPoints().GetData(),
+                lambda d: d.GetPointData().GetArray("SeparationAngle"),
+                lambda d: d.GetPointData().GetArray("Radius")):
+        medial_ok = medial_ok and vtk_to_numpy(get(points)).tobytes() == \
+            vtk_to_numpy(get(every)).tobytes()
+else:
+    medial_ok = medial_ok and points.GetNumberOfPoints() == 0
+medial_slab = ranks == 1 or tuple(medial_extent) != tuple(full.GetExtent())
+print(f"rank {rank} of {ranks}: medial axis extent {medial_extent}, "
+      f"{points.GetNumberOfPoints()} of {every.GetNumberOfPoints()} medial points: "
+      f"{'equal to one process bit for bit' if medial_ok else 'DIFFERS'}", flush=True)
 controller.Finalize()
-sys.exit(0 if ok and is_slab else 1)
+sys.exit(0 if ok and is_slab and medial_ok and medial_slab else 1)

@@ -1,7 +1,9 @@
 """Pieces of a field equal the whole field bit for bit, as a distributed run (ParaView's
-MPI engine, a streaming writer) needs: the linear factorization (both backends, signed)
-and the voxelizer computed on three uneven slabs, each compared with the same samples of
-the whole grid; and a chamfer transform asked for one piece of two still gets all of its
+MPI engine, a streaming writer) needs: the linear factorization (both backends, signed),
+the voxelizer and the medial axis (of a mesh on both backends and both signs, and of a
+field, whose upstream then computes only the slab and one voxel around it) computed on
+three uneven slabs, each compared with the same samples of the whole grid, the slabs'
+medial points together the whole grid's; and a chamfer transform asked for one piece of two still gets all of its
 voxelizer input (every voxel depends on every other): python3 TestPiecesPython.py DATA."""
 import os
 import sys
@@ -11,7 +13,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 
 from vtkdistancefields import (vtkChamferVoxelDistance, vtkLinearFactorDistanceField,
-                               vtkPolyDataVoxelizer)
+                               vtkMedialAxisFilter, vtkPolyDataVoxelizer)
 
 reader = vtkXMLPolyDataReader()
 reader.SetFileName(os.path.join(sys.argv[1], "bunny_small.vtp"))
@@ -47,10 +49,46 @@ for backend in ("CPU", "GPU"):
     v = vtkPolyDataVoxelizer()
     getattr(v, f"SetBackendTo{backend}")()
     filters.append((f"voxelizer, {backend}", v))
+    for sign in ("PseudoNormal", "WindingNumber"):
+        m = vtkMedialAxisFilter()
+        getattr(m, f"SetSignModeTo{sign}")()
+        m.SetRegionToBoth()
+        m.SetSeparationAngle(60)
+        getattr(m, f"SetBackendTo{backend}")()
+        filters.append((f"medial axis, {sign}, {backend}", m))
+# The medial axis of a field: the field upstream computes the slab and one voxel around.
+field = vtkLinearFactorDistanceField()
+field.SetInputConnection(reader.GetOutputPort())
+field.SetResolution(28)
+field.ComputeClosestPointOn()
+field.SetBackendToCPU()
+medial_of_field = vtkMedialAxisFilter()
+medial_of_field.SetInputConnection(field.GetOutputPort())
+medial_of_field.SetRegionToBoth()
+medial_of_field.SetBackendToCPU()
+filters.append(("medial axis of a field", medial_of_field))
+
+
+def medial_points(f):
+    """The medial points (port 1) as rows x y z angle radius."""
+    if f.GetNumberOfOutputPorts() < 2:
+        return None
+    points = f.GetOutputDataObject(1)
+    if points.GetNumberOfPoints() == 0:
+        return np.zeros((0, 5))
+    data = points.GetPointData()
+    return np.column_stack([vtk_to_numpy(points.GetPoints().GetData()),
+                            vtk_to_numpy(data.GetArray("SeparationAngle")),
+                            vtk_to_numpy(data.GetArray("Radius"))])
+
+
 for label, f in filters:
-    f.SetInputConnection(reader.GetOutputPort())
-    f.SetResolution(28)
+    if f is not medial_of_field:
+        f.SetInputConnection(reader.GetOutputPort())
+        f.SetResolution(28)
     f.Update()
+    whole_points = medial_points(f)
+    pieces_points = []
     whole = f.GetOutput()
     whole_extent = whole.GetExtent()
     whole_arrays = arrays(whole)
@@ -62,6 +100,7 @@ for label, f in filters:
         extent = list(whole_extent)
         extent[2], extent[3] = lo, hi
         f.Modified()  # else the whole grid it holds already covers the slab
+        field.Modified()
         f.UpdateExtent(extent)
         piece = f.GetOutput()
         if list(piece.GetExtent()) != extent:
@@ -73,6 +112,24 @@ for label, f in filters:
             if values.tobytes() != expected[name].tobytes():
                 print(f"{label}: {name} differs on slab {extent}")
                 same = False
+        if whole_points is not None:
+            pieces_points.append(medial_points(f))
+        if f is medial_of_field:
+            grown = list(extent)
+            grown[2], grown[3] = max(lo - 1, y0), min(hi + 1, y1)
+            if list(field.GetOutput().GetExtent()) != grown:
+                print(f"{label}: the field upstream computed {field.GetOutput().GetExtent()}, "
+                      f"not {grown}")
+                same = False
+    if whole_points is not None:
+        # Each medial voxel from the one slab that owns it; in voxel (z, y, x) order.
+        together = np.concatenate(pieces_points)
+        together = together[np.lexsort((together[:, 0], together[:, 1], together[:, 2]))]
+        if together.tobytes() != whole_points.tobytes():
+            print(f"{label}: the slabs' {len(together)} medial points differ from the whole "
+                  f"grid's {len(whole_points)}")
+            same = False
+        label += f" ({len(whole_points)} medial points)"
     print(f"{label}: three slabs {'equal the whole grid bit for bit' if same else 'DIFFER'}")
     ok = ok and same
 

@@ -64,6 +64,7 @@ bool ComputeMedialAxis(const MedialInput& field,
 bool ComputeMedialAxis(MeshInput mesh,
   SignMode sign,
   const MedialInput& parameters,
+  const IndexBox& extent,
   HeadlessGL* gl,
   MedialArrays& arrays,
   const Execution& execution,
@@ -71,7 +72,7 @@ bool ComputeMedialAxis(MeshInput mesh,
 {
   LinearFactorRequest request;
   request.Grid = parameters.Grid;
-  request.Extent = parameters.Grid.Whole;
+  request.Extent = extent;
   request.Sign = sign;
   LinearFactorReport report;
   const int64_t voxels = request.Extent.Count();
@@ -85,6 +86,7 @@ bool ComputeMedialAxis(MeshInput mesh,
     {
       MedialInput local = parameters;
       local.Grid = field.Grid;
+      local.Grid.Whole = field.Extent; // the voxels in the buffers
       scale = field.Frame.Scale;
       if (!MedialAxisOnGPUField(*gl,
             field,
@@ -146,6 +148,7 @@ bool ComputeMedialAxis(MeshInput mesh,
   }
   execution.EndStage("field");
   MedialInput input = parameters;
+  input.Grid.Whole = extent;
   input.Distance = distance.data();
   input.ClosestPoint = closest.data();
   return ComputeMedialAxis(input, gl, arrays, execution, error);

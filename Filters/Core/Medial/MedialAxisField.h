@@ -38,15 +38,19 @@ bool ComputeMedialAxis(const MedialInput& field,
   const Execution& execution,
   std::string& error);
 
-/// The medial axis of a mesh (world coordinates, Bounds filled): its signed field on
-/// `parameters.Grid` (world) by `sign`, then the pass (parameters' Distance and
-/// ClosestPoint are not read). On the GPU with the pseudonormal sign, the field stays
-/// there and one pass reads it (stage field+medial); otherwise the stages are field and
-/// medial. Progress (and abort) during the field, from 0 to 0.9, but in the fused GPU
-/// pass. False and `error` on invalid input or when the GPU fails.
+/// The medial axis of a mesh (world coordinates, Bounds filled) on the voxels `extent`
+/// of `parameters.Grid` (world; `arrays` hold extent's voxels): its signed field there by
+/// `sign`, then the pass (parameters' Distance and ClosestPoint are not read). Each
+/// voxel's field, hence each cell inside `extent`, is that of the whole grid bit for
+/// bit, so a voxel's answer is the whole grid's when `extent` holds its neighbours (a
+/// piece of the grid grown by one voxel). On the GPU with the pseudonormal sign, the
+/// field stays there and one pass reads it (stage field+medial); otherwise the stages
+/// are field and medial. Progress (and abort) during the field, from 0 to 0.9, but in
+/// the fused GPU pass. False and `error` on invalid input or when the GPU fails.
 bool ComputeMedialAxis(MeshInput mesh,
   SignMode sign,
   const MedialInput& parameters,
+  const IndexBox& extent,
   HeadlessGL* gl,
   MedialArrays& arrays,
   const Execution& execution,
