@@ -7,7 +7,10 @@
 #    path set (their RPATHs are relative to themselves);
 # 2. the Debian packages: a build for /usr (multiarch libdir), `cpack -G DEB`,
 #    `apt-get install ./*.deb`; then the downstream example, vtkdf and the system Python's
-#    import with no environment variables at all; then the packages are removed again.
+#    import with no environment variables at all; then the packages are removed again;
+# 3. the ParaView plugin's package (vtkdistancefields-paraview, from ./build-paraview, which
+#    Testing/run-paraview-tests.sh builds): installed, loaded by pvbatch by path and
+#    through PV_PLUGIN_PATH, a filter run; Debian's paraview package unchanged; removed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -67,6 +70,42 @@ cleanup
 trap - EXIT
 if dpkg-query -W -f='${Status}' vtkdistancefields 2>/dev/null | grep -q "ok installed"; then
   echo "the package is still installed"
+  exit 1
+fi
+
+# 3. The ParaView plugin's package, made from ./build-paraview (Testing/run-paraview-tests.sh
+#    built it there and unpacked python3-paraview, whose modules pvbatch needs, beside it).
+step "the ParaView plugin's Debian package"
+if [ ! -f build-paraview/CPackConfig.cmake ]; then
+  echo "no ./build-paraview: run Testing/run-paraview-tests.sh first"
+  exit 1
+fi
+work=$(mktemp -d)
+(cd build-paraview && rm -f ./*.deb && cpack -G DEB >/dev/null)
+deb=$(ls build-paraview/vtkdistancefields-paraview_*.deb)
+echo "$deb:"
+dpkg-deb --field "$deb" Package Depends Recommends | sed 's/^/  /'
+dpkg-deb --field "$deb" Depends | grep -q "paraview" || { echo "it does not depend on paraview"; exit 1; }
+apt-get install -y -qq "./$deb" >/dev/null
+cleanup_plugin() {
+  apt-get remove -y -qq vtkdistancefields-paraview >/dev/null || true
+  rm -rf "$work"
+}
+trap cleanup_plugin EXIT
+plugins=/usr/lib/x86_64-linux-gnu/paraview-5.11/plugins
+resolves "$plugins/DistanceFields/"*.so
+# No file of Debian's paraview package changed (its paraview.plugins.xml included).
+dpkg --verify paraview
+pv_python=build-paraview/python3-paraview/usr/lib/python3/dist-packages
+(cd "$work" && env -i PATH=/usr/bin:/bin PYTHONPATH="$root/$pv_python" \
+  pvbatch "$root/Testing/ParaView/installed_plugin.py" "$root/Testing/Data/bunny_small.vtp")
+(cd "$work" && env -i PATH=/usr/bin:/bin PYTHONPATH="$root/$pv_python" \
+  PV_PLUGIN_PATH="$plugins/DistanceFields" \
+  pvbatch "$root/Testing/ParaView/installed_plugin.py" "$root/Testing/Data/bunny_small.vtp" auto)
+cleanup_plugin
+trap - EXIT
+if [ -e "$plugins/DistanceFields" ]; then
+  echo "the plugin's folder is still there"
   exit 1
 fi
 echo "install tests passed"

@@ -91,3 +91,30 @@ paraview_plugin_build(
 if (BUILD_TESTING)
   add_subdirectory(Testing/ParaView)
 endif ()
+
+# The plugin as a Debian package (cpack -G DEB in this build tree): vtkdistancefields-paraview,
+# the plugin's folder only (the plugin and the two modules built against ParaView's VTK,
+# found beside it through $ORIGIN), for Debian's ParaView under /usr whatever
+# CMAKE_INSTALL_PREFIX is. It adds a folder under ParaView's plugins and changes no file
+# of the paraview package (its paraview.plugins.xml included): load the plugin by path
+# or through PV_PLUGIN_PATH.
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME vtkdistancefields-paraview)
+set(CPACK_PACKAGE_VENDOR "VTK Distance Fields")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
+  "The VTK Distance Fields filters as a ParaView plugin (GPU and CPU distance fields of polygon meshes)")
+set(CPACK_PACKAGE_CONTACT "VTK Distance Fields developers <vtkdf@vtk-distance-fields.invalid>")
+set(CPACK_PACKAGING_INSTALL_PREFIX "/usr")
+set(CPACK_DEB_COMPONENT_INSTALL ON)
+set(CPACK_COMPONENTS_ALL paraview)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PARAVIEW_PACKAGE_NAME vtkdistancefields-paraview)
+set(CPACK_DEBIAN_PARAVIEW_PACKAGE_SHLIBDEPS ON)
+# The modules beside the plugin are its own, not another package's.
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS
+  "${CMAKE_BINARY_DIR}/${df_plugin_libdir}/${PARAVIEW_PLUGIN_SUBDIR}/DistanceFields")
+# dpkg-shlibdeps adds paraview (exactly the version built against: its VTK's ABI).
+set(CPACK_DEBIAN_PARAVIEW_PACKAGE_RECOMMENDS "libgl1-mesa-dri, libegl1, libegl-mesa0, libosmesa6")
+include(CPack)
+cpack_add_component(paraview DESCRIPTION "The ParaView plugin DistanceFields")
