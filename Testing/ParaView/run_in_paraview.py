@@ -1,18 +1,29 @@
 """Runs cases.py's cases through the ParaView plugin:
 pvbatch [--symmetric] run_in_paraview.py PLUGIN DATA_DIR OUT_DIR [distributed]
+pvpython run_in_paraview.py PLUGIN DATA_DIR OUT_DIR server:HOST:PORT
 
 Each output port goes to OUT_DIR/<case>_<port>.<extension>. With "distributed" (under
 mpiexec ... pvbatch --symmetric), the outputs are written by ParaView's parallel writers
 (.pvti, .pvtp: one piece a rank), and every rank prints the extent of each image it
-computed."""
+computed. With "server:HOST:PORT", pvpython connects to a pvserver there (mpiexec -n R
+pvserver) and the server's ranks run the cases and write them likewise."""
 import os
 import sys
 
-from paraview import simple
-from paraview.modules.vtkRemotingCore import vtkProcessModule
+# pvpython run from python3-paraview unpacked elsewhere puts the system's dist-packages
+# (python3-vtk9's vtkmodules, another VTK) before PYTHONPATH: take ParaView's.
+sys.path = [p for p in sys.path if p.rstrip("/") != "//lib/python3/dist-packages"]
+
+from paraview import simple  # noqa: E402
+from paraview.modules.vtkRemotingCore import vtkProcessModule  # noqa: E402
 
 plugin, data_dir, out_dir = sys.argv[1:4]
-distributed = sys.argv[4:5] == ["distributed"]
+mode = sys.argv[4] if len(sys.argv) > 4 else ""
+server = mode.startswith("server:")
+distributed = mode == "distributed" or server
+if server:
+    _, host, port = mode.split(":")
+    simple.Connect(host, int(port))
 # The plugin's filters become functions of paraview.simple.
 simple.LoadPlugin(plugin, remote=True)
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -48,8 +59,8 @@ for case in CASES:
                      else simple.XMLPPolyDataWriter)
             writer = write(Input=simple.OutputPort(proxy, port), FileName=path)
             writer.UpdatePipeline()
-            output = proxy.GetClientSideObject().GetOutputDataObject(port)
-            if extension == "vti":
+            if extension == "vti" and not server:
+                output = proxy.GetClientSideObject().GetOutputDataObject(port)
                 print(f"{case['name']}: rank {rank} of {ranks} computed extent "
                       f"{output.GetExtent()}", flush=True)
             simple.Delete(writer)
