@@ -42,7 +42,7 @@ df_declare_targets_with_missing_files()
 
 # Only the components this build needs: without COMPONENTS, ParaView's package also
 # asks for its Qt client, whose help module Debian does not ship.
-find_package(ParaView 5.11 REQUIRED COMPONENTS RemotingCore RemotingServerManager)
+find_package(ParaView 5.11 REQUIRED COMPONENTS RemotingCore RemotingServerManager RemotingViews)
 # ParaView's VTK, with the modules ours depend on (and their own dependencies: X11, GLEW).
 find_package(VTK REQUIRED COMPONENTS CommonCore CommonDataModel CommonExecutionModel
   CommonSystem CommonMath vtksys ParallelCore RenderingCore RenderingVolume RenderingOpenGL2 glew)
