@@ -85,8 +85,62 @@ bool ReadMask(vtkImageData* image,
 vtkChamferVoxelDistance::vtkChamferVoxelDistance()
 {
   this->AcceptsImageInput = true;
-  this->ProducesSubExtents = false; // every voxel depends on the whole zero set
 }
+
+int vtkChamferVoxelDistance::RequestUpdateExtent(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (!vtkImageData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
+  }
+  // A masks input: all of it without a limit on the layers; else the requested voxels
+  // and MaximumLayers around them (see PieceVoxels).
+  vtkdf::RequestWholeInput(inInfo);
+  vtkdf::SampleGrid grid;
+  vtkdf::IndexBox piece;
+  if (this->MaximumLayers > 0 && GetOutputGrid(outputVector->GetInformationObject(0), grid, piece))
+  {
+    const vtkdf::IndexBox needed = piece.Grown(this->MaximumLayers, grid.Whole);
+    const int update[6] = {
+      needed.Lo[0], needed.Hi[0], needed.Lo[1], needed.Hi[1], needed.Lo[2], needed.Hi[2]
+    };
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), update, 6);
+  }
+  return 1;
+}
+
+namespace
+{
+/// The bits of `from` (over the box `box`) on the voxels of `part`, a box within it.
+vtkdf::BitVolume ExtractBits(const vtkdf::BitVolume& from,
+  const vtkdf::IndexBox& box,
+  const vtkdf::IndexBox& part)
+{
+  vtkdf::BitVolume to(part.Size(0), part.Size(1), part.Size(2));
+  const int dx = part.Lo[0] - box.Lo[0], dy = part.Lo[1] - box.Lo[1], dz = part.Lo[2] - box.Lo[2];
+  vtkdf::SMPFor(int64_t(part.Size(0)) * part.Size(1),
+    256,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t lane = begin; lane < end; ++lane)
+      {
+        const int x = static_cast<int>(lane % part.Size(0));
+        const int y = static_cast<int>(lane / part.Size(0));
+        for (int z = 0; z < part.Size(2); ++z)
+        {
+          if (from.Get(x + dx, y + dy, z + dz))
+          {
+            to.Set(x, y, z);
+          }
+        }
+      }
+    });
+  return to;
+}
+} // namespace
 
 int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
@@ -104,10 +158,10 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
   this->LastLayers = 0;
-  // The grid.
+  // The grid of the masks: the input image's, or the whole grid for a mesh.
   vtkdf::ChamferRequest request;
   vtkdf::SampleGrid& grid = request.Grid;
-  vtkdf::IndexBox unused;
+  vtkdf::IndexBox piece;
   if (image)
   {
     if (!GetImageGrid(image, grid))
@@ -117,11 +171,18 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     }
   }
   else if (!mesh || mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0 ||
-    !GetOutputGrid(outInfo, grid, unused))
+    !GetOutputGrid(outInfo, grid, piece))
   {
     vtkWarningMacro("The input mesh is empty: the output is an empty image.");
     return 1;
   }
+  // The piece asked for (all of it in one process), and the voxels that decide it.
+  vtkdf::SampleGrid whole;
+  if (!GetOutputGrid(outInfo, whole, piece) || !grid.Whole.Contains(piece))
+  {
+    piece = grid.Whole;
+  }
+  const vtkdf::IndexBox needed = this->PieceVoxels(piece, grid.Whole);
   request.Metric = static_cast<vtkdf::ChamferMetric>(this->Metric);
   request.MaximumLayers = this->MaximumLayers;
   request.Signed = this->Signed;
@@ -134,7 +195,8 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   }
 
   // The zero set, and the solid when a sign is wanted: read from the image, or
-  // voxelized (on the GPU, the voxelization stays there for the propagation).
+  // voxelized (on the GPU, for the whole grid, the voxelization stays there for the
+  // propagation).
   vtkdf::BitVolume boundary(grid.Whole.Size(0), grid.Whole.Size(1), grid.Whole.Size(2)), solid;
   bool haveSolid = this->Signed;
   if (image)
@@ -146,27 +208,62 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     timer.End("masks");
   }
   std::string error;
-  auto distance = vtkdf::NewArray<vtkIntArray>("ChamferDistance", grid.Whole.Count());
   vtkdf::ChamferReport report;
   const vtkdf::Execution execution = this->MakeExecution(timer);
-  const bool ok = image ? vtkdf::ComputeChamferField(boundary,
-                            haveSolid ? &solid : nullptr,
-                            request,
-                            gl,
-                            distance->GetPointer(0),
-                            execution,
-                            report,
-                            error)
-                        : vtkdf::ComputeChamferField(std::move(input),
-                            request,
-                            gl,
-                            distance->GetPointer(0),
-                            boundary,
-                            solid,
-                            this->OutputMasks,
-                            execution,
-                            report,
-                            error);
+  // The voxels computed: all of the masks' grid, or those that decide the piece.
+  vtkdf::SampleGrid computed = grid;
+  vtkSmartPointer<vtkIntArray> distance;
+  bool ok = true;
+  if (needed == grid.Whole)
+  {
+    distance = vtkdf::NewArray<vtkIntArray>("ChamferDistance", grid.Whole.Count());
+    ok = image ? vtkdf::ComputeChamferField(boundary,
+                   haveSolid ? &solid : nullptr,
+                   request,
+                   gl,
+                   distance->GetPointer(0),
+                   execution,
+                   report,
+                   error)
+               : vtkdf::ComputeChamferField(std::move(input),
+                   request,
+                   gl,
+                   distance->GetPointer(0),
+                   boundary,
+                   solid,
+                   this->OutputMasks,
+                   execution,
+                   report,
+                   error);
+  }
+  else
+  {
+    // A piece of the grid: the masks of the whole, then the propagation over the voxels
+    // that decide the piece.
+    if (mesh &&
+      !vtkdf::VoxelizeMesh(std::move(input),
+        grid,
+        gl,
+        &boundary,
+        this->Signed ? &solid : nullptr,
+        execution,
+        report.Voxels,
+        error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    ok = this->PropagatePiece(boundary,
+      haveSolid ? &solid : nullptr,
+      needed,
+      gl,
+      request,
+      execution,
+      distance,
+      report,
+      error);
+    computed.Whole = needed;
+  }
   if (!ok)
   {
     vtkErrorMacro(<< error);
@@ -180,8 +277,15 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   {
     vtkWarningMacro(<< report.Voxels.Warning);
   }
-  SetOutputExtent(output, grid, grid.Whole);
-  output->GetPointData()->SetScalars(distance);
+  SetOutputExtent(output, grid, piece);
+  if (computed.Whole == piece)
+  {
+    output->GetPointData()->SetScalars(distance);
+  }
+  else
+  {
+    output->GetPointData()->SetScalars(vtkdf::CropArray(distance.Get(), computed.Whole, piece));
+  }
   vtkNew<vtkIntArray> unreachedValue;
   unreachedValue->SetName("UnreachedValue");
   unreachedValue->InsertNextValue(request.Unreached());
@@ -191,9 +295,9 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
     for (int m = 0; m < (haveSolid ? 2 : 1); ++m)
     {
       auto mask =
-        vtkdf::NewArray<vtkUnsignedCharArray>(m == 0 ? "Boundary" : "Solid", grid.Whole.Count());
+        vtkdf::NewArray<vtkUnsignedCharArray>(m == 0 ? "Boundary" : "Solid", piece.Count());
       vtkdf::BitsToBytes(
-        m == 0 ? boundary : solid, grid, grid.Whole, mask->GetPointer(0), vtkdf::SMPFor);
+        m == 0 ? boundary : solid, grid, piece, mask->GetPointer(0), vtkdf::SMPFor);
       output->GetPointData()->AddArray(mask);
     }
   }
@@ -202,6 +306,72 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   this->FinishTiming(gl, timer);
   this->UpdateProgress(1.0);
   return 1;
+}
+
+vtkdf::IndexBox vtkChamferVoxelDistance::PieceVoxels(const vtkdf::IndexBox& piece,
+  const vtkdf::IndexBox& grid) const
+{
+  // A voxel at distance d <= MaximumLayers from the zero set has a shortest path to it
+  // inside the box its distance spans (every step of every metric moves each coordinate
+  // by at most one, and the steps of a path can be reordered to move monotonically), so
+  // MaximumLayers voxels around the piece decide it; without a limit, all of them.
+  return this->MaximumLayers > 0 ? piece.Grown(this->MaximumLayers, grid) : grid;
+}
+
+bool vtkChamferVoxelDistance::PropagatePiece(const vtkdf::BitVolume& boundary,
+  const vtkdf::BitVolume* solid,
+  const vtkdf::IndexBox& needed,
+  vtkdf::HeadlessGL* gl,
+  const vtkdf::ChamferRequest& request,
+  const vtkdf::Execution& execution,
+  vtkSmartPointer<vtkIntArray>& distance,
+  vtkdf::ChamferReport& report,
+  std::string& error)
+{
+  if (!boundary.Any())
+  {
+    error = "The zero set is empty: no Boundary voxel is set, so no distance can be propagated.";
+    return false;
+  }
+  const vtkdf::BitVolume partBoundary = ExtractBits(boundary, request.Grid.Whole, needed);
+  vtkdf::BitVolume partSolid;
+  if (solid)
+  {
+    partSolid = ExtractBits(*solid, request.Grid.Whole, needed);
+  }
+  distance = vtkdf::NewArray<vtkIntArray>("ChamferDistance", needed.Count());
+  vtkdf::ChamferRequest part = request;
+  part.Grid.Whole = needed;
+  if (partBoundary.Any())
+  {
+    const vtkdf::VoxelReport voxels = report.Voxels;
+    const bool ok = vtkdf::ComputeChamferField(partBoundary,
+      solid ? &partSolid : nullptr,
+      part,
+      gl,
+      distance->GetPointer(0),
+      execution,
+      report,
+      error);
+    report.Voxels = voxels;
+    return ok;
+  }
+  // No zero-set voxel within MaximumLayers of the piece: none is reached.
+  const int32_t unreached = request.Unreached();
+  int32_t* values = distance->GetPointer(0);
+  const int nx = needed.Size(0), ny = needed.Size(1), nz = needed.Size(2);
+  for (int z = 0; z < nz; ++z)
+  {
+    for (int y = 0; y < ny; ++y)
+    {
+      for (int x = 0; x < nx; ++x)
+      {
+        const bool inside = request.Signed && solid && partSolid.Get(x, y, z);
+        *values++ = inside ? -unreached : unreached;
+      }
+    }
+  }
+  return true;
 }
 
 double vtkChamferVoxelDistance::EstimateBytes(const vtkdf::IndexBox& voxels) const

@@ -21,7 +21,14 @@
  * also given in the field data array `UnreachedValue`); negative inside when Signed is
  * on and a solid is known (a mesh input is voxelized solid for it; an image input needs
  * `Solid`). With OutputMasks on, `Boundary` and (when known) `Solid` are passed through.
- * The output always covers the whole grid (a distance transform needs all of it).
+ *
+ * A requested piece of the grid (UPDATE_EXTENT) equals the same voxels of the whole
+ * grid bit for bit. With MaximumLayers M > 0 it is computed from the masks of the piece
+ * and M voxels around it (asked of an image input's producer; a mesh is voxelized whole,
+ * then propagated there): a voxel at most M layers from the zero set has a shortest path
+ * to it within M voxels on every axis. Without a limit (M = 0), a voxel may depend on
+ * any other: the whole grid is computed and the piece cut from it. LastLayers counts the
+ * layers of the voxels computed.
  */
 #ifndef vtkChamferVoxelDistance_h
 #define vtkChamferVoxelDistance_h
@@ -32,8 +39,15 @@
 namespace vtkdf
 {
 class BitVolume;
+class HeadlessGL;
+struct ChamferRequest;
+struct ChamferReport;
+struct Execution;
 }
 #endif
+#include "vtkSmartPointer.h" // For PropagatePiece
+
+class vtkIntArray;
 #include "vtkDistanceFieldsModule.h" // For export macro
 
 class VTKDISTANCEFIELDS_EXPORT vtkChamferVoxelDistance : public vtkDistanceFieldAlgorithm
@@ -83,11 +97,25 @@ protected:
   vtkChamferVoxelDistance();
   ~vtkChamferVoxelDistance() override = default;
 
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   bool CheckProperties() override;
 #ifndef __VTK_WRAP__
   /// The bytes a run on these voxels needs (lanes, bit planes of the layers, the field).
   double EstimateBytes(const vtkdf::IndexBox& voxels) const;
+  /// The voxels of `grid` whose masks decide the voxels of `piece`.
+  vtkdf::IndexBox PieceVoxels(const vtkdf::IndexBox& piece, const vtkdf::IndexBox& grid) const;
+  /// The propagation over `needed`, a box within the masks' grid (request.Grid), into
+  /// `distance` (needed's voxels); false with `error` when the zero set is empty.
+  bool PropagatePiece(const vtkdf::BitVolume& boundary,
+    const vtkdf::BitVolume* solid,
+    const vtkdf::IndexBox& needed,
+    vtkdf::HeadlessGL* gl,
+    const vtkdf::ChamferRequest& request,
+    const vtkdf::Execution& execution,
+    vtkSmartPointer<vtkIntArray>& distance,
+    vtkdf::ChamferReport& report,
+    std::string& error);
   /// The Boundary mask (required) and Solid mask (optional: `haveSolid`) of an image
   /// input as lanes; false with the error reported.
   bool ReadMasks(vtkImageData* image,

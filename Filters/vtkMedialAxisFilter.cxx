@@ -73,54 +73,6 @@ vtkPolyData* vtkMedialAxisFilter::GetMedialPoints()
   return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
 }
 
-namespace
-{
-/// The box `extent` grown by one voxel on every side, within `whole`: the voxels whose
-/// cells decide `extent`'s voxels.
-vtkdf::IndexBox Grown(const vtkdf::IndexBox& extent, const vtkdf::IndexBox& whole)
-{
-  vtkdf::IndexBox grown = extent;
-  for (int a = 0; a < 3; ++a)
-  {
-    grown.Lo[a] -= 1;
-    grown.Hi[a] += 1;
-  }
-  return grown.Intersect(whole);
-}
-
-bool Contains(const vtkdf::IndexBox& outer, const vtkdf::IndexBox& inner)
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    if (inner.Lo[a] < outer.Lo[a] || inner.Hi[a] > outer.Hi[a])
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-/// A new array holding `from`'s values (over box `box`) on the voxels of `part`.
-template<typename Array>
-vtkSmartPointer<Array> Crop(Array* from, const vtkdf::IndexBox& box, const vtkdf::IndexBox& part)
-{
-  auto to = vtkdf::NewArray<Array>(from->GetName(), static_cast<vtkIdType>(part.Count()));
-  const vtkIdType nx = box.Size(0), ny = box.Size(1), row = part.Size(0);
-  vtkIdType next = 0;
-  for (int k = part.Lo[2]; k <= part.Hi[2]; ++k)
-  {
-    for (int j = part.Lo[1]; j <= part.Hi[1]; ++j)
-    {
-      const vtkIdType first =
-        (vtkIdType(k - box.Lo[2]) * ny + (j - box.Lo[1])) * nx + (part.Lo[0] - box.Lo[0]);
-      std::copy(from->GetPointer(first), from->GetPointer(first) + row, to->GetPointer(next));
-      next += row;
-    }
-  }
-  return to;
-}
-} // namespace
-
 struct vtkMedialAxisFilter::MedialPart
 {
   bool Ok = false;
@@ -147,7 +99,7 @@ int vtkMedialAxisFilter::RequestUpdateExtent(vtkInformation* request,
   vtkdf::RequestWholeInput(inInfo);
   if (GetOutputGrid(outputVector->GetInformationObject(0), grid, extent))
   {
-    const vtkdf::IndexBox grown = Grown(extent, grid.Whole);
+    const vtkdf::IndexBox grown = extent.Grown(1, grid.Whole);
     const int update[6] = {
       grown.Lo[0], grown.Hi[0], grown.Lo[1], grown.Hi[1], grown.Lo[2], grown.Hi[2]
     };
@@ -192,7 +144,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     vtkWarningMacro("The grid is empty: the outputs are empty.");
     return 1;
   }
-  const vtkdf::IndexBox needed = Grown(piece, whole.Whole);
+  const vtkdf::IndexBox needed = piece.Grown(1, whole.Whole);
   MedialPart part;
   part.Ok = this->ComputePart(mesh, image, whole, needed, timer, part);
   if (part.Ok)
@@ -202,7 +154,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   if (part.Ok && !part.Aborted)
   {
     // Port 0: this piece of the grid with Medial, SeparationAngle and Radius.
-    if (!Contains(part.Box, piece))
+    if (!part.Box.Contains(piece))
     {
       vtkErrorMacro("The input field covers " << part.Box.Lo[0] << ".." << part.Box.Hi[0] << ", "
                                               << part.Box.Lo[1] << ".." << part.Box.Hi[1] << ", "
@@ -212,14 +164,19 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     }
     else
     {
-      const bool whole = part.Box.Lo == piece.Lo && part.Box.Hi == piece.Hi;
       SetOutputExtent(output, part.Grid, piece);
-      output->GetPointData()->AddArray(
-        whole ? part.Medial : Crop(part.Medial.Get(), part.Box, piece));
-      output->GetPointData()->AddArray(
-        whole ? part.Angle : Crop(part.Angle.Get(), part.Box, piece));
-      output->GetPointData()->AddArray(
-        whole ? part.Radius : Crop(part.Radius.Get(), part.Box, piece));
+      if (part.Box == piece)
+      {
+        output->GetPointData()->AddArray(part.Medial);
+        output->GetPointData()->AddArray(part.Angle);
+        output->GetPointData()->AddArray(part.Radius);
+      }
+      else
+      {
+        output->GetPointData()->AddArray(vtkdf::CropArray(part.Medial.Get(), part.Box, piece));
+        output->GetPointData()->AddArray(vtkdf::CropArray(part.Angle.Get(), part.Box, piece));
+        output->GetPointData()->AddArray(vtkdf::CropArray(part.Radius.Get(), part.Box, piece));
+      }
       output->GetPointData()->SetActiveScalars("Medial");
     }
   }

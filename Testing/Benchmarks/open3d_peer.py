@@ -2,10 +2,14 @@
 pseudonormal and winding-number signs) next to Open3D's RaycastingScene
 (compute_distance, compute_signed_distance: Embree inside), what Python users reach for,
 on the same grid: time (median of REPS interleaved runs of both) and Open3D's error
-against ours (the largest |difference| in grid spacings, and the share of samples whose
-sign differs).
+against ours (the largest |difference| of the magnitudes in grid spacings, the share of
+samples whose sign differs from ours, and the share inside by our winding number and by
+Open3D: its sign comes from counting a ray's hits, and Debian 12's python3-open3d 0.16
+finds no hit at all on the machines measured, so it calls every sample outside).
 usage: PYTHONPATH=BUILD/lib/python3/dist-packages /usr/bin/python3 open3d_peer.py MESH_DIR
-       [SIZES] [REPS] [THREADS]   (Debian: apt-get install python3-open3d)
+       [SIZES] [REPS] [THREADS] [MESHES]   (Debian: apt-get install python3-open3d)
+MESHES defaults to "bunny_75k armadillo_52k": on dragon_871k, python3-open3d 0.16 aborts
+(an Eigen assertion in its point query, "AlignedVector3 ... squaredNorm").
 Both sides use THREADS threads (default: every core): vtkSMPTools for ours, Open3D's
 own thread pool (it takes every core; the figure says how many it used)."""
 import os
@@ -25,6 +29,7 @@ mesh_dir = sys.argv[1]
 sizes = [int(n) for n in (sys.argv[2] if len(sys.argv) > 2 else "64 128").split()]
 reps = int(sys.argv[3]) if len(sys.argv) > 3 else 5
 threads = int(sys.argv[4]) if len(sys.argv) > 4 else os.cpu_count()
+meshes = (sys.argv[5] if len(sys.argv) > 5 else "bunny_75k armadillo_52k").split()
 vtkSMPTools.Initialize(threads)
 
 
@@ -73,8 +78,9 @@ def grid_points(image):
 print(f"threads: ours {threads} (vtkSMPTools), Open3D {o3d.core.Device('CPU:0')} with every "
       f"core ({os.cpu_count()}); median of {reps} interleaved runs")
 print(f"{'mesh':14} {'N':>4} {'ours pn s':>9} {'ours wn s':>9} {'o3d uns s':>9} "
-      f"{'o3d sgn s':>9} {'o3d/pn':>7} {'max err h':>9} {'signs pn':>9} {'signs wn':>9}")
-for name in ("bunny_75k", "armadillo_52k", "dragon_871k"):
+      f"{'o3d sgn s':>9} {'o3d/pn':>7} {'max err h':>9} {'signs pn':>9} {'signs wn':>9} "
+      f"{'in (wn)':>9} {'in (o3d)':>9}")
+for name in meshes:
     if not os.path.exists(os.path.join(mesh_dir, name + ".vtp")):
         continue
     mesh = read(name)
@@ -97,6 +103,8 @@ for name in ("bunny_75k", "armadillo_52k", "dragon_871k"):
         error = np.max(np.abs(np.abs(signed) - np.abs(pn))) / h
         signs_pn = np.mean((signed < 0) != (pn < 0)) * 100
         signs_wn = np.mean((signed < 0) != (wn < 0)) * 100
+        inside_o3d, inside_wn = np.mean(signed < 0) * 100, np.mean(wn < 0) * 100
         print(f"{name:14} {n:4d} {median['pn']:9.3f} {median['wn']:9.3f} {median['o3d']:9.3f} "
               f"{median['o3ds']:9.3f} {median['o3ds'] / median['pn']:6.1f}x {error:9.2e} "
-              f"{signs_pn:8.2f}% {signs_wn:8.2f}%", flush=True)
+              f"{signs_pn:8.2f}% {signs_wn:8.2f}% {inside_wn:8.2f}% {inside_o3d:8.2f}%",
+              flush=True)

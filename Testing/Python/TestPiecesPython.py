@@ -3,8 +3,11 @@ MPI engine, a streaming writer) needs: the linear factorization (both backends, 
 the voxelizer and the medial axis (of a mesh on both backends and both signs, and of a
 field, whose upstream then computes only the slab and one voxel around it) computed on
 three uneven slabs, each compared with the same samples of the whole grid, the slabs'
-medial points together the whole grid's; and a chamfer transform asked for one piece of two still gets all of its
-voxelizer input (every voxel depends on every other): python3 TestPiecesPython.py DATA."""
+medial points together the whole grid's; the chamfer transform with a layer limit (three
+metrics, both backends, signed; and of masks, whose producer then gives the slab and the
+limit's voxels around it) likewise; and a chamfer transform without a limit asked for one
+piece of two still gets all of its voxelizer input (a voxel may depend on any other) and
+gives the same voxels as the whole transform: python3 TestPiecesPython.py DATA."""
 import os
 import sys
 
@@ -56,6 +59,27 @@ for backend in ("CPU", "GPU"):
         m.SetSeparationAngle(60)
         getattr(m, f"SetBackendTo{backend}")()
         filters.append((f"medial axis, {sign}, {backend}", m))
+    for metric in ("Manhattan", "Chessboard18", "Chessboard26"):
+        c = vtkChamferVoxelDistance()
+        getattr(c, f"SetMetricTo{metric}")()
+        c.SetMaximumLayers(4)
+        c.SignedOn()
+        c.OutputMasksOn()
+        getattr(c, f"SetBackendTo{backend}")()
+        filters.append((f"chamfer, {metric}, 4 layers, {backend}", c))
+# The chamfer of masks with 3 layers: the voxelizer upstream gives the slab and 3 voxels
+# around it.
+masks = vtkPolyDataVoxelizer()
+masks.SetInputConnection(reader.GetOutputPort())
+masks.SetResolution(28)
+masks.SetModeToBoth()
+masks.SetBackendToCPU()
+chamfer_of_masks = vtkChamferVoxelDistance()
+chamfer_of_masks.SetInputConnection(masks.GetOutputPort())
+chamfer_of_masks.SetMaximumLayers(3)
+chamfer_of_masks.SignedOn()
+chamfer_of_masks.SetBackendToCPU()
+filters.append(("chamfer of masks, 3 layers", chamfer_of_masks))
 # The medial axis of a field: the field upstream computes the slab and one voxel around.
 field = vtkLinearFactorDistanceField()
 field.SetInputConnection(reader.GetOutputPort())
@@ -83,7 +107,7 @@ def medial_points(f):
 
 
 for label, f in filters:
-    if f is not medial_of_field:
+    if f not in (medial_of_field, chamfer_of_masks):
         f.SetInputConnection(reader.GetOutputPort())
         f.SetResolution(28)
     f.Update()
@@ -101,6 +125,7 @@ for label, f in filters:
         extent[2], extent[3] = lo, hi
         f.Modified()  # else the whole grid it holds already covers the slab
         field.Modified()
+        masks.Modified()
         f.UpdateExtent(extent)
         piece = f.GetOutput()
         if list(piece.GetExtent()) != extent:
@@ -114,13 +139,15 @@ for label, f in filters:
                 same = False
         if whole_points is not None:
             pieces_points.append(medial_points(f))
-        if f is medial_of_field:
-            grown = list(extent)
-            grown[2], grown[3] = max(lo - 1, y0), min(hi + 1, y1)
-            if list(field.GetOutput().GetExtent()) != grown:
-                print(f"{label}: the field upstream computed {field.GetOutput().GetExtent()}, "
-                      f"not {grown}")
-                same = False
+        for consumer, producer, layers in ((medial_of_field, field, 1),
+                                           (chamfer_of_masks, masks, 3)):
+            if f is consumer:
+                grown = list(extent)
+                grown[2], grown[3] = max(lo - layers, y0), min(hi + layers, y1)
+                if list(producer.GetOutput().GetExtent()) != grown:
+                    print(f"{label}: the input upstream covers "
+                          f"{producer.GetOutput().GetExtent()}, not {grown}")
+                    same = False
     if whole_points is not None:
         # Each medial voxel from the one slab that owns it; in voxel (z, y, x) order.
         together = np.concatenate(pieces_points)
@@ -133,7 +160,8 @@ for label, f in filters:
     print(f"{label}: three slabs {'equal the whole grid bit for bit' if same else 'DIFFER'}")
     ok = ok and same
 
-# The chamfer asked for piece 0 of 2: its voxelizer input must still be whole.
+# The chamfer without a layer limit asked for piece 0 of 2: its voxelizer input must
+# still be whole (any voxel may depend on any other), its piece the whole transform's.
 voxelizer = vtkPolyDataVoxelizer()
 voxelizer.SetInputConnection(reader.GetOutputPort())
 voxelizer.SetResolution(28)
@@ -146,12 +174,14 @@ expected = vtk_to_numpy(chamfer.GetOutput().GetPointData().GetArray("ChamferDist
 chamfer.Modified()
 chamfer.UpdatePiece(0, 2, 0)
 voxels = voxelizer.GetOutput().GetExtent()
-got = vtk_to_numpy(chamfer.GetOutput().GetPointData().GetArray("ChamferDistance"))
-whole_input = list(voxels) == list(voxelizer.GetOutputInformation(0).Get(
-    chamfer.GetExecutive().WHOLE_EXTENT()))
-same = whole_input and got.shape == expected.shape and np.array_equal(got, expected)
-print(f"chamfer asked for piece 0 of 2: voxelizer input {voxels}, "
-      f"{'the whole transform' if same else 'WRONG'}")
+piece = chamfer.GetOutput()
+got = vtk_to_numpy(piece.GetPointData().GetArray("ChamferDistance"))
+whole_extent = voxelizer.GetOutputInformation(0).Get(chamfer.GetExecutive().WHOLE_EXTENT())
+whole_input = list(voxels) == list(whole_extent)
+wanted = slab_of({"d": expected}, whole_extent, piece.GetExtent())["d"]
+same = whole_input and got.tobytes() == wanted.tobytes()
+print(f"chamfer asked for piece 0 of 2: voxelizer input {voxels}, piece {piece.GetExtent()} "
+      f"{'the same voxels of the whole transform' if same else 'WRONG'}")
 ok = ok and same
 print("PASS" if ok else "FAIL")
 sys.exit(0 if ok else 1)

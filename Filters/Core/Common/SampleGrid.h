@@ -36,6 +36,29 @@ struct IndexBox
     }
     return count;
   }
+  /// This box grown by `layers` samples on every side, within `within`.
+  IndexBox Grown(int layers, const IndexBox& within) const
+  {
+    IndexBox r = *this;
+    for (int a = 0; a < 3; ++a)
+    {
+      r.Lo[a] = Lo[a] - layers;
+      r.Hi[a] = Hi[a] + layers;
+    }
+    return r.Intersect(within);
+  }
+  bool Contains(const IndexBox& o) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (o.Lo[a] < Lo[a] || o.Hi[a] > Hi[a])
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  bool operator==(const IndexBox& o) const { return Lo == o.Lo && Hi == o.Hi; }
   IndexBox Intersect(const IndexBox& o) const
   {
     IndexBox r;
