@@ -142,6 +142,36 @@ vtkdf::BitVolume ExtractBits(const vtkdf::BitVolume& from,
 }
 } // namespace
 
+namespace
+{
+/// Whether every voxel of `piece` holds a distance of at most `layers` in `distance`
+/// (laid out over `box`).
+bool AllReached(vtkIntArray* distance,
+  const vtkdf::IndexBox& box,
+  const vtkdf::IndexBox& piece,
+  int layers)
+{
+  const int32_t* values = distance->GetPointer(0);
+  const int64_t nx = box.Size(0), ny = box.Size(1);
+  for (int k = piece.Lo[2]; k <= piece.Hi[2]; ++k)
+  {
+    for (int j = piece.Lo[1]; j <= piece.Hi[1]; ++j)
+    {
+      const int32_t* row =
+        values + ((k - box.Lo[2]) * ny + (j - box.Lo[1])) * nx + (piece.Lo[0] - box.Lo[0]);
+      for (int i = 0; i < piece.Size(0); ++i)
+      {
+        if (row[i] > layers || row[i] < -layers)
+        {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+} // namespace
+
 int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -214,7 +244,9 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   vtkdf::SampleGrid computed = grid;
   vtkSmartPointer<vtkIntArray> distance;
   bool ok = true;
-  if (needed == grid.Whole)
+  // Alone: a piece smaller than the masks' grid whose deciding voxels are fewer too.
+  const bool alone = !(piece == grid.Whole) && !(this->MaximumLayers > 0 && needed == grid.Whole);
+  if (!alone)
   {
     distance = vtkdf::NewArray<vtkIntArray>("ChamferDistance", grid.Whole.Count());
     ok = image ? vtkdf::ComputeChamferField(boundary,
@@ -253,16 +285,46 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
       vtkErrorMacro(<< error);
       return 0;
     }
-    ok = this->PropagatePiece(boundary,
-      haveSolid ? &solid : nullptr,
-      needed,
-      gl,
-      request,
-      execution,
-      distance,
-      report,
-      error);
-    computed.Whole = needed;
+    if (this->MaximumLayers > 0)
+    {
+      ok = this->PropagatePiece(boundary,
+        haveSolid ? &solid : nullptr,
+        needed,
+        gl,
+        request,
+        execution,
+        distance,
+        report,
+        error);
+      computed.Whole = needed;
+    }
+    else
+    {
+      // Without a limit, the piece's farthest voxel says how many voxels around it
+      // decide it: propagate `margin` layers over the piece and `margin` voxels around
+      // it; when every voxel of the piece is reached, each is exact (see PieceVoxels);
+      // else double the margin, up to the whole grid (then without a limit).
+      for (int margin = 16;; margin *= 2)
+      {
+        vtkdf::ChamferRequest bounded = request;
+        computed.Whole = piece.Grown(margin, grid.Whole);
+        bounded.MaximumLayers = computed.Whole == grid.Whole ? 0 : margin;
+        ok = this->PropagatePiece(boundary,
+          haveSolid ? &solid : nullptr,
+          computed.Whole,
+          gl,
+          bounded,
+          execution,
+          distance,
+          report,
+          error);
+        if (!ok || report.Result.Aborted || bounded.MaximumLayers == 0 ||
+          AllReached(distance, computed.Whole, piece, margin))
+        {
+          break;
+        }
+      }
+    }
   }
   if (!ok)
   {

@@ -26,9 +26,11 @@
  * grid bit for bit. With MaximumLayers M > 0 it is computed from the masks of the piece
  * and M voxels around it (asked of an image input's producer; a mesh is voxelized whole,
  * then propagated there): a voxel at most M layers from the zero set has a shortest path
- * to it within M voxels on every axis. Without a limit (M = 0), a voxel may depend on
- * any other: the whole grid is computed and the piece cut from it. LastLayers counts the
- * layers of the voxels computed.
+ * to it within M voxels on every axis. Without a limit (M = 0), the voxels around a piece
+ * that decide it reach as far as its farthest voxel's distance: a mesh's piece is
+ * propagated over margins doubling from 16 voxels until every voxel of the piece is
+ * reached (up to the whole grid); an image input is asked for all of it. LastLayers
+ * counts the layers of the voxels computed.
  */
 #ifndef vtkChamferVoxelDistance_h
 #define vtkChamferVoxelDistance_h

@@ -5,7 +5,8 @@ field, whose upstream then computes only the slab and one voxel around it) compu
 three uneven slabs, each compared with the same samples of the whole grid, the slabs'
 medial points together the whole grid's; the chamfer transform with a layer limit (three
 metrics, both backends, signed; and of masks, whose producer then gives the slab and the
-limit's voxels around it) likewise; and a chamfer transform without a limit asked for one
+limit's voxels around it) and without one (margins doubling) likewise; and a chamfer
+transform of masks without a limit asked for one
 piece of two still gets all of its voxelizer input (a voxel may depend on any other) and
 gives the same voxels as the whole transform: python3 TestPiecesPython.py DATA."""
 import os
@@ -42,6 +43,7 @@ def slab_of(whole_arrays, whole_extent, extent):
 
 ok = True
 filters = []
+resolutions = {}  # the filters that need a grid other than 28 samples a side
 for backend in ("CPU", "GPU"):
     f = vtkLinearFactorDistanceField()
     f.SetSignModeToPseudoNormal()
@@ -59,14 +61,18 @@ for backend in ("CPU", "GPU"):
         m.SetSeparationAngle(60)
         getattr(m, f"SetBackendTo{backend}")()
         filters.append((f"medial axis, {sign}, {backend}", m))
-    for metric in ("Manhattan", "Chessboard18", "Chessboard26"):
+    for metric, layers in (("Manhattan", 4), ("Chessboard18", 4), ("Chessboard26", 4),
+                           ("Manhattan", 0), ("Chessboard26", 0)):
         c = vtkChamferVoxelDistance()
         getattr(c, f"SetMetricTo{metric}")()
-        c.SetMaximumLayers(4)
+        c.SetMaximumLayers(layers)
         c.SignedOn()
         c.OutputMasksOn()
         getattr(c, f"SetBackendTo{backend}")()
-        filters.append((f"chamfer, {metric}, 4 layers, {backend}", c))
+        filters.append((f"chamfer, {metric}, {layers or 'all'} layers, {backend}", c))
+        if layers == 0:
+            # A grid large enough for margins smaller than it (16 and 32 voxels).
+            resolutions[c] = 96
 # The chamfer of masks with 3 layers: the voxelizer upstream gives the slab and 3 voxels
 # around it.
 masks = vtkPolyDataVoxelizer()
@@ -109,7 +115,7 @@ def medial_points(f):
 for label, f in filters:
     if f not in (medial_of_field, chamfer_of_masks):
         f.SetInputConnection(reader.GetOutputPort())
-        f.SetResolution(28)
+        f.SetResolution(resolutions.get(f, 28))
     f.Update()
     whole_points = medial_points(f)
     pieces_points = []
