@@ -129,13 +129,13 @@ vtkdf::BitVolume ExtractBits(const vtkdf::BitVolume& from,
       {
         const int x = static_cast<int>(lane % part.Size(0));
         const int y = static_cast<int>(lane / part.Size(0));
-        for (int z = 0; z < part.Size(2); ++z)
+        // A word at a time: the part's lane is the source lane from voxel dz on.
+        uint64_t* words = to.Lane(x, y);
+        for (int w = 0; w < to.WordsPerLane(); ++w)
         {
-          if (from.Get(x + dx, y + dy, z + dz))
-          {
-            to.Set(x, y, z);
-          }
+          words[w] = from.Bits64(x + dx, y + dy, dz + 64 * w);
         }
+        words[to.WordsPerLane() - 1] &= to.LastWordMask();
       }
     });
   return to;
@@ -303,11 +303,16 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
       // Without a limit, the piece's farthest voxel says how many voxels around it
       // decide it: propagate `margin` layers over the piece and `margin` voxels around
       // it; when every voxel of the piece is reached, each is exact (see PieceVoxels);
-      // else double the margin, up to the whole grid (then without a limit).
+      // else double the margin. A box over a quarter of the grid is not tried: the
+      // whole grid then (without a limit), so that the tries cost at most half of it.
       for (int margin = 16;; margin *= 2)
       {
         vtkdf::ChamferRequest bounded = request;
         computed.Whole = piece.Grown(margin, grid.Whole);
+        if (computed.Whole.Count() > grid.Whole.Count() / 4)
+        {
+          computed.Whole = grid.Whole;
+        }
         bounded.MaximumLayers = computed.Whole == grid.Whole ? 0 : margin;
         ok = this->PropagatePiece(boundary,
           haveSolid ? &solid : nullptr,

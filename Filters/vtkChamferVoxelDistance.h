@@ -29,8 +29,8 @@
  * to it within M voxels on every axis. Without a limit (M = 0), the voxels around a piece
  * that decide it reach as far as its farthest voxel's distance: a mesh's piece is
  * propagated over margins doubling from 16 voxels until every voxel of the piece is
- * reached (up to the whole grid); an image input is asked for all of it. LastLayers
- * counts the layers of the voxels computed.
+ * reached (the whole grid once the grown piece would exceed a quarter of it); an image
+ * input is asked for all of it. LastLayers counts the layers of the voxels computed.
  */
 #ifndef vtkChamferVoxelDistance_h
 #define vtkChamferVoxelDistance_h

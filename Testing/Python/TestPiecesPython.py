@@ -166,6 +166,35 @@ for label, f in filters:
     print(f"{label}: three slabs {'equal the whole grid bit for bit' if same else 'DIFFER'}")
     ok = ok and same
 
+# Without a layer limit, a small block of a fine grid near the surface is propagated over
+# margins (16, 32 voxels) far smaller than the grid: it must equal the whole grid's
+# voxels, and its layers must show that the margins, not the grid, were propagated. (A
+# slab across a padded grid holds voxels far from the surface: the whole grid then.)
+for backend in ("CPU", "GPU"):
+    c = vtkChamferVoxelDistance()
+    c.SetInputConnection(reader.GetOutputPort())
+    c.SetResolution(192)
+    c.SetMetricToChessboard18()
+    c.SignedOn()
+    getattr(c, f"SetBackendTo{backend}")()
+    c.Update()
+    whole_extent = c.GetOutput().GetExtent()
+    expected = vtk_to_numpy(c.GetOutput().GetPointData().GetArray("ChamferDistance")).copy()
+    all_layers = c.GetLastLayers()
+    centre = [(whole_extent[2 * a] + whole_extent[2 * a + 1]) // 2 for a in range(3)]
+    for offset in ((0, 0, 0), (12, -10, 6)):
+        extent = []
+        for a in range(3):
+            extent += [centre[a] + offset[a] - 4, centre[a] + offset[a] + 4]
+        c.Modified()
+        c.UpdateExtent(extent)
+        got = vtk_to_numpy(c.GetOutput().GetPointData().GetArray("ChamferDistance"))
+        wanted = slab_of({"d": expected}, whole_extent, extent)["d"]
+        same = got.tobytes() == wanted.tobytes() and c.GetLastLayers() < all_layers
+        print(f"chamfer without a limit, {backend}, block {extent}: {c.GetLastLayers()} layers of "
+              f"{all_layers}, {'the whole grid voxels' if same else 'WRONG'}")
+        ok = ok and same
+
 # The chamfer without a layer limit asked for piece 0 of 2: its voxelizer input must
 # still be whole (any voxel may depend on any other), its piece the whole transform's.
 voxelizer = vtkPolyDataVoxelizer()
