@@ -9,12 +9,14 @@ them is drawn stay below 4% of those where either is), with white corners; the
 representation's mapper must be vtkSegmentedDistanceVolumeMapper, SurfaceOpacity 0.5 must
 change the picture (the far side shows through) but not what it covers, and Mode
 Composite must draw too (some pixels, a different picture)."""
+import os
 import sys
 
 import numpy as np
 from paraview import simple
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import screenshot  # noqa: E402
 
 plugin, mesh_file, png = sys.argv[1:4]
 simple.LoadPlugin(plugin, remote=True)
@@ -32,14 +34,7 @@ except AttributeError:
 
 
 def picture(path):
-    simple.SaveScreenshot(path, view, ImageResolution=[320, 320])
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    width, height, _ = image.GetDimensions()
-    rgb = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int)
-    return rgb.reshape(height, width, 3)
+    return screenshot.picture(view, path)
 
 
 ok = True

@@ -7,12 +7,14 @@ where it is covered. Then the first GPU filter of the process runs while ParaVie
 context is current: it must get its own EGL context (not fall back to OSMesa, which it did
 when creating the context did not release the caller's) and leave ParaView's context
 working: a second render gives the same picture."""
+import os
 import sys
 
 import numpy as np
 from paraview import simple
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import screenshot  # noqa: E402
 
 plugin, mesh_file, png = sys.argv[1:4]
 simple.LoadPlugin(plugin, remote=True)
@@ -39,14 +41,7 @@ simple.ResetCamera(view)
 
 
 def picture(path):
-    simple.SaveScreenshot(path, view, ImageResolution=[320, 320])
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    width, height, _ = image.GetDimensions()
-    rgb = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int)
-    return rgb.reshape(height, width, 3)
+    return screenshot.picture(view, path)
 
 
 def check(rgb, label):

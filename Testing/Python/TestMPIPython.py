@@ -6,29 +6,19 @@ Every rank's slab must equal, bit for bit, the same samples of the field of the 
 without ids (which every rank also computes), and the slabs must cover the grid. The
 medial axis of the parts likewise: each rank's slab equal to one process's, and rank 0's
 medial points (gathered from the ranks) all of one process's."""
-import os
 import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import VTK_ID_TYPE
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
-from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkParallelCore import vtkDummyController, vtkMultiProcessController
-from mpi4py import MPI  # noqa: F401 (initializes MPI before VTK's controller uses it)
-from vtkmodules.vtkParallelMPI import vtkMPIController
+from mpi_support import read, start_controller
 
 from vtkdistancefields import vtkLinearFactorDistanceField, vtkMedialAxisFilter
 
-controller = vtkMPIController()
-controller.Initialize()
-vtkMultiProcessController.SetGlobalController(controller)
-rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
-
-reader = vtkXMLPolyDataReader()
-reader.SetFileName(os.path.join(sys.argv[1], "bunny_small.vtp"))
-reader.Update()
-whole = reader.GetOutput()
+controller, rank, ranks = start_controller()
+whole = read(sys.argv[1], "bunny_small.vtp")
 
 # This rank's part: a range of cells, with every point (unused ones are ignored), and
 # global ids = original indices.

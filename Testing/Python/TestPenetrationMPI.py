@@ -5,41 +5,18 @@ to overlap, then apart); each builds its block of the Minkowski sums and rank 0 
 them and answers. Rank 0's output must equal, bit for bit, that of one process (the same
 filter with a one-process controller); the ranks' blocks must add up to the kept pairs,
 each rank building its share; the other ranks' outputs are empty."""
-import os
 import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkPolyData
-from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
-from vtkmodules.vtkParallelCore import vtkDummyController, vtkMultiProcessController
 from mpi4py import MPI
-from vtkmodules.vtkParallelMPI import vtkMPIController
+from vtkmodules.vtkParallelCore import vtkDummyController, vtkMultiProcessController
+from mpi_support import moved, read, start_controller
 
 from vtkdistancefields import vtkPenetrationDepth
 
-controller = vtkMPIController()
-controller.Initialize()
-vtkMultiProcessController.SetGlobalController(controller)
-rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
-
-reader = vtkXMLPolyDataReader()
-reader.SetFileName(os.path.join(sys.argv[1], "hubo_ankle_convex4.vtp"))
-reader.Update()
-ankle = reader.GetOutput()
-
-
-def moved(mesh, offset):
-    points = vtkPoints()
-    points.SetDataTypeToDouble()
-    for i in range(mesh.GetNumberOfPoints()):
-        x = mesh.GetPoint(i)
-        points.InsertNextPoint(x[0] + offset[0], x[1] + offset[1], x[2] + offset[2])
-    out = vtkPolyData()
-    out.DeepCopy(mesh)
-    out.SetPoints(points)
-    return out
+controller, rank, ranks = start_controller()
+ankle = read(sys.argv[1], "hubo_ankle_convex4.vtp")
 
 
 def run(p, q):

@@ -4,43 +4,16 @@ controller. Every rank holds both models whole (bunny_small and the teapot, over
 then the teapot moved away); each takes its share of the face samples and rank 0 gathers
 the answer. Rank 0's four outputs must equal, bit for bit, those of one process (the
 same filter run with a one-process controller); the other ranks' outputs are empty."""
-import os
 import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkPolyData
-from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkParallelCore import vtkDummyController, vtkMultiProcessController
-from mpi4py import MPI  # noqa: F401 (initializes MPI before VTK's controller uses it)
-from vtkmodules.vtkParallelMPI import vtkMPIController
+from mpi_support import moved, read, start_controller
 
 from vtkdistancefields import vtkDistanceFieldProximity
 
-controller = vtkMPIController()
-controller.Initialize()
-vtkMultiProcessController.SetGlobalController(controller)
-rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
-
-
-def read(name):
-    reader = vtkXMLPolyDataReader()
-    reader.SetFileName(os.path.join(sys.argv[1], name))
-    reader.Update()
-    return reader.GetOutput()
-
-
-def moved(mesh, dx):
-    points = vtkPoints()
-    points.SetDataTypeToDouble()
-    for i in range(mesh.GetNumberOfPoints()):
-        x = mesh.GetPoint(i)
-        points.InsertNextPoint(x[0] + dx, x[1], x[2])
-    out = vtkPolyData()
-    out.ShallowCopy(mesh)
-    out.SetPoints(points)
-    return out
+controller, rank, ranks = start_controller()
 
 
 def run(a, b):
@@ -67,8 +40,8 @@ def arrays(data):
 
 
 failures = []
-bunny, teapot = read("bunny_small.vtp"), read("teapot.vtp")
-for name, b in (("overlapping", teapot), ("apart", moved(teapot, 40))):
+bunny, teapot = read(sys.argv[1], "bunny_small.vtp"), read(sys.argv[1], "teapot.vtp")
+for name, b in (("overlapping", teapot), ("apart", moved(teapot, (40, 0, 0)))):
     distributed = run(bunny, b)
     if distributed.GetErrorCode():
         failures.append(f"{name}: rank {rank} failed")
