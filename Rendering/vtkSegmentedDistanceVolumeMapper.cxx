@@ -460,7 +460,12 @@ void vtkSegmentedDistanceVolumeMapper::SetGeometry(vtkImageData* image, const in
   Internals& impl = *this->Impl;
   std::copy(dims, dims + 3, impl.Dims);
   image->GetSpacing(impl.Spacing);
-  vtkImageData::ComputeIndexToPhysicalMatrix(image->GetOrigin(),
+  // The textures start at the extent's first point, not at index 0 (a piece of a grid, a
+  // cropped image).
+  const int* extent = image->GetExtent();
+  double first[3];
+  image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], first);
+  vtkImageData::ComputeIndexToPhysicalMatrix(first,
     image->GetSpacing(),
     image->GetDirectionMatrix()->GetData(),
     impl.IndexToPhysical);

@@ -2,7 +2,9 @@
 cases.py's cases (run_in_paraview.py server:localhost:PORT), each server rank writing
 its piece of every output. The assembled outputs must equal one pvbatch process's bit
 for bit, and the images of the filters that produce sub-extents must come in R pieces,
-none the whole grid (each rank computed its slab):
+none the whole grid (each rank computed its slab). Then the representation "Segmented
+Distance Volume" drawn by the server's ranks must give one process's picture
+(server_representation.py; needs an X server, as the suite's xvfb-run gives):
 python3 check_server.py MPIEXEC PVSERVER PVPYTHON PVBATCH PLUGIN DATA_DIR OUT_DIR R
 (DF_PVBATCH_PYTHONPATH: python3-paraview's modules)."""
 import os
@@ -38,40 +40,47 @@ if result.returncode != 0:
     print(result.stdout + result.stderr)
     sys.exit(f"FAIL: the one-process run: exit status {result.returncode}")
 
-# The server on a free port; it says when it accepts the connection.
-with socket.socket() as probe:
-    probe.bind(("localhost", 0))
-    port = probe.getsockname()[1]
-server = subprocess.Popen([mpiexec, "-n", str(ranks)] + as_root +
-                          [pvserver, f"--server-port={port}"],
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                          env=environment)
-log, ready = [], threading.Event()
+def serve(client_command):
+    """Runs `client_command` (given the port as its last argument) against a new server
+    of `ranks` ranks on a free port; the failures."""
+    with socket.socket() as probe:
+        probe.bind(("localhost", 0))
+        port = probe.getsockname()[1]
+    server = subprocess.Popen([mpiexec, "-n", str(ranks)] + as_root +
+                              [pvserver, f"--server-port={port}"],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              env=environment)
+    log, ready = [], threading.Event()
+
+    def read_server():
+        for line in server.stdout:
+            log.append(line)
+            if "Accepting connection" in line:
+                ready.set()
+
+    threading.Thread(target=read_server, daemon=True).start()
+    if not ready.wait(120):
+        server.kill()
+        print("".join(log))
+        return ["pvserver did not start"]
+    failures = []
+    client = subprocess.run(client_command(port), capture_output=True, text=True, timeout=900,
+                            env=environment)
+    print(client.stdout, end="")
+    if client.returncode != 0:
+        failures.append(f"{os.path.basename(client_command(port)[1])}: exit status "
+                        f"{client.returncode}")
+        print(client.stderr)
+    try:
+        server.wait(timeout=120)  # it ends when its client disconnects
+    except subprocess.TimeoutExpired:
+        server.kill()
+        failures.append("pvserver did not end after its client left")
+    return failures
 
 
-def read_server():
-    for line in server.stdout:
-        log.append(line)
-        if "Accepting connection" in line:
-            ready.set()
-
-
-threading.Thread(target=read_server, daemon=True).start()
-failures = []
-if not ready.wait(120):
-    server.kill()
-    print("".join(log))
-    sys.exit("FAIL: pvserver did not start")
-client = subprocess.run([pvpython, script, plugin, data, served, f"server:localhost:{port}"],
-                        capture_output=True, text=True, timeout=900, env=environment)
-if client.returncode != 0:
-    failures.append(f"the client: exit status {client.returncode}")
-    print(client.stdout + client.stderr)
-try:
-    server.wait(timeout=120)  # it ends when its client disconnects
-except subprocess.TimeoutExpired:
-    server.kill()
-    failures.append("pvserver did not end after its client left")
+failures = serve(lambda port: [pvpython, script, plugin, data, served,
+                               f"server:localhost:{port}"])
 print(f"== {ranks} pvserver ranks against one pvbatch process")
 failures += compare(serial, served)
 for name in sorted(os.listdir(served)):
@@ -84,6 +93,12 @@ for name in sorted(os.listdir(served)):
     print(f"{name}: pieces {[' '.join(p) for p in pieces]} of {' '.join(whole)}")
     if len(pieces) != ranks or any(p == whole for p in pieces):
         failures.append(f"{name}: not {ranks} slabs")
+# The volume mapper's representation drawn by the server's ranks, composited by ParaView,
+# against one process.
+print(f"== the representation Segmented Distance Volume on {ranks} pvserver ranks")
+failures += serve(lambda port: [pvpython, os.path.join(here, "server_representation.py"),
+                                plugin, os.path.join(data, "bunny_small.vtp"),
+                                os.path.join(out, "server_representation.png"), str(port)])
 for failure in failures:
     print("FAIL:", failure)
 sys.exit(1 if failures else 0)
