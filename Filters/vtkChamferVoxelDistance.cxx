@@ -140,10 +140,7 @@ vtkdf::BitVolume ExtractBits(const vtkdf::BitVolume& from,
     });
   return to;
 }
-} // namespace
 
-namespace
-{
 /// Whether every voxel of `piece` holds a distance of at most `layers` in `distance`
 /// (laid out over `box`).
 bool AllReached(vtkIntArray* distance,

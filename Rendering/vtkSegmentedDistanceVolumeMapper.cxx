@@ -465,10 +465,8 @@ void vtkSegmentedDistanceVolumeMapper::SetGeometry(vtkImageData* image, const in
   const int* extent = image->GetExtent();
   double first[3];
   image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], first);
-  vtkImageData::ComputeIndexToPhysicalMatrix(first,
-    image->GetSpacing(),
-    image->GetDirectionMatrix()->GetData(),
-    impl.IndexToPhysical);
+  vtkImageData::ComputeIndexToPhysicalMatrix(
+    first, image->GetSpacing(), image->GetDirectionMatrix()->GetData(), impl.IndexToPhysical);
 }
 
 bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
