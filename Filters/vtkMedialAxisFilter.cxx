@@ -126,32 +126,38 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   output->Initialize();
   points->Initialize();
   this->LastMedialCount = 0;
+  // Nothing to compute: an empty input or grid, or an empty piece (more ranks than the
+  // grid has slabs). Every rank goes on to the gather all the same (a rank leaving early
+  // would leave the others waiting there).
+  bool nothing = true, empty = true; // empty: the input or the whole grid
+  vtkdf::SampleGrid whole;
+  vtkdf::IndexBox piece;
   if (mesh && (mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0))
   {
     vtkWarningMacro("The input mesh is empty: the outputs are empty.");
-    return 1;
   }
-  if (!mesh && (!image || image->GetNumberOfPoints() == 0))
-  {
-    vtkWarningMacro("The input is empty: the outputs are empty.");
-    return 1;
-  }
-  // This piece of the grid (all of it in one process) and the voxels that decide it.
-  vtkdf::SampleGrid whole;
-  vtkdf::IndexBox piece;
-  if (!GetOutputGrid(outInfo, whole, piece))
+  else if (!GetOutputGrid(outInfo, whole, piece) && whole.Whole.Empty())
   {
     vtkWarningMacro("The grid is empty: the outputs are empty.");
-    return 1;
   }
-  const vtkdf::IndexBox needed = piece.Grown(1, whole.Whole);
+  else if (!mesh && (!image || image->GetNumberOfPoints() == 0) && !piece.Empty())
+  {
+    vtkWarningMacro("The input is empty: the outputs are empty.");
+  }
+  else
+  {
+    empty = false;
+    nothing = piece.Empty() || (!mesh && (!image || image->GetNumberOfPoints() == 0));
+  }
+  // This piece of the grid (all of it in one process) and the voxels that decide it.
   MedialPart part;
-  part.Ok = this->ComputePart(mesh, image, whole, needed, timer, part);
-  if (part.Ok)
+  part.Ok =
+    nothing || this->ComputePart(mesh, image, whole, piece.Grown(1, whole.Whole), timer, part);
+  if (part.Ok && !nothing)
   {
     this->FinishTiming(part.GL, timer);
   }
-  if (part.Ok && !part.Aborted)
+  if (part.Ok && !part.Aborted && !nothing)
   {
     // Port 0: this piece of the grid with Medial, SeparationAngle and Radius.
     if (!part.Box.Contains(piece))
@@ -183,7 +189,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   // Port 1: a vertex per medial voxel, in voxel order; in a distributed run rank 0 gathers
   // every rank's voxels (each voxel from the one rank that owns it) and outputs them all.
   std::vector<double> owned;
-  if (part.Ok && !part.Aborted)
+  if (part.Ok && !part.Aborted && !nothing)
   {
     this->OwnedMedialVoxels(part, piece, whole.Whole, owned);
     this->LastMedialCount = static_cast<vtkIdType>(owned.size() / 3);
@@ -191,6 +197,10 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   if (!this->GatherMedialVoxels(part.Ok && !part.Aborted, owned))
   {
     return part.Ok ? 1 : 0; // not rank 0, or a rank failed: no points
+  }
+  if (empty)
+  {
+    return 1;
   }
   this->WriteMedialPoints(whole, owned, points);
   return 1;

@@ -5,7 +5,8 @@ asks the linear factorization for its piece of the grid; the filter gathers the 
 Every rank's slab must equal, bit for bit, the same samples of the field of the whole mesh
 without ids (which every rank also computes), and the slabs must cover the grid. The
 medial axis of the parts likewise: each rank's slab equal to one process's, and rank 0's
-medial points (gathered from the ranks) all of one process's."""
+medial points (gathered from the ranks) all of one process's; on a grid of 2 samples a
+side (ranks with an empty piece) too."""
 import sys
 
 import numpy as np
@@ -116,6 +117,22 @@ if rank == 0:
 else:
     medial_ok = medial_ok and points.GetNumberOfPoints() == 0
 medial_slab = ranks == 1 or tuple(medial_extent) != tuple(full.GetExtent())
+
+# More ranks than the grid has slabs (2 samples a side): a rank with an empty piece still
+# takes part in the gather, and rank 0 answers as one process.
+tiny = medial(part)
+tiny.SetResolution(2)
+tiny.UpdatePiece(rank, ranks, 0)
+vtkMultiProcessController.SetGlobalController(vtkDummyController())
+tiny_alone = medial(whole)
+tiny_alone.SetResolution(2)
+tiny_alone.Update()
+vtkMultiProcessController.SetGlobalController(controller)
+tiny_points = tiny.GetOutputDataObject(1).GetNumberOfPoints()
+expected_points = tiny_alone.GetOutputDataObject(1).GetNumberOfPoints() if rank == 0 else 0
+medial_ok = medial_ok and tiny.GetErrorCode() == 0 and tiny_points == expected_points
+print(f"rank {rank} of {ranks}: 2-sample grid, piece {tiny.GetOutput().GetExtent()}, "
+      f"{tiny_points} medial points (expected {expected_points})", flush=True)
 print(f"rank {rank} of {ranks}: medial axis extent {medial_extent}, "
       f"{points.GetNumberOfPoints()} of {every.GetNumberOfPoints()} medial points: "
       f"{'equal to one process bit for bit' if medial_ok else 'DIFFERS'}", flush=True)
