@@ -23,14 +23,7 @@ simple.LoadPlugin(plugin, remote=True)
 mesh = simple.XMLPolyDataReader(FileName=[mesh_file])
 field = simple.LinearFactorDistanceField(Input=mesh, Resolution=48, SignMode="WindingNumber",
                                          ComputeClosestPoint=1, Backend="CPU")
-view = simple.CreateView("RenderView")
-view.ViewSize = [320, 320]
-view.Background = [1, 1, 1]
-view.OrientationAxesVisibility = 0
-try:
-    view.UseColorPaletteForBackground = 0
-except AttributeError:
-    pass
+view = screenshot.white_view()
 
 
 def picture(path):

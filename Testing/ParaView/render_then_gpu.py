@@ -22,14 +22,7 @@ mesh = simple.XMLPolyDataReader(FileName=[mesh_file])
 field = simple.LinearFactorDistanceField(Input=mesh, Resolution=40, SignMode="PseudoNormal",
                                          Backend="CPU")
 contour = simple.Contour(Input=field, ContourBy=["POINTS", "Distance"], Isosurfaces=[0.0])
-view = simple.CreateView("RenderView")
-view.ViewSize = [320, 320]
-view.Background = [1, 1, 1]
-view.OrientationAxesVisibility = 0
-try:
-    view.UseColorPaletteForBackground = 0
-except AttributeError:
-    pass
+view = screenshot.white_view()
 display = simple.Show(contour, view)
 simple.ColorBy(display, None)
 display.DiffuseColor = [1, 0, 0]

@@ -1,7 +1,22 @@
-"""A ParaView view's screenshot as numbers, for the render tests run by pvbatch."""
+"""ParaView render views for the render tests (pvbatch, pvpython): a plain white one, and
+its screenshot as numbers."""
 from paraview import simple
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
+
+
+def white_view(size=(320, 320)):
+    """A render view of `size` pixels on white, without the orientation axes (the
+    background then counts as "not drawn")."""
+    view = simple.CreateView("RenderView")
+    view.ViewSize = list(size)
+    view.Background = [1, 1, 1]
+    view.OrientationAxesVisibility = 0
+    try:
+        view.UseColorPaletteForBackground = 0  # ParaView 5.10 and later
+    except AttributeError:
+        pass
+    return view
 
 
 def picture(view, path, size=(320, 320)):

@@ -28,14 +28,7 @@ def render(path):
     mesh = simple.XMLPolyDataReader(FileName=[mesh_file])
     field = simple.LinearFactorDistanceField(Input=mesh, Resolution=48,
                                              SignMode="WindingNumber", Backend="CPU")
-    view = simple.CreateView("RenderView")
-    view.ViewSize = [320, 320]
-    view.Background = [1, 1, 1]
-    view.OrientationAxesVisibility = 0
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
+    view = screenshot.white_view()
     display = simple.Show(field, view)
     display.SetRepresentationType("Segmented Distance Volume")
     simple.ColorBy(display, ("POINTS", "Distance"))
