@@ -98,17 +98,9 @@ int vtkChamferVoxelDistance::RequestUpdateExtent(vtkInformation* request,
   }
   // A masks input: all of it without a limit on the layers; else the requested voxels
   // and MaximumLayers around them (see PieceVoxels).
-  vtkdf::RequestWholeInput(inInfo);
-  vtkdf::SampleGrid grid;
-  vtkdf::IndexBox piece;
-  if (this->MaximumLayers > 0 && GetOutputGrid(outputVector->GetInformationObject(0), grid, piece))
-  {
-    const vtkdf::IndexBox needed = piece.Grown(this->MaximumLayers, grid.Whole);
-    const int update[6] = {
-      needed.Lo[0], needed.Hi[0], needed.Lo[1], needed.Hi[1], needed.Lo[2], needed.Hi[2]
-    };
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), update, 6);
-  }
+  RequestGrownImage(inInfo,
+    outputVector->GetInformationObject(0),
+    this->MaximumLayers > 0 ? this->MaximumLayers : -1);
   return 1;
 }
 

@@ -512,6 +512,23 @@ void vtkDistanceFieldAlgorithm::SetOutputExtent(vtkImageData* output,
   output->SetSpacing(grid.Spacing.data());
 }
 
+void vtkDistanceFieldAlgorithm::RequestGrownImage(vtkInformation* inInfo,
+  vtkInformation* outInfo,
+  int layers)
+{
+  vtkdf::RequestWholeInput(inInfo);
+  vtkdf::SampleGrid grid;
+  vtkdf::IndexBox piece;
+  if (layers >= 0 && GetOutputGrid(outInfo, grid, piece))
+  {
+    const vtkdf::IndexBox grown = piece.Grown(layers, grid.Whole);
+    const int update[6] = {
+      grown.Lo[0], grown.Hi[0], grown.Lo[1], grown.Hi[1], grown.Lo[2], grown.Hi[2]
+    };
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), update, 6);
+  }
+}
+
 bool vtkDistanceFieldAlgorithm::GetImageGrid(vtkImageData* image, vtkdf::SampleGrid& grid)
 {
   int extent[6];

@@ -209,6 +209,10 @@ protected:
 
   /// The grid of an image (its extent as Whole); false when it is empty.
   static bool GetImageGrid(vtkImageData* image, vtkdf::SampleGrid& grid);
+  /// For an image input that decides each output voxel from the voxels within `layers`
+  /// of it: asks it for the requested piece grown by `layers` (all of it when `layers`
+  /// < 0), as piece 0 of 1.
+  static void RequestGrownImage(vtkInformation* inInfo, vtkInformation* outInfo, int layers);
 #endif
 
   int Backend = BACKEND_AUTO;

@@ -94,17 +94,7 @@ int vtkMedialAxisFilter::RequestUpdateExtent(vtkInformation* request,
     return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
   }
   // A field input: the requested voxels and their neighbours (one voxel around).
-  vtkdf::SampleGrid grid;
-  vtkdf::IndexBox extent;
-  vtkdf::RequestWholeInput(inInfo);
-  if (GetOutputGrid(outputVector->GetInformationObject(0), grid, extent))
-  {
-    const vtkdf::IndexBox grown = extent.Grown(1, grid.Whole);
-    const int update[6] = {
-      grown.Lo[0], grown.Hi[0], grown.Lo[1], grown.Hi[1], grown.Lo[2], grown.Hi[2]
-    };
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), update, 6);
-  }
+  RequestGrownImage(inInfo, outputVector->GetInformationObject(0), 1);
   return 1;
 }
 
