@@ -43,6 +43,17 @@ vtkTypeBool vtkSegmentedDistanceContour::ProcessRequest(vtkInformation* request,
     [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
+int vtkSegmentedDistanceContour::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  // The whole field on every rank: the surface is output whole, by rank 0 (a cell's
+  // triangles depend on the regions around it), and every rank asks alike, so that a
+  // distributed field upstream runs on every rank in the same pass.
+  vtkdf::RequestWholeInput(inputVector[0]->GetInformationObject(0));
+  return 1;
+}
+
 int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)

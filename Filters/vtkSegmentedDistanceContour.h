@@ -67,6 +67,7 @@ protected:
   ~vtkSegmentedDistanceContour() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   bool UseClosestPoints = true;

@@ -23,7 +23,13 @@
  * distances, closest points and labels come back for the merge into regions (CPU: one
  * pass over the samples).
  *
- * Output: vtkImageData (the whole grid) with `SegmentedDistance` (float), `RegionIndex`
+ * Distributed runs: the regions are global, yet each rank computes only its piece (and
+ * one sample around it): the ranks add up the evidence the merge reads (which labels the
+ * samples take, how many adjacent pairs support each pair of labels, each sample
+ * counted by one rank) and every rank merges the same sums, so the pieces are the one
+ * process's grid bit for bit. In one process a piece is cut from the whole grid.
+ *
+ * Output: vtkImageData (the requested extent) with `SegmentedDistance` (float), `RegionIndex`
  * (int), `Distance` (float, unsigned), `PatchId` (int: the patch whose side the sample
  * took) and, with ComputeClosestPoint (default on), `ClosestPoint` (float, 3 components:
  * each sample's closest point on the surface, which vtkSegmentedDistanceContour uses to
@@ -37,10 +43,15 @@
 #include "vtkDistanceFieldAlgorithm.h"
 
 class vtkFieldData;
+class vtkImageData;
+class vtkPolyData;
 #ifndef __VTK_WRAP__
 namespace vtkdf
 {
+struct IndexBox;
 struct SegmentedFieldReport;
+struct SegmentedFieldRequest;
+class StageTimer;
 }
 #endif
 #include "vtkDistanceFieldsModule.h" // For export macro
@@ -93,6 +104,9 @@ public:
   vtkGetMacro(LastCrossedTriangles, vtkTypeInt64);
   vtkGetMacro(LastCutEdges, vtkTypeInt64);
   vtkGetMacro(LastRefusedMerges, vtkTypeInt64);
+  /// The samples the last run computed: the whole grid in one process; in a distributed
+  /// run whose pieces tile the grid, the rank's piece and one sample around it.
+  vtkGetVector6Macro(LastComputedExtent, int);
 
 protected:
   vtkSegmentedDistanceField();
@@ -103,6 +117,14 @@ protected:
 #ifndef __VTK_WRAP__
   /// Delta, RegionOffset, RegionCount and RegionSides, as the run used and found them.
   static void WriteFieldData(const vtkdf::SegmentedFieldReport& report, vtkFieldData* fd);
+  /// Computes request.Extent (the grid and, in a distributed run, the pieces and the
+  /// evidence's Combine are set) and outputs `piece` of it; false with the error
+  /// reported.
+  bool ComputePiece(vtkPolyData* mesh,
+    const vtkdf::SegmentedFieldRequest& request,
+    const vtkdf::IndexBox& piece,
+    vtkImageData* output,
+    vtkdf::StageTimer& timer);
 #endif
 
   double Delta = 0;
@@ -114,6 +136,7 @@ protected:
   vtkTypeInt64 LastCrossedTriangles = 0;
   vtkTypeInt64 LastCutEdges = 0;
   vtkTypeInt64 LastRefusedMerges = 0;
+  int LastComputedExtent[6] = { 0, -1, 0, -1, 0, -1 };
 
 private:
   vtkSegmentedDistanceField(const vtkSegmentedDistanceField&) = delete;

@@ -1,4 +1,5 @@
-"""Strong scaling of the linear factorization over MPI ranks, without ParaView:
+"""Strong scaling of the linear factorization (or, with DF_FILTER=segmented, the segmented
+field) over MPI ranks, without ParaView:
 mpiexec -n R /usr/bin/python3 distributed.py MESH_DIR MESH RESOLUTION THREADS [partitioned]
 (PYTHONPATH: the build's Python package). Every rank computes its slab of the grid
 (UpdatePiece); "partitioned" gives each rank a part of the mesh's cells with global ids
@@ -18,7 +19,7 @@ from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 from vtkmodules.vtkParallelMPI import vtkMPIController
 
-from vtkdistancefields import vtkLinearFactorDistanceField
+from vtkdistancefields import vtkLinearFactorDistanceField, vtkSegmentedDistanceField
 
 mesh_dir, name, resolution, threads = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
 partitioned = sys.argv[5:6] == ["partitioned"]
@@ -53,10 +54,13 @@ if partitioned:
 
 times = []
 for run in range(3):
-    f = vtkLinearFactorDistanceField()
+    if os.environ.get("DF_FILTER") == "segmented":
+        f = vtkSegmentedDistanceField()
+    else:
+        f = vtkLinearFactorDistanceField()
+        f.SetSignModeToPseudoNormal()
     f.SetInputData(mesh)
     f.SetResolution(resolution)
-    f.SetSignModeToPseudoNormal()
     f.SetBackendToCPU()
     controller.Barrier()
     start = time.perf_counter()
@@ -68,7 +72,7 @@ memories = np.zeros(ranks)
 controller.AllGather(memory, memories, 1)
 if rank == 0:
     extent = f.GetOutput().GetExtent()
-    print(f"{name} {resolution}^3, {ranks} rank(s) x {threads} thread(s)"
+    print(f"{f.GetClassName()}, {name} {resolution}^3, {ranks} rank(s) x {threads} thread(s)"
           f"{', mesh partitioned' if partitioned else ''}: {sorted(times)[1]:.2f} s "
           f"(slowest rank, median of 3), rank 0's slab {extent}, peak memory per rank "
           + ", ".join(f"{m:.0f} MiB" for m in memories)

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Strong scaling of the linear factorization over MPI ranks (Testing/Benchmarks/distributed.py):
+# Strong scaling of the linear factorization (DF_FILTER=segmented: the segmented field) over
+# MPI ranks (Testing/Benchmarks/distributed.py):
 # 1 rank x 1 thread, 1 rank x 2 threads, 2 ranks x 1 thread, and 2 ranks with the mesh partitioned (gathered
 # by the filter), on each mesh at each resolution. Ranks are not bound to cores (OpenMPI
 # binds each to one by default, which leaves a rank of two threads one core).

@@ -17,7 +17,7 @@ import threading
 
 from compare_outputs import compare
 
-SLAB_FILTERS = ("linfac_", "voxelizer", "medial", "chamfer_of_masks")
+SLAB_FILTERS = ("linfac_", "voxelizer", "medial", "chamfer_of_masks", "segmented")
 
 mpiexec, pvserver, pvpython, pvbatch, plugin, data, out = sys.argv[1:8]
 ranks = int(sys.argv[8])

@@ -6,7 +6,9 @@ Every rank's slab must equal, bit for bit, the same samples of the field of the 
 without ids (which every rank also computes), and the slabs must cover the grid. The
 medial axis of the parts likewise: each rank's slab equal to one process's, and rank 0's
 medial points (gathered from the ranks) all of one process's; on a grid of 2 samples a
-side (ranks with an empty piece) too."""
+side (ranks with an empty piece) too. The segmented field of the parts: each rank computes
+its slab and one sample around it (LastComputedExtent), the ranks add up their region
+evidence, and each slab equals one process's bit for bit, on the 2-sample grid too."""
 import sys
 
 import numpy as np
@@ -16,7 +18,8 @@ from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 from vtkmodules.vtkParallelCore import vtkDummyController, vtkMultiProcessController
 from mpi_support import read, start_controller
 
-from vtkdistancefields import vtkLinearFactorDistanceField, vtkMedialAxisFilter
+from vtkdistancefields import (vtkLinearFactorDistanceField, vtkMedialAxisFilter,
+                               vtkSegmentedDistanceField)
 
 controller, rank, ranks = start_controller()
 whole = read(sys.argv[1], "bunny_small.vtp")
@@ -136,5 +139,47 @@ print(f"rank {rank} of {ranks}: 2-sample grid, piece {tiny.GetOutput().GetExtent
 print(f"rank {rank} of {ranks}: medial axis extent {medial_extent}, "
       f"{points.GetNumberOfPoints()} of {every.GetNumberOfPoints()} medial points: "
       f"{'equal to one process bit for bit' if medial_ok else 'DIFFERS'}", flush=True)
+
+
+# The segmented field of the parts: regions are global, yet each rank computes its slab.
+def segmented(mesh, resolution):
+    f = vtkSegmentedDistanceField()
+    f.SetInputData(mesh)
+    f.SetResolution(resolution)
+    f.SetBackendToCPU()
+    return f
+
+
+segment_ok = True
+for resolution in (24, 2):
+    distributed = segmented(part, resolution)
+    distributed.UpdatePiece(rank, ranks, 0)
+    slab = distributed.GetOutput()
+    e = slab.GetExtent()
+    computed = distributed.GetLastComputedExtent()
+    vtkMultiProcessController.SetGlobalController(vtkDummyController())
+    alone = segmented(whole, resolution)
+    alone.Update()
+    vtkMultiProcessController.SetGlobalController(controller)
+    full = alone.GetOutput()
+    wx, wy = full.GetDimensions()[0], full.GetDimensions()[1]
+    same = distributed.GetErrorCode() == 0
+    if e[1] >= e[0]:
+        for name in ("SegmentedDistance", "RegionIndex", "Distance", "PatchId", "ClosestPoint"):
+            values = vtk_to_numpy(full.GetPointData().GetArray(name))
+            grid = values.reshape((-1, wy, wx) + values.shape[1:])
+            expected = np.ascontiguousarray(
+                grid[e[4]:e[5] + 1, e[2]:e[3] + 1, e[0]:e[1] + 1])
+            got = vtk_to_numpy(slab.GetPointData().GetArray(name))
+            same = same and got.tobytes() == expected.tobytes()
+        same = same and vtk_to_numpy(slab.GetFieldData().GetArray("RegionSides")).tobytes() == \
+            vtk_to_numpy(full.GetFieldData().GetArray("RegionSides")).tobytes()
+    # Each rank computed its slab and one sample around it, not the whole grid.
+    if resolution > 2 and ranks > 1:
+        same = same and tuple(computed) != tuple(full.GetExtent())
+    segment_ok = segment_ok and same
+    print(f"rank {rank} of {ranks}: segmented field at resolution {resolution}, extent {e}, "
+          f"computed {computed}, {alone.GetLastRegionCount()} regions: "
+          f"{'equal to one process bit for bit' if same else 'DIFFERS'}", flush=True)
 controller.Finalize()
-sys.exit(0 if ok and is_slab and medial_ok and medial_slab else 1)
+sys.exit(0 if ok and is_slab and medial_ok and medial_slab and segment_ok else 1)

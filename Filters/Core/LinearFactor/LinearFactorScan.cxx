@@ -121,8 +121,8 @@ public:
     double P[3][3];
     SiteProjector(site, P);
     // The distance vector is affine in the sample index: d(i, j, k) = d0 + i du + j dv +
-    // k dw (u, v, w the scan axes). Rows start from it in double; the inner loop steps in
-    // float, which is exact enough over a row (the GPU interpolates in float too).
+    // k dw (u, v, w the scan axes), evaluated in double at each sample and compared in
+    // float (the GPU interpolates in float).
     const SampleGrid& grid = this->Grid;
     const double r[3] = { site.Anchor[0] - grid.Origin[0],
       site.Anchor[1] - grid.Origin[1],
@@ -133,7 +133,6 @@ public:
       this->Du[a] = -P[a][u] * grid.Spacing[u];
       this->Dv[a] = -P[a][v] * grid.Spacing[v];
       this->Dw[a] = -P[a][w] * grid.Spacing[w];
-      this->Step[a] = static_cast<float>(this->Du[a]);
     }
     const IndexBox& ext = request.Extent;
     int64_t stride[3];
@@ -269,19 +268,21 @@ private:
     return true;
   }
 
-  /// Offers the site to samples i0..i1 of row j (the first at `at`).
+  /// Offers the site to samples i0..i1 of row j (the first at `at`). Each sample's
+  /// vector to the site is evaluated from the row's start in double and rounded to float
+  /// once: its bits do not depend on where the row's run begins (a piece of the grid or
+  /// a culling region clips it), so a piece and the whole grid break ties alike.
   void Row(const double dk[3], int j, int i0, int i1, int64_t at)
   {
-    const double* dv = this->Dv;
     const double* du = this->Du;
-    const float d[3] = { static_cast<float>(dk[0] + j * dv[0] + i0 * du[0]),
-      static_cast<float>(dk[1] + j * dv[1] + i0 * du[1]),
-      static_cast<float>(dk[2] + j * dv[2] + i0 * du[2]) };
-    const float* step = this->Step;
+    const double row[3] = {
+      dk[0] + j * this->Dv[0], dk[1] + j * this->Dv[1], dk[2] + j * this->Dv[2]
+    };
     for (int i = i0; i <= i1; ++i, at += this->StrideU)
     {
-      const float t = static_cast<float>(i - i0);
-      const float dx = d[0] + t * step[0], dy = d[1] + t * step[1], dz = d[2] + t * step[2];
+      const float dx = static_cast<float>(row[0] + i * du[0]);
+      const float dy = static_cast<float>(row[1] + i * du[1]);
+      const float dz = static_cast<float>(row[2] + i * du[2]);
       this->Nearest.Offer(
         at, NearestSiteBuffer::Pack(dx * dx + dy * dy + dz * dz, this->SiteIndex));
     }
@@ -298,7 +299,6 @@ private:
   int U, V, W;
   DomainSpans Domain;
   double D0[3], Du[3], Dv[3], Dw[3];
-  float Step[3];
   int64_t Base, StrideU, StrideV, StrideW;
   int64_t Evaluations = 0;
   int64_t CacheKey[CacheSize];

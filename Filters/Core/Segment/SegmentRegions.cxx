@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <unordered_map>
@@ -280,46 +281,83 @@ void Label(const SegmentInput& input,
 
 using LabelPair = std::pair<std::pair<int64_t, int64_t>, int64_t>;
 
-/// The support of each label pair: adjacent samples with no surface between them; in the
-/// canonical order, most support first, ties by the labels.
-std::vector<LabelPair> PairSupport(const SegmentInput& input,
+/// The evidence of the samples this piece owns (all of them without a piece): the labels
+/// they take and the support of each label pair, adjacent samples with no surface between
+/// them. False when an owned sample's neighbour within the whole grid is not among the
+/// samples given.
+bool CountEvidence(const SegmentInput& input,
   const std::vector<int64_t>& label,
-  const ParallelFor& run)
+  const ParallelFor& run,
+  RegionEvidence& evidence)
 {
   const SampleGrid& grid = input.Grid;
-  const IndexBox& whole = grid.Whole;
-  const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
+  const IndexBox& box = grid.Whole;
+  const IndexBox& whole = input.Ownership ? input.WholeGrid : box;
+  const int n[3] = { box.Size(0), box.Size(1), box.Size(2) };
   const int64_t stride[3] = { 1, n[0], int64_t(n[0]) * n[1] };
-  std::map<std::pair<int64_t, int64_t>, int64_t> support;
+  const int64_t labels = 2 * input.Patches->PatchCount;
+  std::vector<uint8_t> present(labels, 0);
+  std::unordered_map<uint64_t, int64_t> support;
+  int64_t samples = 0;
+  bool complete = true;
   std::mutex lock;
   run(n[2],
     1,
     [&](int64_t k0, int64_t k1)
     {
       std::unordered_map<uint64_t, int64_t> local;
+      std::vector<uint8_t> seen(labels, 0);
+      std::vector<std::pair<int, int>> runs;
+      int64_t counted = 0;
+      bool ok = true;
       for (int64_t k = k0; k < k1; ++k)
       {
         for (int j = 0; j < n[1]; ++j)
         {
-          for (int i = 0; i < n[0]; ++i)
+          if (input.Ownership)
           {
-            const int64_t v = i + j * stride[1] + k * stride[2];
-            const int at[3] = { i, j, static_cast<int>(k) };
-            for (int a = 0; a < 3; ++a)
+            input.Ownership->Runs(box.Lo[1] + j, box.Lo[2] + static_cast<int>(k), runs);
+            for (auto& span : runs)
             {
-              if (at[a] + 1 >= n[a])
+              span.first -= box.Lo[0], span.second -= box.Lo[0];
+            }
+          }
+          else
+          {
+            runs.assign(1, { 0, n[0] - 1 });
+          }
+          for (const auto& span : runs)
+          {
+            for (int i = span.first; i <= span.second; ++i)
+            {
+              const int64_t v = i + j * stride[1] + k * stride[2];
+              const int at[3] = { i, j, static_cast<int>(k) };
+              ++counted;
+              if (label[v] >= 0)
               {
-                continue;
+                seen[label[v]] = 1;
               }
-              const int64_t w = v + stride[a];
-              if (label[v] == label[w] || label[v] < 0 || label[w] < 0 ||
-                !(double(input.Distance[v]) + input.Distance[w] > grid.Spacing[a] * (1 + 1e-5)))
+              for (int a = 0; a < 3; ++a)
               {
-                continue;
+                if (box.Lo[a] + at[a] + 1 > whole.Hi[a])
+                {
+                  continue; // the grid's last plane
+                }
+                if (at[a] + 1 >= n[a])
+                {
+                  ok = false; // the neighbour was not given
+                  continue;
+                }
+                const int64_t w = v + stride[a];
+                if (label[v] == label[w] || label[v] < 0 || label[w] < 0 ||
+                  !(double(input.Distance[v]) + input.Distance[w] > grid.Spacing[a] * (1 + 1e-5)))
+                {
+                  continue;
+                }
+                const uint64_t lo = static_cast<uint64_t>(std::min(label[v], label[w]));
+                const uint64_t hi = static_cast<uint64_t>(std::max(label[v], label[w]));
+                ++local[(lo << 32) | hi];
               }
-              const uint64_t lo = static_cast<uint64_t>(std::min(label[v], label[w]));
-              const uint64_t hi = static_cast<uint64_t>(std::max(label[v], label[w]));
-              ++local[(lo << 32) | hi];
             }
           }
         }
@@ -327,11 +365,36 @@ std::vector<LabelPair> PairSupport(const SegmentInput& input,
       std::lock_guard<std::mutex> guard(lock);
       for (const auto& entry : local)
       {
-        support[{ static_cast<int64_t>(entry.first >> 32),
-          static_cast<int64_t>(entry.first & 0xffffffffu) }] += entry.second;
+        support[entry.first] += entry.second;
       }
+      for (int64_t l = 0; l < labels; ++l)
+      {
+        present[l] |= seen[l];
+      }
+      samples += counted;
+      complete = complete && ok;
     });
-  std::vector<LabelPair> pairs(support.begin(), support.end());
+  evidence = RegionEvidence();
+  evidence.Samples = samples;
+  for (int64_t l = 0; l < labels; ++l)
+  {
+    if (present[l])
+    {
+      evidence.Labels.push_back(l);
+    }
+  }
+  for (const auto& entry : support)
+  {
+    evidence.Support[{ static_cast<int64_t>(entry.first >> 32),
+      static_cast<int64_t>(entry.first & 0xffffffffu) }] += entry.second;
+  }
+  return complete;
+}
+
+/// The label pairs in the canonical order: most support first, ties by the labels.
+std::vector<LabelPair> CanonicalPairs(const RegionEvidence& evidence)
+{
+  std::vector<LabelPair> pairs(evidence.Support.begin(), evidence.Support.end());
   std::stable_sort(
     pairs.begin(), pairs.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
   return pairs;
@@ -405,33 +468,21 @@ private:
   std::unordered_map<int64_t, std::unordered_map<int64_t, uint8_t>> Sides;
 };
 
-/// Regions numbered by their lowest label among the samples (labels are dense: below
-/// twice the patch count); each sample's region.
-void NumberRegions(const SegmentInput& input,
-  const std::vector<int64_t>& label,
+/// Regions numbered by their lowest label among the samples (the evidence's labels);
+/// each sample's region.
+void NumberRegions(const std::vector<int64_t>& label,
+  int64_t labels,
+  const RegionEvidence& evidence,
   LabelSets& sets,
   const ParallelFor& run,
   SegmentResult& result)
 {
   const int64_t count = static_cast<int64_t>(label.size());
-  const int64_t labels = 2 * input.Patches->PatchCount;
-  std::vector<uint8_t> present(labels, 0);
-  for (int64_t v = 0; v < count; ++v)
-  {
-    if (label[v] >= 0)
-    {
-      present[label[v]] = 1;
-    }
-  }
-  std::unordered_map<int64_t, int32_t> number; // root -> region
-  std::vector<int32_t> regionOfLabel(labels, -1);
+  std::unordered_map<int64_t, int32_t> number;    // root -> region
+  std::vector<int32_t> regionOfLabel(labels, -1); // labels are dense: below 2 patches
   result.Sides.clear();
-  for (int64_t l = 0; l < labels; ++l)
+  for (const int64_t l : evidence.Labels)
   {
-    if (!present[l])
-    {
-      continue;
-    }
     const int64_t root = sets.Find(l);
     auto it = number.find(root);
     if (it == number.end())
@@ -456,21 +507,102 @@ void NumberRegions(const SegmentInput& input,
 }
 } // namespace
 
-void SegmentRegions(const SegmentInput& input,
+std::vector<int64_t> RegionEvidence::Pack() const
+{
+  std::vector<int64_t> words = { this->Samples, static_cast<int64_t>(this->Labels.size()) };
+  words.insert(words.end(), this->Labels.begin(), this->Labels.end());
+  words.push_back(static_cast<int64_t>(this->Support.size()));
+  for (const auto& entry : this->Support)
+  {
+    words.insert(words.end(), { entry.first.first, entry.first.second, entry.second });
+  }
+  return words;
+}
+
+bool RegionEvidence::Add(const int64_t* words, int64_t count)
+{
+  if (count < 3 || words[0] < 0 || words[1] < 0 || words[1] > count - 3)
+  {
+    return false;
+  }
+  const int64_t labels = words[1];
+  const int64_t* label = words + 2;
+  const int64_t pairs = words[2 + labels];
+  if (pairs < 0 || pairs > (count - 3 - labels) / 3 || 3 + labels + 3 * pairs != count ||
+    !std::is_sorted(label, label + labels) ||
+    std::any_of(label, label + labels, [](int64_t l) { return l < 0; }))
+  {
+    return false;
+  }
+  const int64_t* pair = words + 3 + labels;
+  for (int64_t p = 0; p < pairs; ++p)
+  {
+    const int64_t* entry = pair + 3 * p;
+    if (entry[0] < 0 || entry[1] <= entry[0] || entry[2] <= 0)
+    {
+      return false;
+    }
+  }
+  this->Samples += words[0];
+  std::vector<int64_t> merged;
+  std::set_union(
+    this->Labels.begin(), this->Labels.end(), label, label + labels, std::back_inserter(merged));
+  this->Labels = std::move(merged);
+  for (int64_t p = 0; p < pairs; ++p)
+  {
+    const int64_t* entry = pair + 3 * p;
+    this->Support[{ entry[0], entry[1] }] += entry[2];
+  }
+  return true;
+}
+
+bool SegmentRegions(const SegmentInput& input,
   SegmentResult& result,
+  std::string& error,
   const ParallelFor& parallelFor)
 {
   const ParallelFor run = parallelFor
     ? parallelFor
     : ParallelFor([](int64_t total, int64_t, const std::function<void(int64_t, int64_t)>& body)
         { body(0, total); });
+  if (input.Ownership &&
+    (!input.WholeGrid.Contains(input.Grid.Whole) ||
+      !input.Grid.Whole.Contains(input.Ownership->Piece) || !input.Combine))
+  {
+    error = "a piece's samples must lie in the whole grid and hold the piece, and the "
+            "piece needs Combine";
+    return false;
+  }
   std::vector<int64_t> label;
   Label(input, run, label, result.Patch);
-  const std::vector<LabelPair> pairs = PairSupport(input, label, run);
+  RegionEvidence evidence;
+  if (!CountEvidence(input, label, run, evidence))
+  {
+    error = "a piece's samples must hold the sample after it along each axis";
+    return false;
+  }
+  if (input.Combine && !input.Combine(evidence, error))
+  {
+    return false;
+  }
+  const int64_t labels = 2 * input.Patches->PatchCount;
+  const int64_t whole = input.Ownership ? input.WholeGrid.Count() : input.Grid.Whole.Count();
+  if (evidence.Samples != whole || (!evidence.Labels.empty() && evidence.Labels.back() >= labels) ||
+    (!evidence.Support.empty() && evidence.Support.rbegin()->first.first >= labels))
+  {
+    error = "the pieces' evidence covers " + std::to_string(evidence.Samples) + " of the " +
+      std::to_string(whole) + " samples, or names labels the patches do not have";
+    return false;
+  }
   LabelSets sets;
   result.Merges = result.Refused = 0;
-  for (const auto& entry : pairs)
+  for (const auto& entry : CanonicalPairs(evidence))
   {
+    if (entry.first.second >= labels)
+    {
+      error = "the pieces' evidence names labels the patches do not have";
+      return false;
+    }
     bool merged = false;
     if (!sets.Merge(entry.first.first, entry.first.second, merged))
     {
@@ -478,7 +610,8 @@ void SegmentRegions(const SegmentInput& input,
     }
     result.Merges += merged;
   }
-  NumberRegions(input, label, sets, run, result);
+  NumberRegions(label, labels, evidence, sets, run, result);
+  return true;
 }
 
 } // namespace vtkdf

@@ -23,14 +23,23 @@
 // patch in one region is refused. The result is a function of the field alone: the same
 // for any thread count or visiting order. Regions are numbered from 0 in the order of
 // their lowest label.
+//
+// Pieces: the merge reads only the labels the samples take and the support of each
+// label pair (RegionEvidence). A piece of a distributed run counts them over the samples
+// it owns (PieceOwnership), its ranks add them up (Combine), and every piece runs the
+// same merge on the same sums: its regions are the whole grid's, bit for bit.
 #ifndef vtkdf_SegmentRegions_h
 #define vtkdf_SegmentRegions_h
 
 #include "Common/Parallel.h"
+#include "Common/PieceOwnership.h"
 #include "Common/SampleGrid.h"
+#include "Segment/SegmentedField.h"
 #include "Segment/SurfacePatches.h"
 
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -49,6 +58,14 @@ struct SegmentInput
   /// Optional: each sample's side label already computed (SegmentFieldGPU); then
   /// ClosestTriangle, ClosestFeature and ClosestPoint are not read.
   const int32_t* Labels = nullptr;
+  /// A piece of a distributed run (null: Grid.Whole is the whole grid): Grid.Whole must
+  /// hold the piece and the sample after it along each axis within WholeGrid; the piece
+  /// counts the evidence of the samples it owns and Combine makes it the whole grid's
+  /// (the sum over the pieces, the same on every piece; false and an error when it
+  /// cannot).
+  const PieceOwnership* Ownership = nullptr;
+  IndexBox WholeGrid;
+  std::function<bool(RegionEvidence&, std::string&)> Combine;
 };
 
 struct SegmentResult
@@ -62,10 +79,12 @@ struct SegmentResult
   int64_t Refused = 0; // region pairs refused (they would join the two sides of a patch)
 };
 
-/// Fills `result`; `parallelFor` (optional) runs the per-sample passes in parallel, with
-/// the same result.
-void SegmentRegions(const SegmentInput& input,
+/// Fills `result` (per sample of Grid.Whole); `parallelFor` (optional) runs the
+/// per-sample passes in parallel, with the same result. False and `error` when a piece's
+/// samples or its Combine fail.
+bool SegmentRegions(const SegmentInput& input,
   SegmentResult& result,
+  std::string& error,
   const ParallelFor& parallelFor = ParallelFor());
 
 /// The label (2 patch + side) of a sample at `p` whose closest point `c` lies on `feature`

@@ -125,7 +125,8 @@ bool FieldOnGPU(HeadlessGL& gl,
   SegmentedFieldReport& report,
   std::string& error)
 {
-  const int64_t n = request.Grid.Whole.Count();
+  const IndexBox& extent = request.Extent;
+  const int64_t n = extent.Count();
   std::vector<float> closest(3 * static_cast<size_t>(n));
   local.Labels.resize(n);
   GridFrame frame;
@@ -149,7 +150,7 @@ bool FieldOnGPU(HeadlessGL& gl,
   };
   LinearFactorRequest field;
   field.Grid = request.Grid;
-  field.Extent = request.Grid.Whole;
+  field.Extent = extent;
   LinearFactorReport fieldReport;
   if (!ComputeLinearFactorFieldOnGPU(
         gl, FieldMesh(surface), field, execution.Part(0.05, 0.55), labels, fieldReport, error))
@@ -196,7 +197,7 @@ bool FieldOnCPU(const Surface& surface,
   SegmentedFieldReport& report,
   std::string& error)
 {
-  const int64_t n = request.Grid.Whole.Count();
+  const int64_t n = request.Extent.Count();
   std::vector<float> scratch(arrays.ClosestPoint ? 0 : 3 * static_cast<size_t>(n));
   std::vector<int64_t> cells(n);
   local.Feature.resize(n);
@@ -207,7 +208,7 @@ bool FieldOnCPU(const Surface& surface,
   field.ClosestPoint = arrays.ClosestPoint ? arrays.ClosestPoint : scratch.data();
   LinearFactorRequest fieldRequest;
   fieldRequest.Grid = request.Grid;
-  fieldRequest.Extent = request.Grid.Whole;
+  fieldRequest.Extent = request.Extent;
   LinearFactorReport fieldReport;
   Execution quiet = execution.Part(0.05, 0.55);
   quiet.Stages = nullptr; // the field is one stage here
@@ -272,7 +273,7 @@ void WriteArrays(const SegmentResult& result,
 } // namespace
 
 bool ComputeSegmentedField(MeshInput mesh,
-  const SegmentedFieldRequest& request,
+  const SegmentedFieldRequest& pieceRequest,
   HeadlessGL* gl,
   const SegmentedFieldArrays& arrays,
   const Execution& execution,
@@ -280,7 +281,20 @@ bool ComputeSegmentedField(MeshInput mesh,
   std::string& error)
 {
   report = SegmentedFieldReport();
+  SegmentedFieldRequest request = pieceRequest;
   const SampleGrid& grid = request.Grid;
+  if (request.Extent.Empty())
+  {
+    request.Extent = grid.Whole;
+  }
+  const bool piece = static_cast<bool>(request.Combine);
+  if (piece ? !request.Extent.Contains(request.Pieces.Piece.Grown(1, grid.Whole))
+            : !(request.Extent == grid.Whole))
+  {
+    error = piece ? "A piece's extent must hold the piece and one sample around it."
+                  : "A part of the grid needs the other parts' region evidence (Combine).";
+    return false;
+  }
   const double largest = std::max({ grid.Spacing[0], grid.Spacing[1], grid.Spacing[2] });
   const double delta = request.Delta > 0 ? request.Delta : 2 * largest;
   const double offset = request.RegionOffset > 0 ? request.RegionOffset : 4 * largest;
@@ -315,7 +329,7 @@ bool ComputeSegmentedField(MeshInput mesh,
   execution.EndStage("patches");
 
   // The exact unsigned field with each sample's closest feature, and its side label.
-  const int64_t n = grid.Whole.Count();
+  const int64_t n = request.Extent.Count();
   LocalField local;
   local.Distance.resize(n);
   const bool ok = gl ? FieldOnGPU(*gl, surface, request, arrays, execution, local, report, error)
@@ -335,6 +349,13 @@ bool ComputeSegmentedField(MeshInput mesh,
   SegmentInput input;
   input.Patches = &surface.Patches;
   input.Grid = frame.Local(grid);
+  input.Grid.Whole = request.Extent;
+  if (piece)
+  {
+    input.Ownership = &request.Pieces;
+    input.WholeGrid = grid.Whole;
+    input.Combine = request.Combine;
+  }
   input.Distance = local.Distance.data();
   if (gl)
   {
@@ -347,7 +368,11 @@ bool ComputeSegmentedField(MeshInput mesh,
     input.ClosestPoint = local.Closest.data();
   }
   SegmentResult result;
-  SegmentRegions(input, result, execution.For);
+  if (!SegmentRegions(input, result, error, execution.For))
+  {
+    error = "The regions could not be merged across the pieces: " + error + ".";
+    return false;
+  }
   report.RegionCount = result.RegionCount;
   report.RefusedMerges = result.Refused;
   execution.EndStage("regions");

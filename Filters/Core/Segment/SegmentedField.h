@@ -10,15 +10,19 @@
 // lines), the patches (SurfacePatches: the surface split along its junctions and
 // boundaries), the exact field with each sample's closest feature (LinearFactor/), the
 // regions (SegmentRegions; on the GPU the side labels are computed where the field lies,
-// SegmentFieldGPU).
+// SegmentFieldGPU). A piece of a distributed run computes its samples alone and shares
+// the regions' evidence with the other pieces (SegmentedFieldRequest::Combine).
 #ifndef vtkdf_SegmentedField_h
 #define vtkdf_SegmentedField_h
 
 #include "Common/MeshInput.h"
 #include "Common/Parallel.h"
+#include "Common/PieceOwnership.h"
 #include "Common/SampleGrid.h"
 
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,9 +31,35 @@ namespace vtkdf
 {
 class HeadlessGL;
 
+/// What the merge of labels into regions reads, counted over the samples a piece owns:
+/// the labels they take, and per pair of labels the adjacent sample pairs (the lower
+/// sample owned) with no surface between them. Pieces that own disjoint samples add up to
+/// the whole grid's evidence.
+struct RegionEvidence
+{
+  int64_t Samples = 0;         // owned samples counted
+  std::vector<int64_t> Labels; // taken by an owned sample, increasing
+  std::map<std::pair<int64_t, int64_t>, int64_t> Support;
+
+  /// As 64-bit words, for the pieces to exchange; Add() reads them back.
+  std::vector<int64_t> Pack() const;
+  /// Adds the evidence packed in `words`; false (nothing added) when they are not one.
+  bool Add(const int64_t* words, int64_t count);
+};
+
 struct SegmentedFieldRequest
 {
-  SampleGrid Grid; // world; the field covers Grid.Whole
+  SampleGrid Grid; // world; Grid.Whole is the whole grid
+  /// The samples computed, the arrays' extent (empty: Grid.Whole). A part of the grid
+  /// needs Pieces: its regions are the whole grid's.
+  IndexBox Extent;
+  /// A piece of a distributed run: Extent must hold Pieces.Piece and one sample around
+  /// it (within the grid); the piece counts the region evidence of the
+  /// samples it owns and Combine makes it the whole grid's: the sum over the pieces,
+  /// the same on every piece (RegionEvidence::Pack/Add). Null Combine: one piece, the
+  /// whole grid.
+  PieceOwnership Pieces;
+  std::function<bool(RegionEvidence&, std::string&)> Combine;
   /// The distance cap delta and the region offset D, world units; 0: 2 and 4 times the
   /// largest spacing.
   double Delta = 0;
@@ -38,7 +68,7 @@ struct SegmentedFieldRequest
   bool CutSelfIntersections = true;
 };
 
-/// Per sample of the grid (x fastest); ClosestPoint may be null.
+/// Per sample of the request's Extent (x fastest); ClosestPoint may be null.
 struct SegmentedFieldArrays
 {
   float* SegmentedDistance = nullptr;
