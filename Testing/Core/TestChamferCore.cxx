@@ -100,9 +100,11 @@ void CompareOne(const std::string& name,
   const int32_t unreached = maxLayers > 0 ? maxLayers + 1 : INT32_MAX;
   auto expected = Reference(zero, metric, maxLayers, unreached);
   int32_t layers = 0;
+  int64_t reached = 0;
   for (int32_t v : expected)
   {
     layers = v != unreached ? std::max(layers, v) : layers;
+    reached += v != unreached;
   }
   const int nx = zero.Size(0), ny = zero.Size(1), nz = zero.Size(2);
   for (int z = 0; z < nz && inside; ++z)
@@ -140,6 +142,16 @@ void CompareOne(const std::string& name,
       ++wrong;
     }
   }
+  Check(r.Reached == reached && r.ZeroSet == zero.Count(),
+    "%s %s M=%d%s: %lld voxels reached (%lld zero), expected %lld (%lld)",
+    name.c_str(),
+    metrics[static_cast<int>(metric)],
+    maxLayers,
+    inside ? " signed" : "",
+    (long long)r.Reached,
+    (long long)r.ZeroSet,
+    (long long)reached,
+    (long long)zero.Count());
   Check(!wrong && r.Layers == layers,
     "%s %s M=%d%s: %lld voxels differ (first at %lld: %d, expected %d), layers %d, expected %d",
     name.c_str(),

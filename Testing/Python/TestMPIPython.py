@@ -8,7 +8,8 @@ medial axis of the parts likewise: each rank's slab equal to one process's, and 
 medial points (gathered from the ranks) all of one process's; on a grid of 2 samples a
 side (ranks with an empty piece) too. The segmented field of the parts: each rank computes
 its slab and one sample around it (LastComputedExtent), the ranks add up their region
-evidence, and each slab equals one process's bit for bit, on the 2-sample grid too."""
+evidence, and each slab equals one process's bit for bit, on the 2-sample grid too; every
+rank asking for one sub-extent gets it cut from the whole grid."""
 import sys
 
 import numpy as np
@@ -181,5 +182,26 @@ for resolution in (24, 2):
     print(f"rank {rank} of {ranks}: segmented field at resolution {resolution}, extent {e}, "
           f"computed {computed}, {alone.GetLastRegionCount()} regions: "
           f"{'equal to one process bit for bit' if same else 'DIFFERS'}", flush=True)
+
+# Every rank asking for the same sub-extent: the pieces leave samples out, so each rank
+# computes the whole grid and cuts its sub-extent from it (no evidence is exchanged).
+box = (3, 14, 2, 9, 5, 11)
+distributed = segmented(part, 24)
+distributed.UpdateExtent(box)
+cut = distributed.GetOutput()
+vtkMultiProcessController.SetGlobalController(vtkDummyController())
+alone = segmented(whole, 24)
+alone.Update()
+vtkMultiProcessController.SetGlobalController(controller)
+full = alone.GetOutput()
+wx, wy = full.GetDimensions()[0], full.GetDimensions()[1]
+values = vtk_to_numpy(full.GetPointData().GetArray("SegmentedDistance")).reshape((-1, wy, wx))
+expected = np.ascontiguousarray(values[box[4]:box[5] + 1, box[2]:box[3] + 1, box[0]:box[1] + 1])
+got = vtk_to_numpy(cut.GetPointData().GetArray("SegmentedDistance"))
+cut_ok = (tuple(cut.GetExtent()) == box and got.tobytes() == expected.tobytes() and
+          tuple(distributed.GetLastComputedExtent()) == tuple(full.GetExtent()))
+print(f"rank {rank} of {ranks}: the same sub-extent on every rank {cut.GetExtent()}, computed "
+      f"{distributed.GetLastComputedExtent()}: "
+      f"{'equal to one process bit for bit' if cut_ok else 'DIFFERS'}", flush=True)
 controller.Finalize()
-sys.exit(0 if ok and is_slab and medial_ok and medial_slab and segment_ok else 1)
+sys.exit(0 if ok and is_slab and medial_ok and medial_slab and segment_ok and cut_ok else 1)

@@ -526,6 +526,216 @@ void WriteDistances(const Wavefront& f,
       WriteDistancesLoop(f, inside, unreached, distance, begin, end);
     });
 }
+/// The Manhattan field without a layer limit is the L1 distance transform of the zero
+/// set, which is separable: the distance along z to the nearest zero voxel of the lane,
+/// then min over x' of (|x - x'| + that), then the same over y'. Two passes over the
+/// output instead of one per layer. Pass 1, a row y of lanes at a time (the lanes of a
+/// row lie side by side): the z and x transforms in a buffer of the row's lanes, then
+/// written into the row y of every z-slice, each value doubled and its inside bit added
+/// (the y transform keeps each voxel's own bit: min(e, ((e' >> 1) + 1) << 1 | (e & 1))
+/// compares the distances alone). Pass 2, a z-slice at a time (in cache): the y
+/// transform, and each value decoded and signed. The layer indices are the wavefront's,
+/// bit for bit: a voxel's layer is its L1 distance to the zero set.
+constexpr int32_t Far = int32_t(1) << 29; // beyond any distance on a grid of int extents
+
+VTKDF_INLINE void ManhattanRowsLoop(const BitVolume& zero,
+  const BitVolume* inside,
+  int32_t* distance,
+  int64_t begin,
+  int64_t end)
+{
+  const int nx = zero.Size(0), ny = zero.Size(1), nz = zero.Size(2);
+  const int64_t slice = int64_t(nx) * ny;
+  std::vector<int32_t> lanes(static_cast<size_t>(nx) * nz); // x-major: lane x's z run
+  for (int64_t y = begin; y < end; ++y)
+  {
+    // Along z: the distance to the lane's nearest zero voxel.
+    for (int x = 0; x < nx; ++x)
+    {
+      const uint64_t* lane = zero.Lane(x, static_cast<int>(y));
+      int32_t* d = lanes.data() + int64_t(x) * nz;
+      int32_t last = -Far;
+      for (int z = 0; z < nz; ++z)
+      {
+        if ((lane[z >> 6] >> (z & 63)) & 1)
+        {
+          last = z;
+        }
+        d[z] = z - last;
+      }
+      int32_t next = INT32_MAX - Far;
+      for (int z = nz - 1; z >= 0; --z)
+      {
+        if ((lane[z >> 6] >> (z & 63)) & 1)
+        {
+          next = z;
+        }
+        d[z] = std::min(d[z], std::min(Far, next - z));
+      }
+    }
+    // Along x: forward and backward, a whole lane at a time.
+    for (int x = 1; x < nx; ++x)
+    {
+      const int32_t* __restrict previous = lanes.data() + int64_t(x - 1) * nz;
+      int32_t* __restrict current = lanes.data() + int64_t(x) * nz;
+      for (int z = 0; z < nz; ++z)
+      {
+        current[z] = std::min(current[z], previous[z] + 1);
+      }
+    }
+    for (int x = nx - 2; x >= 0; --x)
+    {
+      const int32_t* __restrict previous = lanes.data() + int64_t(x + 1) * nz;
+      int32_t* __restrict current = lanes.data() + int64_t(x) * nz;
+      for (int z = 0; z < nz; ++z)
+      {
+        current[z] = std::min(current[z], previous[z] + 1);
+      }
+    }
+    // Into row y of every slice, doubled, with the inside bit: 16 slices at a time.
+    for (int z0 = 0; z0 < nz; z0 += 16)
+    {
+      const int z1 = std::min(nz, z0 + 16);
+      for (int x = 0; x < nx; ++x)
+      {
+        const int32_t* d = lanes.data() + int64_t(x) * nz;
+        const uint64_t* in = inside ? inside->Lane(x, static_cast<int>(y)) : nullptr;
+        int32_t* out = distance + y * nx + x;
+        for (int z = z0; z < z1; ++z)
+        {
+          const int32_t bit = in ? static_cast<int32_t>((in[z >> 6] >> (z & 63)) & 1) : 0;
+          out[z * slice] = (d[z] << 1) | bit;
+        }
+      }
+    }
+  }
+}
+
+VTKDF_INLINE void ManhattanSlicesLoop(int nx,
+  int ny,
+  int32_t unreached,
+  int32_t* distance,
+  int64_t begin,
+  int64_t end,
+  int32_t& largest,
+  int64_t& reached)
+{
+  const int64_t slice = int64_t(nx) * ny;
+  for (int64_t z = begin; z < end; ++z)
+  {
+    int32_t* s = distance + z * slice;
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      for (int k = 1; k < ny; ++k)
+      {
+        const int y = pass == 0 ? k : ny - 1 - k;
+        const int32_t* __restrict previous = s + int64_t(pass == 0 ? y - 1 : y + 1) * nx;
+        int32_t* __restrict current = s + int64_t(y) * nx;
+        for (int x = 0; x < nx; ++x)
+        {
+          const int32_t e = current[x];
+          const int32_t candidate = ((((previous[x] >> 1) + 1) << 1) | (e & 1));
+          current[x] = std::min(e, candidate);
+        }
+      }
+    }
+    int32_t top = 0;
+    int64_t count = 0;
+    for (int64_t v = 0; v < slice; ++v)
+    {
+      const int32_t e = s[v];
+      const int32_t layer = e >> 1;
+      const bool near = layer < Far;
+      const int32_t value = near ? layer : unreached;
+      top = std::max(top, near ? layer : 0);
+      count += near;
+      s[v] = (e & 1) ? -value : value;
+    }
+    largest = std::max(largest, top);
+    reached += count;
+  }
+}
+
+#ifdef VTKDF_HAVE_AVX2_CLONES
+__attribute__((target("avx2"))) void ManhattanRowsAVX2(const BitVolume& zero,
+  const BitVolume* inside,
+  int32_t* distance,
+  int64_t begin,
+  int64_t end)
+{
+  ManhattanRowsLoop(zero, inside, distance, begin, end);
+}
+
+__attribute__((target("avx2"))) void ManhattanSlicesAVX2(int nx,
+  int ny,
+  int32_t unreached,
+  int32_t* distance,
+  int64_t begin,
+  int64_t end,
+  int32_t& largest,
+  int64_t& reached)
+{
+  ManhattanSlicesLoop(nx, ny, unreached, distance, begin, end, largest, reached);
+}
+#endif
+
+/// The Manhattan field with every layer (a non-empty zero set), separably.
+ChamferResult SeparableManhattan(const BitVolume& zero,
+  const BitVolume* inside,
+  int32_t unreached,
+  int32_t* distance,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress,
+  int64_t zeroSet)
+{
+  ChamferResult result;
+  result.ZeroSet = zeroSet;
+  const int nx = zero.Size(0), ny = zero.Size(1), nz = zero.Size(2);
+  parallelFor(ny,
+    1,
+    [&](int64_t begin, int64_t end)
+    {
+#ifdef VTKDF_HAVE_AVX2_CLONES
+      if (HaveAVX2())
+      {
+        ManhattanRowsAVX2(zero, inside, distance, begin, end);
+        return;
+      }
+#endif
+      ManhattanRowsLoop(zero, inside, distance, begin, end);
+    });
+  if (progress && !progress(0.5))
+  {
+    result.Aborted = true;
+    return result;
+  }
+  std::mutex merge;
+  parallelFor(nz,
+    1,
+    [&](int64_t begin, int64_t end)
+    {
+      int32_t largest = 0;
+      int64_t reached = 0;
+#ifdef VTKDF_HAVE_AVX2_CLONES
+      if (HaveAVX2())
+      {
+        ManhattanSlicesAVX2(nx, ny, unreached, distance, begin, end, largest, reached);
+      }
+      else
+#endif
+      {
+        ManhattanSlicesLoop(nx, ny, unreached, distance, begin, end, largest, reached);
+      }
+      std::lock_guard<std::mutex> guard(merge);
+      result.Layers = std::max(result.Layers, largest);
+      result.Reached += reached;
+    });
+  if (progress && !progress(1.0))
+  {
+    result.Aborted = true;
+  }
+  return result;
+}
 } // namespace
 
 ChamferResult ChamferPropagate(const BitVolume& zero,
@@ -537,6 +747,15 @@ ChamferResult ChamferPropagate(const BitVolume& zero,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress)
 {
+  if (metric == ChamferMetric::Manhattan && maximumLayers <= 0)
+  {
+    // Every layer of the Manhattan field: the separable L1 transform (same bits).
+    const int64_t zeroSet = zero.Count();
+    if (zeroSet > 0)
+    {
+      return SeparableManhattan(zero, inside, unreached, distance, parallelFor, progress, zeroSet);
+    }
+  }
   ChamferResult result;
   Wavefront f;
   f.NX = zero.Size(0), f.NY = zero.Size(1), f.NZ = zero.Size(2), f.W = zero.WordsPerLane();
