@@ -10,7 +10,10 @@
 
 #include "GL/HeadlessGL.h"
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <cstdlib>
 #include <exception>
 #include <mutex>
 #include <new>
@@ -38,6 +41,43 @@ bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error)
     return false;
   }
   return true;
+}
+
+HeadlessGL* AutoSignContext(int64_t samples)
+{
+  const char* setting = std::getenv("VTKDF_AUTO_GPU_SIGN");
+  const std::string choice = setting ? setting : "";
+  if (choice != "1" && samples < (int64_t(1) << 22))
+  {
+    return nullptr;
+  }
+  static HeadlessGL* const chosen = [&choice]() -> HeadlessGL*
+  {
+    if (choice == "0")
+    {
+      return nullptr;
+    }
+    // No context is made where no hardware device is found (a CPU machine pays nothing).
+    if (choice != "1" && !HeadlessGL::HasHardwareDevice())
+    {
+      return nullptr;
+    }
+    std::string why;
+    HeadlessGL* gl = HeadlessGL::Get(why);
+    if (!gl)
+    {
+      return nullptr;
+    }
+    std::string renderer = gl->Renderer();
+    std::transform(renderer.begin(), renderer.end(), renderer.begin(), ::tolower);
+    bool software = gl->Platform() == "OSMesa";
+    for (const char* name : { "llvmpipe", "softpipe", "swrast", "software", "svga3d" })
+    {
+      software = software || renderer.find(name) != std::string::npos;
+    }
+    return !software || choice == "1" ? gl : nullptr;
+  }();
+  return chosen;
 }
 
 void SMPFor(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body)

@@ -32,6 +32,17 @@ enum BackendValue
 /// and there is no context.
 bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error);
 
+/// The context on which Backend Auto runs the winding-number sign of `samples` samples
+/// while the field runs on the CPU: a hardware GPU's from 2^22 samples on, else null.
+/// On an NVIDIA H100 beside 16 CPU threads, the GPU's winding pass took half the time of
+/// the CPU's at 256^3 (the whole field 1.36-1.75 times faster), but its context and
+/// programs cost about 0.4 s once per process, which smaller grids do not repay
+/// (docs/benchmarks.md). The device is looked for once per process, without making a
+/// context where none is hardware; a software rasterizer (llvmpipe, OSMesa) is not
+/// taken. The environment variable VTKDF_AUTO_GPU_SIGN=1 takes any context at any size
+/// (how the tests run this path), VTKDF_AUTO_GPU_SIGN=0 none.
+HeadlessGL* AutoSignContext(int64_t samples);
+
 /// vtkSMPTools::For behind the cores' ParallelFor hook. An exception thrown by `body`
 /// (std::bad_alloc) stops the remaining chunks and is rethrown here, on the calling
 /// thread, whatever the SMP backend (a std::thread backend would otherwise terminate).

@@ -14,6 +14,7 @@
 #include "GL/HeadlessGL.h"
 #include "LinearFactor/LinearFactorField.h"
 #include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldExecution.h"
 
 #include <cmath>
 #include <utility>
@@ -63,6 +64,11 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     !this->ReadMesh(input, request.Grid, mesh))
   {
     return 0;
+  }
+  this->LastSignBackend = "none";
+  if (winding && !gl && this->Backend == BACKEND_AUTO)
+  {
+    request.SignContext = vtkdf::AutoSignContext(request.Extent.Count());
   }
   request.Domains = static_cast<vtkdf::Culling>(this->Culling);
   request.Sign = static_cast<vtkdf::SignMode>(this->SignMode);
@@ -125,6 +131,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   this->LastCullingFactor = report.Evaluations >= 0 ? double(report.Evaluations) / n : -1.0;
   this->LastWindingBlockSamples = report.WindingBlockSamples;
   this->LastWindingExactSamples = report.WindingExactSamples;
+  this->LastSignBackend = !winding ? "none" : (gl || request.SignContext ? "gpu" : "cpu");
   this->UpdateProgress(1.0);
   this->FinishTiming(gl, timer);
   return 1;
@@ -174,5 +181,6 @@ void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastEvaluations: " << this->LastEvaluations << "\n";
   os << indent << "LastWindingBlockSamples: " << this->LastWindingBlockSamples << "\n";
   os << indent << "LastWindingExactSamples: " << this->LastWindingExactSamples << "\n";
+  os << indent << "LastSignBackend: " << this->LastSignBackend << "\n";
   os << indent << "LastCullingFactor: " << this->LastCullingFactor << "\n";
 }

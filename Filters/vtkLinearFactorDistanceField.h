@@ -115,6 +115,9 @@ public:
   /// Samples whose winding number the last run had to sum exactly, triangle by triangle
   /// (the hierarchy's error bound reached |w| = 1/2).
   vtkGetMacro(LastWindingExactSamples, vtkTypeInt64);
+  /// Where the last run computed the winding-number sign: "cpu", "gpu" (Backend GPU, or
+  /// Auto beside a hardware GPU, vtkDistanceFieldExecution.h) or "none".
+  const char* GetLastSignBackend() const { return this->LastSignBackend.c_str(); }
 
 protected:
   vtkLinearFactorDistanceField();
@@ -136,6 +139,7 @@ protected:
   double LastCullingFactor = 0;
   vtkTypeInt64 LastWindingBlockSamples = 0;
   vtkTypeInt64 LastWindingExactSamples = 0;
+  std::string LastSignBackend = "none";
 
 private:
   vtkLinearFactorDistanceField(const vtkLinearFactorDistanceField&) = delete;

@@ -74,9 +74,10 @@ int Linfac(int argc, char* argv[])
         char blocks[96];
         std::snprintf(blocks,
           sizeof(blocks),
-          " winding_block_samples=%lld winding_exact_samples=%lld",
+          " winding_block_samples=%lld winding_exact_samples=%lld sign_backend=%s",
           static_cast<long long>(filter->GetLastWindingBlockSamples()),
-          static_cast<long long>(filter->GetLastWindingExactSamples()));
+          static_cast<long long>(filter->GetLastWindingExactSamples()),
+          filter->GetLastSignBackend());
         return std::string(extra) + blocks;
       }
       return std::string(extra);

@@ -241,6 +241,30 @@ bool HeadlessGL::CreateEGLContext(void* display, std::string& why)
   return true;
 }
 
+bool HeadlessGL::HasHardwareDevice()
+{
+  if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") &&
+    !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base"))
+  {
+    return false;
+  }
+  EGLDeviceEXT devices[16];
+  EGLint count = 0;
+  if (!eglQueryDevicesEXT(16, devices, &count))
+  {
+    return false;
+  }
+  for (EGLint d = 0; d < count; ++d)
+  {
+    const char* ext = eglQueryDeviceStringEXT(devices[d], EGL_EXTENSIONS);
+    if (!(ext && std::strstr(ext, "EGL_MESA_device_software")))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool HeadlessGL::TryEGLDevice(std::string& why)
 {
   if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") &&

@@ -26,6 +26,10 @@ public:
   /// MPI_LOCALRANKID or SLURM_LOCALID).
   static HeadlessGL* Get(std::string& error);
 
+  /// Whether an EGL device other than Mesa's software one is present (a hardware GPU),
+  /// found without creating a context.
+  static bool HasHardwareDevice();
+
   const std::string& Renderer() const { return this->RendererName; }
   /// The error of a pass that failed on this context, naming the renderer.
   std::string Failure(const std::string& error) const

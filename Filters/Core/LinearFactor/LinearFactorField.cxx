@@ -103,7 +103,7 @@ bool WindingSign(const MeshInput& mesh,
         stats,
         error))
   {
-    error = gl->Failure(error);
+    error = gl ? gl->Failure(error) : error;
     return false;
   }
   report.WindingBlockSamples = stats.BlockSamples;
@@ -208,7 +208,8 @@ bool ComputeLinearFactorField(MeshInput mesh,
   execution.EndStage("finalize");
   if ((request.Sign == SignMode::WindingNumber && arrays.Distance) || arrays.WindingNumber)
   {
-    if (!WindingSign(mesh, request.Sign, local, gl, arrays, execution, report, error))
+    HeadlessGL* signGL = gl ? gl : request.SignContext;
+    if (!WindingSign(mesh, request.Sign, local, signGL, arrays, execution, report, error))
     {
       return false;
     }

@@ -52,6 +52,10 @@ struct LinearFactorRequest
   SignMode Sign = SignMode::Unsigned;
   /// A cap on the distances (a narrow band), in world units; 0: none.
   double MaximumDistance = 0;
+  /// The field on the CPU (no `gl`) with the winding sign on this context: a hardware
+  /// GPU's winding pass is faster than the CPU's, its scan is not (Backend Auto). The
+  /// signs are the same (the same rigorous rule); w itself within float rounding.
+  HeadlessGL* SignContext = nullptr;
 };
 
 /// Where the field goes: any pointer may be null. Each array covers the request's
