@@ -39,15 +39,18 @@ struct MaskToBits
       256,
       [&](int64_t begin, int64_t end)
       {
-        for (int64_t lane = begin; lane < end; ++lane)
+        // Lanes are consecutive in memory (x, then y): a chunk of lanes reads a run of
+        // each slice, slice after slice, and sets bits in its own few words.
+        uint64_t* words = bits.Lane(0, 0) + begin * bits.WordsPerLane();
+        const int W = bits.WordsPerLane();
+        for (int z = 0; z < nz; ++z)
         {
-          uint64_t* words = bits.Lane(static_cast<int>(lane % nx), static_cast<int>(lane / nx));
-          for (int z = 0; z < nz; ++z)
+          const uint64_t bit = uint64_t(1) << (z & 63);
+          const int64_t first = z * slice;
+          uint64_t* word = words + (z >> 6);
+          for (int64_t lane = begin; lane < end; ++lane, word += W)
           {
-            if (values[lane + z * slice] != 0)
-            {
-              words[z >> 6] |= uint64_t(1) << (z & 63);
-            }
+            *word |= values[first + lane] != 0 ? bit : 0;
           }
         }
       });
