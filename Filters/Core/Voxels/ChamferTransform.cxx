@@ -679,7 +679,8 @@ __attribute__((target("avx2"))) void ManhattanSlicesAVX2(int nx,
 }
 #endif
 
-/// The Manhattan field with every layer (a non-empty zero set), separably.
+/// The Manhattan field with every layer (a non-empty zero set), separably. Each pass
+/// runs in batches of rows or slices, with progress (and abort) between them.
 ChamferResult SeparableManhattan(const BitVolume& zero,
   const BitVolume* inside,
   int32_t unreached,
@@ -691,48 +692,53 @@ ChamferResult SeparableManhattan(const BitVolume& zero,
   ChamferResult result;
   result.ZeroSet = zeroSet;
   const int nx = zero.Size(0), ny = zero.Size(1), nz = zero.Size(2);
-  parallelFor(ny,
-    1,
-    [&](int64_t begin, int64_t end)
-    {
-#ifdef VTKDF_HAVE_AVX2_CLONES
-      if (HaveAVX2())
-      {
-        ManhattanRowsAVX2(zero, inside, distance, begin, end);
-        return;
-      }
-#endif
-      ManhattanRowsLoop(zero, inside, distance, begin, end);
-    });
-  if (progress && !progress(0.5))
-  {
-    result.Aborted = true;
-    return result;
-  }
+  constexpr int Batches = 8;
   std::mutex merge;
-  parallelFor(nz,
-    1,
-    [&](int64_t begin, int64_t end)
-    {
-      int32_t largest = 0;
-      int64_t reached = 0;
-#ifdef VTKDF_HAVE_AVX2_CLONES
-      if (HaveAVX2())
-      {
-        ManhattanSlicesAVX2(nx, ny, unreached, distance, begin, end, largest, reached);
-      }
-      else
-#endif
-      {
-        ManhattanSlicesLoop(nx, ny, unreached, distance, begin, end, largest, reached);
-      }
-      std::lock_guard<std::mutex> guard(merge);
-      result.Layers = std::max(result.Layers, largest);
-      result.Reached += reached;
-    });
-  if (progress && !progress(1.0))
+  for (int pass = 0; pass < 2; ++pass)
   {
-    result.Aborted = true;
+    const int64_t total = pass == 0 ? ny : nz;
+    for (int batch = 0; batch < Batches; ++batch)
+    {
+      const int64_t first = total * batch / Batches, last = total * (batch + 1) / Batches;
+      parallelFor(last - first,
+        1,
+        [&](int64_t begin, int64_t end)
+        {
+          begin += first, end += first;
+          if (pass == 0)
+          {
+#ifdef VTKDF_HAVE_AVX2_CLONES
+            if (HaveAVX2())
+            {
+              ManhattanRowsAVX2(zero, inside, distance, begin, end);
+              return;
+            }
+#endif
+            ManhattanRowsLoop(zero, inside, distance, begin, end);
+            return;
+          }
+          int32_t largest = 0;
+          int64_t reached = 0;
+#ifdef VTKDF_HAVE_AVX2_CLONES
+          if (HaveAVX2())
+          {
+            ManhattanSlicesAVX2(nx, ny, unreached, distance, begin, end, largest, reached);
+          }
+          else
+#endif
+          {
+            ManhattanSlicesLoop(nx, ny, unreached, distance, begin, end, largest, reached);
+          }
+          std::lock_guard<std::mutex> guard(merge);
+          result.Layers = std::max(result.Layers, largest);
+          result.Reached += reached;
+        });
+      if (progress && !progress(double(pass * Batches + batch + 1) / (2 * Batches)))
+      {
+        result.Aborted = true;
+        return result;
+      }
+    }
   }
   return result;
 }
