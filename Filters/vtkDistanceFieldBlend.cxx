@@ -8,6 +8,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -16,6 +17,7 @@
 #include "Segment/SegmentBlend.h"
 #include "vtkDistanceFieldArrays.h"
 #include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldPartitions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +29,13 @@ vtkStandardNewMacro(vtkDistanceFieldBlend);
 namespace
 {
 /// The whole of field data array `name` as doubles; empty when absent.
+/// Whether this is a distributed run (the global controller has several ranks).
+bool Distributed()
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  return controller && controller->GetNumberOfProcesses() > 1;
+}
+
 std::vector<double> FieldValues(vtkImageData* image, const char* name)
 {
   std::vector<double> values;
@@ -76,18 +85,44 @@ int vtkDistanceFieldBlend::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
+int vtkDistanceFieldBlend::RequestInformation(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  // A piece is blended alone, from the fields' pieces and the whole grid's regions.
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  return 1;
+}
+
 int vtkDistanceFieldBlend::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector** inputVector,
-  vtkInformationVector*)
+  vtkInformationVector* outputVector)
 {
-  // Both inputs whole: a blend compares the fields sample by sample.
+  // A sample's distance to a region may be decided by any voxel of the grid. In one
+  // process: both fields whole. In a distributed run: the requested piece of each (the
+  // ranks then share their regions), so that the fields upstream compute pieces too.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   for (int port = 0; port < 2; ++port)
   {
     vtkInformation* in = inputVector[port]->GetInformationObject(0);
-    if (in)
+    if (!in)
+    {
+      continue;
+    }
+    if (!Distributed() || !outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
     {
       vtkdf::RequestWholeInput(in);
+      continue;
     }
+    // The piece numbers stay those of this rank (a field upstream that produces
+    // sub-extents would otherwise turn "piece 0 of 1" back into the whole extent).
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()),
+      6);
   }
   return 1;
 }
@@ -161,45 +196,128 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation*,
   vtkImageData* second = vtkImageData::GetData(inputVector[1], 0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
-  if (!this->CheckInputs(first, second))
+  // The piece asked for, within the whole grid.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int whole[6], piece[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  std::copy(whole, whole + 6, piece);
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece);
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    piece[2 * a] = std::max(piece[2 * a], whole[2 * a]);
+    piece[2 * a + 1] = std::min(piece[2 * a + 1], whole[2 * a + 1]);
+  }
+  // In a distributed run every rank shares its regions, a rank with nothing to blend
+  // too (the others would wait), so the checks that differ by rank come after.
+  const bool inputsOk = this->CheckInputs(first, second);
+  vtkSmartPointer<vtkImageData> regions[2];
+  if (Distributed())
+  {
+    std::string error;
+    vtkImageData* inputs[2] = { inputsOk ? first : nullptr, inputsOk ? second : nullptr };
+    for (int f = 0; f < 2; ++f)
+    {
+      if (!vtkdf::GatherWholeImage(inputs[f], whole, { "RegionIndex" }, regions[f], error, true))
+      {
+        vtkErrorMacro(
+          "The fields' regions could not be shared between the ranks: " << error << ".");
+        return 0;
+      }
+    }
+  }
+  if (!inputsOk)
   {
     return 0;
   }
-  const vtkIdType n = first->GetNumberOfPoints();
-  // Plain copies when the arrays are of other types (e.g. read from files).
-  auto floats = [](vtkDataArray* array)
+  if (piece[1] < piece[0] || piece[3] < piece[2] || piece[5] < piece[4])
   {
-    vtkNew<vtkFloatArray> copy;
-    copy->DeepCopy(array);
-    return vtkSmartPointer<vtkFloatArray>(copy.GetPointer());
-  };
-  auto ints = [](vtkDataArray* array)
+    return 1; // an empty piece
+  }
+  int extent[2][6];
+  first->GetExtent(extent[0]);
+  second->GetExtent(extent[1]);
+  const vtkdf::IndexBox box =
+    vtkdf::IndexBox{ { { piece[0], piece[2], piece[4] } }, { { piece[1], piece[3], piece[5] } } };
+  for (int f = 0; f < 2; ++f)
   {
-    vtkNew<vtkIntArray> copy;
+    const vtkdf::IndexBox given{ { { extent[f][0], extent[f][2], extent[f][4] } },
+      { { extent[f][1], extent[f][3], extent[f][5] } } };
+    if (!given.Contains(box))
+    {
+      vtkErrorMacro("The " << (f == 0 ? "first" : "second") << " field covers less than the "
+                           << "piece asked for.");
+      return 0;
+    }
+  }
+  // The piece's samples, as plain float and int arrays.
+  auto samples = [&box](vtkImageData* image, const char* name, int type)
+  {
+    int e[6];
+    image->GetExtent(e);
+    const vtkdf::IndexBox given{ { { e[0], e[2], e[4] } }, { { e[1], e[3], e[5] } } };
+    vtkDataArray* array = image->GetPointData()->GetArray(name);
+    vtkSmartPointer<vtkDataArray> copy;
+    copy.TakeReference(vtkDataArray::CreateDataArray(type));
     copy->DeepCopy(array);
-    return vtkSmartPointer<vtkIntArray>(copy.GetPointer());
+    copy->SetName(name);
+    if (given == box)
+    {
+      return copy;
+    }
+    vtkSmartPointer<vtkDataArray> cropped;
+    if (type == VTK_FLOAT)
+    {
+      cropped = vtkdf::CropArray(vtkFloatArray::SafeDownCast(copy), given, box).GetPointer();
+    }
+    else
+    {
+      cropped = vtkdf::CropArray(vtkIntArray::SafeDownCast(copy), given, box).GetPointer();
+    }
+    return cropped;
   };
-  vtkSmartPointer<vtkFloatArray> da = floats(first->GetPointData()->GetArray("Distance"));
-  vtkSmartPointer<vtkFloatArray> db = floats(second->GetPointData()->GetArray("Distance"));
-  vtkSmartPointer<vtkIntArray> ra = ints(first->GetPointData()->GetArray("RegionIndex"));
-  vtkSmartPointer<vtkIntArray> rb = ints(second->GetPointData()->GetArray("RegionIndex"));
+  const vtkSmartPointer<vtkDataArray> daHold = samples(first, "Distance", VTK_FLOAT);
+  const vtkSmartPointer<vtkDataArray> dbHold = samples(second, "Distance", VTK_FLOAT);
+  const vtkSmartPointer<vtkDataArray> raHold = samples(first, "RegionIndex", VTK_INT);
+  const vtkSmartPointer<vtkDataArray> rbHold = samples(second, "RegionIndex", VTK_INT);
+  vtkFloatArray* da = vtkFloatArray::SafeDownCast(daHold);
+  vtkFloatArray* db = vtkFloatArray::SafeDownCast(dbHold);
+  // The whole grid's regions: the inputs themselves in one process.
+  vtkSmartPointer<vtkDataArray> wholeRegions[2];
+  for (int f = 0; f < 2; ++f)
+  {
+    vtkImageData* image = regions[f] ? regions[f].Get() : (f == 0 ? first : second);
+    wholeRegions[f].TakeReference(vtkDataArray::CreateDataArray(VTK_INT));
+    wholeRegions[f]->DeepCopy(image->GetPointData()->GetArray("RegionIndex"));
+  }
+  const vtkIdType n = static_cast<vtkIdType>(box.Count());
   auto distance = vtkdf::NewArray<vtkFloatArray>("Distance", n);
   auto segmented = vtkdf::NewArray<vtkFloatArray>("SegmentedDistance", n);
   auto region = vtkdf::NewArray<vtkIntArray>("RegionIndex", n);
   static_assert(sizeof(int) == sizeof(int32_t), "int is 32 bits");
+  auto ints = [](vtkDataArray* array)
+  { return reinterpret_cast<const int32_t*>(vtkIntArray::SafeDownCast(array)->GetPointer(0)); };
   vtkdf::SegmentedSamples a, b;
   a.Distance = da->GetPointer(0);
-  a.Region = reinterpret_cast<const int32_t*>(ra->GetPointer(0));
+  a.Region = ints(raHold);
   b.Distance = db->GetPointer(0);
-  b.Region = reinterpret_cast<const int32_t*>(rb->GetPointer(0));
+  b.Region = ints(rbHold);
   vtkdf::BlendGrid grid;
-  first->GetDimensions(grid.Dims);
+  vtkdf::BlendBox blendBox;
   for (int c = 0; c < 3; ++c)
   {
+    grid.Dims[c] = whole[2 * c + 1] - whole[2 * c] + 1;
     grid.Spacing[c] = std::abs(first->GetSpacing()[c]);
+    blendBox.Lo[c] = piece[2 * c] - whole[2 * c];
+    blendBox.Hi[c] = piece[2 * c + 1] - whole[2 * c];
   }
   vtkdf::BlendSegmentedFields(a,
     b,
+    ints(wholeRegions[0]),
+    ints(wholeRegions[1]),
+    blendBox,
     this->T,
     grid,
     FieldValues(first, "Delta")[0],
@@ -208,7 +326,7 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation*,
     reinterpret_cast<int32_t*>(region->GetPointer(0)),
     segmented->GetPointer(0),
     vtkdf::SMPFor);
-  output->SetDimensions(first->GetDimensions());
+  output->SetExtent(piece);
   output->SetOrigin(first->GetOrigin());
   output->SetSpacing(first->GetSpacing());
   output->GetPointData()->SetScalars(segmented);

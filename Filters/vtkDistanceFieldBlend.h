@@ -15,6 +15,10 @@
  * Output: the grid with `SegmentedDistance`, `RegionIndex` and `Distance`, and the first
  * input's field data. Mismatched grids or region tables, or missing arrays, are errors
  * that name what differs. Computed on the CPU (vtkSMPTools): one pass over the samples.
+ * A requested piece is computed alone: in a distributed run from the fields' pieces
+ * (which then compute only theirs) and the whole grid's regions, all-gathered (a
+ * sample's distance to a region may be decided by any voxel); in one process from the
+ * whole fields. Equal to the whole grid's blend, bit for bit.
  */
 #ifndef vtkDistanceFieldBlend_h
 #define vtkDistanceFieldBlend_h
@@ -44,6 +48,7 @@ protected:
   ~vtkDistanceFieldBlend() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// Whether T and the inputs can be blended (two segmented fields on one grid with the

@@ -3,6 +3,10 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -12,12 +16,20 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <map>
+#include <string>
+#include <vector>
 
 namespace vtkdf
 {
 namespace
 {
+/// The field-data arrays that carry a piece's extent, origin and spacing through
+/// GatherWholeImage.
+const char* const PieceExtentName = "vtkdfPieceExtent";
+const char* const PieceGridName = "vtkdfPieceGrid";
+
 /// A fingerprint of a piece: its sizes and a hash of its points and cells, to tell
 /// whether every rank holds the same mesh.
 struct Fingerprint
@@ -273,6 +285,169 @@ bool AssembleWholeMesh(vtkPolyData* input, WholeMesh& whole, std::string& error)
     return true;
   }
   whole.Mesh = input;
+  return true;
+}
+
+bool GatherWholeImage(vtkImageData* piece,
+  const int wholeExtent[6],
+  const std::vector<std::string>& arrays,
+  vtkSmartPointer<vtkImageData>& whole,
+  std::string& error,
+  bool everyRank)
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (!controller || controller->GetNumberOfProcesses() < 2)
+  {
+    whole = piece;
+    return true;
+  }
+  // Only the named arrays travel.
+  vtkNew<vtkImageData> send;
+  if (piece)
+  {
+    send->SetExtent(piece->GetExtent());
+    send->SetOrigin(piece->GetOrigin());
+    send->SetSpacing(piece->GetSpacing());
+    send->GetFieldData()->ShallowCopy(piece->GetFieldData());
+    // The extent itself: an image is sent as dimensions and origin, from extent 0.
+    vtkNew<vtkIntArray> extent;
+    extent->SetName(PieceExtentName);
+    extent->SetNumberOfValues(6);
+    for (int a = 0; a < 6; ++a)
+    {
+      extent->SetValue(a, piece->GetExtent()[a]);
+    }
+    send->GetFieldData()->AddArray(extent);
+    // And the grid's origin and spacing in binary (as text they would be rounded).
+    vtkNew<vtkDoubleArray> grid;
+    grid->SetName(PieceGridName);
+    grid->SetNumberOfValues(6);
+    for (int a = 0; a < 3; ++a)
+    {
+      grid->SetValue(a, piece->GetOrigin()[a]);
+      grid->SetValue(3 + a, piece->GetSpacing()[a]);
+    }
+    send->GetFieldData()->AddArray(grid);
+    for (const std::string& name : arrays)
+    {
+      if (vtkDataArray* array = piece->GetPointData()->GetArray(name.c_str()))
+      {
+        send->GetPointData()->AddArray(array);
+      }
+    }
+  }
+  std::vector<vtkSmartPointer<vtkDataObject>> received;
+  if (everyRank)
+  {
+    controller->AllGather(send, received);
+  }
+  else
+  {
+    controller->Gather(send, received, 0);
+  }
+  whole = nullptr;
+  if (!everyRank && controller->GetLocalProcessId() != 0)
+  {
+    return true;
+  }
+  vtkNew<vtkImageData> image;
+  image->SetExtent(const_cast<int*>(wholeExtent));
+  bool described = false; // origin, spacing and field data from the first piece
+  const vtkIdType n = image->GetNumberOfPoints();
+  const int nx = wholeExtent[1] - wholeExtent[0] + 1, ny = wholeExtent[3] - wholeExtent[2] + 1;
+  std::vector<uint8_t> filled(static_cast<size_t>(n), 0);
+  for (const auto& object : received)
+  {
+    vtkImageData* part = vtkImageData::SafeDownCast(object);
+    if (!part || part->GetNumberOfPoints() == 0)
+    {
+      continue;
+    }
+    vtkIntArray* extent =
+      vtkIntArray::SafeDownCast(part->GetFieldData()->GetArray(PieceExtentName));
+    if (!extent || extent->GetNumberOfValues() != 6)
+    {
+      error = "a rank's piece of the image came without its extent";
+      return false;
+    }
+    int e[6];
+    for (int a = 0; a < 6; ++a)
+    {
+      e[a] = extent->GetValue(a);
+    }
+    vtkDoubleArray* grid =
+      vtkDoubleArray::SafeDownCast(part->GetFieldData()->GetArray(PieceGridName));
+    if (!grid || grid->GetNumberOfValues() != 6)
+    {
+      error = "a rank's piece of the image came without its grid";
+      return false;
+    }
+    if (!described)
+    {
+      image->SetOrigin(grid->GetValue(0), grid->GetValue(1), grid->GetValue(2));
+      image->SetSpacing(grid->GetValue(3), grid->GetValue(4), grid->GetValue(5));
+      image->GetFieldData()->ShallowCopy(part->GetFieldData());
+      image->GetFieldData()->RemoveArray(PieceExtentName);
+      image->GetFieldData()->RemoveArray(PieceGridName);
+      described = true;
+    }
+    if (e[0] < wholeExtent[0] || e[1] > wholeExtent[1] || e[2] < wholeExtent[2] ||
+      e[3] > wholeExtent[3] || e[4] < wholeExtent[4] || e[5] > wholeExtent[5])
+    {
+      error = "a rank's piece of the image lies outside its whole extent";
+      return false;
+    }
+    vtkPointData* from = part->GetPointData();
+    for (int a = 0; a < from->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* source = from->GetArray(a);
+      vtkDataArray* target = image->GetPointData()->GetArray(source->GetName());
+      if (!target)
+      {
+        vtkSmartPointer<vtkDataArray> created;
+        created.TakeReference(source->NewInstance());
+        created->SetName(source->GetName());
+        created->SetNumberOfComponents(source->GetNumberOfComponents());
+        created->SetNumberOfTuples(n);
+        image->GetPointData()->AddArray(created);
+        target = created;
+      }
+      const bool sameType = target->GetDataType() == source->GetDataType() &&
+        target->GetNumberOfComponents() == source->GetNumberOfComponents();
+      const int row = e[1] - e[0] + 1;
+      const size_t rowBytes = static_cast<size_t>(row) * source->GetNumberOfComponents() *
+        static_cast<size_t>(source->GetDataTypeSize());
+      vtkIdType at = 0;
+      for (int k = e[4]; k <= e[5]; ++k)
+      {
+        for (int j = e[2]; j <= e[3]; ++j, at += row)
+        {
+          const vtkIdType v = (vtkIdType(k - wholeExtent[4]) * ny + (j - wholeExtent[2])) * nx +
+            (e[0] - wholeExtent[0]);
+          if (sameType)
+          {
+            std::memcpy(target->GetVoidPointer(v * target->GetNumberOfComponents()),
+              source->GetVoidPointer(at * source->GetNumberOfComponents()),
+              rowBytes);
+          }
+          else
+          {
+            for (int i = 0; i < row; ++i)
+            {
+              target->SetTuple(v + i, at + i, source);
+            }
+          }
+          std::fill(filled.begin() + v, filled.begin() + v + row, uint8_t(1));
+        }
+      }
+    }
+  }
+  if (std::find(filled.begin(), filled.end(), 0) != filled.end())
+  {
+    error = "the ranks' pieces of the image leave samples of its whole extent out";
+    return false;
+  }
+  whole = image;
   return true;
 }
 

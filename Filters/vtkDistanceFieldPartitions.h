@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+class vtkImageData;
 class vtkPolyData;
 
 namespace vtkdf
@@ -53,6 +54,21 @@ bool IsFirstRank();
 /// one-piece file gives the other ranks nothing) is that rank's mesh. False, with
 /// `error`, when several ranks hold different pieces without global ids.
 bool AssembleWholeMesh(vtkPolyData* input, WholeMesh& whole, std::string& error);
+
+/// The whole image on rank 0 from every rank's piece of it (`piece`, this rank's, may be
+/// empty or overlap the others: shared samples are equal), for a filter whose answer
+/// needs the whole grid but is output once, by rank 0. Only the point-data arrays named
+/// in `arrays` travel (those the piece has), and the field data (the first piece's). Collective:
+/// every rank of the global controller must call it. Rank 0 gets the image over
+/// `wholeExtent` in `whole` (false, with `error`, when the pieces leave samples out);
+/// the other ranks get null and true; with `everyRank`, every rank gets the whole image.
+/// One process: `whole` is `piece`.
+bool GatherWholeImage(vtkImageData* piece,
+  const int wholeExtent[6],
+  const std::vector<std::string>& arrays,
+  vtkSmartPointer<vtkImageData>& whole,
+  std::string& error,
+  bool everyRank = false);
 
 } // namespace vtkdf
 

@@ -15,6 +15,8 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "Segment/SegmentContour.h"
 #include "vtkDistanceFieldArrays.h"
@@ -43,17 +45,6 @@ vtkTypeBool vtkSegmentedDistanceContour::ProcessRequest(vtkInformation* request,
     [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
-int vtkSegmentedDistanceContour::RequestUpdateExtent(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector*)
-{
-  // The whole field on every rank: the surface is output whole, by rank 0 (a cell's
-  // triangles depend on the regions around it), and every rank asks alike, so that a
-  // distributed field upstream runs on every rank in the same pass.
-  vtkdf::RequestWholeInput(inputVector[0]->GetInformationObject(0));
-  return 1;
-}
-
 int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -67,11 +58,25 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
     vtkErrorMacro("FeatureAngle must be in (0, 180] degrees; it is " << this->FeatureAngle << ".");
     return 0;
   }
+  // A distributed field comes in pieces: rank 0 gathers the whole field and outputs the
+  // surface, once (a cell's triangles depend on the regions around it, and one process's
+  // order of cells and points is kept); the other ranks output nothing.
+  std::string error;
+  int wholeExtent[6];
+  inputVector[0]->GetInformationObject(0)->Get(
+    vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+  vtkSmartPointer<vtkImageData> whole;
+  if (!vtkdf::GatherWholeImage(
+        field, wholeExtent, { "SegmentedDistance", "ClosestPoint" }, whole, error))
+  {
+    vtkErrorMacro("The segmented field could not be gathered: " << error << ".");
+    return 0;
+  }
   if (!vtkdf::IsFirstRank())
   {
-    return 1; // the segmented field is whole on every rank: rank 0 outputs the surface, once
+    return 1;
   }
-  std::string error;
+  field = whole;
   vtkDataArray* values = vtkdf::SampleArray(field, "SegmentedDistance", 1, error);
   vtkDataArray* offsetArray = field ? field->GetFieldData()->GetArray("RegionOffset") : nullptr;
   if (!values)

@@ -24,7 +24,9 @@
  * UseClosestPoints off the surface is the paper's, and a closed smooth surface is
  * exactly vtkFlyingEdges3D's. Output: vtkPolyData of triangles with the
  * cell array `Regions` (int, 2 components: the lower and the higher region the triangle
- * separates; it faces the higher). CPU.
+ * separates; it faces the higher). CPU. In a distributed run rank 0 gathers the
+ * field's pieces and outputs the whole surface (one process's, bit for bit); the other
+ * ranks output nothing.
  */
 #ifndef vtkSegmentedDistanceContour_h
 #define vtkSegmentedDistanceContour_h
@@ -67,7 +69,6 @@ protected:
   ~vtkSegmentedDistanceContour() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   bool UseClosestPoints = true;

@@ -2,7 +2,7 @@
 R given, and checks that the assembled .pvti outputs of R ranks equal the 1-rank outputs
 bit for bit (the mesh whole, or partitioned across the ranks with global ids), that the
 filters that compute a piece (the linear factorization, the voxelizer, the medial axis,
-the chamfer transform with a layer limit, the segmented field) computed only a slab on
+the chamfer transform with a layer limit, the segmented field and its blend) computed only a slab on
 each rank (the extents every rank prints), and that a mesh
 partitioned without global ids is refused:
 python3 check_distributed.py MPIEXEC PVBATCH PLUGIN DATA_DIR OUT_DIR R...
@@ -16,7 +16,7 @@ import sys
 
 from compare_outputs import compare
 
-SLAB_FILTERS = ("linfac_", "voxelizer", "medial", "chamfer_of_masks", "segmented")
+SLAB_FILTERS = ("linfac_", "voxelizer", "medial", "chamfer_of_masks", "segmented", "blend")
 
 mpiexec, pvbatch, plugin, data, out = sys.argv[1:6]
 rank_counts = [int(r) for r in sys.argv[6:]]

@@ -17,7 +17,7 @@ import threading
 
 from compare_outputs import compare
 
-SLAB_FILTERS = ("linfac_", "voxelizer", "medial", "chamfer_of_masks", "segmented")
+SLAB_FILTERS = ("linfac_", "voxelizer", "medial", "chamfer_of_masks", "segmented", "blend")
 
 mpiexec, pvserver, pvpython, pvbatch, plugin, data, out = sys.argv[1:8]
 ranks = int(sys.argv[8])

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <set>
 #include <vector>
@@ -75,25 +76,28 @@ void Transform1D(const double* f, int n, double step, double* d, int* v, double*
 void RegionDistance(const int32_t* regions,
   int32_t which,
   const BlendGrid& grid,
+  const BlendBox& box,
   float* out,
   const ParallelFor& parallelFor)
 {
   const int nx = grid.Dims[0], ny = grid.Dims[1], nz = grid.Dims[2];
-  const int64_t count = static_cast<int64_t>(nx) * ny * nz;
   const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> squared(static_cast<size_t>(count));
-  for (int64_t i = 0; i < count; ++i)
+  // The transform along x, then y, then z, each on whole lines: along x every row of the
+  // grid, kept where x lies in the box; along y the lines through the box's x range,
+  // kept where y lies in it; along z the lines through the box's (x, y). A line's values
+  // are those of the whole grid's transform, so the box's are too, bit for bit.
+  const int bx = box.Size(0), by = box.Size(1);
+  // Line `line` of `count` along `axis` reads `n` values from `in` and writes the kept
+  // ones to `keep`.
+  auto pass = [&](int n,
+                int64_t count,
+                double step,
+                bool transform,
+                const std::function<double(int64_t, int)>& in,
+                const std::function<void(int64_t, int, double)>& keep)
   {
-    squared[i] = regions[i] == which ? 0.0 : inf;
-  }
-  // One axis at a time: the lines along it, in parallel.
-  auto pass = [&](int axis)
-  {
-    const int n = grid.Dims[axis];
-    const int64_t stride = axis == 0 ? 1 : axis == 1 ? nx : static_cast<int64_t>(nx) * ny;
-    const int64_t lines = count / n;
     Run(parallelFor,
-      lines,
+      count,
       64,
       [&](int64_t begin, int64_t end)
       {
@@ -101,54 +105,92 @@ void RegionDistance(const int32_t* regions,
         std::vector<int> v(n);
         for (int64_t line = begin; line < end; ++line)
         {
-          // The line's first sample: its index with the axis coordinate 0.
-          int64_t first;
-          if (axis == 0)
+          for (int q = 0; q < n; ++q)
           {
-            first = line * nx;
+            f[q] = in(line, q);
           }
-          else if (axis == 1)
+          if (transform)
           {
-            first = (line / nx) * nx * ny + line % nx;
+            Transform1D(f.data(), n, step, d.data(), v.data(), z.data());
           }
           else
           {
-            first = line;
+            d = f;
           }
           for (int q = 0; q < n; ++q)
           {
-            f[q] = squared[first + q * stride];
-          }
-          Transform1D(f.data(), n, grid.Spacing[axis], d.data(), v.data(), z.data());
-          for (int q = 0; q < n; ++q)
-          {
-            squared[first + q * stride] = d[q];
+            keep(line, q, d[q]);
           }
         }
       });
   };
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    if (grid.Dims[axis] > 1)
+  // Along x: rows (y, z) of the whole grid; kept: x in the box.
+  std::vector<double> alongX(static_cast<size_t>(bx) * ny * nz);
+  pass(
+    nx,
+    int64_t(ny) * nz,
+    grid.Spacing[0],
+    nx > 1,
+    [&](int64_t row, int x) { return regions[row * nx + x] == which ? 0.0 : inf; },
+    [&](int64_t row, int x, double value)
     {
-      pass(axis);
-    }
-  }
-  for (int64_t i = 0; i < count; ++i)
-  {
-    out[i] = static_cast<float>(std::sqrt(squared[i]));
-  }
+      if (x >= box.Lo[0] && x <= box.Hi[0])
+      {
+        alongX[row * bx + (x - box.Lo[0])] = value;
+      }
+    });
+  // Along y: lines (x in the box, z); kept: y in the box.
+  std::vector<double> alongY(static_cast<size_t>(bx) * by * nz);
+  pass(
+    ny,
+    int64_t(bx) * nz,
+    grid.Spacing[1],
+    ny > 1,
+    [&](int64_t line, int y)
+    {
+      const int64_t x = line % bx, zz = line / bx;
+      return alongX[(zz * ny + y) * bx + x];
+    },
+    [&](int64_t line, int y, double value)
+    {
+      if (y >= box.Lo[1] && y <= box.Hi[1])
+      {
+        const int64_t x = line % bx, zz = line / bx;
+        alongY[(zz * by + (y - box.Lo[1])) * bx + x] = value;
+      }
+    });
+  alongX = std::vector<double>();
+  // Along z: lines (x, y) of the box; kept: z in the box, as distances.
+  pass(
+    nz,
+    int64_t(bx) * by,
+    grid.Spacing[2],
+    nz > 1,
+    [&](int64_t line, int zz) { return alongY[zz * int64_t(bx) * by + line]; },
+    [&](int64_t line, int zz, double value)
+    {
+      if (zz >= box.Lo[2] && zz <= box.Hi[2])
+      {
+        out[(zz - box.Lo[2]) * int64_t(bx) * by + line] = static_cast<float>(std::sqrt(value));
+      }
+    });
 }
 
-void BlendSegmented(const SegmentedSamples& first,
+namespace
+{
+/// BlendSegmentedFields without the segmented values.
+void BlendPiece(const SegmentedSamples& first,
   const SegmentedSamples& second,
+  const int32_t* firstRegions,
+  const int32_t* secondRegions,
+  const BlendBox& box,
   double t,
   const BlendGrid& grid,
   float* distance,
   int32_t* region,
   const ParallelFor& parallelFor)
 {
-  const int64_t count = static_cast<int64_t>(grid.Dims[0]) * grid.Dims[1] * grid.Dims[2];
+  const int64_t count = box.Count();
   // The ends exactly (the formulas below round at t = 0 and 1 otherwise).
   if (t == 0 || t == 1)
   {
@@ -181,7 +223,7 @@ void BlendSegmented(const SegmentedSamples& first,
   std::vector<uint8_t> seam(static_cast<size_t>(count), 0);
   for (const int32_t r : inFirst)
   {
-    RegionDistance(first.Region, r, grid, scratch.data(), parallelFor);
+    RegionDistance(firstRegions, r, grid, box, scratch.data(), parallelFor);
     for (int64_t v = 0; v < count; ++v)
     {
       if (first.Region[v] != second.Region[v] && second.Region[v] == r)
@@ -194,7 +236,7 @@ void BlendSegmented(const SegmentedSamples& first,
   }
   for (const int32_t r : inSecond)
   {
-    RegionDistance(second.Region, r, grid, scratch.data(), parallelFor);
+    RegionDistance(secondRegions, r, grid, box, scratch.data(), parallelFor);
     for (int64_t v = 0; v < count; ++v)
     {
       if (first.Region[v] != second.Region[v] && first.Region[v] == r)
@@ -232,8 +274,13 @@ void BlendSegmented(const SegmentedSamples& first,
     });
 }
 
+} // namespace
+
 void BlendSegmentedFields(const SegmentedSamples& first,
   const SegmentedSamples& second,
+  const int32_t* firstRegions,
+  const int32_t* secondRegions,
+  const BlendBox& box,
   double t,
   const BlendGrid& grid,
   double delta,
@@ -243,8 +290,9 @@ void BlendSegmentedFields(const SegmentedSamples& first,
   float* segmented,
   const ParallelFor& parallelFor)
 {
-  BlendSegmented(first, second, t, grid, distance, region, parallelFor);
-  const int64_t count = static_cast<int64_t>(grid.Dims[0]) * grid.Dims[1] * grid.Dims[2];
+  BlendPiece(
+    first, second, firstRegions, secondRegions, box, t, grid, distance, region, parallelFor);
+  const int64_t count = box.Count();
   parallelFor(count,
     4096,
     [&](int64_t begin, int64_t end)

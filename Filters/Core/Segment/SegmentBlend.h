@@ -53,20 +53,37 @@ struct BlendGrid
   double Spacing[3] = { 1, 1, 1 };
 };
 
-/// Blends the samples of `first` and `second` on `grid` at `t` (0 gives `first`, 1
-/// `second`) into `distance` and `region`.
-void BlendSegmented(const SegmentedSamples& first,
-  const SegmentedSamples& second,
-  double t,
-  const BlendGrid& grid,
-  float* distance,
-  int32_t* region,
-  const ParallelFor& parallelFor = ParallelFor());
+/// A box of the grid's samples (inclusive index ranges, from 0): a piece of the grid.
+struct BlendBox
+{
+  int Lo[3] = { 0, 0, 0 };
+  int Hi[3] = { -1, -1, -1 };
 
-/// BlendSegmented, then the blended field's SegmentedDistance, min(d, delta) + offset r
-/// (the fields' shared delta and region offset), into `segmented`.
+  int Size(int a) const { return Hi[a] - Lo[a] + 1; }
+  int64_t Count() const { return int64_t(Size(0)) * Size(1) * Size(2); }
+  static BlendBox Whole(const BlendGrid& grid)
+  {
+    BlendBox box;
+    for (int a = 0; a < 3; ++a)
+    {
+      box.Hi[a] = grid.Dims[a] - 1;
+    }
+    return box;
+  }
+};
+
+/// Blends the samples of `first` and `second` at `t` (0 gives `first`, 1 `second`) into
+/// `distance` and `region`, and the blended field's SegmentedDistance, min(d, delta) +
+/// offset r (the fields' shared delta and region offset), into `segmented`, over `box`
+/// of `grid` (the whole grid, or a distributed run's piece): `first` and `second` hold
+/// the samples of `box` (x fastest), `firstRegions` and `secondRegions` the whole grid's
+/// regions of each field (a sample's distance to a region may be decided by any voxel).
+/// A piece's values are the whole grid's there, bit for bit.
 void BlendSegmentedFields(const SegmentedSamples& first,
   const SegmentedSamples& second,
+  const int32_t* firstRegions,
+  const int32_t* secondRegions,
+  const BlendBox& box,
   double t,
   const BlendGrid& grid,
   double delta,
@@ -76,12 +93,16 @@ void BlendSegmentedFields(const SegmentedSamples& first,
   float* segmented,
   const ParallelFor& parallelFor);
 
-/// The exact Euclidean distance from every sample of `grid` to the nearest sample whose
-/// region is `which` (infinity when there is none), into `out` (Felzenszwalb and
-/// Huttenlocher's separable transform on squared distances).
+/// The exact Euclidean distance from every sample of `box` to the nearest sample of the
+/// grid whose region is `which` (infinity when there is none), into `out` (the box's
+/// samples, x fastest), from the whole grid's `regions`: Felzenszwalb and Huttenlocher's
+/// separable transform on squared distances. Its first pass runs over the whole grid,
+/// the other two over the box's lines, each line whole: a box's values are the whole
+/// grid's there, bit for bit.
 void RegionDistance(const int32_t* regions,
   int32_t which,
   const BlendGrid& grid,
+  const BlendBox& box,
   float* out,
   const ParallelFor& parallelFor = ParallelFor());
 
