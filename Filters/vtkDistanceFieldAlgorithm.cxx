@@ -526,6 +526,18 @@ void vtkDistanceFieldAlgorithm::RequestGrownImage(vtkInformation* inInfo,
       grown.Lo[0], grown.Hi[0], grown.Lo[1], grown.Hi[1], grown.Lo[2], grown.Hi[2]
     };
     inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), update, 6);
+    // A request by pieces (a distributed run): VTK's executive turns the piece numbers
+    // that come with it into the piece's extent (piece 0 of 1: the whole grid), so the
+    // voxels around the piece are asked for as ghost levels of this rank's piece, which
+    // it grows the piece's extent by.
+    using SDDP = vtkStreamingDemandDrivenPipeline;
+    if (outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) &&
+      outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) > 1)
+    {
+      inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()));
+      inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()));
+      inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), layers);
+    }
   }
 }
 

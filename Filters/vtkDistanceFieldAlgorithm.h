@@ -211,7 +211,8 @@ protected:
   static bool GetImageGrid(vtkImageData* image, vtkdf::SampleGrid& grid);
   /// For an image input that decides each output voxel from the voxels within `layers`
   /// of it: asks it for the requested piece grown by `layers` (all of it when `layers`
-  /// < 0), as piece 0 of 1.
+  /// < 0): as piece 0 of 1 with that extent, or, in a request by pieces, as this rank's
+  /// piece with `layers` ghost levels (the same extent).
   static void RequestGrownImage(vtkInformation* inInfo, vtkInformation* outInfo, int layers);
 #endif
 

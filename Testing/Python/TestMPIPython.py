@@ -6,7 +6,8 @@ Every rank's slab must equal, bit for bit, the same samples of the field of the 
 without ids (which every rank also computes), and the slabs must cover the grid. The
 medial axis of the parts likewise: each rank's slab equal to one process's, and rank 0's
 medial points (gathered from the ranks) all of one process's; on a grid of 2 samples a
-side (ranks with an empty piece) too. The segmented field of the parts: each rank computes
+side (ranks with an empty piece) too; of a field computed upstream, which then computes
+only the slab and one voxel around it. The segmented field of the parts: each rank computes
 its slab and one sample around it (LastComputedExtent), the ranks add up their region
 evidence, and each slab equals one process's bit for bit, on the 2-sample grid too; every
 rank asking for one sub-extent gets it cut from the whole grid; the contour of the
@@ -124,6 +125,35 @@ if rank == 0:
 else:
     medial_ok = medial_ok and points.GetNumberOfPoints() == 0
 medial_slab = ranks == 1 or tuple(medial_extent) != tuple(full.GetExtent())
+
+# The medial axis of a field computed upstream: the field is asked for this rank's slab
+# and one voxel around it (as one ghost level), not the whole grid.
+source = field(whole)
+of_field = vtkMedialAxisFilter()
+of_field.SetInputConnection(source.GetOutputPort())
+of_field.SetRegionToBoth()
+of_field.SetBackendToCPU()
+of_field.UpdatePiece(rank, ranks, 0)
+fe, me = source.GetOutput().GetExtent(), of_field.GetOutput().GetExtent()
+grown = tuple(max(me[i] - 1, 0) if i % 2 == 0 else min(me[i] + 1, full.GetExtent()[i])
+              for i in range(6))
+vtkMultiProcessController.SetGlobalController(vtkDummyController())
+alone_source = field(whole)  # held: a pipeline's upstream must outlive its Python name
+alone_field = vtkMedialAxisFilter()
+alone_field.SetInputConnection(alone_source.GetOutputPort())
+alone_field.SetRegionToBoth()
+alone_field.SetBackendToCPU()
+alone_field.Update()
+vtkMultiProcessController.SetGlobalController(controller)
+of_field_ok = ranks == 1 or tuple(fe) == grown
+values = vtk_to_numpy(alone_field.GetOutput().GetPointData().GetArray("Medial")).reshape((-1, wy, wx))
+expected = np.ascontiguousarray(values[me[4]:me[5] + 1, me[2]:me[3] + 1, me[0]:me[1] + 1])
+got = vtk_to_numpy(of_field.GetOutput().GetPointData().GetArray("Medial"))
+of_field_ok = of_field_ok and got.tobytes() == expected.reshape(-1).tobytes()
+medial_ok = medial_ok and of_field_ok
+print(f"rank {rank} of {ranks}: medial axis of a field, slab {me}, the field computed on {fe} "
+      f"(expected {grown}): {'equal to one process bit for bit' if of_field_ok else 'DIFFERS'}",
+      flush=True)
 
 # More ranks than the grid has slabs (2 samples a side): a rank with an empty piece still
 # takes part in the gather, and rank 0 answers as one process.
