@@ -246,6 +246,11 @@ bool vtkMedialAxisFilter::ComputePart(vtkPolyData* mesh,
   arrays.SeparationAngle = part.Angle->GetPointer(0);
   arrays.Radius = part.Radius->GetPointer(0);
   const vtkdf::Execution execution = this->MakeExecution(timer);
+  // Auto beside a hardware GPU: the winding sign there, as the linear factorization does.
+  vtkdf::HeadlessGL* signContext =
+    mesh && !part.GL && this->SignMode == WINDING_NUMBER && this->Backend == BACKEND_AUTO
+    ? vtkdf::AutoSignContext(needed.Count())
+    : nullptr;
   const bool ok = mesh ? vtkdf::ComputeMedialAxis(std::move(input),
                            this->SignMode == WINDING_NUMBER ? vtkdf::SignMode::WindingNumber
                                                             : vtkdf::SignMode::PseudoNormal,
@@ -254,7 +259,8 @@ bool vtkMedialAxisFilter::ComputePart(vtkPolyData* mesh,
                            part.GL,
                            arrays,
                            execution,
-                           error)
+                           error,
+                           signContext)
                        : vtkdf::ComputeMedialAxis(field, part.GL, arrays, execution, error);
   if (!ok)
   {

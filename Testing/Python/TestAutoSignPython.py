@@ -3,8 +3,9 @@
 VTKDF_AUTO_GPU_SIGN=1 (llvmpipe taken as if it were one) and checks, on an open and a
 closed mesh, that Auto signs every sample as the CPU backend does (the distances bit for
 bit), that the winding numbers agree within the evaluation's bound, and that the filter
-says where the sign ran; then, in a second process with VTKDF_AUTO_GPU_SIGN=0, that Auto
-keeps it on the CPU: python3 TestAutoSignPython.py DATA."""
+says where the sign ran, and that the medial axis (winding sign) gives the CPU backend's
+voxels; then, in a second process with VTKDF_AUTO_GPU_SIGN=0, that Auto keeps it on the
+CPU: python3 TestAutoSignPython.py DATA."""
 import os
 import subprocess
 import sys
@@ -13,7 +14,7 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 
-from vtkdistancefields import vtkLinearFactorDistanceField
+from vtkdistancefields import vtkLinearFactorDistanceField, vtkMedialAxisFilter
 
 data = sys.argv[1]
 setting = os.environ.get("VTKDF_AUTO_GPU_SIGN")
@@ -60,4 +61,26 @@ for name in ("aneurysm.vtp", "bunny_small.vtp"):
     print(f"VTKDF_AUTO_GPU_SIGN={setting} {name}: Auto's sign on {where} (expected {expected}), "
           f"distances {'equal to the CPU backend bit for bit' if same else 'DIFFER'}, "
           f"winding numbers within {w:.2e}: {'ok' if good else 'FAIL'}", flush=True)
+
+# The medial axis of a mesh with the winding sign: Auto's voxels equal the CPU backend's.
+reader = vtkXMLPolyDataReader()
+reader.SetFileName(os.path.join(data, "bunny_small.vtp"))
+reader.Update()
+medial = {}
+for auto in (True, False):
+    m = vtkMedialAxisFilter()
+    m.SetInputData(reader.GetOutput())
+    m.SetResolution(20)
+    m.SetSignModeToWindingNumber()
+    if auto:
+        m.SetBackendToAuto()
+    else:
+        m.SetBackendToCPU()
+    m.Update()
+    medial[auto] = [vtk_to_numpy(m.GetOutput().GetPointData().GetArray(name)).tobytes()
+                    for name in ("Medial", "SeparationAngle", "Radius")]
+same = medial[True] == medial[False]
+ok = ok and same
+print(f"VTKDF_AUTO_GPU_SIGN={setting} medial axis: Auto's voxels "
+      f"{'equal to the CPU backend bit for bit' if same else 'DIFFER'}", flush=True)
 sys.exit(0 if ok else 1)

@@ -68,12 +68,14 @@ bool ComputeMedialAxis(MeshInput mesh,
   HeadlessGL* gl,
   MedialArrays& arrays,
   const Execution& execution,
-  std::string& error)
+  std::string& error,
+  HeadlessGL* signContext)
 {
   LinearFactorRequest request;
   request.Grid = parameters.Grid;
   request.Extent = extent;
   request.Sign = sign;
+  request.SignContext = gl ? nullptr : signContext;
   LinearFactorReport report;
   const int64_t voxels = request.Extent.Count();
   if (gl && sign == SignMode::PseudoNormal)

@@ -47,6 +47,8 @@ bool ComputeMedialAxis(const MedialInput& field,
 /// field stays there and one pass reads it (stage field+medial); otherwise the stages
 /// are field and medial. Progress (and abort) during the field, from 0 to 0.9, but in
 /// the fused GPU pass. False and `error` on invalid input or when the GPU fails.
+/// `signContext` (with no `gl`): the winding sign there, the rest on the CPU
+/// (LinearFactorRequest::SignContext).
 bool ComputeMedialAxis(MeshInput mesh,
   SignMode sign,
   const MedialInput& parameters,
@@ -54,7 +56,8 @@ bool ComputeMedialAxis(MeshInput mesh,
   HeadlessGL* gl,
   MedialArrays& arrays,
   const Execution& execution,
-  std::string& error);
+  std::string& error,
+  HeadlessGL* signContext = nullptr);
 
 } // namespace vtkdf
 
