@@ -29,6 +29,22 @@ vtkStandardNewMacro(vtkDistanceFieldBlend);
 namespace
 {
 /// The whole of field data array `name` as doubles; empty when absent.
+/// `array` itself when it is a vtkFloatArray (`type` VTK_FLOAT) or a vtkIntArray (VTK_INT),
+/// else a copy of its values as one (e.g. read from a file); read only.
+vtkSmartPointer<vtkDataArray> OfType(vtkDataArray* array, int type)
+{
+  if (type == VTK_FLOAT ? vtkFloatArray::SafeDownCast(array) != nullptr
+                        : vtkIntArray::SafeDownCast(array) != nullptr)
+  {
+    return array;
+  }
+  vtkSmartPointer<vtkDataArray> copy;
+  copy.TakeReference(vtkDataArray::CreateDataArray(type));
+  copy->DeepCopy(array);
+  copy->SetName(array->GetName());
+  return copy;
+}
+
 /// Whether this is a distributed run (the global controller has several ranks).
 bool Distributed()
 {
@@ -258,11 +274,7 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation*,
     int e[6];
     image->GetExtent(e);
     const vtkdf::IndexBox given{ { { e[0], e[2], e[4] } }, { { e[1], e[3], e[5] } } };
-    vtkDataArray* array = image->GetPointData()->GetArray(name);
-    vtkSmartPointer<vtkDataArray> copy;
-    copy.TakeReference(vtkDataArray::CreateDataArray(type));
-    copy->DeepCopy(array);
-    copy->SetName(name);
+    const vtkSmartPointer<vtkDataArray> copy = OfType(image->GetPointData()->GetArray(name), type);
     if (given == box)
     {
       return copy;
@@ -289,8 +301,7 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation*,
   for (int f = 0; f < 2; ++f)
   {
     vtkImageData* image = regions[f] ? regions[f].Get() : (f == 0 ? first : second);
-    wholeRegions[f].TakeReference(vtkDataArray::CreateDataArray(VTK_INT));
-    wholeRegions[f]->DeepCopy(image->GetPointData()->GetArray("RegionIndex"));
+    wholeRegions[f] = OfType(image->GetPointData()->GetArray("RegionIndex"), VTK_INT);
   }
   const vtkIdType n = static_cast<vtkIdType>(box.Count());
   auto distance = vtkdf::NewArray<vtkFloatArray>("Distance", n);
