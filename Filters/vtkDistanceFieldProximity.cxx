@@ -16,6 +16,7 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "GL/HeadlessGL.h"
 #include "Proximity/ProximityQuery.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldMeshInput.h"
@@ -55,6 +56,11 @@ vtkTypeBool vtkDistanceFieldProximity::ProcessRequest(vtkInformation* request,
 
 bool vtkDistanceFieldProximity::CheckProperties()
 {
+  if (this->Backend != BACKEND_AUTO && this->Backend != BACKEND_GPU && this->Backend != BACKEND_CPU)
+  {
+    vtkErrorMacro("Backend must be 0 (Auto), 1 (GPU) or 2 (CPU); it is " << this->Backend << ".");
+    return false;
+  }
   if (this->SignMode != PSEUDO_NORMAL && this->SignMode != WINDING_NUMBER)
   {
     vtkErrorMacro(
@@ -171,8 +177,20 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
     return 0;
   }
   this->UpdateProgress(0.05);
+  vtkdf::HeadlessGL* gl = nullptr;
+  std::string error;
+  if (!vtkdf::ChooseContext(this->Backend, gl, error))
+  {
+    vtkErrorMacro(<< error << ".");
+    return 0;
+  }
+  if (gl && (!this->Device || &this->Device->Context() != gl))
+  {
+    this->Device.reset(new vtkdf::ProximityDevice(*gl));
+  }
 
   vtkdf::ProximityRequest request;
+  request.Device = gl ? this->Device.get() : nullptr;
   request.Rule = this->SignMode == PSEUDO_NORMAL ? vtkdf::InsideRule::PseudoNormal
                                                  : vtkdf::InsideRule::WindingNumber;
   request.ContactMargin = this->ContactMargin;
@@ -191,21 +209,27 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
     return ranks > 1 || !this->GetAbortExecute();
   };
   vtkdf::ProximityReport report;
-  std::string error;
-  if (!vtkdf::ComputeProximity(*this->ModelA, *this->ModelB, request, report, execution, error))
+  const bool computed =
+    vtkdf::ComputeProximity(*this->ModelA, *this->ModelB, request, report, execution, error);
+  if (!computed)
   {
     vtkErrorMacro(<< (error == "aborted" ? std::string("Aborted") : "No answer: " + error) << ".");
-    return 0;
+    if (ranks == 1)
+    {
+      return 0;
+    }
   }
   if (ranks > 1)
   {
-    std::vector<double> mine = vtkdf::PackProximityShare(report);
+    // A rank that failed sends nothing: rank 0 then misses a share and fails too, and
+    // no rank waits for one that stopped.
+    std::vector<double> mine = computed ? vtkdf::PackProximityShare(report) : std::vector<double>();
     vtkNew<vtkDoubleArray> send, received;
     send->SetArray(mine.data(), static_cast<vtkIdType>(mine.size()), 1);
     controller->GatherV(send, received, 0);
-    if (rank != 0)
+    if (rank != 0 || !computed)
     {
-      return 1; // rank 0 answers for all
+      return computed ? 1 : 0; // rank 0 answers for all
     }
     std::vector<vtkdf::ProximityReport> shares;
     if (!vtkdf::UnpackProximityShares(received->GetPointer(0),
@@ -226,6 +250,9 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
   this->LastPenetrationBA = report.BInA.Depth;
   this->LastStep = report.Step;
   this->LastPointQueries = report.PointQueries;
+  this->LastBackend = gl ? "gpu" : "cpu";
+  this->LastBytesToDevice = report.BytesToDevice;
+  this->LastBytesFromDevice = report.BytesFromDevice;
   this->LastReusedTopology =
     (this->ModelA->ReusedTopology() ? 1 : 0) | (this->ModelB->ReusedTopology() ? 2 : 0);
 
@@ -343,6 +370,7 @@ void vtkDistanceFieldProximity::WriteContacts(const vtkdf::ProximityReport& repo
 void vtkDistanceFieldProximity::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Backend: " << this->Backend << "\n";
   os << indent << "SignMode: " << this->SignMode << "\n";
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "Spacing: " << this->Spacing << "\n";
@@ -357,4 +385,7 @@ void vtkDistanceFieldProximity::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastPointQueries: " << this->LastPointQueries << "\n";
   os << indent << "LastReusedTopology: " << this->LastReusedTopology << "\n";
   os << indent << "LastSeconds: " << this->LastSeconds << "\n";
+  os << indent << "LastBackend: " << this->LastBackend << "\n";
+  os << indent << "LastBytesToDevice: " << this->LastBytesToDevice << "\n";
+  os << indent << "LastBytesFromDevice: " << this->LastBytesFromDevice << "\n";
 }

@@ -48,7 +48,13 @@
  * maximum penetration of each surface into the other (the paper's estimate, which is not
  * a separating translation) and the contacts.
  *
- * The queries run on the CPU (vtkSMPTools). In a distributed run (ParaView's MPI
+ * Backend: on the CPU (vtkSMPTools), every exact distance searched when it is needed;
+ * on the GPU (a compute shader in the filter's own headless OpenGL 4.5 context), the
+ * nearest triangles of all face samples of the triangles meeting the region at once,
+ * with the models' topology kept on the GPU between frames and only the coordinates
+ * sent; inside-ness, contact and separation stay on the CPU. Both backends search in
+ * double precision with the same operations: the answers agree to rounding. Auto is the
+ * CPU. In a distributed run (ParaView's MPI
  * engine) every rank must hold both models whole; each rank takes its share of the face
  * samples, and rank 0 gathers the shares and answers, equal bit for bit to one process;
  * the other ranks' outputs are empty. A failure leaves every output empty and a non-zero
@@ -61,10 +67,12 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <memory> // For std::unique_ptr
+#include <string> // For std::string
 
 #ifndef __VTK_WRAP__
 namespace vtkdf
 {
+class ProximityDevice;
 class ProximityModel;
 struct ProximityReport;
 }
@@ -97,6 +105,22 @@ public:
   vtkGetMacro(SignMode, int);
   void SetSignModeToPseudoNormal() { this->SetSignMode(PSEUDO_NORMAL); }
   void SetSignModeToWindingNumber() { this->SetSignMode(WINDING_NUMBER); }
+  ///@}
+
+  /// Where the searches run (the values of vtkDistanceFieldAlgorithm's Backend).
+  enum BackendType
+  {
+    BACKEND_AUTO = 0, ///< the CPU
+    BACKEND_GPU = 1,  ///< the GPU, even a software rasterizer; an error when there is none
+    BACKEND_CPU = 2   ///< the CPU
+  };
+  ///@{
+  /// Backend (default Auto).
+  vtkSetMacro(Backend, int);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAuto() { this->SetBackend(BACKEND_AUTO); }
+  void SetBackendToGPU() { this->SetBackend(BACKEND_GPU); }
+  void SetBackendToCPU() { this->SetBackend(BACKEND_CPU); }
   ///@}
 
   ///@{
@@ -145,6 +169,12 @@ public:
   /// 1 when A kept its topology from the previous run, 2 when B did, 3 both.
   vtkGetMacro(LastReusedTopology, int);
   vtkGetMacro(LastSeconds, double);
+  /// "gpu" or "cpu": where the last run searched.
+  const char* GetLastBackend() const { return this->LastBackend.c_str(); }
+  /// On the GPU: the bytes the last run sent there (a deforming model whose topology the
+  /// GPU holds sends only its coordinates) and read back.
+  vtkGetMacro(LastBytesToDevice, vtkTypeInt64);
+  vtkGetMacro(LastBytesFromDevice, vtkTypeInt64);
   ///@}
 
   /// Runs the request; a failure (a request returning 0, or an exception such as
@@ -162,6 +192,7 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  int Backend = BACKEND_AUTO;
   int SignMode = WINDING_NUMBER;
   int Resolution = 64;
   double Spacing = 0;
@@ -177,6 +208,8 @@ protected:
   vtkTypeInt64 LastPointQueries = 0;
   int LastReusedTopology = 0;
   double LastSeconds = 0;
+  vtkTypeInt64 LastBytesToDevice = 0;
+  vtkTypeInt64 LastBytesFromDevice = 0;
 
 private:
   vtkDistanceFieldProximity(const vtkDistanceFieldProximity&) = delete;
@@ -190,6 +223,9 @@ private:
 
   // The models kept between runs: a deforming model reuses its topology.
   std::unique_ptr<vtkdf::ProximityModel> ModelA, ModelB;
+  // The GPU's buffers and program, kept between runs on the GPU.
+  std::unique_ptr<vtkdf::ProximityDevice> Device;
+  std::string LastBackend = "none";
 #endif
 };
 

@@ -56,6 +56,7 @@ namespace
 {
 int Failures = 0;
 bool PseudoNormal = false;
+bool GPU = false; // the searches on the GPU (Backend GPU), checked against the CPU too
 
 void Check(bool ok, const std::string& what)
 {
@@ -542,6 +543,14 @@ double Field(vtkPolyData* output, const char* name, int component = 0)
 void Configure(vtkDistanceFieldProximity* f, int resolution)
 {
   f->SetResolution(resolution);
+  if (GPU)
+  {
+    f->SetBackendToGPU();
+  }
+  else
+  {
+    f->SetBackendToCPU();
+  }
   if (PseudoNormal)
   {
     f->SetSignModeToPseudoNormal();
@@ -561,6 +570,11 @@ double Compare(const char* name, vtkPolyData* a, vtkPolyData* b, int resolution,
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Check(f->GetErrorCode() == 0, std::string(name) + ": the filter failed");
+  if (f->GetErrorCode() != 0)
+  {
+    return 0;
+  }
+  Check(std::string(f->GetLastBackend()) == (GPU ? "gpu" : "cpu"), std::string(name) + ": backend");
   vtkPolyData* out = f->GetOutput(0);
   const double step = Field(out, "Step");
   double region[6];
@@ -668,6 +682,52 @@ double Compare(const char* name, vtkPolyData* a, vtkPolyData* b, int resolution,
   // The contacts: every sample inside the other, with its depth; the deepest among them.
   vtkPolyData* contacts = f->GetOutput(1);
   Check(contacts->GetNumberOfPoints() == r.InsideAB + r.InsideBA, std::string(name) + ": contacts");
+  if (GPU)
+  {
+    // The GPU's searches against the CPU's: the same answers to rounding.
+    vtkNew<vtkDistanceFieldProximity> cpu;
+    Configure(cpu, resolution);
+    cpu->SetBackendToCPU();
+    cpu->SetContactMargin(margin);
+    cpu->SetModelAData(a);
+    cpu->SetModelBData(b);
+    cpu->Update();
+    const double tolerance = 1e-12 * diagonal;
+    for (const char* array :
+      { "Colliding", "SeparationDistance", "MaximumPenetrationAB", "MaximumPenetrationBA" })
+    {
+      Check(std::fabs(Field(cpu->GetOutput(0), array) - Field(out, array)) <= tolerance,
+        std::string(name) + ": " + array + " as the CPU's");
+    }
+    Check(cpu->GetOutput(1)->GetNumberOfPoints() == contacts->GetNumberOfPoints(),
+      std::string(name) + ": contacts as the CPU's");
+    vtkDataArray* gpuDepth = contacts->GetPointData()->GetArray("Depth");
+    vtkDataArray* cpuDepth = cpu->GetOutput(1)->GetPointData()->GetArray("Depth");
+    double worst = 0;
+    for (vtkIdType i = 0; gpuDepth && cpuDepth && i < gpuDepth->GetNumberOfTuples() &&
+         i < cpuDepth->GetNumberOfTuples();
+         ++i)
+    {
+      worst =
+        std::max(worst, std::fabs(gpuDepth->GetComponent(i, 0) - cpuDepth->GetComponent(i, 0)));
+    }
+    for (int port : { 2, 3 })
+    {
+      vtkDataArray* x = f->GetOutput(port)->GetPointData()->GetArray("DistanceToOther");
+      vtkDataArray* y = cpu->GetOutput(port)->GetPointData()->GetArray("DistanceToOther");
+      for (vtkIdType i = 0; x && y && i < x->GetNumberOfTuples(); ++i)
+      {
+        const double u = x->GetComponent(i, 0), v = y->GetComponent(i, 0);
+        worst = std::isnan(u) && std::isnan(v) ? worst : std::max(worst, std::fabs(u - v));
+      }
+    }
+    std::printf("%-28s GPU against CPU: contact depths and point distances differ by %.3g "
+                "(%.3g of the diagonal)\n",
+      name,
+      worst,
+      worst / diagonal);
+    Check(worst <= tolerance, std::string(name) + ": depths and distances as the CPU's");
+  }
   vtkDataArray* depth = contacts->GetPointData()->GetArray("Depth");
   double deepest = 0;
   for (vtkIdType i = 0; depth && i < depth->GetNumberOfTuples(); ++i)
@@ -729,6 +789,7 @@ void BadInput(vtkPolyData* good)
     vtkNew<vtkDistanceFieldProximity> f;
     vtkNew<ErrorText> error;
     f->AddObserver(vtkCommand::ErrorEvent, error);
+    Configure(f, 64);
     f->SetModelAData(a);
     f->SetModelBData(b);
     f->SetMaximumSamples(maximum);
@@ -784,6 +845,18 @@ void Deforming(vtkPolyData* a, vtkPolyData* b)
     const std::string name = "frame " + std::to_string(frame);
     Check(kept->GetLastReusedTopology() == (frame == 0 ? 0 : 3), name + ": reused topology");
     Check(fresh->GetLastReusedTopology() == 0, name + ": a fresh filter reuses nothing");
+    if (GPU)
+    {
+      // The topology stays on the GPU: later frames send only coordinates.
+      Check(frame == 0 ? kept->GetLastBytesToDevice() == fresh->GetLastBytesToDevice()
+                       : kept->GetLastBytesToDevice() < fresh->GetLastBytesToDevice(),
+        name + ": bytes sent to the GPU");
+      std::printf("%s: %lld bytes to the GPU kept, %lld fresh; %lld back\n",
+        name.c_str(),
+        static_cast<long long>(kept->GetLastBytesToDevice()),
+        static_cast<long long>(fresh->GetLastBytesToDevice()),
+        static_cast<long long>(kept->GetLastBytesFromDevice()));
+    }
     for (const char* array : { "Colliding",
            "SeparationDistance",
            "MaximumPenetrationAB",
@@ -827,11 +900,12 @@ int main(int argc, char* argv[])
 {
   if (argc < 3)
   {
-    std::printf("usage: %s DATA_DIR winding|pseudonormal\n", argv[0]);
+    std::printf("usage: %s DATA_DIR winding|pseudonormal [cpu|gpu]\n", argv[0]);
     return 2;
   }
   const std::string data = argv[1];
   PseudoNormal = std::string(argv[2]) == "pseudonormal";
+  GPU = argc > 3 && std::string(argv[3]) == "gpu";
   auto bunny = testsupport::ReadUnitBoxMesh(data + "/bunny_small.vtp");
   auto cow = testsupport::ReadUnitBoxMesh(data + "/cow.vtp");
   auto teapot = testsupport::ReadUnitBoxMesh(data + "/teapot.vtp");

@@ -1,10 +1,12 @@
 #include "Proximity/ProximityQuery.h"
 
+#include "Proximity/ProximityGPU.h"
 #include "Proximity/ProximitySearch.h"
 #include "Segment/TriangleCrossings.h"
 #include "Winding/WindingNumber.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -15,6 +17,7 @@ struct ProximityModel::Data
 {
   InsideRule Rule = InsideRule::WindingNumber;
   bool Loaded = false, Reused = false;
+  uint64_t Topology = 0; // a new number for each new topology (the GPU's copy follows it)
   std::vector<int64_t> TriangleIds;
   TriangleModel Model;
   std::vector<bool> Used; // points that a triangle uses
@@ -287,6 +290,8 @@ bool ProximityModel::Load(const MeshInput& mesh,
   }
   else
   {
+    static std::atomic<uint64_t> topologies(0);
+    d.Topology = ++topologies;
     d.TriangleIds = mesh.Triangles;
     d.Tree.reset(new TriangleBoxTree(d.Model.Points, d.Model.Triangles));
     d.Used.assign(d.Model.Points.size(), false);
@@ -344,6 +349,13 @@ struct PointQuery
     : Triangle(hint)
   {
     this->D2 = NearestTriangle(m.Model, *m.Tree, x, this->Closest, this->Triangle);
+  }
+  /// The nearest triangle as the GPU found it (answers' point k).
+  PointQuery(const NearestAnswers& answers, size_t k)
+    : D2(answers.Values[4 * k + 3])
+    , Triangle(answers.Triangles[k])
+  {
+    std::copy(&answers.Values[4 * k], &answers.Values[4 * k] + 3, this->Closest);
   }
   /// With whether x is inside m by m's rule.
   PointQuery(const ProximityModel::Data& m, const double x[3])
@@ -465,17 +477,32 @@ ContactSample MakeSample(const double x[3],
   return sample;
 }
 
+/// A query's device and the slots of its two models there (null: the CPU).
+struct OnDevice
+{
+  ProximityDevice* Device;
+  int Self, Other;
+};
+
 /// The signed distances of `self`'s points to `other` (NaN for the points no triangle
-/// uses), with each point's query kept for the penetration.
-void PointDistances(const ProximityModel::Data& self,
+/// uses), with each point's query kept for the penetration. False with `error` when the
+/// GPU fails.
+bool PointDistances(const ProximityModel::Data& self,
   const ProximityModel::Data& other,
+  const OnDevice& gpu,
   const Execution& execution,
   std::vector<double>& distances,
-  std::vector<PointQuery>& queries)
+  std::vector<PointQuery>& queries,
+  std::string& error)
 {
   const int64_t n = static_cast<int64_t>(self.Model.Points.size());
   distances.assign(static_cast<size_t>(n), std::nan(""));
   queries.assign(static_cast<size_t>(n), PointQuery());
+  NearestAnswers answers;
+  if (gpu.Device && !DeviceNearestToPoints(*gpu.Device, gpu.Self, gpu.Other, answers, error))
+  {
+    return false;
+  }
   RunFor(execution,
     n,
     256,
@@ -487,21 +514,33 @@ void PointDistances(const ProximityModel::Data& self,
         {
           continue;
         }
-        const PointQuery query(other, self.Model.Points[static_cast<size_t>(i)].data());
+        const double* x = self.Model.Points[static_cast<size_t>(i)].data();
+        PointQuery query;
+        if (gpu.Device)
+        {
+          query = PointQuery(answers, static_cast<size_t>(i));
+          query.Inside = other.Inside(x, query.Closest, query.Triangle, query.D2);
+        }
+        else
+        {
+          query = PointQuery(other, x);
+        }
         queries[static_cast<size_t>(i)] = query;
         const double distance = std::sqrt(query.D2);
         distances[static_cast<size_t>(i)] = query.Inside ? -distance : distance;
       }
     });
+  return true;
 }
 
 /// How many of the samples evaluated last in a triangle stay known points.
 constexpr size_t RecentSamples = 4;
 
 /// The penetration of `self` into `other`: its vertices (from their queries) and face
-/// samples in `region` inside `other`.
-void Penetrate(const ProximityModel::Data& self,
+/// samples in `region` inside `other`. False with `error` when the GPU fails.
+bool Penetrate(const ProximityModel::Data& self,
   const ProximityModel::Data& other,
+  const OnDevice& gpu,
   const std::vector<PointQuery>& vertexQueries,
   const std::array<double, 6>& region,
   double step,
@@ -511,7 +550,8 @@ void Penetrate(const ProximityModel::Data& self,
   const Execution& execution,
   PenetrationSide& side,
   int64_t& queries,
-  int64_t& windings)
+  int64_t& windings,
+  std::string& error)
 {
   side = PenetrationSide();
   // The vertices are the first share's; the blocks of triangles are split in order.
@@ -546,21 +586,31 @@ void Penetrate(const ProximityModel::Data& self,
   std::vector<int64_t> partQueries(static_cast<size_t>(blocks), 0);
   std::vector<int64_t> partWinding(static_cast<size_t>(blocks), 0);
   const bool chain = other.Rule == InsideRule::WindingNumber && other.Closed;
-  RunFor(execution,
-    blocks,
-    1,
-    [&](int64_t first, int64_t last)
+  // On the CPU, every block at once, each sample's nearest triangle searched when it is
+  // needed. On the GPU, batches of blocks: the nearest triangles of all the batch's
+  // samples first (FirstSample: each triangle's first in the answers), then the blocks.
+  SampleBatch batch;
+  NearestAnswers answers;
+  std::vector<int64_t> firstSample;
+  // A batch holds blocks up to DeviceBatchSamples (and one block more).
+  const int64_t batchBudget = gpu.Device ? DeviceBatchSamples(*gpu.Device) : 0;
+  for (int64_t batchBegin = 0, batchEnd = 0; batchBegin < blocks; batchBegin = batchEnd)
+  {
+    batchEnd = blocks;
+    const int64_t batchTriangle = (firstBlock + batchBegin) * blockSize;
+    if (gpu.Device)
     {
-      std::vector<KnownPoint> known;
-      known.reserve(3 + RecentSamples);
-      std::array<std::array<double, 3>, RecentSamples> recent;
-      size_t recentNext = 0;
-      for (int64_t block = first; block < last; ++block)
+      batch.Items.clear();
+      batch.Samples = 0;
+      firstSample.clear();
+      for (batchEnd = batchBegin;
+           batchEnd < blocks && (batchEnd == batchBegin || batch.Samples < batchBudget);
+           ++batchEnd)
       {
-        PenetrationSide& part = parts[static_cast<size_t>(block)];
-        const int64_t end = std::min(triangles, (firstBlock + block + 1) * blockSize);
-        for (int64_t t = (firstBlock + block) * blockSize; t < end; ++t)
+        const int64_t end = std::min(triangles, (firstBlock + batchEnd + 1) * blockSize);
+        for (int64_t t = (firstBlock + batchEnd) * blockSize; t < end; ++t)
         {
+          firstSample.push_back(batch.Samples);
           if (!BoxMeetsRegion(self.Tree->Boxes()[static_cast<size_t>(t)], region))
           {
             continue;
@@ -568,124 +618,174 @@ void Penetrate(const ProximityModel::Data& self,
           double p[9];
           self.Model.Corners(static_cast<size_t>(t), p);
           const int64_t n = Divisions(p, step);
-          // The corners are known points; the samples evaluated last join them.
-          known.clear();
-          for (const size_t id : self.Model.Triangles[static_cast<size_t>(t)])
+          const int64_t count = (n + 1) * (n + 2) / 2 - 3;
+          if (count > 0)
           {
-            const PointQuery& corner = vertexQueries[id];
-            known.push_back(
-              { self.Model.Points[id].data(), corner.D2, corner.Inside, corner.Triangle });
+            batch.Items.insert(batch.Items.end(),
+              { static_cast<int32_t>(t),
+                static_cast<int32_t>(batch.Samples),
+                static_cast<int32_t>(n),
+                0 });
+            batch.Samples += count;
           }
-          int64_t hint = known[0].Triangle;
-          // Without the contacts' list only the deepest matters: an inside sample whose
-          // distance cannot exceed the deepest so far (by the triangle inequality from a
-          // known point, d(x) <= d(y) + |x - y|) needs no exact distance.
-          auto cannotDeepen = [&](const double x[3])
+        }
+      }
+      if (batch.Samples > 0 &&
+        !DeviceNearestToSamples(*gpu.Device, gpu.Self, gpu.Other, batch, answers, error))
+      {
+        return false;
+      }
+      queries += batch.Samples;
+    }
+    RunFor(execution,
+      batchEnd - batchBegin,
+      1,
+      [&, batchBegin](int64_t first, int64_t last)
+      {
+        std::vector<KnownPoint> known;
+        known.reserve(3 + RecentSamples);
+        std::array<std::array<double, 3>, RecentSamples> recent;
+        size_t recentNext = 0;
+        for (int64_t block = batchBegin + first; block < batchBegin + last; ++block)
+        {
+          PenetrationSide& part = parts[static_cast<size_t>(block)];
+          const int64_t end = std::min(triangles, (firstBlock + block + 1) * blockSize);
+          for (int64_t t = (firstBlock + block) * blockSize; t < end; ++t)
           {
-            if (keepContacts || part.TriangleOfOther < 0)
+            if (!BoxMeetsRegion(self.Tree->Boxes()[static_cast<size_t>(t)], region))
             {
-              return false;
+              continue;
             }
-            double bound = HUGE_VAL;
-            for (const KnownPoint& y : known)
+            double p[9];
+            self.Model.Corners(static_cast<size_t>(t), p);
+            const int64_t n = Divisions(p, step);
+            // The corners are known points; the samples evaluated last join them.
+            known.clear();
+            for (const size_t id : self.Model.Triangles[static_cast<size_t>(t)])
             {
-              const double gap2 = (x[0] - y.X[0]) * (x[0] - y.X[0]) +
-                (x[1] - y.X[1]) * (x[1] - y.X[1]) + (x[2] - y.X[2]) * (x[2] - y.X[2]);
-              bound = std::min(bound, std::sqrt(y.D2) + std::sqrt(gap2));
+              const PointQuery& corner = vertexQueries[id];
+              known.push_back(
+                { self.Model.Points[id].data(), corner.D2, corner.Inside, corner.Triangle });
             }
-            return bound * (1 + 1e-12) <= part.Depth;
-          };
-          for (int64_t i = 0; i <= n; ++i)
-          {
-            for (int64_t j = 0; i + j <= n; ++j)
+            int64_t hint = known[0].Triangle;
+            // The triangle's samples in the GPU's answers, in the lattice's order.
+            size_t answer = gpu.Device
+              ? static_cast<size_t>(firstSample[static_cast<size_t>(t - batchTriangle)])
+              : 0;
+            // Without the contacts' list only the deepest matters: an inside sample whose
+            // distance cannot exceed the deepest so far (by the triangle inequality from a
+            // known point, d(x) <= d(y) + |x - y|) needs no exact distance.
+            auto cannotDeepen = [&](const double x[3])
             {
-              if ((i == 0 && j == 0) || i == n || j == n)
+              if (keepContacts || part.TriangleOfOther < 0)
               {
-                continue; // a corner: a vertex, already counted
+                return false;
               }
-              const double u = double(i) / n, v = double(j) / n;
-              const double x[3] = { p[0] + u * (p[3] - p[0]) + v * (p[6] - p[0]),
-                p[1] + u * (p[4] - p[1]) + v * (p[7] - p[1]),
-                p[2] + u * (p[5] - p[2]) + v * (p[8] - p[2]) };
-              if (!InRegion(region, x))
+              double bound = HUGE_VAL;
+              for (const KnownPoint& y : known)
               {
-                continue;
+                const double gap2 = (x[0] - y.X[0]) * (x[0] - y.X[0]) +
+                  (x[1] - y.X[1]) * (x[1] - y.X[1]) + (x[2] - y.X[2]) * (x[2] - y.X[2]);
+                bound = std::min(bound, std::sqrt(y.D2) + std::sqrt(gap2));
               }
-              ++part.Samples;
-              PointQuery query;
-              if (chain)
+              return bound * (1 + 1e-12) <= part.Depth;
+            };
+            for (int64_t i = 0; i <= n; ++i)
+            {
+              for (int64_t j = 0; i + j <= n; ++j)
               {
-                // A closed chain: the side from a known point joined by a ball free of
-                // the surface, else the winding number; the distance only when needed.
-                const KnownPoint* same = SameSide(known, x, 0);
-                if (same && !same->Inside)
+                if ((i == 0 && j == 0) || i == n || j == n)
+                {
+                  continue; // a corner: a vertex, already counted
+                }
+                const size_t answerIndex = answer++;
+                const double u = double(i) / n, v = double(j) / n;
+                const double x[3] = { p[0] + u * (p[3] - p[0]) + v * (p[6] - p[0]),
+                  p[1] + u * (p[4] - p[1]) + v * (p[7] - p[1]),
+                  p[2] + u * (p[5] - p[2]) + v * (p[8] - p[2]) };
+                if (!InRegion(region, x))
                 {
                   continue;
                 }
-                if (same && cannotDeepen(x))
+                ++part.Samples;
+                PointQuery query;
+                if (chain)
                 {
-                  ++part.SamplesInside;
-                  continue;
-                }
-                query = PointQuery(other, x, known.back().Triangle);
-                ++partQueries[static_cast<size_t>(block)];
-                same = same ? same : SameSide(known, x, query.D2);
-                if (same)
-                {
-                  query.Inside = same->Inside;
-                }
-                else
-                {
-                  query.Inside = other.Winding.Inside(x);
-                  ++partWinding[static_cast<size_t>(block)];
-                }
-                if (known.size() == 3 + RecentSamples)
-                {
-                  known.erase(known.begin() + 3); // the corners stay
-                }
-                known.push_back({ nullptr, query.D2, query.Inside, query.Triangle });
-                std::copy(x, x + 3, recent[recentNext].data());
-                known.back().X = recent[recentNext].data();
-                recentNext = (recentNext + 1) % recent.size();
-              }
-              else
-              {
-                // The winding number decides before the distance is needed.
-                const bool winding = other.Rule == InsideRule::WindingNumber;
-                if (winding)
-                {
-                  ++partWinding[static_cast<size_t>(block)];
-                  if (!other.Winding.Inside(x))
+                  // A closed chain: the side from a known point joined by a ball free of
+                  // the surface, else the winding number; the distance only when needed.
+                  const KnownPoint* same = SameSide(known, x, 0);
+                  if (same && !same->Inside)
                   {
                     continue;
                   }
-                  if (cannotDeepen(x))
+                  if (same && cannotDeepen(x))
                   {
                     ++part.SamplesInside;
                     continue;
                   }
+                  query = gpu.Device ? PointQuery(answers, answerIndex)
+                                     : PointQuery(other, x, known.back().Triangle);
+                  partQueries[static_cast<size_t>(block)] += gpu.Device ? 0 : 1;
+                  same = same ? same : SameSide(known, x, query.D2);
+                  if (same)
+                  {
+                    query.Inside = same->Inside;
+                  }
+                  else
+                  {
+                    query.Inside = other.Winding.Inside(x);
+                    ++partWinding[static_cast<size_t>(block)];
+                  }
+                  if (known.size() == 3 + RecentSamples)
+                  {
+                    known.erase(known.begin() + 3); // the corners stay
+                  }
+                  known.push_back({ nullptr, query.D2, query.Inside, query.Triangle });
+                  std::copy(x, x + 3, recent[recentNext].data());
+                  known.back().X = recent[recentNext].data();
+                  recentNext = (recentNext + 1) % recent.size();
                 }
-                query = PointQuery(other, x, hint);
-                ++partQueries[static_cast<size_t>(block)];
-                hint = query.Triangle;
-                query.Inside = winding || other.Inside(x, query.Closest, query.Triangle, query.D2);
-              }
-              if (!query.Inside)
-              {
-                continue;
-              }
-              ++part.SamplesInside;
-              const ContactSample sample = MakeSample(x, query, t, -1);
-              Keep(part, sample, query.Closest, query.Triangle);
-              if (keepContacts)
-              {
-                part.Contacts.push_back(sample);
+                else
+                {
+                  // The winding number decides before the distance is needed.
+                  const bool winding = other.Rule == InsideRule::WindingNumber;
+                  if (winding)
+                  {
+                    ++partWinding[static_cast<size_t>(block)];
+                    if (!other.Winding.Inside(x))
+                    {
+                      continue;
+                    }
+                    if (cannotDeepen(x))
+                    {
+                      ++part.SamplesInside;
+                      continue;
+                    }
+                  }
+                  query =
+                    gpu.Device ? PointQuery(answers, answerIndex) : PointQuery(other, x, hint);
+                  partQueries[static_cast<size_t>(block)] += gpu.Device ? 0 : 1;
+                  hint = query.Triangle;
+                  query.Inside =
+                    winding || other.Inside(x, query.Closest, query.Triangle, query.D2);
+                }
+                if (!query.Inside)
+                {
+                  continue;
+                }
+                ++part.SamplesInside;
+                const ContactSample sample = MakeSample(x, query, t, -1);
+                Keep(part, sample, query.Closest, query.Triangle);
+                if (keepContacts)
+                {
+                  part.Contacts.push_back(sample);
+                }
               }
             }
           }
         }
-      }
-    });
+      });
+  }
   for (size_t block = 0; block < parts.size(); ++block)
   {
     const PenetrationSide& part = parts[block];
@@ -703,6 +803,7 @@ void Penetrate(const ProximityModel::Data& self,
     }
     side.Contacts.insert(side.Contacts.end(), part.Contacts.begin(), part.Contacts.end());
   }
+  return true;
 }
 
 /// Face samples (corners excluded) that `self`'s triangles meeting `region` would take.
@@ -809,6 +910,20 @@ bool ComputeProximity(const ProximityModel& modelA,
     }
   }
 
+  // On the GPU: both models there (their coordinates; their topology when it is new).
+  ProximityDevice* device = request.Device;
+  if (device)
+  {
+    DeviceResetTraffic(*device);
+    if (!DeviceLoadModel(*device, 0, a.Model, *a.Tree, a.Topology, error) ||
+      !DeviceLoadModel(*device, 1, b.Model, *b.Tree, b.Topology, error))
+    {
+      return false;
+    }
+    execution.EndStage("upload");
+  }
+  const OnDevice gpuAB{ device, 0, 1 }, gpuBA{ device, 1, 0 };
+
   // Contact: a pair of triangles with a point in common.
   ProximityResult& contact = report.Contact;
   a.Tree->ForEachOverlappingPair(*b.Tree,
@@ -834,8 +949,11 @@ bool ComputeProximity(const ProximityModel& modelA,
 
   // Every point's distance to the other model: the fields where the points need them.
   std::vector<PointQuery> queriesA, queriesB;
-  PointDistances(a, b, execution, report.DistanceA, queriesA);
-  PointDistances(b, a, execution, report.DistanceB, queriesB);
+  if (!PointDistances(a, b, gpuAB, execution, report.DistanceA, queriesA, error) ||
+    !PointDistances(b, a, gpuBA, execution, report.DistanceB, queriesB, error))
+  {
+    return false;
+  }
   if (request.Share == 0)
   {
     report.PointQueries += static_cast<int64_t>(std::count(a.Used.begin(), a.Used.end(), true) +
@@ -851,37 +969,51 @@ bool ComputeProximity(const ProximityModel& modelA,
   // Penetration, both ways, over the region's samples.
   if (!empty)
   {
-    Penetrate(a,
-      b,
-      queriesA,
-      report.Region,
-      report.Step,
-      request.Contacts,
-      request.Share,
-      request.Shares,
-      execution,
-      report.AInB,
-      report.PointQueries,
-      report.InsideEvaluations);
+    if (!Penetrate(a,
+          b,
+          gpuAB,
+          queriesA,
+          report.Region,
+          report.Step,
+          request.Contacts,
+          request.Share,
+          request.Shares,
+          execution,
+          report.AInB,
+          report.PointQueries,
+          report.InsideEvaluations,
+          error))
+    {
+      return false;
+    }
     if (!execution.Report(0.6))
     {
       error = "aborted";
       return false;
     }
-    Penetrate(b,
-      a,
-      queriesB,
-      report.Region,
-      report.Step,
-      request.Contacts,
-      request.Share,
-      request.Shares,
-      execution,
-      report.BInA,
-      report.PointQueries,
-      report.InsideEvaluations);
+    if (!Penetrate(b,
+          a,
+          gpuBA,
+          queriesB,
+          report.Region,
+          report.Step,
+          request.Contacts,
+          request.Share,
+          request.Shares,
+          execution,
+          report.BInA,
+          report.PointQueries,
+          report.InsideEvaluations,
+          error))
+    {
+      return false;
+    }
   }
   execution.EndStage("penetration");
+  if (device)
+  {
+    DeviceTraffic(*device, report.BytesToDevice, report.BytesFromDevice);
+  }
   contact.AInsideB = report.AInB.SamplesInside > 0;
   contact.BInsideA = report.BInA.SamplesInside > 0;
   contact.Colliding = contact.ContactA >= 0 || contact.AInsideB || contact.BInsideA;

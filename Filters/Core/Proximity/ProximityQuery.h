@@ -74,8 +74,36 @@ private:
   std::unique_ptr<Data> D;
 };
 
+class HeadlessGL;
+
+/// The GPU's side of the queries, kept between frames: the search program and each
+/// model's buffers, the topology uploaded once and the coordinates every frame
+/// (ProximityGPU.h). Made on a context that must outlive it; its GL objects are deleted
+/// with it.
+class ProximityDevice
+{
+public:
+  explicit ProximityDevice(HeadlessGL& context);
+  ~ProximityDevice();
+  ProximityDevice(const ProximityDevice&) = delete;
+  ProximityDevice& operator=(const ProximityDevice&) = delete;
+
+  HeadlessGL& Context() const;
+
+  struct State;
+  State& Get() { return *this->S; }
+
+private:
+  std::unique_ptr<State> S;
+};
+
 struct ProximityRequest
 {
+  /// The nearest-triangle searches (every exact point-to-model distance) on this
+  /// device's GPU, all face samples of the triangles that meet the region at once; null:
+  /// on the CPU, each when it is needed. The rest (contacts, separation, inside-ness)
+  /// runs on the CPU either way.
+  ProximityDevice* Device = nullptr;
   InsideRule Rule = InsideRule::WindingNumber;
   /// The interaction region: the overlap of the models' bounding boxes, each grown by
   /// ContactMargin (>= 0) on every side.
@@ -132,6 +160,9 @@ struct ProximityReport
   /// joined to a known point by a ball free of the surface (centred at either, of its
   /// distance as radius) is that point's: most samples need neither.
   int64_t PointQueries = 0, InsideEvaluations = 0;
+  /// On the GPU: the bytes sent to it (a deforming model with its topology on the
+  /// device sends only its coordinates) and read back (the answers).
+  int64_t BytesToDevice = 0, BytesFromDevice = 0;
 };
 
 /// One frame's query between prepared models a and b. Runs its loops with
