@@ -184,6 +184,7 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
     vtkErrorMacro(<< error << ".");
     return 0;
   }
+  this->LastBackend = gl ? "gpu" : "cpu";
   if (gl && (!this->Device || &this->Device->Context() != gl))
   {
     this->Device.reset(new vtkdf::ProximityDevice(*gl));
@@ -250,7 +251,6 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
   this->LastPenetrationBA = report.BInA.Depth;
   this->LastStep = report.Step;
   this->LastPointQueries = report.PointQueries;
-  this->LastBackend = gl ? "gpu" : "cpu";
   this->LastBytesToDevice = report.BytesToDevice;
   this->LastBytesFromDevice = report.BytesFromDevice;
   this->LastReusedTopology =

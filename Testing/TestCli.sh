@@ -105,6 +105,20 @@ grep -Eq "intersecting=1 penetration_depth=0\.[0-9]+ " <<<"$("$vtkdf" pd "$data/
 grep -Eq "intersecting=1 penetration_depth=0\.[0-9]+ .* error_bound=(0\.0*)?[1-9]" <<<"$("$vtkdf" pd \
   "$data/hubo_ankle_convex4.vtp" "$data/hubo_ankle_convex4.vtp" -o "$out/pd-gpu.vtp" \
   --backend gpu --pixels 64 --uncertified)" || fail "pd --backend gpu --uncertified"
+# proximity on both backends: the same answers, and the GPU's traffic reported.
+run proximity "^vtkdf: proximity backend=cpu step=[0-9.e-]+ point_queries=[1-9][0-9]* bytes_to_gpu=0 " \
+  "$out/proximity.vtp" -- \
+  proximity "$data/bunny_small.vtp" "$data/cow.vtp" -o "$out/proximity.vtp" --resolution 16 --timing
+run proximity-gpu "^vtkdf: proximity backend=gpu step=[0-9.e-]+ point_queries=[1-9][0-9]* bytes_to_gpu=[1-9][0-9]* bytes_from_gpu=[1-9]" \
+  "$out/proximity-gpu.vtp" -- \
+  proximity "$data/bunny_small.vtp" "$data/cow.vtp" -o "$out/proximity-gpu.vtp" --resolution 16 \
+  --backend gpu --timing
+# (The values agree to rounding: Proximity.BruteForce.*.gpu checks them.)
+answers() {
+  "$vtkdf" proximity "$data/aneurysm.vtp" "$data/teapot.vtp" -o "$out/p.vtp" --resolution 16 \
+    --backend "$1" | grep -Eo "colliding=[01]|contacts=[0-9]+" | tr '\n' ' '
+}
+[ "$(answers cpu)" = "$(answers gpu)" ] && [[ "$(answers cpu)" == *contacts=[1-9]* ]] || fail "proximity: the GPU's contacts differ from the CPU's"
 # blend: a field with itself is itself, at any T.
 if "$vtkdf" blend "$out/segment.vti" "$out/segment.vti" -t 0.3 -o "$out/blend.vti" \
   --png "$out/blend.png" 2>"$out/blend.err"; then
@@ -141,6 +155,9 @@ expect_failure blendnot blend "$out/segment.vti" "$out/segment.vti" -o "$out/x.v
 VTKDF_GL_PLATFORM=none expect_failure uniongpu union "$data/hubo_ankle_convex4.vtp" \
   -o "$out/x.vtp" --backend gpu
 grep -q "Backend is GPU but" "$out/uniongpu.out" || fail "union --backend gpu without a GPU: no message"
+VTKDF_GL_PLATFORM=none expect_failure proximitygpu proximity "$data/bunny_small.vtp" \
+  "$data/cow.vtp" -o "$out/x.vtp" --backend gpu
+grep -q "Backend is GPU but" "$out/proximitygpu.out" || fail "proximity --backend gpu without a GPU: no message"
 expect_failure pdone pd "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp"
 expect_failure unionpieces union "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp" --piece-array Nope
 expect_failure rendermesh render "$data/plane.vtp" -o "$out/x.png"

@@ -17,7 +17,7 @@ namespace vtkdfcli
 
 /// vtkdf proximity A B -o OUT.vtp [--contacts CONTACTS.vtp] [--models A.vtp B.vtp]
 ///   [--resolution N | --spacing H] [--margin M] [--sign winding|pseudonormal]
-///   [--no-contacts] [--backend auto|cpu] [--timing]
+///   [--no-contacts] [--backend auto|gpu|cpu] [--timing]
 int Proximity(int argc, char* argv[])
 {
   if (argc < 4)
@@ -76,12 +76,7 @@ int Proximity(int argc, char* argv[])
     else if (option == "--backend" && valued)
     {
       backend = argv[++a];
-      if (backend == "gpu")
-      {
-        std::fprintf(stderr, "vtkdf: proximity runs on the CPU only (no GPU path)\n");
-        return 1;
-      }
-      if (backend != "auto" && backend != "cpu")
+      if (backend != "auto" && backend != "gpu" && backend != "cpu")
       {
         return Usage("--backend takes auto, gpu or cpu");
       }
@@ -105,6 +100,9 @@ int Proximity(int argc, char* argv[])
   filter->SetSpacing(spacing);
   filter->SetContactMargin(margin);
   filter->SetContactPoints(contacts);
+  filter->SetBackend(backend == "gpu" ? vtkDistanceFieldProximity::BACKEND_GPU
+      : backend == "cpu"             ? vtkDistanceFieldProximity::BACKEND_CPU
+                                     : vtkDistanceFieldProximity::BACKEND_AUTO);
   if (sign == "pseudonormal")
   {
     filter->SetSignModeToPseudoNormal();
@@ -125,9 +123,13 @@ int Proximity(int argc, char* argv[])
     static_cast<long long>(filter->GetOutput(1)->GetNumberOfPoints()));
   if (timing)
   {
-    std::printf("vtkdf: proximity backend=cpu step=%.9g point_queries=%lld time_s=%.6f\n",
+    std::printf("vtkdf: proximity backend=%s step=%.9g point_queries=%lld bytes_to_gpu=%lld "
+                "bytes_from_gpu=%lld time_s=%.6f\n",
+      filter->GetLastBackend(),
       filter->GetLastStep(),
       static_cast<long long>(filter->GetLastPointQueries()),
+      static_cast<long long>(filter->GetLastBytesToDevice()),
+      static_cast<long long>(filter->GetLastBytesFromDevice()),
       filter->GetLastSeconds());
   }
   bool written = WriteXML<vtkXMLPolyDataWriter>(answers, output);

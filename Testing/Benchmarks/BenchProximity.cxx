@@ -110,7 +110,7 @@ int main(int argc, char* argv[])
 {
   if (argc < 2)
   {
-    std::printf("usage: %s MESH_DIR [FRAMES] [RESOLUTIONS]\n", argv[0]);
+    std::printf("usage: %s MESH_DIR [FRAMES] [RESOLUTIONS] [BACKENDS: cpu,gpu]\n", argv[0]);
     return 2;
   }
   const int frames = argc > 2 ? std::atoi(argv[2]) : 100;
@@ -119,6 +119,12 @@ int main(int argc, char* argv[])
   for (std::string item; std::getline(list, item, ',');)
   {
     resolutions.push_back(std::atoi(item.c_str()));
+  }
+  std::vector<std::string> backends;
+  std::stringstream backendList(argc > 4 ? argv[4] : "cpu");
+  for (std::string item; std::getline(backendList, item, ',');)
+  {
+    backends.push_back(item);
   }
   auto rest = testsupport::ReadUnitBoxMesh(std::string(argv[1]) + "/bunny_small.vtp");
   std::printf("two bunny_small (%lld triangles each), %d frames, %d threads (%s)\n",
@@ -129,56 +135,77 @@ int main(int argc, char* argv[])
 
   std::vector<double> separation(frames, 0);
   std::vector<int> colliding(frames, 0);
-  for (const int resolution : resolutions)
-  {
-    for (const bool contacts : { true, false })
+  for (const std::string& backend : backends)
+    for (const int resolution : resolutions)
     {
-      vtkNew<vtkDistanceFieldProximity> kept;
-      kept->SetResolution(resolution);
-      kept->SetContactPoints(contacts);
-      double total = 0, worst = 0, fresh = 0, queries = 0, inside = 0;
-      int touching = 0;
-      for (int f = 0; f < frames; ++f)
+      for (const bool contacts : { true, false })
       {
-        vtkNew<vtkPolyData> a, b;
-        Pose(rest, f, a, b);
-        kept->SetModelAData(a);
-        kept->SetModelBData(b);
-        const double start = Now();
-        kept->Update();
-        const double seconds = Now() - start;
-        total += seconds;
-        worst = std::max(worst, seconds);
-        queries += static_cast<double>(kept->GetLastPointQueries());
-        inside += kept->GetOutput(1)->GetNumberOfPoints();
-        touching += kept->GetLastColliding() ? 1 : 0;
-        separation[f] = kept->GetLastSeparationDistance();
-        colliding[f] = kept->GetLastColliding() ? 1 : 0;
-        if (contacts)
+        const int backendValue = backend == "gpu" ? vtkDistanceFieldProximity::BACKEND_GPU
+                                                  : vtkDistanceFieldProximity::BACKEND_CPU;
+        vtkNew<vtkDistanceFieldProximity> kept;
+        kept->SetBackend(backendValue);
+        kept->SetResolution(resolution);
+        kept->SetContactPoints(contacts);
+        double total = 0, worst = 0, fresh = 0, queries = 0, inside = 0, sent = 0, freshSent = 0;
+        int touching = 0;
+        for (int f = 0; f < frames; ++f)
         {
-          vtkNew<vtkDistanceFieldProximity> once;
-          once->SetResolution(resolution);
-          once->SetModelAData(a);
-          once->SetModelBData(b);
-          const double t0 = Now();
-          once->Update();
-          fresh += Now() - t0;
+          vtkNew<vtkPolyData> a, b;
+          Pose(rest, f, a, b);
+          kept->SetModelAData(a);
+          kept->SetModelBData(b);
+          const double start = Now();
+          kept->Update();
+          const double seconds = Now() - start;
+          total += seconds;
+          worst = std::max(worst, seconds);
+          if (kept->GetErrorCode() != 0)
+          {
+            std::printf("the filter failed on the %s\n", backend.c_str());
+            return 1;
+          }
+          queries += static_cast<double>(kept->GetLastPointQueries());
+          sent += f > 0 ? static_cast<double>(kept->GetLastBytesToDevice()) : 0;
+          inside += kept->GetOutput(1)->GetNumberOfPoints();
+          touching += kept->GetLastColliding() ? 1 : 0;
+          separation[f] = kept->GetLastSeparationDistance();
+          colliding[f] = kept->GetLastColliding() ? 1 : 0;
+          if (contacts)
+          {
+            vtkNew<vtkDistanceFieldProximity> once;
+            once->SetBackend(backendValue);
+            once->SetResolution(resolution);
+            once->SetModelAData(a);
+            once->SetModelBData(b);
+            const double t0 = Now();
+            once->Update();
+            fresh += Now() - t0;
+            freshSent += f > 0 ? static_cast<double>(once->GetLastBytesToDevice()) : 0;
+          }
+        }
+        std::printf("%s resolution %4d contacts %-3s  per frame: mean %.1f ms, max %.1f ms%s  "
+                    "exact point queries %.0f, contact samples %.0f  colliding in %d frames\n",
+          backend.c_str(),
+          resolution,
+          contacts ? "on" : "off",
+          1e3 * total / frames,
+          1e3 * worst,
+          contacts
+            ? (" (a fresh filter each frame: " + std::to_string(1e3 * fresh / frames) + " ms)")
+                .c_str()
+            : "",
+          queries / frames,
+          inside / frames,
+          touching);
+        if (backend == "gpu" && contacts && frames > 1)
+        {
+          std::printf(
+            "    sent to the GPU a frame after the first: %.0f kB (a fresh filter: %.0f kB)\n",
+            1e-3 * sent / (frames - 1),
+            1e-3 * freshSent / (frames - 1));
         }
       }
-      std::printf("resolution %4d contacts %-3s  per frame: mean %.1f ms, max %.1f ms%s  "
-                  "exact point queries %.0f, contact samples %.0f  colliding in %d frames\n",
-        resolution,
-        contacts ? "on" : "off",
-        1e3 * total / frames,
-        1e3 * worst,
-        contacts ? (" (a fresh filter each frame: " + std::to_string(1e3 * fresh / frames) + " ms)")
-                     .c_str()
-                 : "",
-        queries / frames,
-        inside / frames,
-        touching);
     }
-  }
 
   // VTK's collision filter on the same poses: contacts between triangles.
   {

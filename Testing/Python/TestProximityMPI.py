@@ -3,7 +3,8 @@
 controller. Every rank holds both models whole (bunny_small and the teapot, overlapping,
 then the teapot moved away); each takes its share of the face samples and rank 0 gathers
 the answer. Rank 0's four outputs must equal, bit for bit, those of one process (the
-same filter run with a one-process controller); the other ranks' outputs are empty."""
+same filter run with a one-process controller); the other ranks' outputs are empty.
+A second argument "gpu" runs every rank's searches on the GPU (each rank its own context)."""
 import sys
 
 import numpy as np
@@ -14,6 +15,7 @@ from mpi_support import moved, read, start_controller
 from vtkdistancefields import vtkDistanceFieldProximity
 
 controller, rank, ranks = start_controller()
+backend = sys.argv[2] if len(sys.argv) > 2 else "cpu"
 
 
 def run(a, b):
@@ -22,6 +24,7 @@ def run(a, b):
     proximity.SetInputData(1, b)
     proximity.SetResolution(48)
     proximity.SetContactMargin(0.5)
+    getattr(proximity, "SetBackendTo" + backend.upper())()
     proximity.Update()
     return proximity
 
@@ -43,8 +46,8 @@ failures = []
 bunny, teapot = read(sys.argv[1], "bunny_small.vtp"), read(sys.argv[1], "teapot.vtp")
 for name, b in (("overlapping", teapot), ("apart", moved(teapot, (40, 0, 0)))):
     distributed = run(bunny, b)
-    if distributed.GetErrorCode():
-        failures.append(f"{name}: rank {rank} failed")
+    if distributed.GetErrorCode() or distributed.GetLastBackend() != backend:
+        failures.append(f"{name}: rank {rank} failed on the {backend}")
         continue
     if rank != 0:
         if any(distributed.GetOutput(p).GetNumberOfPoints() for p in range(4)):
@@ -61,7 +64,7 @@ for name, b in (("overlapping", teapot), ("apart", moved(teapot, (40, 0, 0)))):
         for key in x:
             if x[key].shape != y[key].shape or not np.array_equal(x[key], y[key], equal_nan=True):
                 failures.append(f"{name}: port {port} {key} differs from one process")
-    print(f"{name}: {ranks} ranks, colliding {distributed.GetLastColliding()}, separation "
+    print(f"{name}: {ranks} ranks on the {backend}, colliding {distributed.GetLastColliding()}, separation "
           f"{distributed.GetLastSeparationDistance():.9g}, penetration "
           f"{distributed.GetLastPenetrationAB():.9g} / {distributed.GetLastPenetrationBA():.9g}, "
           f"{distributed.GetOutput(1).GetNumberOfPoints()} contacts", flush=True)

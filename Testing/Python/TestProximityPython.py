@@ -3,7 +3,7 @@ At x = 0.7 they collide; every vertex's DistanceToOther equals the box's exact s
 distance (numpy, closed form); each model's maximum penetration is at most 0.3 (the
 deepest point of either surface inside the other) and within one step of it; the
 contacts' depths are positive and their normals unit. At x = 1.5 they are 0.5 apart, the
-witness line 0.5 long, and no contact."""
+witness line 0.5 long, and no contact. Both backends; the GPU's answers equal the CPU's."""
 import math
 import sys
 
@@ -51,16 +51,23 @@ def field(output, name, component=0):
 
 a_bounds = (0, 1, 0, 1, 0, 1)
 a = box(a_bounds)
-for x, colliding in ((0.7, 1), (1.5, 0)):
+answered = {}
+for backend, x, colliding in [(k, x, c) for k in ("CPU", "GPU") for x, c in ((0.7, 1), (1.5, 0))]:
     b_bounds = (x, x + 1, 0.2, 0.8, 0.2, 0.8)
     b = box(b_bounds)
     proximity = vtkDistanceFieldProximity()
     proximity.SetModelAData(a)
     proximity.SetModelBData(b)
     proximity.SetResolution(32)
+    getattr(proximity, "SetBackendTo" + backend)()
     proximity.Update()
-    check(proximity.GetErrorCode() == 0, f"x={x}: the filter failed")
+    check(proximity.GetErrorCode() == 0, f"x={x}: the filter failed on the {backend}")
+    check(proximity.GetLastBackend() == backend.lower(), f"x={x}: ran on the {backend}")
     answers = proximity.GetOutput(0)
+    answered[backend, x] = [field(answers, name) for name in (
+        "Colliding", "SeparationDistance", "MaximumPenetrationAB", "MaximumPenetrationBA")]
+    if backend == "GPU":
+        check(answered[backend, x] == answered["CPU", x], f"x={x}: the GPU's answers as the CPU's")
     check(field(answers, "Colliding") == colliding, f"x={x}: Colliding")
     step = field(answers, "Step")
     # vtkCubeSource writes float coordinates: the boxes as they are.
@@ -85,7 +92,7 @@ for x, colliding in ((0.7, 1), (1.5, 0)):
         line = vtk_to_numpy(answers.GetPoints().GetData())
         check(abs(np.linalg.norm(line[1] - line[0]) - separation) <= 1e-12, f"x={x}: witness line")
         check(contacts.GetNumberOfPoints() == 0, f"x={x}: no contact")
-    print(f"x={x}: colliding {proximity.GetLastColliding()} separation "
+    print(f"{backend} x={x}: colliding {proximity.GetLastColliding()} separation "
           f"{proximity.GetLastSeparationDistance():.6g} penetration "
           f"{proximity.GetLastPenetrationAB():.6g} / {proximity.GetLastPenetrationBA():.6g} "
           f"step {step:.4g} contacts {contacts.GetNumberOfPoints()}")
