@@ -43,25 +43,23 @@ bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error)
   return true;
 }
 
-HeadlessGL* AutoSignContext(int64_t samples)
+HeadlessGL* AutoSignContext(int64_t samples, const std::function<bool()>& cpuIsFaster)
 {
   const char* setting = std::getenv("VTKDF_AUTO_GPU_SIGN");
   const std::string choice = setting ? setting : "";
-  if (choice != "1" && samples < (int64_t(1) << 22))
+  if (choice == "0" || (choice != "1" && samples < (int64_t(1) << 22)))
+  {
+    return nullptr;
+  }
+  // No context is made where no hardware device is found (a CPU machine pays nothing),
+  // nor where the CPU has the faster route.
+  static const bool hardware = HeadlessGL::HasHardwareDevice();
+  if ((choice != "1" && !hardware) || (cpuIsFaster && cpuIsFaster()))
   {
     return nullptr;
   }
   static HeadlessGL* const chosen = [&choice]() -> HeadlessGL*
   {
-    if (choice == "0")
-    {
-      return nullptr;
-    }
-    // No context is made where no hardware device is found (a CPU machine pays nothing).
-    if (choice != "1" && !HeadlessGL::HasHardwareDevice())
-    {
-      return nullptr;
-    }
     std::string why;
     HeadlessGL* gl = HeadlessGL::Get(why);
     if (!gl)

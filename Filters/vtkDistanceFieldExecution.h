@@ -40,8 +40,11 @@ bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error);
 /// (docs/benchmarks.md). The device is looked for once per process, without making a
 /// context where none is hardware; a software rasterizer (llvmpipe, OSMesa) is not
 /// taken. The environment variable VTKDF_AUTO_GPU_SIGN=1 takes any context at any size
-/// (how the tests run this path), VTKDF_AUTO_GPU_SIGN=0 none.
-HeadlessGL* AutoSignContext(int64_t samples);
+/// (how the tests run this path), VTKDF_AUTO_GPU_SIGN=0 none. `cpuIsFaster`, asked only
+/// where a context would be taken, may say the CPU has the faster route (a closed mesh's
+/// crossings, Winding/WindingCrossings.h): then none either.
+HeadlessGL* AutoSignContext(int64_t samples,
+  const std::function<bool()>& cpuIsFaster = std::function<bool()>());
 
 /// vtkSMPTools::For behind the cores' ParallelFor hook. An exception thrown by `body`
 /// (std::bad_alloc) stops the remaining chunks and is rethrown here, on the calling

@@ -13,6 +13,7 @@
 #include "Common/Parallel.h"
 #include "GL/HeadlessGL.h"
 #include "LinearFactor/LinearFactorField.h"
+#include "Winding/WindingCrossings.h"
 #include "vtkDistanceFieldArrays.h"
 #include "vtkDistanceFieldExecution.h"
 
@@ -68,7 +69,10 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   this->LastSignBackend = "none";
   if (winding && !gl && this->Backend == BACKEND_AUTO)
   {
-    request.SignContext = vtkdf::AutoSignContext(request.Extent.Count());
+    // Signs alone of a closed mesh: its crossings on the CPU cost less than a GPU pass.
+    request.SignContext = vtkdf::AutoSignContext(request.Extent.Count(),
+      [&]
+      { return !this->ComputeWindingNumber && vtkdf::IsClosedChain(mesh.Points, mesh.Triangles); });
   }
   request.Domains = static_cast<vtkdf::Culling>(this->Culling);
   request.Sign = static_cast<vtkdf::SignMode>(this->SignMode);
@@ -130,8 +134,9 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   this->LastEvaluations = report.Evaluations;
   this->LastCullingFactor = report.Evaluations >= 0 ? double(report.Evaluations) / n : -1.0;
   this->LastWindingBlockSamples = report.WindingBlockSamples;
+  this->LastWindingLineSamples = report.WindingLineSamples;
   this->LastWindingExactSamples = report.WindingExactSamples;
-  this->LastSignBackend = !winding ? "none" : (gl || request.SignContext ? "gpu" : "cpu");
+  this->LastSignBackend = !winding ? "none" : (report.WindingOnGPU ? "gpu" : "cpu");
   this->UpdateProgress(1.0);
   this->FinishTiming(gl, timer);
   return 1;
@@ -180,6 +185,7 @@ void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeWindingNumber: " << this->ComputeWindingNumber << "\n";
   os << indent << "LastEvaluations: " << this->LastEvaluations << "\n";
   os << indent << "LastWindingBlockSamples: " << this->LastWindingBlockSamples << "\n";
+  os << indent << "LastWindingLineSamples: " << this->LastWindingLineSamples << "\n";
   os << indent << "LastWindingExactSamples: " << this->LastWindingExactSamples << "\n";
   os << indent << "LastSignBackend: " << this->LastSignBackend << "\n";
   os << indent << "LastCullingFactor: " << this->LastCullingFactor << "\n";

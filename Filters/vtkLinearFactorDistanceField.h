@@ -112,11 +112,15 @@ public:
   /// Samples whose winding-number sign a block decided at once in the last run (the rest
   /// were evaluated one by one; Filters/Core/Winding/WindingSigns.h).
   vtkGetMacro(LastWindingBlockSamples, vtkTypeInt64);
+  /// Samples whose winding-number sign the last run read from the surface's crossings
+  /// along the grid lines (a closed mesh; Filters/Core/Winding/WindingCrossings.h).
+  vtkGetMacro(LastWindingLineSamples, vtkTypeInt64);
   /// Samples whose winding number the last run had to sum exactly, triangle by triangle
   /// (the hierarchy's error bound reached |w| = 1/2).
   vtkGetMacro(LastWindingExactSamples, vtkTypeInt64);
   /// Where the last run computed the winding-number sign: "cpu", "gpu" (Backend GPU, or
-  /// Auto beside a hardware GPU, vtkDistanceFieldExecution.h) or "none".
+  /// Auto beside a hardware GPU, vtkDistanceFieldExecution.h, but for a closed mesh
+  /// without ComputeWindingNumber: its crossings on the CPU cost less) or "none".
   const char* GetLastSignBackend() const { return this->LastSignBackend.c_str(); }
 
 protected:
@@ -138,6 +142,7 @@ protected:
   vtkTypeInt64 LastEvaluations = 0;
   double LastCullingFactor = 0;
   vtkTypeInt64 LastWindingBlockSamples = 0;
+  vtkTypeInt64 LastWindingLineSamples = 0;
   vtkTypeInt64 LastWindingExactSamples = 0;
   std::string LastSignBackend = "none";
 

@@ -20,6 +20,7 @@
 #include "Common/Parallel.h"
 #include "GL/HeadlessGL.h"
 #include "Medial/MedialAxisField.h"
+#include "Winding/WindingCrossings.h"
 #include "vtkDistanceFieldArrays.h"
 #include "vtkDistanceFieldExecution.h"
 
@@ -249,7 +250,8 @@ bool vtkMedialAxisFilter::ComputePart(vtkPolyData* mesh,
   // Auto beside a hardware GPU: the winding sign there, as the linear factorization does.
   vtkdf::HeadlessGL* signContext =
     mesh && !part.GL && this->SignMode == WINDING_NUMBER && this->Backend == BACKEND_AUTO
-    ? vtkdf::AutoSignContext(needed.Count())
+    ? vtkdf::AutoSignContext(
+        needed.Count(), [&] { return vtkdf::IsClosedChain(input.Points, input.Triangles); })
     : nullptr;
   const bool ok = mesh ? vtkdf::ComputeMedialAxis(std::move(input),
                            this->SignMode == WINDING_NUMBER ? vtkdf::SignMode::WindingNumber

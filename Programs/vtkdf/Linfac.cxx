@@ -71,11 +71,13 @@ int Linfac(int argc, char* argv[])
       std::snprintf(extra, sizeof(extra), " culling_factor=%.3f", filter->GetLastCullingFactor());
       if (filter->GetSignMode() == vtkLinearFactorDistanceField::WINDING_NUMBER)
       {
-        char blocks[96];
+        char blocks[160];
         std::snprintf(blocks,
           sizeof(blocks),
-          " winding_block_samples=%lld winding_exact_samples=%lld sign_backend=%s",
+          " winding_block_samples=%lld winding_line_samples=%lld winding_exact_samples=%lld "
+          "sign_backend=%s",
           static_cast<long long>(filter->GetLastWindingBlockSamples()),
+          static_cast<long long>(filter->GetLastWindingLineSamples()),
           static_cast<long long>(filter->GetLastWindingExactSamples()),
           filter->GetLastSignBackend());
         return std::string(extra) + blocks;

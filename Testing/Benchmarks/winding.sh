@@ -3,7 +3,8 @@
 # PseudoNormal, vtkdf linfac --sign winding|pseudonormal, both backends.
 # usage: Testing/Benchmarks/winding.sh BUILD_DIR MESH_DIR [SIZES] [BACKENDS] [REPS] [MESHES]
 # Columns: each mode's time (best of REPS), the winding sign stage alone, the ratio of
-# the two times, the samples decided by blocks and by the exact sum, and the fraction of
+# the two times, the samples decided by blocks, by crossings along lines (closed meshes)
+# and by the exact sum, and the fraction of
 # samples whose sign differs between the two modes.
 set -euo pipefail
 build=${1:-build}
@@ -29,8 +30,8 @@ best() {
 }
 field() { sed -E "s/.*[ ,]$1[=:]([^ ,]+).*/\1/" <<<"$2"; }
 
-printf "%-12s %4s %-12s %-4s %9s %9s %8s %6s %10s %7s %9s  %s\n" mesh N dims back \
-  pseudo_s winding_s sign_s ratio block_smp exact sign_diff renderer
+printf "%-12s %4s %-12s %-4s %9s %9s %8s %6s %10s %10s %7s %9s  %s\n" mesh N dims back \
+  pseudo_s winding_s sign_s ratio block_smp line_smp exact sign_diff renderer
 for mesh in $names; do
   for n in $sizes; do
     for backend in $backends; do
@@ -52,9 +53,10 @@ print("%.3e" % np.mean((p < 0) != (w < 0)))
 PY
 )
       tp=$(field time_s "$p"); tw=$(field time_s "$w")
-      printf "%-12s %4s %-12s %-4s %9.3f %9.3f %8.3f %6.2f %10s %7s %9s  %s\n" "$mesh" "$n" \
+      printf "%-12s %4s %-12s %-4s %9.3f %9.3f %8.3f %6.2f %10s %10s %7s %9s  %s\n" "$mesh" "$n" \
         "$(field dims "$w")" "$backend" "$tp" "$tw" "$(field sign "$w")" \
         "$(awk -v a="$tw" -v b="$tp" 'BEGIN{print a/b}')" "$(field winding_block_samples "$w")" \
+        "$(field winding_line_samples "$w")" \
         "$(field winding_exact_samples "$w")" "$diff" "$(sed -E 's/.*renderer="([^"]*)".*/\1/' <<<"$w")"
     done
   done

@@ -9,7 +9,7 @@
 // - ForEachOverlappingPair against every pair of boxes;
 // - CutSelfIntersections on two squares crossing without a shared edge: cut (with CGAL),
 //   or one group left uncut with a message naming DF_USE_CGAL (without).
-#include "Segment/ExactPredicates.h"
+#include "Predicates/ExactPredicates.h"
 #include "Segment/SelfIntersections.h"
 #include "Segment/TriangleCrossings.h"
 

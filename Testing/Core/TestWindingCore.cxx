@@ -14,6 +14,7 @@
 #include "CoreTest.h"
 #include "GL/HeadlessGL.h"
 #include "ThreadFor.h"
+#include "Winding/WindingCrossings.h"
 #include "Winding/WindingNumber.h"
 #include "Winding/WindingSigns.h"
 #include "Winding/WindingSignsGPU.h"
@@ -330,6 +331,119 @@ Mesh OpenSphere(const Mesh& sphere)
 }
 } // namespace
 
+/// An axis-aligned box, outward (inward when flipped), 12 triangles, appended to m.
+void AddBox(Mesh& m, const double lo[3], const double hi[3], bool flipped = false)
+{
+  const int64_t base = static_cast<int64_t>(m.Points.size() / 3);
+  for (int c = 0; c < 8; ++c)
+  {
+    m.Points.insert(
+      m.Points.end(), { c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2] });
+  }
+  // Corner c has bits x, y, z; each face as two triangles, outward.
+  const int faces[6][4] = {
+    { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 }
+  };
+  for (const auto& f : faces)
+  {
+    const int64_t t[6] = { f[0], f[1], f[2], f[0], f[2], f[3] };
+    for (int k = 0; k < 6; k += 3)
+    {
+      m.Triangles.insert(m.Triangles.end(),
+        { base + t[k],
+          base + (flipped ? t[k + 2] : t[k + 1]),
+          base + (flipped ? t[k + 1] : t[k + 2]) });
+    }
+  }
+}
+
+/// The crossings' route (closed meshes) against every sample decided alone, on meshes
+/// whose corners lie on the grid's lattice: lines through projected edges and corners,
+/// samples on faces, edges and corners, triangles seen edge-on, overlaps, folds.
+void CheckCrossings()
+{
+  std::vector<std::pair<const char*, Mesh>> meshes(5);
+  const double lo[3] = { 0, 0, 0 }, hi[3] = { 2, 1.5, 2.5 };
+  meshes[0].first = "box on the lattice";
+  AddBox(meshes[0].second, lo, hi);
+  meshes[1].first = "hollow box (flipped box inside)";
+  AddBox(meshes[1].second, lo, hi);
+  const double innerLo[3] = { 0.5, 0.5, 0.5 }, innerHi[3] = { 1.5, 1, 2 };
+  AddBox(meshes[1].second, innerLo, innerHi, true);
+  meshes[2].first = "two overlapping boxes";
+  AddBox(meshes[2].second, lo, hi);
+  const double otherLo[3] = { 1, 0.5, -0.5 }, otherHi[3] = { 3, 2.5, 1.5 };
+  AddBox(meshes[2].second, otherLo, otherHi);
+  // The sphere scaled and its corners snapped to the lattice: degenerate and repeated
+  // triangles, coincident corners, folds; still a closed chain.
+  meshes[3].first = "snapped sphere";
+  meshes[3].second = Sphere(2);
+  for (double& x : meshes[3].second.Points)
+  {
+    x = std::round(3 * x) / 2 + 1;
+  }
+  meshes[4].first = "octahedron on the lattice";
+  meshes[4].second.Points = { 2, 1, 1, 0, 1, 1, 1, 2, 1, 1, 0, 1, 1, 1, 2, 1, 1, 0 };
+  meshes[4].second.Triangles = {
+    0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5
+  };
+  SampleGrid grid;
+  grid.Origin = { -1, -1, -1 };
+  grid.Spacing = { 0.5, 0.25, 0.5 };
+  grid.Whole.Lo = { 0, 0, 0 };
+  grid.Whole.Hi = { 12, 16, 10 };
+  const int64_t n = grid.Whole.Count();
+  for (const auto& [name, mesh] : meshes)
+  {
+    WindingNumber w;
+    w.Build(mesh.Points, mesh.Triangles);
+    Check(IsClosedChain(mesh.Points, mesh.Triangles), "%s is a closed chain", name);
+    std::vector<uint8_t> lines(n), alone(n);
+    WindingSignOptions single;
+    single.Blocks = false;
+    const WindingSignStatistics a =
+      WindingSigns(w, grid, grid.Whole, lines.data(), WindingSignOptions(), ThreadFor);
+    WindingSigns(w, grid, grid.Whole, alone.data(), single, ThreadFor);
+    int64_t differ = 0, inside = 0;
+    for (int64_t v = 0; v < n; ++v)
+    {
+      differ += lines[v] != alone[v];
+      inside += lines[v];
+    }
+    std::printf("%s: %lld samples by lines, %lld on the surface alone, %lld inside, %lld "
+                "differ from every sample alone\n",
+      name,
+      static_cast<long long>(a.LineSamples),
+      static_cast<long long>(a.Evaluated),
+      static_cast<long long>(inside),
+      static_cast<long long>(differ));
+    Check(differ == 0 && a.LineSamples + a.Evaluated == n && a.Evaluated > 0 && inside > 0,
+      "%s: the crossings decide as every sample alone (%.17g differ)",
+      name,
+      static_cast<double>(differ));
+  }
+  // An open box (one triangle missing) is not a closed chain; a box with a repeated
+  // corner point (same coordinates, another id) is.
+  Mesh open = meshes[0].second;
+  open.Triangles.resize(open.Triangles.size() - 3);
+  Check(!IsClosedChain(open.Points, open.Triangles), "an open box is not a closed chain");
+  // A box with a triangle repeated (the winding number counts it once): not closed.
+  Mesh repeated = meshes[0].second;
+  repeated.Triangles.insert(repeated.Triangles.end(), { 0, 2, 3 });
+  Check(!IsClosedChain(repeated.Points, repeated.Triangles), "a repeated triangle is not closed");
+  // A box whose corners are repeated points (same coordinates, other ids): closed.
+  Mesh split = meshes[0].second;
+  for (size_t t = 0; t < split.Triangles.size(); t += 3)
+  {
+    const int64_t copy = static_cast<int64_t>(split.Points.size() / 3);
+    const double* from = &split.Points[3 * split.Triangles[t]];
+    const double corner[3] = { from[0], from[1], from[2] };
+    split.Points.insert(split.Points.end(), corner, corner + 3);
+    split.Triangles[t] = copy;
+  }
+  Check(IsClosedChain(split.Points, split.Triangles), "a box with split points is closed");
+}
+
 int main(int argc, char* argv[])
 {
   if (argc > 1 && std::string(argv[1]) == "gpu")
@@ -356,6 +470,7 @@ int main(int argc, char* argv[])
     return Verdict();
   }
 
+  CheckCrossings();
   const Mesh sphere = Sphere(4); // 2048 triangles
   {
     WindingNumber w;
@@ -546,14 +661,15 @@ int main(int argc, char* argv[])
           std::fabs(std::fabs(fast.Value) - 0.5) > fast.Bound ? fast.Value : exact;
         outOfBound += std::fabs(values[v] - used) > 1e-6 * std::max(1.0, std::fabs(used));
       }
-      std::printf("%s on 32^3: blocks decided %lld samples, %lld alone (%lld exact); with "
-                  "distances %lld and %lld; every sample alone: %lld exact; %lld differ, %lld "
-                  "wrong, %lld values off\n",
+      std::printf("%s on 32^3: lines decided %lld samples, blocks %lld, %lld alone (%lld "
+                  "exact); with distances %lld and %lld; every sample alone: %lld exact; %lld "
+                  "differ, %lld wrong, %lld values off\n",
         mesh == &sphere ? "closed sphere" : "open sphere",
+        static_cast<long long>(a.LineSamples),
         static_cast<long long>(a.BlockSamples),
         static_cast<long long>(a.Evaluated),
         static_cast<long long>(a.Exact),
-        static_cast<long long>(c.BlockSamples),
+        static_cast<long long>(c.BlockSamples + c.LineSamples),
         static_cast<long long>(c.Evaluated),
         static_cast<long long>(b.Exact),
         static_cast<long long>(differ),
@@ -568,10 +684,14 @@ int main(int argc, char* argv[])
       Check(outOfBound == 0,
         "a written value is not the evaluation's (%.17g)",
         static_cast<double>(double(outOfBound)));
-      Check(
-        a.BlockSamples + a.Evaluated == n && b.Evaluated == n && c.BlockSamples + c.Evaluated == n,
+      Check(a.BlockSamples + a.LineSamples + a.Evaluated == n && b.Evaluated == n &&
+          c.BlockSamples + c.LineSamples + c.Evaluated == n,
         "samples missed (%.17g)",
-        static_cast<double>(double(a.BlockSamples + a.Evaluated)));
+        static_cast<double>(double(a.BlockSamples + a.LineSamples + a.Evaluated)));
+      // The closed sphere takes the crossings' route, the open one the blocks'.
+      Check((a.LineSamples > 0) == (mesh == &sphere) && (a.BlockSamples > 0) == (mesh != &sphere),
+        "the closed mesh's route (%.17g samples by lines)",
+        static_cast<double>(a.LineSamples));
     }
   }
   return Verdict();

@@ -79,6 +79,7 @@ bool WindingSign(const MeshInput& mesh,
   SignMode sign,
   const LocalSites& local,
   HeadlessGL* gl,
+  bool closedOnCPU,
   const LinearFactorArrays& arrays,
   const Execution& execution,
   LinearFactorReport& report,
@@ -91,6 +92,7 @@ bool WindingSign(const MeshInput& mesh,
   // Unsigned still, in world units: blocks near the surface split without trying.
   options.Distance = arrays.Distance;
   options.DistanceScale = 1 / local.Frame.Scale;
+  options.ClosedOnCPU = closedOnCPU;
   WindingSignStatistics stats;
   if (!ComputeWindingSigns(mesh.Points,
         mesh.Triangles,
@@ -107,6 +109,8 @@ bool WindingSign(const MeshInput& mesh,
     return false;
   }
   report.WindingBlockSamples = stats.BlockSamples;
+  report.WindingLineSamples = stats.LineSamples;
+  report.WindingOnGPU = stats.GPU;
   report.WindingExactSamples = stats.Exact;
   float* d = arrays.Distance;
   if (d && sign == SignMode::WindingNumber)
@@ -209,7 +213,7 @@ bool ComputeLinearFactorField(MeshInput mesh,
   if ((request.Sign == SignMode::WindingNumber && arrays.Distance) || arrays.WindingNumber)
   {
     HeadlessGL* signGL = gl ? gl : request.SignContext;
-    if (!WindingSign(mesh, request.Sign, local, signGL, arrays, execution, report, error))
+    if (!WindingSign(mesh, request.Sign, local, signGL, !gl, arrays, execution, report, error))
     {
       return false;
     }

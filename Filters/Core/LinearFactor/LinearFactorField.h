@@ -54,7 +54,8 @@ struct LinearFactorRequest
   double MaximumDistance = 0;
   /// The field on the CPU (no `gl`) with the winding sign on this context: a hardware
   /// GPU's winding pass is faster than the CPU's, its scan is not (Backend Auto). The
-  /// signs are the same (the same rigorous rule); w itself within float rounding.
+  /// signs are the same (the same rigorous rule); w itself within float rounding. A
+  /// closed mesh's signs stay on the CPU (its crossings along the lines cost less).
   HeadlessGL* SignContext = nullptr;
 };
 
@@ -78,8 +79,11 @@ struct LinearFactorReport
   /// Distance evaluations of the scan (per sample: the culling factor); -1 when the GPU
   /// did not count them.
   int64_t Evaluations = 0;
-  /// Samples whose winding sign a block decided, and samples decided by the exact sum.
+  /// Samples whose winding sign a block decided, those a closed mesh's crossings along
+  /// the grid lines decided, and samples decided by the exact sum.
   int64_t WindingBlockSamples = 0;
+  int64_t WindingLineSamples = 0;
+  bool WindingOnGPU = false; // where the sign ran
   int64_t WindingExactSamples = 0;
 };
 

@@ -3,6 +3,7 @@
 #include "Proximity/ProximityGPU.h"
 #include "Proximity/ProximitySearch.h"
 #include "Segment/TriangleCrossings.h"
+#include "Winding/WindingCrossings.h"
 #include "Winding/WindingNumber.h"
 
 #include <algorithm>
@@ -40,7 +41,6 @@ struct ProximityModel::Data
   bool Closed = false;
 
   bool MergePoints();
-  bool IsClosedChain() const;
   void BuildEdges();
   void ComputeNormals();
   bool Inside(const double x[3], const double closest[3], int64_t triangle, double d2) const;
@@ -83,44 +83,6 @@ bool ProximityModel::Data::MergePoints()
   const bool changed = canonical != this->Canonical;
   this->Canonical.swap(canonical);
   return changed;
-}
-
-bool ProximityModel::Data::IsClosedChain() const
-{
-  std::vector<std::array<size_t, 3>> oriented;
-  std::vector<std::pair<size_t, size_t>> sides;
-  oriented.reserve(this->Model.Triangles.size());
-  sides.reserve(3 * this->Model.Triangles.size());
-  for (const auto& corners : this->Model.Triangles)
-  {
-    std::array<size_t, 3> t{
-      { this->Canonical[corners[0]], this->Canonical[corners[1]], this->Canonical[corners[2]] }
-    };
-    for (int c = 0; c < 3; ++c)
-    {
-      if (t[c] != t[(c + 1) % 3])
-      {
-        sides.emplace_back(t[c], t[(c + 1) % 3]);
-      }
-    }
-    // The same cyclic order starts at its least corner.
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    oriented.push_back(t);
-  }
-  std::sort(oriented.begin(), oriented.end());
-  if (std::adjacent_find(oriented.begin(), oriented.end()) != oriented.end())
-  {
-    return false;
-  }
-  // Balanced edges: the sorted sides equal the sorted reversed sides.
-  std::vector<std::pair<size_t, size_t>> reversed(sides.size());
-  std::transform(sides.begin(),
-    sides.end(),
-    reversed.begin(),
-    [](const std::pair<size_t, size_t>& e) { return std::make_pair(e.second, e.first); });
-  std::sort(sides.begin(), sides.end());
-  std::sort(reversed.begin(), reversed.end());
-  return sides == reversed;
 }
 
 void ProximityModel::Data::BuildEdges()
@@ -306,7 +268,7 @@ bool ProximityModel::Load(const MeshInput& mesh,
   // The edges and the chain follow the merged points, which the coordinates may change.
   if (d.MergePoints() || !same)
   {
-    d.Closed = d.IsClosedChain();
+    d.Closed = IsClosedChain(mesh.Points, mesh.Triangles);
     if (rule == InsideRule::PseudoNormal)
     {
       d.BuildEdges();

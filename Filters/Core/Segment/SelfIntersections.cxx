@@ -1,6 +1,6 @@
 #include "Segment/SelfIntersections.h"
 
-#include "Segment/ExactPredicates.h"
+#include "Predicates/ExactPredicates.h"
 #include "Segment/TriangleCrossings.h"
 #ifdef DF_HAVE_CGAL
 #include "Segment/CrossingRefinement.h"

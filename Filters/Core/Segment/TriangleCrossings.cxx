@@ -1,6 +1,6 @@
 #include "Segment/TriangleCrossings.h"
 
-#include "Segment/ExactPredicates.h"
+#include "Predicates/ExactPredicates.h"
 
 #include <algorithm>
 

@@ -2,7 +2,7 @@
 //
 // Candidate pairs are the triangles whose bounding boxes meet (closed boxes), found by a
 // bounding-volume hierarchy joined with itself; each candidate is then decided by
-// orientation predicates alone (Segment/ExactPredicates.h), so that touching, coplanar
+// orientation predicates alone (Predicates/ExactPredicates.h), so that touching, coplanar
 // and nearly coplanar triangles are decided as they are, not as rounding has them.
 #ifndef vtkdf_TriangleCrossings_h
 #define vtkdf_TriangleCrossings_h

@@ -1,10 +1,12 @@
 #include "Winding/WindingSigns.h"
 
+#include "Winding/WindingCrossings.h"
 #include "Winding/WindingSignsGPU.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <numeric>
 
 namespace vtkdf
 {
@@ -159,6 +161,17 @@ struct Decider
 };
 } // namespace
 
+namespace
+{
+/// Whether the crossings' route may decide: signs only, by the default route, on a grid
+/// whose coordinates grow with the indices.
+bool CrossingsApply(const WindingSignOptions& options, const SampleGrid& grid)
+{
+  return !options.Value && options.Blocks && grid.Spacing[0] > 0 && grid.Spacing[1] > 0 &&
+    grid.Spacing[2] > 0;
+}
+} // namespace
+
 WindingSignStatistics WindingSigns(const WindingNumber& winding,
   const SampleGrid& grid,
   const IndexBox& extent,
@@ -166,6 +179,23 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
   const WindingSignOptions& options,
   const ParallelFor& parallelFor)
 {
+  // A closed mesh: w is the count of crossings along each line (WindingCrossings.h).
+  if (CrossingsApply(options, grid))
+  {
+    const std::vector<double>& corners = winding.TriangleCorners();
+    std::vector<int64_t> ids(corners.size() / 3);
+    std::iota(ids.begin(), ids.end(), int64_t(0));
+    if (IsClosedChain(corners, ids))
+    {
+      return CrossingSigns(corners,
+        ids,
+        grid,
+        extent,
+        inside,
+        parallelFor,
+        [&]() -> const WindingNumber& { return winding; });
+    }
+  }
   const int n[3] = { extent.Size(0), extent.Size(1), extent.Size(2) };
   const int64_t stride[3] = { 1, n[0], int64_t(n[0]) * n[1] };
   // With values wanted, or no blocks, every sample alone.
@@ -220,11 +250,36 @@ bool ComputeWindingSigns(const std::vector<double>& points,
   WindingSignStatistics& stats,
   std::string& error)
 {
+  // A closed mesh on the CPU: the crossings along the lines, the hierarchy built only for
+  // samples on the surface.
   WindingNumber winding;
+  if ((!gl || options.ClosedOnCPU) && CrossingsApply(options, grid) &&
+    IsClosedChain(points, triangles))
+  {
+    bool built = false;
+    stats = CrossingSigns(points,
+      triangles,
+      grid,
+      extent,
+      inside,
+      parallelFor,
+      [&]() -> const WindingNumber&
+      {
+        if (!built)
+        {
+          winding.Build(points, triangles);
+          built = true;
+        }
+        return winding;
+      });
+    return true;
+  }
   winding.Build(points, triangles);
   if (gl)
   {
-    return WindingSignsGPU(*gl, winding, grid, extent, inside, options, stats, error);
+    const bool ok = WindingSignsGPU(*gl, winding, grid, extent, inside, options, stats, error);
+    stats.GPU = true;
+    return ok;
   }
   stats = WindingSigns(winding, grid, extent, inside, options, parallelFor);
   return true;

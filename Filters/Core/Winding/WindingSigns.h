@@ -12,6 +12,10 @@
 // the same as deciding every sample alone; only the work differs. Blocks start at 8^3
 // samples; the first-order test decides blocks down to about three spacings from the
 // surface (H grows as 1/g^4 near it), where the blocks end as single samples.
+//
+// A closed mesh (every edge used as often in each direction) takes another route with
+// the same answer: w is then the signed count of the surface's crossings along each grid
+// line (WindingCrossings.h), and only the samples on the surface are decided alone.
 #ifndef vtkdf_WindingSigns_h
 #define vtkdf_WindingSigns_h
 
@@ -30,8 +34,10 @@ class HeadlessGL;
 struct WindingSignStatistics
 {
   int64_t BlockSamples = 0; // samples decided by a block of more than one sample
+  int64_t LineSamples = 0;  // samples of a closed mesh decided by crossings along lines
   int64_t Evaluated = 0;    // samples decided alone
   int64_t Exact = 0;        // of those, decided by the exact sum
+  bool GPU = false;         // decided on the GPU (WindingSignsGPU)
 };
 
 /// What WindingSigns writes besides the signs, and what it may use.
@@ -44,8 +50,11 @@ struct WindingSignOptions
   /// the surface split without trying: less work, the same answer.
   const float* Distance = nullptr;
   double DistanceScale = 1;
-  /// Off: every sample decided alone (the reference for the blocks).
+  /// Off: every sample decided alone (the reference for the blocks and the crossings).
   bool Blocks = true;
+  /// ComputeWindingSigns with a GPU context: a closed mesh's signs on the CPU all the
+  /// same, where its crossings cost less than any winding pass (Backend Auto's choice).
+  bool ClosedOnCPU = false;
 };
 
 /// Writes inside[v] (1 or 0) for every sample v of `extent` on `grid` (x fastest, from
@@ -57,9 +66,11 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
   const WindingSignOptions& options,
   const ParallelFor& parallelFor);
 
-/// The family's entry point: the hierarchy of `triangles` (3 ids each into xyz `points`)
-/// built, then WindingSigns on the CPU, or WindingSignsGPU when `gl` is given (which
-/// honours options.Value only). False and `error` when the GPU cannot run it.
+/// The family's entry point: on the CPU, a closed mesh's crossings (WindingCrossings.h,
+/// the hierarchy built only for samples on the surface), else the hierarchy of
+/// `triangles` (3 ids each into xyz `points`) and WindingSigns; on the GPU when `gl` is
+/// given (but for a closed mesh with options.ClosedOnCPU), WindingSignsGPU (which honours
+/// options.Value only). False and `error` when the GPU cannot run it.
 bool ComputeWindingSigns(const std::vector<double>& points,
   const std::vector<int64_t>& triangles,
   const SampleGrid& grid,

@@ -1,4 +1,4 @@
-#include "Segment/ExactPredicates.h"
+#include "Predicates/ExactPredicates.h"
 
 #include <boost/multiprecision/cpp_int.hpp>
 

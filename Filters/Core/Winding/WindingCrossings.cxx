@@ -1,0 +1,422 @@
+#include "Winding/WindingCrossings.h"
+
+#include "Predicates/ExactPredicates.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+
+namespace vtkdf
+{
+
+bool IsClosedChain(const std::vector<double>& points, const std::vector<int64_t>& triangles)
+{
+  const size_t count = points.size() / 3;
+  if (count >= (size_t(1) << 32))
+  {
+    return false;
+  }
+  // Points at equal coordinates get the id of the first of them in sorted order.
+  std::vector<uint32_t> order(count);
+  for (size_t i = 0; i < count; ++i)
+  {
+    order[i] = static_cast<uint32_t>(i);
+  }
+  auto at = [&](uint32_t i) { return &points[3 * size_t(i)]; };
+  std::sort(order.begin(),
+    order.end(),
+    [&](uint32_t p, uint32_t q)
+    {
+      const double* a = at(p);
+      const double* b = at(q);
+      return a[0] != b[0] ? a[0] < b[0] : a[1] != b[1] ? a[1] < b[1] : a[2] < b[2];
+    });
+  std::vector<uint32_t> id(count);
+  for (size_t k = 0; k < count; ++k)
+  {
+    const double* here = at(order[k]);
+    const bool same = k > 0 && here[0] == at(order[k - 1])[0] && here[1] == at(order[k - 1])[1] &&
+      here[2] == at(order[k - 1])[2];
+    id[order[k]] = same ? id[order[k - 1]] : order[k];
+  }
+  // No triangle repeated with the same orientation (each as its cyclic order from its
+  // least corner), and balanced edges: the sorted edges equal the sorted reversed ones.
+  const size_t n = triangles.size() / 3;
+  std::vector<std::array<uint32_t, 3>> oriented(n);
+  std::vector<uint64_t> forward, backward;
+  forward.reserve(3 * n);
+  backward.reserve(3 * n);
+  for (size_t t = 0; t < n; ++t)
+  {
+    std::array<uint32_t, 3>& c = oriented[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      c[k] = id[static_cast<size_t>(triangles[3 * t + k])];
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const uint64_t u = c[k], v = c[(k + 1) % 3];
+      if (u != v)
+      {
+        forward.push_back(u << 32 | v);
+        backward.push_back(v << 32 | u);
+      }
+    }
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+  }
+  std::sort(oriented.begin(), oriented.end());
+  if (std::adjacent_find(oriented.begin(), oriented.end()) != oriented.end())
+  {
+    return false;
+  }
+  std::sort(forward.begin(), forward.end());
+  std::sort(backward.begin(), backward.end());
+  return forward == backward;
+}
+
+namespace
+{
+constexpr int TileLines = 8; // lines a side of the tiles the work is split in
+
+/// The indices of `extent` along axis a whose coordinate lies in [lo, hi]: [first, last],
+/// empty when first > last.
+void IndexRange(const SampleGrid& grid,
+  const IndexBox& extent,
+  int a,
+  double lo,
+  double hi,
+  int& first,
+  int& last)
+{
+  const double s = grid.Spacing[a], o = grid.Origin[a];
+  // An estimate, then exact comparisons with the coordinates the samples have.
+  const double from = std::floor((lo - o) / s), to = std::ceil((hi - o) / s);
+  first =
+    static_cast<int>(std::max<double>(extent.Lo[a], std::min<double>(extent.Hi[a] + 1, from)));
+  last = static_cast<int>(std::min<double>(extent.Hi[a], std::max<double>(extent.Lo[a] - 1, to)));
+  while (first > extent.Lo[a] && grid.Coordinate(a, first - 1) >= lo)
+  {
+    --first;
+  }
+  while (first <= extent.Hi[a] && grid.Coordinate(a, first) < lo)
+  {
+    ++first;
+  }
+  while (last < extent.Hi[a] && grid.Coordinate(a, last + 1) <= hi)
+  {
+    ++last;
+  }
+  while (last >= extent.Lo[a] && grid.Coordinate(a, last) > hi)
+  {
+    --last;
+  }
+}
+
+/// Sign of det[u - p', v - p'] in (y, z), p' = (y + e, z + e^2) for an infinitesimal e,
+/// when det[u - p, v - p] is 0: its e term (u_z - v_z), else its e^2 term (v_y - u_y).
+int PerturbedSide(const double u[3], const double v[3])
+{
+  if (u[2] != v[2])
+  {
+    return u[2] > v[2] ? 1 : -1;
+  }
+  return v[1] > u[1] ? 1 : (v[1] < u[1] ? -1 : 0);
+}
+
+struct Footprint
+{
+  int J0, J1, K0, K1; // the lines its projection's box covers
+  int Orientation;    // sign of its projection's area (of the normal's x component)
+};
+
+/// A crossing of one line: samples from First on have it behind them.
+struct Event
+{
+  int Line;  // within the tile
+  int First; // first sample index (extent.Lo[0] ... extent.Hi[0] + 1)
+  int Delta; // its contribution to w
+};
+} // namespace
+
+WindingSignStatistics CrossingSigns(const std::vector<double>& points,
+  const std::vector<int64_t>& triangleIds,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* inside,
+  const ParallelFor& parallelFor,
+  const std::function<const WindingNumber&()>& hierarchy)
+{
+  WindingSignStatistics stats;
+  if (extent.Empty())
+  {
+    return stats;
+  }
+  const int64_t triangles = static_cast<int64_t>(triangleIds.size() / 3);
+  auto corner = [&](int64_t t, int c) { return &points[3 * triangleIds[3 * t + c]]; };
+  const int nx = extent.Size(0), ny = extent.Size(1), nz = extent.Size(2);
+  const int tilesY = (ny + TileLines - 1) / TileLines, tilesZ = (nz + TileLines - 1) / TileLines;
+
+  // Each triangle's orientation in projection and the lines its box covers.
+  std::vector<Footprint> footprints(static_cast<size_t>(triangles));
+  parallelFor(triangles,
+    1024,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t t = begin; t < end; ++t)
+      {
+        const double* a = corner(t, 0);
+        const double* b = corner(t, 1);
+        const double* c = corner(t, 2);
+        Footprint& f = footprints[static_cast<size_t>(t)];
+        f.Orientation = Orient2D(a, b, c, 1, 2);
+        IndexRange(grid,
+          extent,
+          1,
+          std::min({ a[1], b[1], c[1] }),
+          std::max({ a[1], b[1], c[1] }),
+          f.J0,
+          f.J1);
+        IndexRange(grid,
+          extent,
+          2,
+          std::min({ a[2], b[2], c[2] }),
+          std::max({ a[2], b[2], c[2] }),
+          f.K0,
+          f.K1);
+      }
+    });
+
+  // The triangles of each tile of lines (compressed rows).
+  const int64_t tiles = int64_t(tilesY) * tilesZ;
+  std::vector<int64_t> start(static_cast<size_t>(tiles + 1), 0);
+  auto forTiles = [&](const Footprint& f, auto&& visit)
+  {
+    if (f.J0 > f.J1 || f.K0 > f.K1)
+    {
+      return;
+    }
+    for (int tz = (f.K0 - extent.Lo[2]) / TileLines; tz <= (f.K1 - extent.Lo[2]) / TileLines; ++tz)
+    {
+      for (int ty = (f.J0 - extent.Lo[1]) / TileLines; ty <= (f.J1 - extent.Lo[1]) / TileLines;
+           ++ty)
+      {
+        visit(int64_t(tz) * tilesY + ty);
+      }
+    }
+  };
+  for (const Footprint& f : footprints)
+  {
+    forTiles(f, [&](int64_t tile) { ++start[static_cast<size_t>(tile + 1)]; });
+  }
+  for (int64_t tile = 0; tile < tiles; ++tile)
+  {
+    start[static_cast<size_t>(tile + 1)] += start[static_cast<size_t>(tile)];
+  }
+  std::vector<int64_t> members(static_cast<size_t>(start.back()));
+  {
+    std::vector<int64_t> next(start.begin(), start.end() - 1);
+    for (int64_t t = 0; t < triangles; ++t)
+    {
+      forTiles(footprints[static_cast<size_t>(t)],
+        [&](int64_t tile) { members[static_cast<size_t>(next[static_cast<size_t>(tile)]++)] = t; });
+    }
+  }
+
+  const int64_t strideY = nx, strideZ = int64_t(nx) * ny;
+  std::atomic<int64_t> lineSamples{ 0 };
+  std::vector<std::array<int, 3>> surface; // samples on the surface (i, j, k)
+  std::mutex lock;
+  parallelFor(tiles,
+    1,
+    [&](int64_t begin, int64_t end)
+    {
+      std::vector<Event> events;
+      std::vector<std::array<int, 2>> onSurface; // (line within the tile, sample)
+      std::vector<int> w(static_cast<size_t>(nx) + 1);
+      std::vector<std::array<int, 3>> found;
+      int64_t decided = 0;
+      for (int64_t tile = begin; tile < end; ++tile)
+      {
+        const int j0 = extent.Lo[1] + static_cast<int>(tile % tilesY) * TileLines;
+        const int k0 = extent.Lo[2] + static_cast<int>(tile / tilesY) * TileLines;
+        const int j1 = std::min(extent.Hi[1], j0 + TileLines - 1);
+        const int k1 = std::min(extent.Hi[2], k0 + TileLines - 1);
+        events.clear();
+        onSurface.clear();
+        for (int64_t m = start[static_cast<size_t>(tile)]; m < start[static_cast<size_t>(tile + 1)];
+             ++m)
+        {
+          const int64_t t = members[static_cast<size_t>(m)];
+          const Footprint& f = footprints[static_cast<size_t>(t)];
+          const double* a = corner(t, 0);
+          const double* b = corner(t, 1);
+          const double* c = corner(t, 2);
+          for (int k = std::max(k0, f.K0); k <= std::min(k1, f.K1); ++k)
+          {
+            for (int j = std::max(j0, f.J0); j <= std::min(j1, f.J1); ++j)
+            {
+              double q[3] = { 0, grid.Coordinate(1, j), grid.Coordinate(2, k) };
+              const int line = (k - k0) * TileLines + (j - j0);
+              const int side[3] = {
+                Orient2D(q, a, b, 1, 2), Orient2D(q, b, c, 1, 2), Orient2D(q, c, a, 1, 2)
+              };
+              if (f.Orientation == 0)
+              {
+                // Seen edge-on from x: the line crosses it nowhere, but where it runs
+                // through its projection (a segment: collinear with it, within its box)
+                // its samples may lie on it, on the surface: they are decided alone.
+                if (side[0] == 0 && side[1] == 0 && side[2] == 0)
+                {
+                  int i0 = 0, i1 = -1;
+                  IndexRange(grid,
+                    extent,
+                    0,
+                    std::min({ a[0], b[0], c[0] }),
+                    std::max({ a[0], b[0], c[0] }),
+                    i0,
+                    i1);
+                  for (int i = i0; i <= i1; ++i)
+                  {
+                    onSurface.push_back({ { line, i } });
+                  }
+                }
+                continue;
+              }
+              // The line's point in the closed projection, and the moved point p' inside.
+              bool closed = true, moved = true;
+              const double* from[3] = { a, b, c };
+              const double* to[3] = { b, c, a };
+              for (int e = 0; e < 3; ++e)
+              {
+                closed = closed && (side[e] == f.Orientation || side[e] == 0);
+                moved = moved &&
+                  (side[e] != 0 ? side[e] : PerturbedSide(from[e], to[e])) == f.Orientation;
+              }
+              if (!closed)
+              {
+                continue;
+              }
+              // The first sample beyond the plane (o * Orient3D > 0: x above the
+              // crossing's), from an estimate of the crossing, then by halving.
+              auto beyond = [&](int i)
+              {
+                q[0] = grid.Coordinate(0, i);
+                return f.Orientation * Orient3D(a, b, c, q);
+              };
+              const double n[3] = { (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+                (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+                (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) };
+              const double crossing = a[0] - (n[1] * (q[1] - a[1]) + n[2] * (q[2] - a[2])) / n[0];
+              const double guess = std::ceil((crossing - grid.Origin[0]) / grid.Spacing[0]);
+              int lo = extent.Lo[0], hi = extent.Hi[0] + 1; // the answer lies in [lo, hi]
+              if (std::isfinite(guess) && guess > lo && guess <= hi)
+              {
+                const int g = static_cast<int>(guess);
+                if (beyond(g - 1) <= 0)
+                {
+                  lo = g;
+                  hi = g <= extent.Hi[0] && beyond(g) > 0 ? g : hi;
+                }
+                else
+                {
+                  hi = g - 1;
+                }
+              }
+              while (lo < hi)
+              {
+                const int middle = lo + (hi - lo) / 2;
+                if (beyond(middle) > 0)
+                {
+                  hi = middle;
+                }
+                else
+                {
+                  lo = middle + 1;
+                }
+              }
+              // w counts crossings entering the side the normal points away from. A line
+              // through the projection's boundary that the moved line misses only meets
+              // the triangle: a sample there is on the surface.
+              if (moved)
+              {
+                events.push_back({ line, lo, -f.Orientation });
+              }
+              if (lo > extent.Lo[0] && beyond(lo - 1) == 0)
+              {
+                onSurface.push_back({ { line, lo - 1 } });
+              }
+            }
+          }
+        }
+        // Each line's w, sample by sample: the crossings' contributions summed.
+        std::sort(events.begin(),
+          events.end(),
+          [](const Event& x, const Event& y) { return x.Line < y.Line; });
+        size_t e = 0;
+        for (int k = k0; k <= k1; ++k)
+        {
+          for (int j = j0; j <= j1; ++j)
+          {
+            const int line = (k - k0) * TileLines + (j - j0);
+            std::fill(w.begin(), w.end(), 0);
+            for (; e < events.size() && events[e].Line == line; ++e)
+            {
+              w[static_cast<size_t>(events[e].First - extent.Lo[0])] += events[e].Delta;
+            }
+            uint8_t* row = inside + (j - extent.Lo[1]) * strideY + (k - extent.Lo[2]) * strideZ;
+            int sum = 0;
+            for (int i = 0; i < nx; ++i)
+            {
+              sum += w[static_cast<size_t>(i)];
+              row[i] = sum != 0 ? 1 : 0;
+            }
+            decided += nx;
+          }
+        }
+        // Samples on the surface, once each (a sample on an edge is on two planes).
+        std::sort(onSurface.begin(), onSurface.end());
+        onSurface.erase(std::unique(onSurface.begin(), onSurface.end()), onSurface.end());
+        for (const auto& s : onSurface)
+        {
+          found.push_back({ { s[1], j0 + s[0] % TileLines, k0 + s[0] / TileLines } });
+        }
+        decided -= static_cast<int64_t>(onSurface.size());
+      }
+      lineSamples += decided;
+      std::lock_guard<std::mutex> hold(lock);
+      surface.insert(surface.end(), found.begin(), found.end());
+    });
+  stats.LineSamples = lineSamples.load();
+  // The samples on the surface, as WindingSigns decides them: by the winding number's
+  // hierarchy, built only when there is one.
+  if (!surface.empty())
+  {
+    const WindingNumber& winding = hierarchy();
+    std::atomic<int64_t> exact{ 0 };
+    parallelFor(static_cast<int64_t>(surface.size()),
+      64,
+      [&](int64_t begin, int64_t end)
+      {
+        int64_t exactSums = 0;
+        for (int64_t s = begin; s < end; ++s)
+        {
+          const auto& [i, j, k] = surface[static_cast<size_t>(s)];
+          const double q[3] = {
+            grid.Coordinate(0, i), grid.Coordinate(1, j), grid.Coordinate(2, k)
+          };
+          bool wasExact = false;
+          inside[(i - extent.Lo[0]) + (j - extent.Lo[1]) * strideY + (k - extent.Lo[2]) * strideZ] =
+            winding.Inside(q, nullptr, &wasExact) ? 1 : 0;
+          exactSums += wasExact;
+        }
+        exact += exactSums;
+      });
+    stats.Evaluated = static_cast<int64_t>(surface.size());
+    stats.Exact = exact.load();
+  }
+  return stats;
+}
+
+} // namespace vtkdf

@@ -1,0 +1,51 @@
+// WindingCrossings: inside or outside at every sample of a grid for a closed mesh, from
+// the surface's signed crossings along the grid's x lines, without VTK types.
+//
+// When the triangles make a closed chain (points merged by position, every edge used as
+// often in one direction as in the other), w is an integer off the surface: the signed
+// number of times the surface crosses a ray from the sample to x = -infinity. Each
+// triangle is projected along x onto the (y, z) plane and counted on the lines whose
+// point lies inside its projection, by exact orientation tests
+// (Predicates/ExactPredicates.h) with the point moved symbolically to (y + e, z + e^2)
+// (the simulation of simplicity of Edelsbrunner and Mücke, ACM Transactions on Graphics
+// 9(1), 1990): a line through a projected edge or corner takes each crossing of the
+// moved line exactly once, and a sample off the surface has the moved sample's w. Along
+// a line, the crossing lies between the two samples on either side of the triangle's
+// plane (Orient3D); a sample on that plane lies on the surface and is decided by
+// WindingNumber::Inside, as WindingSigns decides it. Every other sample is |w| > 1/2
+// exactly, without evaluating w: the work is one pass over the triangles' footprints on
+// the lines.
+#ifndef vtkdf_WindingCrossings_h
+#define vtkdf_WindingCrossings_h
+
+#include "Common/Parallel.h"
+#include "Common/SampleGrid.h"
+#include "Winding/WindingNumber.h"
+#include "Winding/WindingSigns.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace vtkdf
+{
+/// Whether triangles (3 ids each into xyz `points`) make a closed chain: with points at
+/// equal coordinates merged, every edge between distinct points used as often from u to
+/// v as from v to u, and no triangle repeated with the same orientation (the winding
+/// number counts those once).
+bool IsClosedChain(const std::vector<double>& points, const std::vector<int64_t>& triangles);
+
+/// WindingSigns for a closed chain (IsClosedChain): inside[v] (1 or 0) for every sample
+/// of `extent` (x fastest). `hierarchy` gives the triangles' WindingNumber for the
+/// samples on the surface, called (once) only when there is one. Statistics: LineSamples
+/// decided by the crossings, Evaluated (and Exact) on the surface.
+WindingSignStatistics CrossingSigns(const std::vector<double>& points,
+  const std::vector<int64_t>& triangles,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* inside,
+  const ParallelFor& parallelFor,
+  const std::function<const WindingNumber&()>& hierarchy);
+} // namespace vtkdf
+
+#endif
