@@ -41,8 +41,8 @@ bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error);
 /// context where none is hardware; a software rasterizer (llvmpipe, OSMesa) is not
 /// taken. The environment variable VTKDF_AUTO_GPU_SIGN=1 takes any context at any size
 /// (how the tests run this path), VTKDF_AUTO_GPU_SIGN=0 none. `cpuIsFaster`, asked only
-/// where a context would be taken, may say the CPU has the faster route (a closed mesh's
-/// crossings, Winding/WindingCrossings.h): then none either.
+/// where a context would be taken, may say the CPU has the faster route (the crossings
+/// along the grid lines, Winding/WindingCrossings.h): then none either.
 HeadlessGL* AutoSignContext(int64_t samples,
   const std::function<bool()>& cpuIsFaster = std::function<bool()>());
 

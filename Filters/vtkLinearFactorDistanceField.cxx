@@ -69,10 +69,11 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   this->LastSignBackend = "none";
   if (winding && !gl && this->Backend == BACKEND_AUTO)
   {
-    // Signs alone of a closed mesh: its crossings on the CPU cost less than a GPU pass.
+    // Signs alone where the crossings decide them: on the CPU, in less than a GPU pass.
     request.SignContext = vtkdf::AutoSignContext(request.Extent.Count(),
-      [&]
-      { return !this->ComputeWindingNumber && vtkdf::IsClosedChain(mesh.Points, mesh.Triangles); });
+      [&] {
+        return !this->ComputeWindingNumber && vtkdf::CrossingsDecide(mesh.Points, mesh.Triangles);
+      });
   }
   request.Domains = static_cast<vtkdf::Culling>(this->Culling);
   request.Sign = static_cast<vtkdf::SignMode>(this->SignMode);

@@ -119,8 +119,8 @@ public:
   /// (the hierarchy's error bound reached |w| = 1/2).
   vtkGetMacro(LastWindingExactSamples, vtkTypeInt64);
   /// Where the last run computed the winding-number sign: "cpu", "gpu" (Backend GPU, or
-  /// Auto beside a hardware GPU, vtkDistanceFieldExecution.h, but for a closed mesh
-  /// without ComputeWindingNumber: its crossings on the CPU cost less) or "none".
+  /// Auto beside a hardware GPU, vtkDistanceFieldExecution.h, but for signs alone where
+  /// the crossings decide them: on the CPU they cost less) or "none".
   const char* GetLastSignBackend() const { return this->LastSignBackend.c_str(); }
 
 protected:

@@ -251,7 +251,7 @@ bool vtkMedialAxisFilter::ComputePart(vtkPolyData* mesh,
   vtkdf::HeadlessGL* signContext =
     mesh && !part.GL && this->SignMode == WINDING_NUMBER && this->Backend == BACKEND_AUTO
     ? vtkdf::AutoSignContext(
-        needed.Count(), [&] { return vtkdf::IsClosedChain(input.Points, input.Triangles); })
+        needed.Count(), [&] { return vtkdf::CrossingsDecide(input.Points, input.Triangles); })
     : nullptr;
   const bool ok = mesh ? vtkdf::ComputeMedialAxis(std::move(input),
                            this->SignMode == WINDING_NUMBER ? vtkdf::SignMode::WindingNumber

@@ -362,7 +362,7 @@ void AddBox(Mesh& m, const double lo[3], const double hi[3], bool flipped = fals
 /// samples on faces, edges and corners, triangles seen edge-on, overlaps, folds.
 void CheckCrossings()
 {
-  std::vector<std::pair<const char*, Mesh>> meshes(5);
+  std::vector<std::pair<const char*, Mesh>> meshes(8);
   const double lo[3] = { 0, 0, 0 }, hi[3] = { 2, 1.5, 2.5 };
   meshes[0].first = "box on the lattice";
   AddBox(meshes[0].second, lo, hi);
@@ -387,6 +387,21 @@ void CheckCrossings()
   meshes[4].second.Triangles = {
     0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5
   };
+  // Open meshes, closed by cones over their boundaries: a box without a face's triangle
+  // and without a whole face, and the hollow box with a hole in each shell.
+  meshes[5].first = "box without a triangle (open)";
+  meshes[5].second = meshes[0].second;
+  meshes[5].second.Triangles.resize(meshes[5].second.Triangles.size() - 3);
+  meshes[6].first = "box without a face (open)";
+  meshes[6].second = meshes[0].second;
+  meshes[6].second.Triangles.erase(
+    meshes[6].second.Triangles.begin(), meshes[6].second.Triangles.begin() + 6);
+  meshes[7].first = "hollow box with holes (open)";
+  meshes[7].second = meshes[1].second;
+  meshes[7].second.Triangles.erase(
+    meshes[7].second.Triangles.begin() + 36, meshes[7].second.Triangles.begin() + 39);
+  meshes[7].second.Triangles.erase(
+    meshes[7].second.Triangles.begin(), meshes[7].second.Triangles.begin() + 3);
   SampleGrid grid;
   grid.Origin = { -1, -1, -1 };
   grid.Spacing = { 0.5, 0.25, 0.5 };
@@ -397,7 +412,8 @@ void CheckCrossings()
   {
     WindingNumber w;
     w.Build(mesh.Points, mesh.Triangles);
-    Check(IsClosedChain(mesh.Points, mesh.Triangles), "%s is a closed chain", name);
+    const bool open = std::string(name).find("open") != std::string::npos;
+    Check(IsClosedChain(mesh.Points, mesh.Triangles) != open, "%s: closed or not", name);
     std::vector<uint8_t> lines(n), alone(n);
     WindingSignOptions single;
     single.Blocks = false;
@@ -410,14 +426,16 @@ void CheckCrossings()
       differ += lines[v] != alone[v];
       inside += lines[v];
     }
-    std::printf("%s: %lld samples by lines, %lld on the surface alone, %lld inside, %lld "
+    std::printf("%s: %lld samples by lines, %lld by blocks, %lld alone, %lld inside, %lld "
                 "differ from every sample alone\n",
       name,
       static_cast<long long>(a.LineSamples),
+      static_cast<long long>(a.BlockSamples),
       static_cast<long long>(a.Evaluated),
       static_cast<long long>(inside),
       static_cast<long long>(differ));
-    Check(differ == 0 && a.LineSamples + a.Evaluated == n && a.Evaluated > 0 && inside > 0,
+    Check(differ == 0 && a.LineSamples + a.BlockSamples + a.Evaluated == n && a.Evaluated > 0 &&
+        inside > 0 && (a.BlockSamples > 0) == open,
       "%s: the crossings decide as every sample alone (%.17g differ)",
       name,
       static_cast<double>(differ));
@@ -688,9 +706,10 @@ int main(int argc, char* argv[])
           c.BlockSamples + c.LineSamples + c.Evaluated == n,
         "samples missed (%.17g)",
         static_cast<double>(double(a.BlockSamples + a.LineSamples + a.Evaluated)));
-      // The closed sphere takes the crossings' route, the open one the blocks'.
-      Check((a.LineSamples > 0) == (mesh == &sphere) && (a.BlockSamples > 0) == (mesh != &sphere),
-        "the closed mesh's route (%.17g samples by lines)",
+      // The closed sphere takes the crossings' route alone; the open one is closed by a
+      // cone over its hole, and blocks decide w = N - w_cone.
+      Check(mesh == &sphere ? a.BlockSamples == 0 && a.LineSamples == n : a.BlockSamples > 0,
+        "the route (%.17g samples by lines)",
         static_cast<double>(a.LineSamples));
     }
   }

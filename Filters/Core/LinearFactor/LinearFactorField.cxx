@@ -79,7 +79,7 @@ bool WindingSign(const MeshInput& mesh,
   SignMode sign,
   const LocalSites& local,
   HeadlessGL* gl,
-  bool closedOnCPU,
+  bool crossingsOnCPU,
   const LinearFactorArrays& arrays,
   const Execution& execution,
   LinearFactorReport& report,
@@ -92,7 +92,7 @@ bool WindingSign(const MeshInput& mesh,
   // Unsigned still, in world units: blocks near the surface split without trying.
   options.Distance = arrays.Distance;
   options.DistanceScale = 1 / local.Frame.Scale;
-  options.ClosedOnCPU = closedOnCPU;
+  options.CrossingsOnCPU = crossingsOnCPU;
   WindingSignStatistics stats;
   if (!ComputeWindingSigns(mesh.Points,
         mesh.Triangles,

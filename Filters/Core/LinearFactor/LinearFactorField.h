@@ -54,8 +54,8 @@ struct LinearFactorRequest
   double MaximumDistance = 0;
   /// The field on the CPU (no `gl`) with the winding sign on this context: a hardware
   /// GPU's winding pass is faster than the CPU's, its scan is not (Backend Auto). The
-  /// signs are the same (the same rigorous rule); w itself within float rounding. A
-  /// closed mesh's signs stay on the CPU (its crossings along the lines cost less).
+  /// signs are the same (the same rigorous rule); w itself within float rounding. Where
+  /// the crossings decide (Winding/WindingCrossings.h), the signs stay on the CPU.
   HeadlessGL* SignContext = nullptr;
 };
 

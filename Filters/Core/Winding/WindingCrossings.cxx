@@ -7,18 +7,22 @@
 #include <atomic>
 #include <cmath>
 #include <mutex>
+#include <numeric>
 
 namespace vtkdf
 {
 
-bool IsClosedChain(const std::vector<double>& points, const std::vector<int64_t>& triangles)
+namespace
+{
+/// Each point's id with points at equal coordinates merged: the least id among them in
+/// sorted order. Empty when there are 2^32 points or more.
+std::vector<uint32_t> MergedIds(const std::vector<double>& points)
 {
   const size_t count = points.size() / 3;
   if (count >= (size_t(1) << 32))
   {
-    return false;
+    return {};
   }
-  // Points at equal coordinates get the id of the first of them in sorted order.
   std::vector<uint32_t> order(count);
   for (size_t i = 0; i < count; ++i)
   {
@@ -40,6 +44,81 @@ bool IsClosedChain(const std::vector<double>& points, const std::vector<int64_t>
     const bool same = k > 0 && here[0] == at(order[k - 1])[0] && here[1] == at(order[k - 1])[1] &&
       here[2] == at(order[k - 1])[2];
     id[order[k]] = same ? id[order[k - 1]] : order[k];
+  }
+  return id;
+}
+} // namespace
+
+namespace
+{
+/// The edges that triangles use more often in one direction than in the other (points
+/// merged: `id`; `corner(t, c)` the point of corner c of triangle t), as (from, to) in
+/// the direction of the surplus; false when a surplus exceeds one.
+template<typename Corner>
+bool BoundaryEdges(const std::vector<uint32_t>& id,
+  Corner corner,
+  size_t triangles,
+  std::vector<std::array<uint32_t, 2>>& boundary)
+{
+  // Each edge between distinct points once, from its lesser id, with +1 or -1 a use.
+  std::vector<std::pair<uint64_t, int>> edges;
+  edges.reserve(3 * triangles);
+  for (size_t t = 0; t < triangles; ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const uint64_t u = id[corner(t, c)], v = id[corner(t, (c + 1) % 3)];
+      if (u != v)
+      {
+        edges.emplace_back(u < v ? u << 32 | v : v << 32 | u, u < v ? 1 : -1);
+      }
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  boundary.clear();
+  for (size_t e = 0; e < edges.size();)
+  {
+    int net = 0;
+    size_t f = e;
+    for (; f < edges.size() && edges[f].first == edges[e].first; ++f)
+    {
+      net += edges[f].second;
+    }
+    const uint32_t lo = static_cast<uint32_t>(edges[e].first >> 32);
+    const uint32_t hi = static_cast<uint32_t>(edges[e].first & 0xffffffffu);
+    if (net > 1 || net < -1)
+    {
+      return false;
+    }
+    if (net != 0)
+    {
+      boundary.push_back(
+        net > 0 ? std::array<uint32_t, 2>{ { lo, hi } } : std::array<uint32_t, 2>{ { hi, lo } });
+    }
+    e = f;
+  }
+  return true;
+}
+} // namespace
+
+bool CrossingsDecide(const std::vector<double>& points, const std::vector<int64_t>& triangles)
+{
+  const std::vector<uint32_t> id = MergedIds(points);
+  std::vector<std::array<uint32_t, 2>> boundary;
+  return id.size() == points.size() / 3 &&
+    BoundaryEdges(
+      id,
+      [&](size_t t, int c) { return static_cast<size_t>(triangles[3 * t + c]); },
+      triangles.size() / 3,
+      boundary);
+}
+
+bool IsClosedChain(const std::vector<double>& points, const std::vector<int64_t>& triangles)
+{
+  const std::vector<uint32_t> id = MergedIds(points);
+  if (id.size() != points.size() / 3)
+  {
+    return false;
   }
   // No triangle repeated with the same orientation (each as its cyclic order from its
   // least corner), and balanced edges: the sorted edges equal the sorted reversed ones.
@@ -140,18 +219,25 @@ struct Event
 };
 } // namespace
 
-WindingSignStatistics CrossingSigns(const std::vector<double>& points,
+namespace
+{
+/// The crossings of every line of `extent`: for each sample, inside[v] = (N != 0), or
+/// counts[v] = N (CountUnknown where |N| >= 127); the samples on the surface are left
+/// (0, or CountUnknown) and returned as (i, j, k).
+std::vector<std::array<int, 3>> CrossingPass(const std::vector<double>& points,
   const std::vector<int64_t>& triangleIds,
   const SampleGrid& grid,
   const IndexBox& extent,
   uint8_t* inside,
+  int8_t* counts,
   const ParallelFor& parallelFor,
-  const std::function<const WindingNumber&()>& hierarchy)
+  int64_t& decidedSamples)
 {
-  WindingSignStatistics stats;
+  std::vector<std::array<int, 3>> surface; // samples on the surface (i, j, k)
+  decidedSamples = 0;
   if (extent.Empty())
   {
-    return stats;
+    return surface;
   }
   const int64_t triangles = static_cast<int64_t>(triangleIds.size() / 3);
   auto corner = [&](int64_t t, int c) { return &points[3 * triangleIds[3 * t + c]]; };
@@ -226,7 +312,6 @@ WindingSignStatistics CrossingSigns(const std::vector<double>& points,
 
   const int64_t strideY = nx, strideZ = int64_t(nx) * ny;
   std::atomic<int64_t> lineSamples{ 0 };
-  std::vector<std::array<int, 3>> surface; // samples on the surface (i, j, k)
   std::mutex lock;
   parallelFor(tiles,
     1,
@@ -365,12 +450,25 @@ WindingSignStatistics CrossingSigns(const std::vector<double>& points,
             {
               w[static_cast<size_t>(events[e].First - extent.Lo[0])] += events[e].Delta;
             }
-            uint8_t* row = inside + (j - extent.Lo[1]) * strideY + (k - extent.Lo[2]) * strideZ;
+            const int64_t rowStart = (j - extent.Lo[1]) * strideY + (k - extent.Lo[2]) * strideZ;
             int sum = 0;
-            for (int i = 0; i < nx; ++i)
+            if (counts)
             {
-              sum += w[static_cast<size_t>(i)];
-              row[i] = sum != 0 ? 1 : 0;
+              int8_t* row = counts + rowStart;
+              for (int i = 0; i < nx; ++i)
+              {
+                sum += w[static_cast<size_t>(i)];
+                row[i] = sum > -127 && sum < 127 ? static_cast<int8_t>(sum) : CountUnknown;
+              }
+            }
+            else
+            {
+              uint8_t* row = inside + rowStart;
+              for (int i = 0; i < nx; ++i)
+              {
+                sum += w[static_cast<size_t>(i)];
+                row[i] = sum != 0 ? 1 : 0;
+              }
             }
             decided += nx;
           }
@@ -388,7 +486,151 @@ WindingSignStatistics CrossingSigns(const std::vector<double>& points,
       std::lock_guard<std::mutex> hold(lock);
       surface.insert(surface.end(), found.begin(), found.end());
     });
-  stats.LineSamples = lineSamples.load();
+  decidedSamples = lineSamples.load();
+  for (const auto& [i, j, k] : surface)
+  {
+    if (counts)
+    {
+      counts[(i - extent.Lo[0]) + (j - extent.Lo[1]) * strideY + (k - extent.Lo[2]) * strideZ] =
+        CountUnknown;
+    }
+  }
+  return surface;
+}
+} // namespace
+
+int64_t CrossingCounts(const std::vector<double>& points,
+  const std::vector<int64_t>& triangles,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  int8_t* counts,
+  const ParallelFor& parallelFor)
+{
+  int64_t decided = 0;
+  const std::vector<std::array<int, 3>> surface =
+    CrossingPass(points, triangles, grid, extent, nullptr, counts, parallelFor, decided);
+  return decided;
+}
+
+bool CloseWithCones(const std::vector<double>& corners, ConeClosure& closure)
+{
+  const std::vector<uint32_t> id = MergedIds(corners);
+  const size_t count = corners.size() / 3;
+  if (id.size() != count)
+  {
+    return false;
+  }
+  std::vector<std::array<uint32_t, 2>> boundary; // from, to
+  if (!BoundaryEdges(
+        id, [](size_t t, int c) { return 3 * t + c; }, count / 3, boundary))
+  {
+    return false;
+  }
+  // The boundary's connected parts (union-find over its points), each a cycle.
+  std::vector<uint32_t> parent(count);
+  for (size_t i = 0; i < count; ++i)
+  {
+    parent[i] = static_cast<uint32_t>(i);
+  }
+  auto root = [&](uint32_t x)
+  {
+    while (parent[x] != x)
+    {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  };
+  for (const auto& e : boundary)
+  {
+    parent[root(e[0])] = root(e[1]);
+  }
+  // Each part's apex: the mean of its points (each merged point once).
+  std::vector<uint32_t> points;
+  for (const auto& e : boundary)
+  {
+    points.push_back(e[0]);
+    points.push_back(e[1]);
+  }
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  std::vector<int64_t> apex(count, -1);
+  std::vector<std::array<double, 4>> sums; // x, y, z, number of points
+  for (const uint32_t p : points)
+  {
+    const uint32_t r = root(p);
+    if (apex[r] < 0)
+    {
+      apex[r] = static_cast<int64_t>(sums.size());
+      sums.push_back({ { 0, 0, 0, 0 } });
+    }
+    std::array<double, 4>& sum = sums[static_cast<size_t>(apex[r])];
+    for (int k = 0; k < 3; ++k)
+    {
+      sum[k] += corners[3 * size_t(p) + k];
+    }
+    sum[3] += 1;
+  }
+  // Any apex closes the chain; one off the part's mean plane along its area vector (by
+  // half its radius) keeps the cone clear of a flat sheet whose rim the part is, where a
+  // flat cap would lie on the sheet and leave every sample near both.
+  std::vector<std::array<double, 3>> centre(sums.size()), area(sums.size());
+  std::vector<double> radius(sums.size(), 0);
+  for (size_t a = 0; a < sums.size(); ++a)
+  {
+    centre[a] = { { sums[a][0] / sums[a][3], sums[a][1] / sums[a][3], sums[a][2] / sums[a][3] } };
+    area[a] = { { 0, 0, 0 } };
+  }
+  for (const auto& e : boundary)
+  {
+    const size_t a = static_cast<size_t>(apex[root(e[0])]);
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      u[k] = corners[3 * size_t(e[0]) + k] - centre[a][k];
+      v[k] = corners[3 * size_t(e[1]) + k] - centre[a][k];
+    }
+    area[a][0] += 0.5 * (u[1] * v[2] - u[2] * v[1]);
+    area[a][1] += 0.5 * (u[2] * v[0] - u[0] * v[2]);
+    area[a][2] += 0.5 * (u[0] * v[1] - u[1] * v[0]);
+    radius[a] = std::max(radius[a], std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+  }
+  closure.Points = corners;
+  for (size_t a = 0; a < sums.size(); ++a)
+  {
+    const double length =
+      std::sqrt(area[a][0] * area[a][0] + area[a][1] * area[a][1] + area[a][2] * area[a][2]);
+    const double lift = length > 0 ? 0.5 * radius[a] / length : 0;
+    closure.Points.insert(closure.Points.end(),
+      { centre[a][0] + lift * area[a][0],
+        centre[a][1] + lift * area[a][1],
+        centre[a][2] + lift * area[a][2] });
+  }
+  closure.Triangles.resize(count);
+  std::iota(closure.Triangles.begin(), closure.Triangles.end(), int64_t(0));
+  closure.Cone.clear();
+  for (const auto& e : boundary)
+  {
+    // (P, to, from): its side from -> to runs against the boundary edge, which it cancels.
+    const int64_t p = static_cast<int64_t>(count) + apex[root(e[0])];
+    closure.Cone.insert(closure.Cone.end(), { p, int64_t(e[1]), int64_t(e[0]) });
+  }
+  closure.Triangles.insert(closure.Triangles.end(), closure.Cone.begin(), closure.Cone.end());
+  return true;
+}
+
+WindingSignStatistics CrossingSigns(const std::vector<double>& points,
+  const std::vector<int64_t>& triangleIds,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* inside,
+  const ParallelFor& parallelFor,
+  const std::function<const WindingNumber&()>& hierarchy)
+{
+  WindingSignStatistics stats;
+  const std::vector<std::array<int, 3>> surface = CrossingPass(
+    points, triangleIds, grid, extent, inside, nullptr, parallelFor, stats.LineSamples);
+  const int64_t strideY = extent.Size(0), strideZ = int64_t(extent.Size(0)) * extent.Size(1);
   // The samples on the surface, as WindingSigns decides them: by the winding number's
   // hierarchy, built only when there is one.
   if (!surface.empty())

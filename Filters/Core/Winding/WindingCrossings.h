@@ -15,6 +15,11 @@
 // WindingNumber::Inside, as WindingSigns decides it. Every other sample is |w| > 1/2
 // exactly, without evaluating w: the work is one pass over the triangles' footprints on
 // the lines.
+//
+// An open mesh S is closed by cones C over its boundary (one per connected part of the
+// boundary edges, from the mean of its corners): S + C is a closed chain, so
+// w_S = N - w_C with N its crossings' count. w_C is smooth away from the cones, so that
+// WindingSigns' blocks decide it up to S itself (WindingSigns.cxx).
 #ifndef vtkdf_WindingCrossings_h
 #define vtkdf_WindingCrossings_h
 
@@ -23,6 +28,7 @@
 #include "Winding/WindingNumber.h"
 #include "Winding/WindingSigns.h"
 
+#include <climits>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -34,6 +40,42 @@ namespace vtkdf
 /// v as from v to u, and no triangle repeated with the same orientation (the winding
 /// number counts those once).
 bool IsClosedChain(const std::vector<double>& points, const std::vector<int64_t>& triangles);
+
+/// Whether the crossings' routes decide these triangles' signs: closed, or with each
+/// boundary edge (points merged by coordinates) used once more in one direction than in
+/// the other, so that CloseWithCones closes them (triangles repeated with the same
+/// orientation may make it say no: it errs towards no).
+bool CrossingsDecide(const std::vector<double>& points, const std::vector<int64_t>& triangles);
+
+/// CrossingCounts' mark of a sample whose count is not known: on the surface, or
+/// |N| >= 127.
+constexpr int8_t CountUnknown = INT8_MIN;
+
+/// An open mesh closed by cones: Points (its corners, then the apexes), Triangles (its
+/// own, then the cones'), Cone (the cones' alone), ids into Points.
+struct ConeClosure
+{
+  std::vector<double> Points;
+  std::vector<int64_t> Triangles, Cone;
+};
+
+/// Closes the triangles of `corners` (9 coordinates each, none repeated with the same
+/// orientation: WindingNumber::TriangleCorners) by a cone over each connected part of
+/// their boundary (the edges, points merged by coordinates, used more often in one
+/// direction than in the other), from the mean of the part's points. False when an edge
+/// is used twice more in one direction (a cone would repeat a triangle) or the points
+/// number 2^32 or more.
+bool CloseWithCones(const std::vector<double>& corners, ConeClosure& closure);
+
+/// N at every sample of `extent` (x fastest): the signed count of the crossings of the
+/// closed chain `triangles` on the ray to x = -infinity, CountUnknown on the surface.
+/// Returns the samples whose count is known.
+int64_t CrossingCounts(const std::vector<double>& points,
+  const std::vector<int64_t>& triangles,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  int8_t* counts,
+  const ParallelFor& parallelFor);
 
 /// WindingSigns for a closed chain (IsClosedChain): inside[v] (1 or 0) for every sample
 /// of `extent` (x fastest). `hierarchy` gives the triangles' WindingNumber for the

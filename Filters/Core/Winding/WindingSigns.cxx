@@ -29,6 +29,12 @@ struct Decider
   double DistanceScale;
   int64_t Stride[3];
   WindingSignStatistics Stats;
+  // An open mesh closed by cones (WindingCrossings.h): Winding is then the cones', w at a
+  // sample is Offset (the closed chain's crossings' count) minus theirs, and a sample
+  // that this does not decide (or whose count is CountUnknown) goes to Surface, the
+  // mesh's own hierarchy.
+  const int8_t* Offset = nullptr;
+  const WindingNumber* Surface = nullptr;
 
   int64_t Index(int i, int j, int k) const
   {
@@ -42,6 +48,24 @@ struct Decider
     double w = 0;
     bool exact = false;
     const int64_t at = this->Index(i, j, k);
+    if (this->Offset)
+    {
+      if (this->Offset[at] != CountUnknown)
+      {
+        const WindingValue cone = this->Winding.Evaluate(q);
+        const double value = this->Offset[at] - cone.Value;
+        if (std::fabs(std::fabs(value) - 0.5) > cone.Bound + RoundingSlack)
+        {
+          this->Inside[at] = std::fabs(value) > 0.5 ? 1 : 0;
+          ++this->Stats.LineSamples;
+          return;
+        }
+      }
+      this->Inside[at] = this->Surface->Inside(q, nullptr, &exact) ? 1 : 0;
+      ++this->Stats.Evaluated;
+      this->Stats.Exact += exact;
+      return;
+    }
     // Without values, Inside refines only as far as the sign needs.
     this->Inside[at] = this->Winding.Inside(q, this->Value ? &w : nullptr, &exact) ? 1 : 0;
     if (this->Value)
@@ -91,13 +115,16 @@ struct Decider
               this->Grid.Coordinate(1, j) - c[1],
               this->Grid.Coordinate(2, k) - c[2] };
             const double r2 = y[0] * y[0] + y[1] * y[1] + y[2] * y[2];
-            const double predicted =
+            const int64_t at = this->Index(i, j, k);
+            const double first =
               w.Value + w.Gradient[0] * y[0] + w.Gradient[1] * y[1] + w.Gradient[2] * y[2];
+            const double predicted = this->Offset ? this->Offset[at] - first : first;
             const double uncertainty =
               w.Bound + std::sqrt(r2) * w.GradientBound + 0.5 * r2 * hessian + RoundingSlack;
             const bool in = std::fabs(predicted) > 0.5;
-            decided = std::fabs(std::fabs(predicted) - 0.5) > uncertainty;
-            this->Inside[this->Index(i, j, k)] = in ? 1 : 0;
+            decided = std::fabs(std::fabs(predicted) - 0.5) > uncertainty &&
+              !(this->Offset && this->Offset[at] == CountUnknown);
+            this->Inside[at] = in ? 1 : 0;
           }
         }
       }
@@ -170,6 +197,90 @@ bool CrossingsApply(const WindingSignOptions& options, const SampleGrid& grid)
   return !options.Value && options.Blocks && grid.Spacing[0] > 0 && grid.Spacing[1] > 0 &&
     grid.Spacing[2] > 0;
 }
+
+/// WindingSigns' blocks with `winding`; with `offsets` (and `surface`), those of an open
+/// mesh closed by cones (Decider).
+WindingSignStatistics DecideBlocks(const WindingNumber& winding,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* inside,
+  const WindingSignOptions& options,
+  const ParallelFor& parallelFor,
+  const int8_t* offsets,
+  const WindingNumber* surface)
+{
+  const int n[3] = { extent.Size(0), extent.Size(1), extent.Size(2) };
+  const int64_t stride[3] = { 1, n[0], int64_t(n[0]) * n[1] };
+  // With values wanted, or no blocks, every sample alone.
+  const int size = options.Value || !options.Blocks ? 1 : TopBlock;
+  const int b[3] = { (n[0] + size - 1) / size, (n[1] + size - 1) / size, (n[2] + size - 1) / size };
+  std::atomic<int64_t> blockSamples{ 0 }, lineSamples{ 0 }, evaluated{ 0 }, exact{ 0 };
+  parallelFor(int64_t(b[0]) * b[1] * b[2],
+    size == 1 ? 256 : 1,
+    [&](int64_t begin, int64_t end)
+    {
+      Decider decider{ winding,
+        grid,
+        extent,
+        inside,
+        options.Value,
+        options.Distance,
+        options.DistanceScale,
+        { stride[0], stride[1], stride[2] },
+        {},
+        offsets,
+        surface };
+      for (int64_t t = begin; t < end; ++t)
+      {
+        const int bi[3] = { static_cast<int>(t % b[0]),
+          static_cast<int>((t / b[0]) % b[1]),
+          static_cast<int>(t / (int64_t(b[0]) * b[1])) };
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          lo[a] = extent.Lo[a] + bi[a] * size;
+          hi[a] = std::min(extent.Hi[a], lo[a] + size - 1);
+        }
+        decider.Block(lo, hi);
+      }
+      blockSamples += decider.Stats.BlockSamples;
+      lineSamples += decider.Stats.LineSamples;
+      evaluated += decider.Stats.Evaluated;
+      exact += decider.Stats.Exact;
+    });
+  WindingSignStatistics stats;
+  stats.BlockSamples = blockSamples.load();
+  stats.LineSamples = lineSamples.load();
+  stats.Evaluated = evaluated.load();
+  stats.Exact = exact.load();
+  return stats;
+}
+
+/// An open mesh's signs (options as CrossingsApply allows): its closure by cones
+/// (WindingCrossings.h), the closed chain's crossings counted along the lines, then
+/// WindingSigns' blocks on w = N - w_C; false (nothing written) where it cannot be closed.
+bool OpenSigns(const WindingNumber& surface,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* inside,
+  const WindingSignOptions& options,
+  const ParallelFor& parallelFor,
+  WindingSignStatistics& stats)
+{
+  ConeClosure closure;
+  if (!CloseWithCones(surface.TriangleCorners(), closure))
+  {
+    return false;
+  }
+  std::vector<int8_t> counts(static_cast<size_t>(extent.Count()));
+  CrossingCounts(closure.Points, closure.Triangles, grid, extent, counts.data(), parallelFor);
+  WindingNumber cones;
+  cones.Build(closure.Points, closure.Cone);
+  WindingSignOptions blocks = options;
+  blocks.Distance = nullptr; // the mesh's own distance says nothing of the cones' w
+  stats = DecideBlocks(cones, grid, extent, inside, blocks, parallelFor, counts.data(), &surface);
+  return true;
+}
 } // namespace
 
 WindingSignStatistics WindingSigns(const WindingNumber& winding,
@@ -195,48 +306,14 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
         parallelFor,
         [&]() -> const WindingNumber& { return winding; });
     }
-  }
-  const int n[3] = { extent.Size(0), extent.Size(1), extent.Size(2) };
-  const int64_t stride[3] = { 1, n[0], int64_t(n[0]) * n[1] };
-  // With values wanted, or no blocks, every sample alone.
-  const int size = options.Value || !options.Blocks ? 1 : TopBlock;
-  const int b[3] = { (n[0] + size - 1) / size, (n[1] + size - 1) / size, (n[2] + size - 1) / size };
-  std::atomic<int64_t> blockSamples{ 0 }, evaluated{ 0 }, exact{ 0 };
-  parallelFor(int64_t(b[0]) * b[1] * b[2],
-    size == 1 ? 256 : 1,
-    [&](int64_t begin, int64_t end)
+    // An open mesh: closed by cones, w = N - w_C.
+    WindingSignStatistics stats;
+    if (OpenSigns(winding, grid, extent, inside, options, parallelFor, stats))
     {
-      Decider decider{ winding,
-        grid,
-        extent,
-        inside,
-        options.Value,
-        options.Distance,
-        options.DistanceScale,
-        { stride[0], stride[1], stride[2] },
-        {} };
-      for (int64_t t = begin; t < end; ++t)
-      {
-        const int bi[3] = { static_cast<int>(t % b[0]),
-          static_cast<int>((t / b[0]) % b[1]),
-          static_cast<int>(t / (int64_t(b[0]) * b[1])) };
-        int lo[3], hi[3];
-        for (int a = 0; a < 3; ++a)
-        {
-          lo[a] = extent.Lo[a] + bi[a] * size;
-          hi[a] = std::min(extent.Hi[a], lo[a] + size - 1);
-        }
-        decider.Block(lo, hi);
-      }
-      blockSamples += decider.Stats.BlockSamples;
-      evaluated += decider.Stats.Evaluated;
-      exact += decider.Stats.Exact;
-    });
-  WindingSignStatistics stats;
-  stats.BlockSamples = blockSamples.load();
-  stats.Evaluated = evaluated.load();
-  stats.Exact = exact.load();
-  return stats;
+      return stats;
+    }
+  }
+  return DecideBlocks(winding, grid, extent, inside, options, parallelFor, nullptr, nullptr);
 }
 
 bool ComputeWindingSigns(const std::vector<double>& points,
@@ -250,11 +327,11 @@ bool ComputeWindingSigns(const std::vector<double>& points,
   WindingSignStatistics& stats,
   std::string& error)
 {
-  // A closed mesh on the CPU: the crossings along the lines, the hierarchy built only for
-  // samples on the surface.
+  // On the CPU, a closed mesh: the crossings along the lines, the hierarchy built only
+  // for samples on the surface; an open one closed by cones.
   WindingNumber winding;
-  if ((!gl || options.ClosedOnCPU) && CrossingsApply(options, grid) &&
-    IsClosedChain(points, triangles))
+  const bool crossings = (!gl || options.CrossingsOnCPU) && CrossingsApply(options, grid);
+  if (crossings && IsClosedChain(points, triangles))
   {
     bool built = false;
     stats = CrossingSigns(points,
@@ -275,13 +352,18 @@ bool ComputeWindingSigns(const std::vector<double>& points,
     return true;
   }
   winding.Build(points, triangles);
+  if (crossings && OpenSigns(winding, grid, extent, inside, options, parallelFor, stats))
+  {
+    return true;
+  }
   if (gl)
   {
     const bool ok = WindingSignsGPU(*gl, winding, grid, extent, inside, options, stats, error);
     stats.GPU = true;
     return ok;
   }
-  stats = WindingSigns(winding, grid, extent, inside, options, parallelFor);
+  // The routes above could not take it (values, or a boundary used twice over).
+  stats = DecideBlocks(winding, grid, extent, inside, options, parallelFor, nullptr, nullptr);
   return true;
 }
 

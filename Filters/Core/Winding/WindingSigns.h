@@ -15,7 +15,9 @@
 //
 // A closed mesh (every edge used as often in each direction) takes another route with
 // the same answer: w is then the signed count of the surface's crossings along each grid
-// line (WindingCrossings.h), and only the samples on the surface are decided alone.
+// line (WindingCrossings.h), and only the samples on the surface are decided alone. An
+// open mesh is closed by cones over its boundary: w = N - w_cones, whose blocks decide
+// up to the mesh itself.
 #ifndef vtkdf_WindingSigns_h
 #define vtkdf_WindingSigns_h
 
@@ -52,9 +54,10 @@ struct WindingSignOptions
   double DistanceScale = 1;
   /// Off: every sample decided alone (the reference for the blocks and the crossings).
   bool Blocks = true;
-  /// ComputeWindingSigns with a GPU context: a closed mesh's signs on the CPU all the
-  /// same, where its crossings cost less than any winding pass (Backend Auto's choice).
-  bool ClosedOnCPU = false;
+  /// ComputeWindingSigns with a GPU context: the signs on the CPU all the same where the
+  /// crossings decide them (CrossingsDecide: closed, or closed by cones), in less time
+  /// than any winding pass (Backend Auto's choice).
+  bool CrossingsOnCPU = false;
 };
 
 /// Writes inside[v] (1 or 0) for every sample v of `extent` on `grid` (x fastest, from
@@ -66,11 +69,11 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
   const WindingSignOptions& options,
   const ParallelFor& parallelFor);
 
-/// The family's entry point: on the CPU, a closed mesh's crossings (WindingCrossings.h,
-/// the hierarchy built only for samples on the surface), else the hierarchy of
-/// `triangles` (3 ids each into xyz `points`) and WindingSigns; on the GPU when `gl` is
-/// given (but for a closed mesh with options.ClosedOnCPU), WindingSignsGPU (which honours
-/// options.Value only). False and `error` when the GPU cannot run it.
+/// The family's entry point: on the CPU, WindingSigns (a closed mesh's crossings with the
+/// hierarchy of `triangles`, 3 ids each into xyz `points`, built only for samples on the
+/// surface); on the GPU when `gl` is given (but where the crossings decide, with
+/// options.CrossingsOnCPU), WindingSignsGPU (which honours options.Value only). False
+/// and `error` when the GPU cannot run it.
 bool ComputeWindingSigns(const std::vector<double>& points,
   const std::vector<int64_t>& triangles,
   const SampleGrid& grid,
