@@ -6,6 +6,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 #include <numeric>
 
@@ -14,36 +15,79 @@ namespace vtkdf
 
 namespace
 {
-/// Each point's id with points at equal coordinates merged: the least id among them in
-/// sorted order. Empty when there are 2^32 points or more.
+/// Sorts `items` by key(item), a 64-bit unsigned integer, stably: 16 bits a pass from the
+/// least significant, passes where every key has the same digit skipped.
+template<typename T, typename Key>
+void RadixSort(std::vector<T>& items, Key key)
+{
+  std::vector<T> sorted(items.size());
+  std::vector<size_t> start(65537);
+  for (int shift = 0; shift < 64; shift += 16)
+  {
+    std::fill(start.begin(), start.end(), 0);
+    for (const T& x : items)
+    {
+      ++start[((key(x) >> shift) & 0xffff) + 1];
+    }
+    if (std::find(start.begin() + 1, start.end(), items.size()) != start.end())
+    {
+      continue; // one digit for all
+    }
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    for (const T& x : items)
+    {
+      sorted[start[(key(x) >> shift) & 0xffff]++] = x;
+    }
+    items.swap(sorted);
+  }
+}
+
+/// Each point's id with points at equal coordinates merged: the least id among them.
+/// Empty when there are 2^32 points or more.
 std::vector<uint32_t> MergedIds(const std::vector<double>& points)
 {
   const size_t count = points.size() / 3;
-  if (count >= (size_t(1) << 32))
+  if (count >= (size_t(1) << 32) - 1)
   {
     return {};
   }
-  std::vector<uint32_t> order(count);
+  // An open-addressing table of the first point at each position (+0.0 for -0.0: equal
+  // coordinates, equal bits).
+  size_t size = 16;
+  while (size < 2 * count)
+  {
+    size *= 2;
+  }
+  constexpr uint32_t Empty = UINT32_MAX;
+  std::vector<uint32_t> slot(size, Empty);
+  std::vector<uint32_t> id(count);
   for (size_t i = 0; i < count; ++i)
   {
-    order[i] = static_cast<uint32_t>(i);
-  }
-  auto at = [&](uint32_t i) { return &points[3 * size_t(i)]; };
-  std::sort(order.begin(),
-    order.end(),
-    [&](uint32_t p, uint32_t q)
+    const double* x = &points[3 * i];
+    uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (int k = 0; k < 3; ++k)
     {
-      const double* a = at(p);
-      const double* b = at(q);
-      return a[0] != b[0] ? a[0] < b[0] : a[1] != b[1] ? a[1] < b[1] : a[2] < b[2];
-    });
-  std::vector<uint32_t> id(count);
-  for (size_t k = 0; k < count; ++k)
-  {
-    const double* here = at(order[k]);
-    const bool same = k > 0 && here[0] == at(order[k - 1])[0] && here[1] == at(order[k - 1])[1] &&
-      here[2] == at(order[k - 1])[2];
-    id[order[k]] = same ? id[order[k - 1]] : order[k];
+      uint64_t bits;
+      const double c = x[k] + 0.0;
+      std::memcpy(&bits, &c, sizeof(bits));
+      h = (h ^ bits) * 0xff51afd7ed558ccdull;
+      h ^= h >> 32;
+    }
+    for (size_t at = h & (size - 1);; at = (at + 1) & (size - 1))
+    {
+      if (slot[at] == Empty)
+      {
+        slot[at] = static_cast<uint32_t>(i);
+        id[i] = static_cast<uint32_t>(i);
+        break;
+      }
+      const double* y = &points[3 * size_t(slot[at])];
+      if (y[0] == x[0] && y[1] == x[1] && y[2] == x[2])
+      {
+        id[i] = slot[at];
+        break;
+      }
+    }
   }
   return id;
 }
@@ -74,7 +118,7 @@ bool BoundaryEdges(const std::vector<uint32_t>& id,
       }
     }
   }
-  std::sort(edges.begin(), edges.end());
+  RadixSort(edges, [](const std::pair<uint64_t, int>& e) { return e.first; });
   boundary.clear();
   for (size_t e = 0; e < edges.size();)
   {
@@ -145,13 +189,14 @@ bool IsClosedChain(const std::vector<double>& points, const std::vector<int64_t>
     }
     std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
   }
-  std::sort(oriented.begin(), oriented.end());
+  RadixSort(oriented, [](const std::array<uint32_t, 3>& c) { return uint64_t(c[2]); });
+  RadixSort(oriented, [](const std::array<uint32_t, 3>& c) { return uint64_t(c[0]) << 32 | c[1]; });
   if (std::adjacent_find(oriented.begin(), oriented.end()) != oriented.end())
   {
     return false;
   }
-  std::sort(forward.begin(), forward.end());
-  std::sort(backward.begin(), backward.end());
+  RadixSort(forward, [](uint64_t e) { return e; });
+  RadixSort(backward, [](uint64_t e) { return e; });
   return forward == backward;
 }
 
