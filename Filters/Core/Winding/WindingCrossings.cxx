@@ -640,16 +640,32 @@ bool CloseWithCones(const std::vector<double>& corners, ConeClosure& closure)
     area[a][2] += 0.5 * (u[0] * v[1] - u[1] * v[0]);
     radius[a] = std::max(radius[a], std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
   }
+  // Where sums overflow (coordinates near the largest doubles), a point of the part
+  // itself: its cone has a few flat triangles, and closes the chain all the same.
+  std::vector<uint32_t> first(sums.size());
+  for (const uint32_t p : points)
+  {
+    first[static_cast<size_t>(apex[root(p)])] = p;
+  }
   closure.Points = corners;
   for (size_t a = 0; a < sums.size(); ++a)
   {
     const double length =
       std::sqrt(area[a][0] * area[a][0] + area[a][1] * area[a][1] + area[a][2] * area[a][2]);
     const double lift = length > 0 ? 0.5 * radius[a] / length : 0;
-    closure.Points.insert(closure.Points.end(),
-      { centre[a][0] + lift * area[a][0],
-        centre[a][1] + lift * area[a][1],
-        centre[a][2] + lift * area[a][2] });
+    double p[3] = { centre[a][0] + lift * area[a][0],
+      centre[a][1] + lift * area[a][1],
+      centre[a][2] + lift * area[a][2] };
+    const double* candidates[3] = { p, centre[a].data(), &corners[3 * size_t(first[a])] };
+    for (const double* candidate : candidates)
+    {
+      if (std::isfinite(candidate[0]) && std::isfinite(candidate[1]) && std::isfinite(candidate[2]))
+      {
+        std::copy(candidate, candidate + 3, p);
+        break;
+      }
+    }
+    closure.Points.insert(closure.Points.end(), p, p + 3);
   }
   closure.Triangles.resize(count);
   std::iota(closure.Triangles.begin(), closure.Triangles.end(), int64_t(0));
