@@ -362,7 +362,7 @@ void AddBox(Mesh& m, const double lo[3], const double hi[3], bool flipped = fals
 /// samples on faces, edges and corners, triangles seen edge-on, overlaps, folds.
 void CheckCrossings()
 {
-  std::vector<std::pair<const char*, Mesh>> meshes(8);
+  std::vector<std::pair<const char*, Mesh>> meshes(9);
   const double lo[3] = { 0, 0, 0 }, hi[3] = { 2, 1.5, 2.5 };
   meshes[0].first = "box on the lattice";
   AddBox(meshes[0].second, lo, hi);
@@ -402,6 +402,17 @@ void CheckCrossings()
     meshes[7].second.Triangles.begin() + 36, meshes[7].second.Triangles.begin() + 39);
   meshes[7].second.Triangles.erase(
     meshes[7].second.Triangles.begin(), meshes[7].second.Triangles.begin() + 3);
+  // Two cups on one rim (their tops removed): every rim edge is used twice more in one
+  // direction, so two cones close them.
+  meshes[8].first = "two cups on one rim (open)";
+  const double cupLo[3] = { 0, 0, 1 };
+  AddBox(meshes[8].second, lo, hi);
+  AddBox(meshes[8].second, cupLo, hi);
+  for (const int top : { 36 + 6, 6 })
+  {
+    meshes[8].second.Triangles.erase(
+      meshes[8].second.Triangles.begin() + top, meshes[8].second.Triangles.begin() + top + 6);
+  }
   SampleGrid lattice;
   lattice.Origin = { -1, -1, -1 };
   lattice.Spacing = { 0.5, 0.25, 0.5 };
@@ -436,7 +447,7 @@ void CheckCrossings()
       static_cast<long long>(inside),
       static_cast<long long>(differ));
     Check(differ == 0 && a.LineSamples + a.BlockSamples + a.Evaluated == n && a.Evaluated > 0 &&
-        inside > 0 && (a.BlockSamples > 0) == open,
+        inside > 0 && a.LineSamples > 0 && (a.BlockSamples > 0) == open,
       "%s: the crossings decide as every sample alone (%.17g differ)",
       name,
       static_cast<double>(differ));

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <numeric>
 
@@ -95,9 +96,13 @@ std::vector<uint32_t> MergedIds(const std::vector<double>& points)
 
 namespace
 {
+/// Boundary edges whose surplus exceeds this are refused (a soup of so many layers).
+constexpr int MaximumSurplus = 64;
+
 /// The edges that triangles use more often in one direction than in the other (points
 /// merged: `id`; `corner(t, c)` the point of corner c of triangle t), as (from, to) in
-/// the direction of the surplus; false when a surplus exceeds one.
+/// the direction of the surplus, once per surplus use; false when a surplus exceeds
+/// MaximumSurplus.
 template<typename Corner>
 bool BoundaryEdges(const std::vector<uint32_t>& id,
   Corner corner,
@@ -130,11 +135,11 @@ bool BoundaryEdges(const std::vector<uint32_t>& id,
     }
     const uint32_t lo = static_cast<uint32_t>(edges[e].first >> 32);
     const uint32_t hi = static_cast<uint32_t>(edges[e].first & 0xffffffffu);
-    if (net > 1 || net < -1)
+    if (net > MaximumSurplus || net < -MaximumSurplus)
     {
       return false;
     }
-    if (net != 0)
+    for (int copy = 0; copy < std::abs(net); ++copy)
     {
       boundary.push_back(
         net > 0 ? std::array<uint32_t, 2>{ { lo, hi } } : std::array<uint32_t, 2>{ { hi, lo } });
@@ -565,98 +570,95 @@ bool CloseWithCones(const std::vector<double>& corners, ConeClosure& closure)
   {
     return false;
   }
-  std::vector<std::array<uint32_t, 2>> boundary; // from, to
+  std::vector<std::array<uint32_t, 2>> boundary; // from, to; an edge once per surplus use
   if (!BoundaryEdges(
         id, [](size_t t, int c) { return 3 * t + c; }, count / 3, boundary))
   {
     return false;
   }
-  // The boundary's connected parts (union-find over its points), each a cycle.
-  std::vector<uint32_t> parent(count);
-  for (size_t i = 0; i < count; ++i)
+  // The boundary is a cycle (every point has as many edges out as in), so a walk along
+  // unused edges from an edge's end comes back to its start: closed walks, each the
+  // rim of one cone.
+  const size_t edges = boundary.size();
+  std::vector<size_t> byStart(edges);
+  std::iota(byStart.begin(), byStart.end(), size_t(0));
+  RadixSort(byStart, [&](size_t e) { return uint64_t(boundary[e][0]); });
+  std::vector<size_t> cursor(count + 1, 0); // first out-edge in byStart, per point
+  for (const size_t e : byStart)
   {
-    parent[i] = static_cast<uint32_t>(i);
+    ++cursor[boundary[e][0] + 1];
   }
-  auto root = [&](uint32_t x)
+  std::partial_sum(cursor.begin(), cursor.end(), cursor.begin());
+  std::vector<size_t> endOf(cursor.begin() + 1, cursor.end());
+  std::vector<bool> used(edges, false);
+  std::vector<std::vector<size_t>> walks;
+  for (const size_t first : byStart)
   {
-    while (parent[x] != x)
+    if (used[first])
     {
-      parent[x] = parent[parent[x]];
-      x = parent[x];
+      continue;
     }
-    return x;
-  };
-  for (const auto& e : boundary)
-  {
-    parent[root(e[0])] = root(e[1]);
-  }
-  // Each part's apex: the mean of its points (each merged point once).
-  std::vector<uint32_t> points;
-  for (const auto& e : boundary)
-  {
-    points.push_back(e[0]);
-    points.push_back(e[1]);
-  }
-  std::sort(points.begin(), points.end());
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  std::vector<int64_t> apex(count, -1);
-  std::vector<std::array<double, 4>> sums; // x, y, z, number of points
-  for (const uint32_t p : points)
-  {
-    const uint32_t r = root(p);
-    if (apex[r] < 0)
+    std::vector<size_t> walk{ first };
+    used[first] = true;
+    for (uint32_t at = boundary[first][1]; at != boundary[first][0];)
     {
-      apex[r] = static_cast<int64_t>(sums.size());
-      sums.push_back({ { 0, 0, 0, 0 } });
+      size_t& c = cursor[at];
+      while (c < endOf[at] && used[byStart[c]])
+      {
+        ++c;
+      }
+      if (c == endOf[at])
+      {
+        return false; // not a cycle: cannot happen for a boundary
+      }
+      const size_t e = byStart[c];
+      used[e] = true;
+      walk.push_back(e);
+      at = boundary[e][1];
     }
-    std::array<double, 4>& sum = sums[static_cast<size_t>(apex[r])];
-    for (int k = 0; k < 3; ++k)
-    {
-      sum[k] += corners[3 * size_t(p) + k];
-    }
-    sum[3] += 1;
+    walks.push_back(std::move(walk));
   }
-  // Any apex closes the chain; one off the part's mean plane along its area vector (by
-  // half its radius) keeps the cone clear of a flat sheet whose rim the part is, where a
-  // flat cap would lie on the sheet and leave every sample near both.
-  std::vector<std::array<double, 3>> centre(sums.size()), area(sums.size());
-  std::vector<double> radius(sums.size(), 0);
-  for (size_t a = 0; a < sums.size(); ++a)
-  {
-    centre[a] = { { sums[a][0] / sums[a][3], sums[a][1] / sums[a][3], sums[a][2] / sums[a][3] } };
-    area[a] = { { 0, 0, 0 } };
-  }
-  for (const auto& e : boundary)
-  {
-    const size_t a = static_cast<size_t>(apex[root(e[0])]);
-    double u[3], v[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      u[k] = corners[3 * size_t(e[0]) + k] - centre[a][k];
-      v[k] = corners[3 * size_t(e[1]) + k] - centre[a][k];
-    }
-    area[a][0] += 0.5 * (u[1] * v[2] - u[2] * v[1]);
-    area[a][1] += 0.5 * (u[2] * v[0] - u[0] * v[2]);
-    area[a][2] += 0.5 * (u[0] * v[1] - u[1] * v[0]);
-    radius[a] = std::max(radius[a], std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
-  }
-  // Where sums overflow (coordinates near the largest doubles), a point of the part
-  // itself: its cone has a few flat triangles, and closes the chain all the same.
-  std::vector<uint32_t> first(sums.size());
-  for (const uint32_t p : points)
-  {
-    first[static_cast<size_t>(apex[root(p)])] = p;
-  }
+  // Each walk's apex: the mean of its points, lifted along its area vector by half its
+  // radius (a flat cap would lie on a flat sheet whose rim the walk is), further for each
+  // earlier walk with the same mean; where sums overflow (coordinates near the largest
+  // doubles), the mean or one of its points: any apex closes the chain.
   closure.Points = corners;
-  for (size_t a = 0; a < sums.size(); ++a)
+  closure.Cone.clear();
+  std::map<std::array<double, 3>, int> means;
+  for (const std::vector<size_t>& walk : walks)
   {
-    const double length =
-      std::sqrt(area[a][0] * area[a][0] + area[a][1] * area[a][1] + area[a][2] * area[a][2]);
-    const double lift = length > 0 ? 0.5 * radius[a] / length : 0;
-    double p[3] = { centre[a][0] + lift * area[a][0],
-      centre[a][1] + lift * area[a][1],
-      centre[a][2] + lift * area[a][2] };
-    const double* candidates[3] = { p, centre[a].data(), &corners[3 * size_t(first[a])] };
+    std::array<double, 3> centre{ { 0, 0, 0 } }, area{ { 0, 0, 0 } };
+    for (const size_t e : walk)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        centre[k] += corners[3 * size_t(boundary[e][0]) + k];
+      }
+    }
+    for (double& c : centre)
+    {
+      c /= static_cast<double>(walk.size());
+    }
+    double radius = 0;
+    for (const size_t e : walk)
+    {
+      double u[3], v[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        u[k] = corners[3 * size_t(boundary[e][0]) + k] - centre[k];
+        v[k] = corners[3 * size_t(boundary[e][1]) + k] - centre[k];
+      }
+      area[0] += 0.5 * (u[1] * v[2] - u[2] * v[1]);
+      area[1] += 0.5 * (u[2] * v[0] - u[0] * v[2]);
+      area[2] += 0.5 * (u[0] * v[1] - u[1] * v[0]);
+      radius = std::max(radius, std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+    }
+    const double length = std::sqrt(area[0] * area[0] + area[1] * area[1] + area[2] * area[2]);
+    const double lift = length > 0 ? 0.5 * (1 + means[centre]++) * radius / length : 0;
+    double p[3] = {
+      centre[0] + lift * area[0], centre[1] + lift * area[1], centre[2] + lift * area[2]
+    };
+    const double* candidates[3] = { p, centre.data(), &corners[3 * size_t(boundary[walk[0]][0])] };
     for (const double* candidate : candidates)
     {
       if (std::isfinite(candidate[0]) && std::isfinite(candidate[1]) && std::isfinite(candidate[2]))
@@ -665,17 +667,35 @@ bool CloseWithCones(const std::vector<double>& corners, ConeClosure& closure)
         break;
       }
     }
+    const int64_t apex = static_cast<int64_t>(closure.Points.size() / 3);
     closure.Points.insert(closure.Points.end(), p, p + 3);
+    for (const size_t e : walk)
+    {
+      // (P, to, from): its side from -> to runs against the boundary edge, cancelling it.
+      closure.Cone.insert(
+        closure.Cone.end(), { apex, int64_t(boundary[e][1]), int64_t(boundary[e][0]) });
+    }
+  }
+  // The winding number counts a repeated triangle once, the crossings every time: no
+  // cone triangle may repeat another (same apex position, same rim edge).
+  std::map<std::array<double, 3>, uint32_t> apexIds;
+  std::vector<std::array<uint32_t, 3>> keys(closure.Cone.size() / 3);
+  for (size_t t = 0; t < keys.size(); ++t)
+  {
+    const double* a = &closure.Points[3 * size_t(closure.Cone[3 * t])];
+    const auto found =
+      apexIds.emplace(std::array<double, 3>{ { a[0], a[1], a[2] } }, uint32_t(apexIds.size()));
+    keys[t] = { { found.first->second,
+      static_cast<uint32_t>(closure.Cone[3 * t + 1]),
+      static_cast<uint32_t>(closure.Cone[3 * t + 2]) } };
+  }
+  std::sort(keys.begin(), keys.end());
+  if (std::adjacent_find(keys.begin(), keys.end()) != keys.end())
+  {
+    return false;
   }
   closure.Triangles.resize(count);
   std::iota(closure.Triangles.begin(), closure.Triangles.end(), int64_t(0));
-  closure.Cone.clear();
-  for (const auto& e : boundary)
-  {
-    // (P, to, from): its side from -> to runs against the boundary edge, which it cancels.
-    const int64_t p = static_cast<int64_t>(count) + apex[root(e[0])];
-    closure.Cone.insert(closure.Cone.end(), { p, int64_t(e[1]), int64_t(e[0]) });
-  }
   closure.Triangles.insert(closure.Triangles.end(), closure.Cone.begin(), closure.Cone.end());
   return true;
 }

@@ -16,8 +16,8 @@
 // exactly, without evaluating w: the work is one pass over the triangles' footprints on
 // the lines.
 //
-// An open mesh S is closed by cones C over its boundary (one per connected part of the
-// boundary edges, from the mean of its corners): S + C is a closed chain, so
+// An open mesh S is closed by cones C over its boundary (one per closed walk along the
+// boundary edges, from the mean of its corners, lifted): S + C is a closed chain, so
 // w_S = N - w_C with N its crossings' count. w_C is smooth away from the cones, so that
 // WindingSigns' blocks decide it up to S itself (WindingSigns.cxx).
 #ifndef vtkdf_WindingCrossings_h
@@ -41,10 +41,9 @@ namespace vtkdf
 /// number counts those once).
 bool IsClosedChain(const std::vector<double>& points, const std::vector<int64_t>& triangles);
 
-/// Whether the crossings' routes decide these triangles' signs: closed, or with each
-/// boundary edge (points merged by coordinates) used once more in one direction than in
-/// the other, so that CloseWithCones closes them (triangles repeated with the same
-/// orientation may make it say no: it errs towards no).
+/// Whether the crossings' routes may decide these triangles' signs: closed, or with no
+/// edge (points merged by coordinates) used more than 64 times more often in one
+/// direction than in the other, so that CloseWithCones may close them.
 bool CrossingsDecide(const std::vector<double>& points, const std::vector<int64_t>& triangles);
 
 /// CrossingCounts' mark of a sample whose count is not known: on the surface, or
@@ -60,11 +59,11 @@ struct ConeClosure
 };
 
 /// Closes the triangles of `corners` (9 coordinates each, none repeated with the same
-/// orientation: WindingNumber::TriangleCorners) by a cone over each connected part of
-/// their boundary (the edges, points merged by coordinates, used more often in one
-/// direction than in the other), from the mean of the part's points. False when an edge
-/// is used twice more in one direction (a cone would repeat a triangle) or the points
-/// number 2^32 or more.
+/// orientation: WindingNumber::TriangleCorners) by cones over their boundary (the edges,
+/// points merged by coordinates, used more often in one direction than in the other, once
+/// per surplus use), one cone a closed walk along it, from the walk's mean lifted along
+/// its area vector. False when a cone triangle would repeat another, an edge's surplus
+/// exceeds 64, or the points number 2^32 or more.
 bool CloseWithCones(const std::vector<double>& corners, ConeClosure& closure);
 
 /// N at every sample of `extent` (x fastest): the signed count of the crossings of the
