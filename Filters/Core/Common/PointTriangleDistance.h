@@ -1,7 +1,8 @@
 // PointTriangleDistance: the exact squared distance from a point to a segment and to a
-// triangle, in double precision. The voxelizer's boundary rule (Voxels/) and the
-// segmented field's polygonizer (Segment/) use it; Shaders/VoxelizeCommon.glsl repeats
-// it operation for operation, so the file is compiled without fused multiply-adds.
+// triangle, in double precision. The voxelizer's boundary rule (Voxels/), the segmented
+// field's polygonizer (Segment/) and the proximity searches (Proximity/) use it;
+// Shaders/TriangleDistance.glsl repeats it operation for operation for their GPU passes,
+// so the file is compiled without fused multiply-adds.
 #ifndef vtkdf_PointTriangleDistance_h
 #define vtkdf_PointTriangleDistance_h
 

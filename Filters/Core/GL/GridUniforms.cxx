@@ -1,6 +1,7 @@
 #include "GL/GridUniforms.h"
 
 #include "SampleGridUniforms.h" // Shaders/SampleGridUniforms.glsl, embedded
+#include "TriangleDistance.h"   // Shaders/TriangleDistance.glsl, embedded
 
 namespace vtkdf
 {
@@ -19,14 +20,18 @@ void SetGridUniforms(const GLFunctions& gl,
     gl.GetUniformLocation(program, "Spacing"), grid.Spacing[0], grid.Spacing[1], grid.Spacing[2]);
 }
 
-std::string WithSampleGrid(const char* source)
+std::string WithSharedCode(const char* source)
 {
   std::string text = source;
-  const std::string marker = "//DF::SampleGrid";
-  const size_t at = text.find(marker);
-  if (at != std::string::npos)
+  const std::pair<const char*, const char*> shared[] = { { "//DF::SampleGrid", SampleGridUniforms },
+    { "//DF::TriangleDistance", TriangleDistance } };
+  for (const auto& [marker, code] : shared)
   {
-    text.replace(at, marker.size(), SampleGridUniforms);
+    const size_t at = text.find(marker);
+    if (at != std::string::npos)
+    {
+      text.replace(at, std::string(marker).size(), code);
+    }
   }
   return text;
 }

@@ -20,8 +20,10 @@ void SetGridUniforms(const GLFunctions& gl,
   const SampleGrid& grid,
   const IndexBox& extent);
 
-/// `source` with its //DF::SampleGrid line replaced by the declarations.
-std::string WithSampleGrid(const char* source);
+/// `source` with its //DF::SampleGrid line replaced by the declarations, and its
+/// //DF::TriangleDistance line by Shaders/TriangleDistance.glsl (the exact point-to-
+/// triangle distance that the voxelizer and the proximity searches share).
+std::string WithSharedCode(const char* source);
 
 } // namespace vtkdf
 

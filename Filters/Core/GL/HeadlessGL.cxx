@@ -430,7 +430,7 @@ unsigned HeadlessGL::BuildProgram(const std::vector<std::pair<unsigned, const ch
   for (const auto& stage : stages)
   {
     const GLuint shader = gl.CreateShader(stage.first);
-    const std::string source = WithSampleGrid(stage.second);
+    const std::string source = WithSharedCode(stage.second);
     const char* text = source.c_str();
     gl.ShaderSource(shader, 1, &text, nullptr);
     gl.CompileShader(shader);

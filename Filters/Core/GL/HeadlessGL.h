@@ -70,7 +70,8 @@ public:
   const GLFunctions& GL() const { return this->Functions; }
 
   /// Compiles and links (stage enum, source) pairs; 0 and the logs on failure. A
-  /// source's //DF::SampleGrid line becomes the grid's uniforms (GridUniforms.h).
+  /// source's //DF::SampleGrid line becomes the grid's uniforms, its
+  /// //DF::TriangleDistance line the exact point-to-triangle distance (GridUniforms.h).
   unsigned BuildProgram(const std::vector<std::pair<unsigned, const char*>>& stages,
     std::string& log) const;
 
