@@ -44,7 +44,7 @@ void PrintUsage(FILE* out)
     "             prints the depth and the direction to translate Q)\n"
     "       vtkdf proximity A B -o OUT.vtp [--contacts OUT.vtp] [--models A.vtp B.vtp]\n"
     "             [--resolution N | --spacing H] [--margin M] [--sign winding|pseudonormal]\n"
-    "             [--no-contacts] [--backend auto|cpu] [--timing]\n"
+    "             [--no-contacts] [--backend ...] [--timing]\n"
     "             (collision, separation, penetration and contacts of two meshes)\n"
     "       vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H]\n"
     "             [--azimuth A] [--elevation E] [--slices N] [--opacity O]\n"

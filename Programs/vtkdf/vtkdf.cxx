@@ -22,7 +22,7 @@
 //         (penetration depth; P, Q: convex pieces in the forms union takes)
 //   vtkdf proximity A B -o OUT.vtp [--contacts OUT.vtp] [--models A.vtp B.vtp]
 //         [--resolution N | --spacing H] [--margin M] [--sign winding|pseudonormal]
-//         [--no-contacts] [--backend auto|cpu] [--timing]
+//         [--no-contacts] [--backend ...] [--timing]
 //   vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H] ...
 //         (vtkSegmentedDistanceVolumeMapper; needs an X server)
 //
