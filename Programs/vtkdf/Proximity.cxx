@@ -101,8 +101,8 @@ int Proximity(int argc, char* argv[])
   filter->SetContactMargin(margin);
   filter->SetContactPoints(contacts);
   filter->SetBackend(backend == "gpu" ? vtkDistanceFieldProximity::BACKEND_GPU
-      : backend == "cpu"             ? vtkDistanceFieldProximity::BACKEND_CPU
-                                     : vtkDistanceFieldProximity::BACKEND_AUTO);
+      : backend == "cpu"              ? vtkDistanceFieldProximity::BACKEND_CPU
+                                      : vtkDistanceFieldProximity::BACKEND_AUTO);
   if (sign == "pseudonormal")
   {
     filter->SetSignModeToPseudoNormal();

@@ -74,10 +74,7 @@ def configure(f, sub, options, contour=None):
                  "--mode": ("Mode", ["boundary", "solid", "both"]),
                  "--metric": ("Metric", ["manhattan", "chessboard18", "chessboard26"]),
                  "--region": ("Region", ["inside", "outside", "both"])}
-        if option == "--backend" and sub == "proximity":
-            if value not in ("auto", "cpu"):  # no Backend property: the CPU only
-                raise NotPassable(f"{option} {value}")
-        elif option == "--resolution":
+        if option == "--resolution":
             f.SetResolution(number(value, int))
         elif option == "--margin":
             f.SetContactMargin(number(value, float))

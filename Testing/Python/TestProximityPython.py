@@ -4,7 +4,6 @@ distance (numpy, closed form); each model's maximum penetration is at most 0.3 (
 deepest point of either surface inside the other) and within one step of it; the
 contacts' depths are positive and their normals unit. At x = 1.5 they are 0.5 apart, the
 witness line 0.5 long, and no contact. Both backends; the GPU's answers equal the CPU's."""
-import math
 import sys
 
 import numpy as np

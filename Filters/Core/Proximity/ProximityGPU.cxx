@@ -20,7 +20,7 @@ struct ModelBuffers
   GLuint Points = 0, Bounds = 0, Triangles = 0, Links = 0, Order = 0;
   GLuint PointAnswers = 0, PointTriangles = 0;
   uint64_t Topology = 0; // the generation the topology buffers hold, 0 for none
-  int64_t PointCount = 0, TriangleCount = 0, NodeCount = 0;
+  int64_t PointCount = 0;
 };
 } // namespace
 
@@ -279,8 +279,6 @@ bool DeviceLoadModel(ProximityDevice& device,
     s.BytesSent += 4 * (3 * triangles + 4 * nodes + triangles);
     m.Topology = topology;
     m.PointCount = points;
-    m.TriangleCount = triangles;
-    m.NodeCount = nodes;
   }
   std::vector<double> bounds(static_cast<size_t>(6 * nodes));
   for (size_t n = 0; n < tree.Nodes().size(); ++n)

@@ -557,8 +557,8 @@ int64_t CrossingCounts(const std::vector<double>& points,
   const ParallelFor& parallelFor)
 {
   int64_t decided = 0;
-  const std::vector<std::array<int, 3>> surface =
-    CrossingPass(points, triangles, grid, extent, nullptr, counts, parallelFor, decided);
+  // The samples on the surface are marked CountUnknown in `counts`.
+  CrossingPass(points, triangles, grid, extent, nullptr, counts, parallelFor, decided);
   return decided;
 }
 
