@@ -12,9 +12,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLError.h"
-#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLHelper.h"
-#include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
@@ -266,18 +264,11 @@ struct vtkSegmentedDistanceVolumeMapper::Internals
   int BrickDims[3] = { 1, 1, 1 };
   vtkNew<vtkTextureObject> ClosestPoints; // RGB32F, when the input has ClosestPoint
   bool HasClosestPoints = false;
-  vtkOpenGLHelper Slices; // program and VAO of the slice polygons
+  vtkOpenGLHelper Surfaces; // program and VAO of the box's faces, surface mode
   // Composite mode.
-  vtkNew<vtkTextureObject> Scalars;     // R32F, linear
-  vtkNew<vtkTextureObject> Table;       // RGBA32F pre-integration table
-  vtkNew<vtkTextureObject> OpaqueDepth; // the depth buffer before the volume
+  vtkNew<vtkTextureObject> Scalars; // R32F, linear
+  vtkNew<vtkTextureObject> Table;   // RGBA32F pre-integration table
   vtkOpenGLHelper Composite;
-  // Composite slabs accumulate in a float target (an 8-bit framebuffer would round every
-  // slab's contribution: the error grows with the number of slices), then go over the
-  // window in one full-screen pass.
-  vtkNew<vtkTextureObject> Accumulation; // RGBA32F, premultiplied
-  vtkNew<vtkOpenGLFramebufferObject> Target;
-  std::unique_ptr<vtkOpenGLQuadHelper> Blend;
   vtkTimeStamp ScalarsTime;
   vtkTimeStamp TableTime;
   vtkImageData* ScalarsImage = nullptr;
@@ -287,6 +278,7 @@ struct vtkSegmentedDistanceVolumeMapper::Internals
   std::array<double, 5> TableKey = { 0, 0, 0, 0, 0 };
   int DepthSize[2] = { 0, 0 };
   // Both.
+  vtkNew<vtkTextureObject> OpaqueDepth; // the depth buffer before the volume
   vtkNew<vtkOpenGLVertexBufferObject> Vertices;
   vtkTimeStamp FieldTime;
   vtkTimeStamp ColorsTime;
@@ -388,19 +380,12 @@ void vtkSegmentedDistanceVolumeMapper::ReleaseGraphicsResources(vtkWindow* windo
          impl.ClosestPoints.Get(),
          impl.Scalars.Get(),
          impl.Table.Get(),
-         impl.OpaqueDepth.Get(),
-         impl.Accumulation.Get() })
+         impl.OpaqueDepth.Get() })
   {
     texture->ReleaseGraphicsResources(window);
   }
-  impl.Target->ReleaseGraphicsResources(window);
-  if (impl.Blend)
-  {
-    impl.Blend->ReleaseGraphicsResources(window);
-    impl.Blend.reset();
-  }
   impl.Vertices->ReleaseGraphicsResources();
-  impl.Slices.ReleaseGraphicsResources(window);
+  impl.Surfaces.ReleaseGraphicsResources(window);
   impl.Composite.ReleaseGraphicsResources(window);
   impl.FieldValid = false;
   impl.ScalarsValid = false;
@@ -779,39 +764,45 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   camera->GetPosition(eye.data());
   camera->GetDirectionOfProjection(viewDir.data());
   viewDir = Normalized(viewDir);
-  double spacing = 0;
+  SamplePlanes planes;
   const std::vector<float> triangles =
-    this->SlicePolygons(indexToWorld, eye.data(), viewDir.data(), spacing);
+    this->BoxFaces(indexToWorld, eye.data(), viewDir.data(), planes);
   if (triangles.empty() || window->CheckAbortStatus())
   {
     return;
   }
-  vtkOpenGLHelper& helper = surface ? impl.Slices : impl.Composite;
+  vtkOpenGLHelper& helper = surface ? impl.Surfaces : impl.Composite;
   vtkShaderProgram* program = this->ReadyProgram(window, triangles, helper);
   if (!program)
   {
     return;
   }
-  this->SetViewUniforms(program, renderer, indexToWorld, eye.data(), viewDir.data(), spacing);
+  this->SetViewUniforms(program, renderer, indexToWorld, eye.data(), viewDir.data(), planes);
   this->SetShadingUniforms(program, property);
-  const std::vector<vtkTextureObject*> active = surface
+  std::vector<vtkTextureObject*> active = surface
     ? this->BindSurfaceTextures(program, volume, colorCount)
-    : this->BindCompositeTextures(program, renderer, window);
-  const GLsizei vertexCount = static_cast<GLsizei>(triangles.size() / 3);
-  if (surface)
+    : this->BindCompositeTextures(program);
+  // Rays blended over the window (composite, translucent surfaces) stop at the opaque
+  // geometry's depth, read from a copy; opaque surfaces meet the depth test instead.
+  const bool blended = !surface || this->SurfaceOpacity < 1.0;
+  if (blended)
   {
-    this->DrawSurfaces(window, vertexCount);
+    active.push_back(this->BindOpaqueDepth(program, renderer, window));
   }
   else
   {
-    this->DrawComposite(renderer, window, helper, vertexCount);
+    // Unread, the depth sampler names a 2D texture's unit, so that no sampler is left on a
+    // unit of another texture type.
+    program->SetUniformi("useOpaqueDepth", 0);
+    program->SetUniformi("opaqueDepth", impl.Colors->GetTextureUnit());
   }
+  this->DrawBox(window, blended, static_cast<GLsizei>(triangles.size() / 3));
   for (vtkTextureObject* texture : active)
   {
     texture->Deactivate();
   }
   helper.VAO->Release();
-  vtkOpenGLCheckErrorMacro("failed after drawing the slices");
+  vtkOpenGLCheckErrorMacro("failed after casting the rays");
 }
 
 int vtkSegmentedDistanceVolumeMapper::UpdateRegionColors()
@@ -852,7 +843,7 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
     window->GetShaderCache()->ReadyShaderProgram(SegmentedVolume_vert, fragment.c_str(), "");
   if (!program)
   {
-    vtkErrorMacro("Could not build the slice shader program");
+    vtkErrorMacro("Could not build the ray-casting shader program");
     return nullptr;
   }
   if (program != helper.Program)
@@ -865,7 +856,7 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
   if (!helper.VAO->AddAttributeArray(
         program, impl.Vertices, "vertexWC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false))
   {
-    vtkErrorMacro("Could not bind the slice vertices");
+    vtkErrorMacro("Could not bind the box's vertices");
     helper.VAO->Release();
     return nullptr;
   }
@@ -877,7 +868,7 @@ void vtkSegmentedDistanceVolumeMapper::SetViewUniforms(vtkShaderProgram* program
   vtkMatrix4x4* indexToWorld,
   const double eye[3],
   const double viewDir[3],
-  double spacing)
+  const SamplePlanes& planes)
 {
   Internals& impl = *this->Impl;
   vtkNew<vtkMatrix4x4> worldToIndex;
@@ -904,7 +895,10 @@ void vtkSegmentedDistanceVolumeMapper::SetViewUniforms(vtkShaderProgram* program
   program->SetUniform3f("eyeWC", eyeF);
   program->SetUniform3f("viewDirWC", dirF);
   program->SetUniformi("parallelProjection", camera->GetParallelProjection() != 0 ? 1 : 0);
-  program->SetUniformf("sliceSpacing", static_cast<float>(spacing));
+  program->SetUniformf("sliceSpacing", static_cast<float>(planes.Spacing));
+  program->SetUniformf("firstSliceDepth", static_cast<float>(planes.First));
+  program->SetUniformi("sliceCount", planes.Count);
+  program->SetUniformf("nearDepth", static_cast<float>(camera->GetClippingRange()[0]));
   const float dimsF[3] = { static_cast<float>(impl.Dims[0]),
     static_cast<float>(impl.Dims[1]),
     static_cast<float>(impl.Dims[2]) };
@@ -968,12 +962,28 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindSurfaceText
 }
 
 std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindCompositeTextures(
-  vtkShaderProgram* program,
+  vtkShaderProgram* program)
+{
+  Internals& impl = *this->Impl;
+  const float range[2] = { static_cast<float>(impl.ScalarRange[0]),
+    static_cast<float>(impl.ScalarRange[1]) };
+  program->SetUniform2f("scalarRange", range);
+  program->SetUniformf("tableSize", static_cast<float>(this->PreIntegrationTableSize));
+  std::vector<vtkTextureObject*> active = { impl.Scalars, impl.Table };
+  for (vtkTextureObject* texture : active)
+  {
+    texture->Activate();
+  }
+  program->SetUniformi("scalars", impl.Scalars->GetTextureUnit());
+  program->SetUniformi("preIntegrated", impl.Table->GetTextureUnit());
+  return active;
+}
+
+vtkTextureObject* vtkSegmentedDistanceVolumeMapper::BindOpaqueDepth(vtkShaderProgram* program,
   vtkRenderer* renderer,
   vtkOpenGLRenderWindow* window)
 {
   Internals& impl = *this->Impl;
-  // The opaque geometry's depth, captured before the volume is drawn, cuts the slabs.
   int width, height, x0, y0;
   renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   if (!impl.OpaqueDepth->GetHandle() || impl.DepthSize[0] != width || impl.DepthSize[1] != height)
@@ -988,37 +998,16 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindCompositeTe
     impl.DepthSize[1] = height;
   }
   impl.OpaqueDepth->CopyFromFrameBuffer(x0, y0, 0, 0, width, height);
-  if (!impl.Accumulation->GetHandle() || static_cast<int>(impl.Accumulation->GetWidth()) != width ||
-    static_cast<int>(impl.Accumulation->GetHeight()) != height)
-  {
-    impl.Accumulation->ReleaseGraphicsResources(window);
-    impl.Accumulation->SetContext(window);
-    PrepareTexture(impl.Accumulation, vtkTextureObject::Nearest, GL_RGBA32F, GL_RGBA, GL_FLOAT);
-    impl.Accumulation->Allocate2D(
-      static_cast<unsigned int>(width), static_cast<unsigned int>(height), 4, VTK_FLOAT);
-  }
-  impl.DepthSize[0] = width;
-  impl.DepthSize[1] = height;
-  // The slabs go into the float target, whose pixels start at the viewport's corner.
-  const int origin[2] = { 0, 0 };
+  impl.OpaqueDepth->Activate();
+  const int origin[2] = { x0, y0 };
   program->SetUniform2i("viewportOrigin", origin);
   program->SetUniformi("useOpaqueDepth", 1);
-  const float range[2] = { static_cast<float>(impl.ScalarRange[0]),
-    static_cast<float>(impl.ScalarRange[1]) };
-  program->SetUniform2f("scalarRange", range);
-  program->SetUniformf("tableSize", static_cast<float>(this->PreIntegrationTableSize));
-  std::vector<vtkTextureObject*> active = { impl.Scalars, impl.Table, impl.OpaqueDepth };
-  for (vtkTextureObject* texture : active)
-  {
-    texture->Activate();
-  }
-  program->SetUniformi("scalars", impl.Scalars->GetTextureUnit());
-  program->SetUniformi("preIntegrated", impl.Table->GetTextureUnit());
   program->SetUniformi("opaqueDepth", impl.OpaqueDepth->GetTextureUnit());
-  return active;
+  return impl.OpaqueDepth;
 }
 
-void vtkSegmentedDistanceVolumeMapper::DrawSurfaces(vtkOpenGLRenderWindow* window,
+void vtkSegmentedDistanceVolumeMapper::DrawBox(vtkOpenGLRenderWindow* window,
+  bool blended,
   GLsizei vertexCount)
 {
   vtkOpenGLState* state = window->GetState();
@@ -1028,111 +1017,52 @@ void vtkSegmentedDistanceVolumeMapper::DrawSurfaces(vtkOpenGLRenderWindow* windo
   vtkOpenGLState::ScopedglDepthMask depthMask(state);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  // The shaders keep the back faces' fragments (gl_FrontFacing): no culling state needed.
   state->vtkglDisable(GL_CULL_FACE);
-  state->vtkglEnable(GL_DEPTH_TEST);
-  state->vtkglDepthFunc(GL_LEQUAL);
-  if (this->SurfaceOpacity >= 1.0)
+  if (blended)
   {
-    state->vtkglDisable(GL_BLEND);
-    state->vtkglDepthMask(GL_TRUE);
+    // Premultiplied colours over the window; the shaders stop at the opaque depth.
+    state->vtkglDisable(GL_DEPTH_TEST);
+    state->vtkglDepthMask(GL_FALSE);
+    state->vtkglEnable(GL_BLEND);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   }
   else
   {
-    // Premultiplied colours, back to front, depth-tested at the interface points.
-    state->vtkglEnable(GL_BLEND);
-    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    state->vtkglDepthMask(GL_FALSE);
+    // Opaque surfaces write their depth, tested against the opaque geometry's.
+    state->vtkglEnable(GL_DEPTH_TEST);
+    state->vtkglDepthFunc(GL_LEQUAL);
+    state->vtkglDepthMask(GL_TRUE);
+    state->vtkglDisable(GL_BLEND);
   }
   glDrawArrays(GL_TRIANGLES, 0, vertexCount);
 }
 
-void vtkSegmentedDistanceVolumeMapper::DrawComposite(vtkRenderer* renderer,
-  vtkOpenGLRenderWindow* window,
-  vtkOpenGLHelper& helper,
-  GLsizei vertexCount)
-{
-  Internals& impl = *this->Impl;
-  vtkOpenGLState* state = window->GetState();
-  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
-  vtkOpenGLState::ScopedglDepthMask depthMask(state);
-  vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
-  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
-  state->vtkglDisable(GL_CULL_FACE);
-  // Slabs back to front into the float target (the shader tests them against the
-  // captured depth), ...
-  int width, height, x0, y0;
-  renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDepthMask(GL_FALSE);
-  state->vtkglEnable(GL_BLEND);
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  state->PushFramebufferBindings();
-  impl.Target->SetContext(window);
-  impl.Target->Bind();
-  impl.Target->AddColorAttachment(0, impl.Accumulation);
-  impl.Target->ActivateDrawBuffer(0);
-  {
-    vtkOpenGLState::ScopedglViewport viewport(state);
-    vtkOpenGLState::ScopedglClearColor clearColor(state);
-    state->vtkglViewport(0, 0, width, height);
-    state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    state->vtkglClear(GL_COLOR_BUFFER_BIT);
-    glDrawArrays(GL_TRIANGLES, 0, vertexCount);
-  }
-  state->PopFramebufferBindings();
-  helper.VAO->Release();
-  // ... then the accumulated volume over the window, in one pass.
-  if (!impl.Blend)
-  {
-    impl.Blend.reset(new vtkOpenGLQuadHelper(window,
-      nullptr,
-      "//VTK::System::Dec\n"
-      "in vec2 texCoord;\n"
-      "uniform sampler2D accumulated;\n"
-      "//VTK::Output::Dec\n"
-      "void main() { gl_FragData[0] = texture(accumulated, texCoord); }\n",
-      ""));
-  }
-  else
-  {
-    window->GetShaderCache()->ReadyShaderProgram(impl.Blend->Program);
-  }
-  if (!impl.Blend->Program)
-  {
-    vtkErrorMacro("Could not build the compositing program");
-  }
-  else
-  {
-    impl.Accumulation->Activate();
-    impl.Blend->Program->SetUniformi("accumulated", impl.Accumulation->GetTextureUnit());
-    impl.Blend->Render();
-    impl.Accumulation->Deactivate();
-  }
-}
-
-std::vector<float> vtkSegmentedDistanceVolumeMapper::SlicePolygons(vtkMatrix4x4* indexToWorld,
+std::vector<float> vtkSegmentedDistanceVolumeMapper::BoxFaces(vtkMatrix4x4* indexToWorld,
   const double eyeIn[3],
   const double viewDirIn[3],
-  double& spacing)
+  SamplePlanes& planes)
 {
   const Internals& impl = *this->Impl;
   const Vec3 eye = { eyeIn[0], eyeIn[1], eyeIn[2] };
   const Vec3 viewDir = { viewDirIn[0], viewDirIn[1], viewDirIn[2] };
   // The box's corners in world space, and their depths along the view direction.
   std::array<Vec3, 8> corners;
-  std::array<double, 8> depths;
   double nearest = VTK_DOUBLE_MAX, farthest = -VTK_DOUBLE_MAX;
+  Vec3 centre = { 0, 0, 0 };
   for (int c = 0; c < 8; ++c)
   {
     const Vec3 index = { (c & 1) ? impl.Dims[0] - 1.0 : 0.0,
       (c & 2) ? impl.Dims[1] - 1.0 : 0.0,
       (c & 4) ? impl.Dims[2] - 1.0 : 0.0 };
     corners[c] = Apply(indexToWorld, index);
-    depths[c] = Dot(Sub(corners[c], eye), viewDir);
-    nearest = std::min(nearest, depths[c]);
-    farthest = std::max(farthest, depths[c]);
+    const double depth = Dot(Sub(corners[c], eye), viewDir);
+    nearest = std::min(nearest, depth);
+    farthest = std::max(farthest, depth);
+    for (int k = 0; k < 3; ++k)
+    {
+      centre[k] += corners[c][k] / 8;
+    }
   }
   double smallestSpacing = VTK_DOUBLE_MAX;
   for (int a = 0; a < 3; ++a)
@@ -1143,7 +1073,7 @@ std::vector<float> vtkSegmentedDistanceVolumeMapper::SlicePolygons(vtkMatrix4x4*
     smallestSpacing = std::min(smallestSpacing, std::sqrt(Dot(axis, axis)));
   }
   const double depth = farthest - nearest;
-  spacing = this->SampleDistance > 0 ? this->SampleDistance : smallestSpacing;
+  double spacing = this->SampleDistance > 0 ? this->SampleDistance : smallestSpacing;
   if (this->NumberOfSlices > 0)
   {
     spacing = depth / this->NumberOfSlices;
@@ -1158,78 +1088,47 @@ std::vector<float> vtkSegmentedDistanceVolumeMapper::SlicePolygons(vtkMatrix4x4*
   if (sliceCount > (1 << 20))
   {
     vtkErrorMacro("SampleDistance " << spacing << " makes " << sliceCount
-                                    << " slices across the volume; at most 2^20 are drawn");
+                                    << " sample planes across the volume; at most 2^20 are used");
     return {};
   }
-  const int slices = std::max(1, static_cast<int>(sliceCount));
+  planes.Count = std::max(1, static_cast<int>(sliceCount));
+  planes.First = nearest;
+  planes.Spacing = spacing;
 
-  // The slice polygons, back to front: the box cut by the planes at depth s, as fans.
-  static const int edges[12][2] = { { 0, 1 },
-    { 2, 3 },
-    { 4, 5 },
-    { 6, 7 },
-    { 0, 2 },
-    { 1, 3 },
-    { 4, 6 },
-    { 5, 7 },
-    { 0, 4 },
-    { 1, 5 },
-    { 2, 6 },
-    { 3, 7 } };
-  const Vec3 u =
-    Normalized(Cross(viewDir, std::abs(viewDir[0]) < 0.9 ? Vec3{ 1, 0, 0 } : Vec3{ 0, 1, 0 }));
-  const Vec3 v = Cross(viewDir, u);
+  // The box's twelve triangles, each counter-clockwise seen from outside (whatever the
+  // handedness of index-to-world), so that the shaders can tell back faces by
+  // gl_FrontFacing.
+  static const int faces[6][4] = {
+    { 0, 2, 6, 4 }, { 1, 3, 7, 5 }, { 0, 1, 5, 4 }, { 2, 3, 7, 6 }, { 0, 1, 3, 2 }, { 4, 5, 7, 6 }
+  };
   std::vector<float> triangles;
-  triangles.reserve(static_cast<size_t>(slices) * 12 * 3);
-  std::vector<std::pair<double, Vec3>> polygon;
-  for (int k = slices - 1; k >= 0; --k)
+  triangles.reserve(6 * 2 * 3 * 3);
+  for (const auto& face : faces)
   {
-    const double s = nearest + k * spacing;
-    polygon.clear();
-    for (const auto& e : edges)
+    Vec3 middle = { 0, 0, 0 };
+    for (const int c : face)
     {
-      const double s0 = depths[e[0]], s1 = depths[e[1]];
-      if ((s0 - s) * (s1 - s) > 0 || s0 == s1)
+      for (int k = 0; k < 3; ++k)
       {
-        continue;
-      }
-      const double t = (s - s0) / (s1 - s0);
-      const Vec3& a = corners[e[0]];
-      const Vec3& b = corners[e[1]];
-      polygon.push_back(
-        { 0.0, { a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]) } });
-    }
-    if (polygon.size() < 3)
-    {
-      continue;
-    }
-    Vec3 centre = { 0, 0, 0 };
-    for (const auto& p : polygon)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        centre[c] += p.second[c] / polygon.size();
+        middle[k] += corners[c][k] / 4;
       }
     }
-    for (auto& p : polygon)
+    const Vec3 outward = Sub(middle, centre);
+    for (const std::array<int, 3>& corner : { std::array<int, 3>{ face[0], face[1], face[2] },
+           std::array<int, 3>{ face[0], face[2], face[3] } })
     {
-      const Vec3 d = Sub(p.second, centre);
-      p.first = std::atan2(Dot(d, v), Dot(d, u));
-    }
-    std::sort(polygon.begin(),
-      polygon.end(),
-      [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (size_t i = 1; i + 1 < polygon.size(); ++i)
-    {
-      for (const Vec3* p : { &polygon[0].second, &polygon[i].second, &polygon[i + 1].second })
+      const Vec3 normal = Cross(
+        Sub(corners[corner[1]], corners[corner[0]]), Sub(corners[corner[2]], corners[corner[0]]));
+      const bool flip = Dot(normal, outward) < 0;
+      for (const int c : { corner[0], flip ? corner[2] : corner[1], flip ? corner[1] : corner[2] })
       {
         triangles.insert(triangles.end(),
-          { static_cast<float>((*p)[0]),
-            static_cast<float>((*p)[1]),
-            static_cast<float>((*p)[2]) });
+          { static_cast<float>(corners[c][0]),
+            static_cast<float>(corners[c][1]),
+            static_cast<float>(corners[c][2]) });
       }
     }
   }
-  this->LastNumberOfSlices = slices;
+  this->LastNumberOfSlices = planes.Count;
   return triangles;
 }

@@ -206,13 +206,21 @@ private:
   void SetGeometry(vtkImageData* image, const int dims[3]);
   bool HasArraySelection() const;
   vtkDataArray* SelectedArray(vtkImageData* image) const;
-  std::vector<float> SlicePolygons(vtkMatrix4x4* indexToWorld,
+  // The planes the rays are sampled on: Count of them, Spacing apart along the view
+  // direction, the first at depth First from the eye.
+  struct SamplePlanes
+  {
+    double First = 0;
+    double Spacing = 1;
+    int Count = 0;
+  };
+  std::vector<float> BoxFaces(vtkMatrix4x4* indexToWorld,
     const double eye[3],
     const double viewDir[3],
-    double& spacing);
+    SamplePlanes& planes);
   std::string ArraySelectionKey() const;
-  // Render's steps: the regions' colours (their count), the program with the slices'
-  // vertices, the uniforms, the textures each mode reads, and each mode's drawing.
+  // Render's steps: the regions' colours (their count), the program with the box's
+  // vertices, the uniforms, the textures each mode reads, and the drawing.
   int UpdateRegionColors();
   vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* window,
     const std::vector<float>& triangles,
@@ -222,19 +230,16 @@ private:
     vtkMatrix4x4* indexToWorld,
     const double eye[3],
     const double viewDir[3],
-    double spacing);
+    const SamplePlanes& planes);
   static void SetShadingUniforms(vtkShaderProgram* program, vtkVolumeProperty* property);
   std::vector<vtkTextureObject*> BindSurfaceTextures(vtkShaderProgram* program,
     vtkVolume* volume,
     int colorCount);
-  std::vector<vtkTextureObject*> BindCompositeTextures(vtkShaderProgram* program,
+  std::vector<vtkTextureObject*> BindCompositeTextures(vtkShaderProgram* program);
+  vtkTextureObject* BindOpaqueDepth(vtkShaderProgram* program,
     vtkRenderer* renderer,
     vtkOpenGLRenderWindow* window);
-  void DrawSurfaces(vtkOpenGLRenderWindow* window, int vertexCount);
-  void DrawComposite(vtkRenderer* renderer,
-    vtkOpenGLRenderWindow* window,
-    vtkOpenGLHelper& helper,
-    int vertexCount);
+  void DrawBox(vtkOpenGLRenderWindow* window, bool blended, int vertexCount);
 };
 
 #endif

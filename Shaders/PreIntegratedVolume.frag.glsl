@@ -2,18 +2,15 @@
 //VTK::Output::Dec
 //DF::SlabCommon
 
-// Pre-integrated compositing of a scalar volume (Engel, Kraus, Ertl 2001). One fragment
-// of a view-aligned slice stands for the slab between this slice and the next one along
-// its ray, cut where the ray leaves the volume or meets opaque geometry. The table holds,
+// Pre-integrated compositing of a scalar volume (Engel, Kraus, Ertl 2001), ray cast: one
+// fragment a pixel walks its ray's slabs front to back, cut where the ray leaves the
+// volume or meets opaque geometry, and stops once the pixel is opaque. The table holds,
 // per (front value, back value), the slab's average extinction (a) and its
 // extinction-weighted average colour (rgb), so the slab's length enters exactly:
 // alpha = 1 - exp(-length * a).
 
 uniform sampler3D scalars;        // the scalar volume (read with texelFetch)
 uniform sampler2D preIntegrated;  // RGBA: average colour, average extinction
-uniform sampler2D opaqueDepth;    // the depth buffer before the volume was drawn
-uniform int useOpaqueDepth;
-uniform ivec2 viewportOrigin;
 uniform vec2 scalarRange;         // the table's first and last values
 uniform float tableSize;
 
@@ -34,22 +31,20 @@ float valueAt(vec3 index)
   return trilinear(v, t);
 }
 
-// The premultiplied colour of the slab from index-space point a to b, of world length d.
-vec4 slabColor(vec3 a, vec3 b, float d, vec3 dir)
+// The premultiplied colour of a slab of world length d whose ends have the values front
+// and back, shaded at its midpoint m (index space).
+vec4 slabColor(float front, float back, vec3 m, float d, vec3 dir)
 {
-  float front = valueAt(a);
-  float back = valueAt(b);
   vec2 table = (clamp((vec2(front, back) - scalarRange.x) / (scalarRange.y - scalarRange.x),
                   0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
   vec4 entry = texture(preIntegrated, table);
   float alpha = 1.0 - exp(-d * entry.a);
   vec3 color = entry.rgb;
-  if (shade == 1)
+  if (shade == 1 && alpha > 0.0)
   {
-    // The normal at the slab's midpoint, by central differences a voxel each way: over
-    // half a voxel the gradient of the trilinear interpolant shows every cell face (rings
-    // around the axes on a sphere).
-    vec3 m = 0.5 * (a + b);
+    // The normal by central differences a voxel each way: over half a voxel the gradient
+    // of the trilinear interpolant shows every cell face (rings around the axes on a
+    // sphere).
     vec3 g;
     for (int k = 0; k < 3; ++k)
     {
@@ -65,59 +60,50 @@ vec4 slabColor(vec3 a, vec3 b, float d, vec3 dir)
   return vec4(color * alpha, alpha);
 }
 
-// The parameter along [front, back] (clip coordinates) where the depth reaches z.
-float depthCut(vec4 front, vec4 back, float z)
-{
-  float ndc = 2.0 * z - 1.0;
-  float denominator = (back.z - front.z) - ndc * (back.w - front.w);
-  return abs(denominator) > 1e-30 ? (ndc * front.w - front.z) / denominator : 1.0;
-}
-
 void main()
 {
-  vec3 dir, frontWC, backWC, frontI, backI;
-  slabOfFragment(dir, frontWC, backWC, frontI, backI);
-
-  // Cut the slab where the ray leaves the volume...
-  float cut = 1.0;
-  vec3 stepI = backI - frontI;
-  vec3 last = gridSize - 1.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (stepI[a] > 0.0)
-    {
-      cut = min(cut, (last[a] - frontI[a]) / stepI[a]);
-    }
-    else if (stepI[a] < 0.0)
-    {
-      cut = min(cut, -frontI[a] / stepI[a]);
-    }
-  }
-  // ... and where it meets opaque geometry.
-  if (useOpaqueDepth == 1)
-  {
-    float z = texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy) - viewportOrigin, 0).r;
-    vec4 frontClip = worldToClip * vec4(frontWC, 1.0);
-    vec4 backClip = worldToClip * vec4(backWC, 1.0);
-    if (0.5 * backClip.z / backClip.w + 0.5 > z)
-    {
-      cut = min(cut, depthCut(frontClip, backClip, z));
-    }
-  }
-  if (cut <= 0.0)
+  vec3 dir, originWC, stepWC;
+  if (!rayOfFragment(dir, originWC, stepWC))
   {
     discard;
   }
-  vec4 slab = slabColor(frontI, mix(frontI, backI, cut), cut * length(backWC - frontWC), dir);
-  // A ray that enters the volume through a side between the previous slice and this one
-  // has that stretch in front of this slice, which no slice covers: add it, in front.
-  vec3 previousI = frontI - stepI;
-  float enter = entryAlong(previousI, stepI);
-  if (enter > 0.0 && enter < 1.0)
+  vec3 originI = (worldToIndex * vec4(originWC, 1.0)).xyz;
+  vec3 stepI = mat3(worldToIndex) * stepWC;
+  float enter, leave;
+  boxInterval(originI, stepI, enter, leave);
+  float start = max(enter, nearDepth);
+  if (!(leave > start))
   {
-    vec4 ahead = slabColor(mix(previousI, frontI, enter), frontI,
-      (1.0 - enter) * length(backWC - frontWC), dir);
-    slab = ahead + (1.0 - ahead.a) * slab;
+    discard;
   }
-  gl_FragData[0] = slab;
+  leave = opaqueCut(originWC, stepWC, start, leave);
+  float worldPerDepth = length(stepWC);
+  // Front to back: each slab's back value is the next one's front value.
+  vec4 sum = vec4(0.0);
+  float s = start;
+  float front = valueAt(originI + s * stepI);
+  for (int k = planeAtOrAfter(s); s < leave && k <= sliceCount; ++k)
+  {
+    float next = k < sliceCount ? min(planeDepth(k), leave) : leave;
+    if (next <= s)
+    {
+      continue;
+    }
+    float back = valueAt(originI + next * stepI);
+    vec4 slab =
+      slabColor(front, back, originI + (0.5 * (s + next)) * stepI, (next - s) * worldPerDepth, dir);
+    sum += (1.0 - sum.a) * slab;
+    // What lies behind would change no 8-bit channel by half a step.
+    if (sum.a >= 0.998)
+    {
+      break;
+    }
+    front = back;
+    s = next;
+  }
+  if (sum.a <= 0.0)
+  {
+    discard;
+  }
+  gl_FragData[0] = sum;
 }

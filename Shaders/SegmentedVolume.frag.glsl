@@ -2,11 +2,13 @@
 //VTK::Output::Dec
 //DF::SlabCommon
 
-// One fragment of a view-aligned slice stands for the slab between this slice and the
-// next one along its ray (Yamazaki et al., SMI 2003, section 4). It samples the field where the ray
-// enters and leaves the slab, and decides what the paper's vertex generation diagram
+// One fragment a pixel walks its ray's slabs front to back (Yamazaki et al., SMI 2003,
+// section 4, where a slice's fragment stood for one slab). Each slab is sampled where the
+// ray enters and leaves it, which decides what the paper's vertex generation diagram
 // tabulated: whether an interface lies in the slab (two regions, eq. 7), where (eq. 6)
-// and in which colour (the region on the viewer's side).
+// and in which colour (the region on the viewer's side). An opaque surface ends the ray
+// at its first interface; translucent ones are composited until the pixel is opaque or
+// the ray meets opaque geometry.
 
 uniform sampler3D field;          // per voxel: distance (>= 0), region index
 uniform sampler2D regionColors;   // one texel per region
@@ -196,12 +198,10 @@ bool surfaceInCell(vec3 p)
   return false;
 }
 
-// The interface in the slab from index-space point a to b, if any: where (the fraction
-// t of the way) and the front sample (distance, region).
-bool interfaceIn(vec3 a, vec3 b, out float t, out vec2 front)
+// The interface in the slab from index-space point a to b, whose ends sampled front and
+// back, if any: where (the fraction t of the way).
+bool interfaceIn(vec3 a, vec3 b, vec2 front, vec2 back, out float t)
 {
-  front = sampleField(a);
-  vec2 back = sampleField(b);
   if (front.y == back.y)
   {
     return false;
@@ -271,50 +271,90 @@ bool mayHoldInterface(vec3 a, vec3 b)
   return false;
 }
 
-void main()
+// The colour of the interface at hit (index space), seen along dir from region r.
+vec3 surfaceColor(vec3 hit, float r, vec3 dir)
 {
-  vec3 dir, frontWC, backWC, frontI, backI;
-  slabOfFragment(dir, frontWC, backWC, frontI, backI);
-  // A ray that enters the volume through a side between the previous slice and this one
-  // has that stretch in front of this slice, which no slice covers: it comes first.
-  vec3 previousI = 2.0 * frontI - backI;
-  vec3 previousWC = 2.0 * frontWC - backWC;
-  float enter = entryAlong(previousI, frontI - previousI);
-  vec3 start = enter > 0.0 && enter < 1.0 ? mix(previousI, frontI, enter) : frontI;
-  if (!mayHoldInterface(start, backI))
-  {
-    discard;
-  }
-  float t;
-  vec2 front;
-  vec3 hitI;
-  vec3 hitWC;
-  if (enter > 0.0 && enter < 1.0 &&
-    interfaceIn(mix(previousI, frontI, enter), frontI, t, front))
-  {
-    hitI = mix(mix(previousI, frontI, enter), frontI, t);
-    hitWC = mix(mix(previousWC, frontWC, enter), frontWC, t);
-  }
-  else if (interfaceIn(frontI, backI, t, front))
-  {
-    hitI = mix(frontI, backI, t);
-    hitWC = mix(frontWC, backWC, t);
-  }
-  else
-  {
-    discard;
-  }
-  vec4 clip = worldToClip * vec4(hitWC, 1.0);
-  gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
-
-  int region = int(front.y);
-  vec3 color = texelFetch(regionColors, ivec2(region % regionColorCount, 0), 0).rgb;
+  vec3 color = texelFetch(regionColors, ivec2(int(r) % regionColorCount, 0), 0).rgb;
   if (shade == 1)
   {
     // A headlight; the normal points into the viewer's region.
-    vec3 n = useClosestPoint == 1 ? closestPointNormal(hitI, front.y)
-                                  : indexToWorldNormal * gradientTo(hitI, front.y);
+    vec3 n = useClosestPoint == 1 ? closestPointNormal(hit, r)
+                                  : indexToWorldNormal * gradientTo(hit, r);
     color = headlight(color, n, dir);
   }
-  gl_FragData[0] = vec4(color * opacity, opacity);
+  return color;
+}
+
+void main()
+{
+  vec3 dir, originWC, stepWC;
+  if (!rayOfFragment(dir, originWC, stepWC))
+  {
+    discard;
+  }
+  vec3 originI = (worldToIndex * vec4(originWC, 1.0)).xyz;
+  vec3 stepI = mat3(worldToIndex) * stepWC;
+  float enter, leave;
+  boxInterval(originI, stepI, enter, leave);
+  float start = max(enter, nearDepth);
+  if (!(leave > start))
+  {
+    discard;
+  }
+  // Translucent surfaces stop at opaque geometry (opaque ones meet the depth test).
+  leave = opaqueCut(originWC, stepWC, start, leave);
+  vec4 sum = vec4(0.0);
+  float s = start;
+  vec2 front;
+  bool frontSampled = false;
+  for (int k = planeAtOrAfter(s); s < leave && k <= sliceCount; ++k)
+  {
+    float next = k < sliceCount ? min(planeDepth(k), leave) : leave;
+    if (next <= s)
+    {
+      continue;
+    }
+    float slabStart = s;
+    s = next;
+    vec3 a = originI + slabStart * stepI;
+    vec3 b = originI + next * stepI;
+    // Slabs in bricks without two regions are skipped after a fetch or two.
+    if (!mayHoldInterface(a, b))
+    {
+      frontSampled = false;
+      continue;
+    }
+    if (!frontSampled)
+    {
+      front = sampleField(a);
+    }
+    vec2 back = sampleField(b);
+    frontSampled = true;
+    float t;
+    if (interfaceIn(a, b, front, back, t))
+    {
+      vec3 hitI = mix(a, b, t);
+      vec3 hitWC = originWC + mix(slabStart, next, t) * stepWC;
+      vec3 color = surfaceColor(hitI, front.y, dir);
+      if (opacity >= 1.0)
+      {
+        vec4 clip = worldToClip * vec4(hitWC, 1.0);
+        gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
+        gl_FragData[0] = vec4(color, 1.0);
+        return;
+      }
+      sum += (1.0 - sum.a) * vec4(color * opacity, opacity);
+      // What lies behind would change no 8-bit channel by half a step.
+      if (sum.a >= 0.998)
+      {
+        break;
+      }
+    }
+    front = back;
+  }
+  if (sum.a <= 0.0)
+  {
+    discard;
+  }
+  gl_FragData[0] = sum;
 }

@@ -1,7 +1,13 @@
-// What both slice shaders of vtkSegmentedDistanceVolumeMapper share (substituted for
-// //DF::SlabCommon after their outputs): the slice fragment's position, the view and the
-// grid, the lighting parameters, the slab along the fragment's ray, where a segment
-// enters the volume's box, trilinear interpolation, and the headlight.
+// What both ray-casting shaders of vtkSegmentedDistanceVolumeMapper share (substituted for
+// //DF::SlabCommon after their outputs): the fragment's ray, the view and the grid, the
+// lighting parameters, where a ray meets the volume's box, the slabs between the sample
+// planes, trilinear interpolation, and the headlight.
+//
+// One fragment a pixel: the box's back faces are drawn, and the fragment casts the ray
+// from the eye through its point. The ray is sampled where it crosses the planes at depths
+// firstSliceDepth + k * sliceSpacing along the view direction (the planes a slice-based
+// renderer would draw), so a slab is the stretch between two planes, plus a first one from
+// where the ray enters the box (or the near plane) to the first plane.
 
 in vec3 positionWC;
 
@@ -13,39 +19,55 @@ uniform vec3 eyeWC;
 uniform vec3 viewDirWC;
 uniform int parallelProjection;
 uniform float sliceSpacing;       // world units, along viewDirWC
+uniform float firstSliceDepth;    // the first plane's depth along viewDirWC from the eye
+uniform int sliceCount;
+uniform float nearDepth;          // the near clipping plane's depth
 uniform int shade;
 uniform float ambient;
 uniform float diffuse;
 uniform float specular;
 uniform float specularPower;
+uniform sampler2D opaqueDepth;    // the depth buffer before the volume was drawn
+uniform int useOpaqueDepth;
+uniform ivec2 viewportOrigin;     // the window pixel of opaqueDepth's first texel
 
-// The slab this fragment stands for: from its slice to the next one along its ray, in
-// world and index coordinates, and the ray's direction.
-void slabOfFragment(out vec3 dir, out vec3 frontWC, out vec3 backWC, out vec3 frontI,
-  out vec3 backI)
+// The fragment's ray as points origin + s * step (world coordinates), s being the depth
+// along the view direction from the eye, and its unit direction. Only back faces cast.
+bool rayOfFragment(out vec3 dir, out vec3 originWC, out vec3 stepWC)
 {
-  dir = parallelProjection == 1 ? viewDirWC : normalize(positionWC - eyeWC);
-  float along = sliceSpacing / max(dot(dir, viewDirWC), 1e-6);
-  frontWC = positionWC;
-  backWC = positionWC + along * dir;
-  frontI = (worldToIndex * vec4(frontWC, 1.0)).xyz;
-  backI = (worldToIndex * vec4(backWC, 1.0)).xyz;
+  if (gl_FrontFacing)
+  {
+    return false;
+  }
+  if (parallelProjection == 1)
+  {
+    dir = viewDirWC;
+    originWC = positionWC - dot(positionWC - eyeWC, viewDirWC) * viewDirWC; // at depth 0
+    stepWC = viewDirWC;
+  }
+  else
+  {
+    dir = normalize(positionWC - eyeWC);
+    originWC = eyeWC;
+    stepWC = dir / max(dot(dir, viewDirWC), 1e-6);
+  }
+  return true;
 }
 
-// Where the segment from p along step (index space) enters the volume's box, as a
-// fraction of step: 0 when p is inside, > 1 when it never does.
-float entryAlong(vec3 p, vec3 step)
+// The depths between which the ray p + s * step (index space) is inside the volume's box;
+// empty (enter > leave) when it misses it.
+void boxInterval(vec3 p, vec3 step, out float enter, out float leave)
 {
   vec3 last = gridSize - 1.0;
-  float enter = 0.0;
-  float leave = 1e30;
+  enter = -1e30;
+  leave = 1e30;
   for (int a = 0; a < 3; ++a)
   {
     if (abs(step[a]) < 1e-30)
     {
       if (p[a] < 0.0 || p[a] > last[a])
       {
-        return 2.0;
+        leave = -1e30;
       }
       continue;
     }
@@ -54,7 +76,37 @@ float entryAlong(vec3 p, vec3 step)
     enter = max(enter, min(t0, t1));
     leave = min(leave, max(t0, t1));
   }
-  return enter <= leave ? enter : 2.0;
+}
+
+// The depth where the ray from depth start to leave meets the opaque geometry drawn before
+// the volume, or leave. Clip coordinates are linear along a line, so the window depth's
+// parameter along the segment is exact.
+float opaqueCut(vec3 originWC, vec3 stepWC, float start, float leave)
+{
+  if (useOpaqueDepth == 0)
+  {
+    return leave;
+  }
+  float z = 2.0 * texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy) - viewportOrigin, 0).r - 1.0;
+  vec4 front = worldToClip * vec4(originWC + start * stepWC, 1.0);
+  vec4 back = worldToClip * vec4(originWC + leave * stepWC, 1.0);
+  if (back.z / back.w <= z)
+  {
+    return leave;
+  }
+  float denominator = (back.z - front.z) - z * (back.w - front.w);
+  float t = abs(denominator) > 1e-30 ? (z * front.w - front.z) / denominator : 1.0;
+  return start + clamp(t, 0.0, 1.0) * (leave - start);
+}
+
+// The first sample plane at or beyond depth s, and plane k's depth.
+int planeAtOrAfter(float s)
+{
+  return max(0, int(ceil((s - firstSliceDepth) / sliceSpacing)));
+}
+float planeDepth(int k)
+{
+  return firstSliceDepth + float(k) * sliceSpacing;
 }
 
 // The trilinear interpolation of a cell's eight values (x fastest) at t in [0, 1]^3.
