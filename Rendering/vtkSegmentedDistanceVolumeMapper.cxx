@@ -21,6 +21,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
@@ -201,6 +202,41 @@ struct DecodeField
 /// holds voxels of two regions (an interface may lie there), else 0. The shader skips slabs that
 /// touch no such brick after a fetch or two, instead of sampling the field.
 constexpr int BrickSize = 4;
+
+/// Shaded composite volumes up to this many voxels store their gradients (16 bytes a voxel
+/// instead of 4: 1 GiB at most); larger ones difference their values in the shader.
+constexpr double StoredGradientVoxels = 1 << 26;
+
+/// Each voxel's value followed by its central differences along x, y and z (one-sided at
+/// the grid's faces, as the shader's clamped interpolation gives them there).
+std::vector<float> WithCentralDifferences(const std::vector<float>& values, const int dims[3])
+{
+  const vtkIdType nx = dims[0], ny = dims[1], nz = dims[2];
+  std::vector<float> texels(4 * values.size());
+  vtkSMPTools::For(0,
+    nz,
+    [&](vtkIdType zBegin, vtkIdType zEnd)
+    {
+      for (vtkIdType z = zBegin; z < zEnd; ++z)
+      {
+        for (vtkIdType y = 0; y < ny; ++y)
+        {
+          for (vtkIdType x = 0; x < nx; ++x)
+          {
+            const vtkIdType i = x + nx * (y + ny * z);
+            const auto at = [&](vtkIdType xi, vtkIdType yi, vtkIdType zi)
+            { return values[xi + nx * (yi + ny * zi)]; };
+            float* texel = &texels[4 * i];
+            texel[0] = values[i];
+            texel[1] = at(std::min(x + 1, nx - 1), y, z) - at(std::max<vtkIdType>(x - 1, 0), y, z);
+            texel[2] = at(x, std::min(y + 1, ny - 1), z) - at(x, std::max<vtkIdType>(y - 1, 0), z);
+            texel[3] = at(x, y, std::min(z + 1, nz - 1)) - at(x, y, std::max<vtkIdType>(z - 1, 0));
+          }
+        }
+      }
+    });
+  return texels;
+}
 std::vector<unsigned char> ActiveBricks(const float* texels, const int dims[3], int bricks[3])
 {
   const int cells[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
@@ -266,8 +302,12 @@ struct vtkSegmentedDistanceVolumeMapper::Internals
   bool HasClosestPoints = false;
   vtkOpenGLHelper Surfaces; // program and VAO of the box's faces, surface mode
   // Composite mode.
-  vtkNew<vtkTextureObject> Scalars; // R32F, linear
-  vtkNew<vtkTextureObject> Table;   // RGBA32F pre-integration table
+  // R32F, or RGBA32F (value, central differences) for shaded volumes up to
+  // StoredGradientVoxels.
+  vtkNew<vtkTextureObject> Scalars;
+  bool ScalarsGradient = false;
+  bool ShadeComposite = false;    // whether the last composite frame was shaded
+  vtkNew<vtkTextureObject> Table; // RGBA32F pre-integration table
   vtkOpenGLHelper Composite;
   vtkTimeStamp ScalarsTime;
   vtkTimeStamp TableTime;
@@ -582,11 +622,19 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
   return true;
 }
 
-bool vtkSegmentedDistanceVolumeMapper::UpdateScalars(vtkImageData* image)
+bool vtkSegmentedDistanceVolumeMapper::UpdateScalars(vtkImageData* image, bool shade)
 {
   Internals& impl = *this->Impl;
+  // A shaded volume keeps each voxel's central differences next to its value: the
+  // gradient a ray step needs is then the trilinear interpolation of eight texels, the
+  // same numbers as central differences of the interpolated values a voxel each way
+  // (interpolation is linear in the voxels), for a quarter of the fetches.
+  const bool gradient =
+    shade && static_cast<double>(image->GetNumberOfPoints()) <= StoredGradientVoxels;
+  impl.ShadeComposite = shade;
   if (impl.ScalarsValid && impl.Scalars->GetHandle() && impl.ScalarsImage == image &&
-    impl.ScalarsTime > image->GetMTime() && impl.ScalarsKey == this->ArraySelectionKey())
+    impl.ScalarsTime > image->GetMTime() && impl.ScalarsKey == this->ArraySelectionKey() &&
+    impl.ScalarsGradient == gradient)
   {
     return true;
   }
@@ -624,11 +672,22 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateScalars(vtkImageData* image)
     range[0] = std::min(range[0], v);
     range[1] = std::max(range[1], v);
   }
-  PrepareTexture(impl.Scalars, vtkTextureObject::Nearest, GL_R32F, GL_RED, GL_FLOAT);
+  if (gradient)
+  {
+    values = WithCentralDifferences(values, dims);
+  }
+  if (gradient)
+  {
+    PrepareTexture(impl.Scalars, vtkTextureObject::Linear, GL_RGBA32F, GL_RGBA, GL_FLOAT);
+  }
+  else
+  {
+    PrepareTexture(impl.Scalars, vtkTextureObject::Linear, GL_R32F, GL_RED, GL_FLOAT);
+  }
   if (!impl.Scalars->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
         static_cast<unsigned int>(dims[1]),
         static_cast<unsigned int>(dims[2]),
-        1,
+        gradient ? 4 : 1,
         VTK_FLOAT,
         values.data()))
   {
@@ -643,6 +702,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateScalars(vtkImageData* image)
   this->SetGeometry(image, dims);
   impl.ScalarsImage = image;
   impl.ScalarsKey = this->ArraySelectionKey();
+  impl.ScalarsGradient = gradient;
   impl.ScalarsValid = true;
   impl.ScalarsTime.Modified();
   return true;
@@ -748,8 +808,9 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   {
     texture->SetContext(window);
   }
-  if (surface ? !this->UpdateField(image)
-              : !(this->UpdateScalars(image) && this->UpdateTable(property)))
+  if (surface
+      ? !this->UpdateField(image)
+      : !(this->UpdateScalars(image, property->GetShade(0) != 0) && this->UpdateTable(property)))
   {
     return;
   }
@@ -835,10 +896,15 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
   vtkOpenGLHelper& helper)
 {
   Internals& impl = *this->Impl;
-  // Through VTK's shader cache. Both fragment shaders take the slab code they share in
-  // place of //DF::SlabCommon.
+  // Through VTK's shader cache. Both fragment shaders take the ray code they share in
+  // place of //DF::SlabCommon. What varies between frames only rarely is compiled in
+  // rather than branched on: a software rasterizer runs a branch's texture fetches for
+  // every pixel whichever way it goes.
   std::string fragment = this->Mode == Surface ? SegmentedVolume_frag : PreIntegratedVolume_frag;
-  vtkShaderProgram::Substitute(fragment, "//DF::SlabCommon", SlabCommon);
+  const bool differenced = this->Mode == Composite && impl.ShadeComposite && !impl.ScalarsGradient;
+  vtkShaderProgram::Substitute(fragment,
+    "//DF::SlabCommon",
+    std::string("#define DIFFERENCED_GRADIENT ") + (differenced ? "1" : "0") + "\n" + SlabCommon);
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(SegmentedVolume_vert, fragment.c_str(), "");
   if (!program)

@@ -200,7 +200,7 @@ private:
   std::unique_ptr<Internals> Impl;
 
   bool UpdateField(vtkImageData* image);
-  bool UpdateScalars(vtkImageData* image);
+  bool UpdateScalars(vtkImageData* image, bool shade);
   bool UpdateTable(vtkVolumeProperty* property);
   bool CheckGrid(vtkImageData* image, int dims[3]);
   void SetGeometry(vtkImageData* image, const int dims[3]);

@@ -9,49 +9,48 @@
 // extinction-weighted average colour (rgb), so the slab's length enters exactly:
 // alpha = 1 - exp(-length * a).
 
-uniform sampler3D scalars;        // the scalar volume (read with texelFetch)
+uniform sampler3D scalars;        // the scalar volume, linear filtering: value, and for a
+                                  // shaded volume without DIFFERENCED_GRADIENT its
+                                  // central differences
 uniform sampler2D preIntegrated;  // RGBA: average colour, average extinction
 uniform vec2 scalarRange;         // the table's first and last values
 uniform float tableSize;
 
-// Trilinear interpolation in full float precision: texture filtering's weights have a few
-// bits of precision only (8 on most hardware and llvmpipe), which bands smooth fields
-// into rings, in the values and worse in their central differences.
-float valueAt(vec3 index)
+// The interpolated value at an index-space point and, when shading, the gradient there
+// (per two index steps), by the texture unit's trilinear filtering: one fetch where eight
+// texelFetch calls cost three times as much on a software rasterizer. Its weights have 8
+// fractional bits on most GPUs: a value is off by at most 1/256 of the difference between
+// neighbouring voxels, well inside the pre-integration table's steps. The gradient is the
+// central differences of the interpolated values a voxel each way (over half a voxel the
+// gradient of the trilinear interpolant shows every cell face: rings around the axes on a
+// sphere); stored per voxel, they are interpolated like the values (the same numbers:
+// interpolation is linear in the voxels).
+vec4 sampleAt(vec3 index)
 {
-  ivec3 last = ivec3(gridSize + 0.5) - 1;
-  vec3 q = clamp(index, vec3(0.0), vec3(last));
-  ivec3 b = min(ivec3(floor(q)), max(last - 1, ivec3(0)));
-  vec3 t = q - vec3(b);
-  float v[8];
-  for (int k = 0; k < 8; ++k)
-  {
-    v[k] = texelFetch(scalars, min(b + ivec3(k & 1, (k >> 1) & 1, k >> 2), last), 0).r;
-  }
-  return trilinear(v, t);
+  vec3 p = (index + 0.5) / gridSize;
+  vec4 texel = texture(scalars, p);
+#if DIFFERENCED_GRADIENT
+  vec3 e = 1.0 / gridSize;
+  texel.gba = vec3(texture(scalars, p + vec3(e.x, 0.0, 0.0)).r -
+      texture(scalars, p - vec3(e.x, 0.0, 0.0)).r,
+    texture(scalars, p + vec3(0.0, e.y, 0.0)).r - texture(scalars, p - vec3(0.0, e.y, 0.0)).r,
+    texture(scalars, p + vec3(0.0, 0.0, e.z)).r - texture(scalars, p - vec3(0.0, 0.0, e.z)).r);
+#endif
+  return texel;
 }
 
 // The premultiplied colour of a slab of world length d whose ends have the values front
-// and back, shaded at its midpoint m (index space).
-vec4 slabColor(float front, float back, vec3 m, float d, vec3 dir)
+// and back, shaded with the mean of its ends' gradients.
+vec4 slabColor(vec4 front, vec4 back, float d, vec3 dir)
 {
-  vec2 table = (clamp((vec2(front, back) - scalarRange.x) / (scalarRange.y - scalarRange.x),
+  vec2 table = (clamp((vec2(front.r, back.r) - scalarRange.x) / (scalarRange.y - scalarRange.x),
                   0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
   vec4 entry = texture(preIntegrated, table);
   float alpha = 1.0 - exp(-d * entry.a);
   vec3 color = entry.rgb;
   if (shade == 1 && alpha > 0.0)
   {
-    // The normal by central differences a voxel each way: over half a voxel the gradient
-    // of the trilinear interpolant shows every cell face (rings around the axes on a
-    // sphere).
-    vec3 g;
-    for (int k = 0; k < 3; ++k)
-    {
-      vec3 e = vec3(0.0);
-      e[k] = 1.0;
-      g[k] = valueAt(m + e) - valueAt(m - e);
-    }
+    vec3 g = 0.5 * (front.gba + back.gba);
     // Where the field is flat (under 1% of its range over two voxels) the gradient's
     // direction is noise: no directional shading there.
     float flatBelow = 0.01 * (scalarRange.y - scalarRange.x);
@@ -81,7 +80,7 @@ void main()
   // Front to back: each slab's back value is the next one's front value.
   vec4 sum = vec4(0.0);
   float s = start;
-  float front = valueAt(originI + s * stepI);
+  vec4 front = sampleAt(originI + s * stepI);
   for (int k = planeAtOrAfter(s); s < leave && k <= sliceCount; ++k)
   {
     float next = k < sliceCount ? min(planeDepth(k), leave) : leave;
@@ -89,9 +88,8 @@ void main()
     {
       continue;
     }
-    float back = valueAt(originI + next * stepI);
-    vec4 slab =
-      slabColor(front, back, originI + (0.5 * (s + next)) * stepI, (next - s) * worldPerDepth, dir);
+    vec4 back = sampleAt(originI + next * stepI);
+    vec4 slab = slabColor(front, back, (next - s) * worldPerDepth, dir);
     sum += (1.0 - sum.a) * slab;
     // What lies behind would change no 8-bit channel by half a step.
     if (sum.a >= 0.998)
