@@ -157,7 +157,9 @@ void DefaultRegionColor(int region, double rgb[3])
 }
 
 /// Reads a field into (distance, region) texels: a segmented one from f = min(d, Delta)
-/// + RegionOffset * r, a signed one from its sign. Reports a non-finite value.
+/// + RegionOffset * r, a signed one as (value, sign): the shader takes the distance's
+/// absolute value, and marches rays on the filtered signed value. Reports a non-finite
+/// value.
 struct DecodeField
 {
   template<typename Array>
@@ -188,7 +190,7 @@ struct DecodeField
       else
       {
         region = f < 0 ? 1 : 0;
-        distance = std::abs(f);
+        distance = f;
       }
       texels[2 * i] = static_cast<float>(distance);
       texels[2 * i + 1] = static_cast<float>(region);
@@ -294,7 +296,7 @@ std::vector<unsigned char> ActiveBricks(const float* texels, const int dims[3], 
 struct vtkSegmentedDistanceVolumeMapper::Internals
 {
   // Surface mode.
-  vtkNew<vtkTextureObject> Field;  // RG32F: distance, region
+  vtkNew<vtkTextureObject> Field;  // RG32F: distance (signed value of a signed field), region
   vtkNew<vtkTextureObject> Colors; // RGB32F, one texel a region
   vtkNew<vtkTextureObject> Bricks; // R8: bricks where an interface may lie
   int BrickDims[3] = { 1, 1, 1 };
@@ -565,7 +567,8 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
     return false;
   }
 
-  PrepareTexture(impl.Field, vtkTextureObject::Nearest, GL_RG32F, GL_RG, GL_FLOAT);
+  // Linear filtering for the rays' march over a signed field; the rest reads texels.
+  PrepareTexture(impl.Field, vtkTextureObject::Linear, GL_RG32F, GL_RG, GL_FLOAT);
   if (!impl.Field->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
         static_cast<unsigned int>(dims[1]),
         static_cast<unsigned int>(dims[2]),
@@ -902,9 +905,12 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
   // every pixel whichever way it goes.
   std::string fragment = this->Mode == Surface ? SegmentedVolume_frag : PreIntegratedVolume_frag;
   const bool differenced = this->Mode == Composite && impl.ShadeComposite && !impl.ScalarsGradient;
+  const bool filteredMarch =
+    this->Mode == Surface && !impl.Segmented && this->Interpolation != Nearest;
   vtkShaderProgram::Substitute(fragment,
     "//DF::SlabCommon",
-    std::string("#define DIFFERENCED_GRADIENT ") + (differenced ? "1" : "0") + "\n" + SlabCommon);
+    std::string("#define DIFFERENCED_GRADIENT ") + (differenced ? "1" : "0") +
+      "\n#define FILTERED_MARCH " + (filteredMarch ? "1" : "0") + "\n" + SlabCommon);
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(SegmentedVolume_vert, fragment.c_str(), "");
   if (!program)
@@ -1083,8 +1089,12 @@ void vtkSegmentedDistanceVolumeMapper::DrawBox(vtkOpenGLRenderWindow* window,
   vtkOpenGLState::ScopedglDepthMask depthMask(state);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
-  // The shaders keep the back faces' fragments (gl_FrontFacing): no culling state needed.
-  state->vtkglDisable(GL_CULL_FACE);
+  // One ray a pixel, from the box's back faces (an eye inside the box has them): the
+  // front faces are culled.
+  GLint cullMode = GL_BACK;
+  glGetIntegerv(GL_CULL_FACE_MODE, &cullMode);
+  state->vtkglEnable(GL_CULL_FACE);
+  state->vtkglCullFace(GL_FRONT);
   if (blended)
   {
     // Premultiplied colours over the window; the shaders stop at the opaque depth.
@@ -1102,6 +1112,7 @@ void vtkSegmentedDistanceVolumeMapper::DrawBox(vtkOpenGLRenderWindow* window,
     state->vtkglDisable(GL_BLEND);
   }
   glDrawArrays(GL_TRIANGLES, 0, vertexCount);
+  state->vtkglCullFace(static_cast<unsigned int>(cullMode));
 }
 
 std::vector<float> vtkSegmentedDistanceVolumeMapper::BoxFaces(vtkMatrix4x4* indexToWorld,
@@ -1162,8 +1173,7 @@ std::vector<float> vtkSegmentedDistanceVolumeMapper::BoxFaces(vtkMatrix4x4* inde
   planes.Spacing = spacing;
 
   // The box's twelve triangles, each counter-clockwise seen from outside (whatever the
-  // handedness of index-to-world), so that the shaders can tell back faces by
-  // gl_FrontFacing.
+  // handedness of index-to-world), so that culling the front faces leaves the back ones.
   static const int faces[6][4] = {
     { 0, 2, 6, 4 }, { 1, 3, 7, 5 }, { 0, 1, 5, 4 }, { 2, 3, 7, 6 }, { 0, 1, 3, 2 }, { 4, 5, 7, 6 }
   };

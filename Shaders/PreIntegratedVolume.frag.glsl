@@ -62,10 +62,7 @@ vec4 slabColor(vec4 front, vec4 back, float d, vec3 dir)
 void main()
 {
   vec3 dir, originWC, stepWC;
-  if (!rayOfFragment(dir, originWC, stepWC))
-  {
-    discard;
-  }
+  rayOfFragment(dir, originWC, stepWC);
   vec3 originI = (worldToIndex * vec4(originWC, 1.0)).xyz;
   vec3 stepI = mat3(worldToIndex) * stepWC;
   float enter, leave;
@@ -77,20 +74,19 @@ void main()
   }
   leave = opaqueCut(originWC, stepWC, start, leave);
   float worldPerDepth = length(stepWC);
-  // Front to back: each slab's back value is the next one's front value.
+  // Front to back: each slab's back value is the next one's front value. The slabs end
+  // at the planes strictly between start and leave, and at leave.
+  int first = planeAtOrAfter(start);
+  first += planeDepth(first) <= start ? 1 : 0;
+  int ends = max(min(planeAtOrAfter(leave), sliceCount) - first + 1, 1);
   vec4 sum = vec4(0.0);
   float s = start;
   vec4 front = sampleAt(originI + s * stepI);
-  for (int k = planeAtOrAfter(s); s < leave && k <= sliceCount; ++k)
+  for (int j = 0; j < ends; ++j)
   {
-    float next = k < sliceCount ? min(planeDepth(k), leave) : leave;
-    if (next <= s)
-    {
-      continue;
-    }
+    float next = j + 1 < ends ? planeDepth(first + j) : leave;
     vec4 back = sampleAt(originI + next * stepI);
-    vec4 slab = slabColor(front, back, (next - s) * worldPerDepth, dir);
-    sum += (1.0 - sum.a) * slab;
+    sum += (1.0 - sum.a) * slabColor(front, back, (next - s) * worldPerDepth, dir);
     // What lies behind would change no 8-bit channel by half a step.
     if (sum.a >= 0.998)
     {

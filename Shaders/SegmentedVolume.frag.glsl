@@ -10,7 +10,8 @@
 // at its first interface; translucent ones are composited until the pixel is opaque or
 // the ray meets opaque geometry.
 
-uniform sampler3D field;          // per voxel: distance (>= 0), region index
+uniform sampler3D field;          // per voxel: distance (a signed field's signed value),
+                                  // region index; linear filtering
 uniform sampler2D regionColors;   // one texel per region
 uniform sampler3D bricks;         // 1 where an interface may lie (bricks of cells)
 uniform float brickSize;          // cells a brick side
@@ -32,7 +33,8 @@ ivec3 dims()
 
 vec2 voxel(ivec3 i)
 {
-  return texelFetch(field, clamp(i, ivec3(0), dims() - 1), 0).xy;
+  vec2 texel = texelFetch(field, clamp(i, ivec3(0), dims() - 1), 0).xy;
+  return vec2(abs(texel.x), texel.y);
 }
 
 // The cell around index-space point p: its first voxel, and p's place in it.
@@ -285,57 +287,94 @@ vec3 surfaceColor(vec3 hit, float r, vec3 dir)
   return color;
 }
 
+// The sample the march compares at an index-space point: on a signed field sampled
+// region-aware or linearly, the filtered signed value's sign is the region (one fetch;
+// the slab's ends are sampled exactly once it is a candidate); otherwise the sample.
+vec2 marchSample(vec3 p)
+{
+#if FILTERED_MARCH
+  float f = texture(field, (p + 0.5) / gridSize).r;
+  return vec2(abs(f), f < 0.0 ? 1.0 : 0.0);
+#else
+  return sampleField(p);
+#endif
+}
+
 void main()
 {
   vec3 dir, originWC, stepWC;
-  if (!rayOfFragment(dir, originWC, stepWC))
-  {
-    discard;
-  }
+  rayOfFragment(dir, originWC, stepWC);
   vec3 originI = (worldToIndex * vec4(originWC, 1.0)).xyz;
   vec3 stepI = mat3(worldToIndex) * stepWC;
   float enter, leave;
   boxInterval(originI, stepI, enter, leave);
-  float start = max(enter, nearDepth);
-  if (!(leave > start))
+  float s = max(enter, nearDepth);
+  if (!(leave > s))
   {
     discard;
   }
   // Translucent surfaces stop at opaque geometry (opaque ones meet the depth test).
-  leave = opaqueCut(originWC, stepWC, start, leave);
+  leave = opaqueCut(originWC, stepWC, s, leave);
   vec4 sum = vec4(0.0);
-  float s = start;
-  vec2 front;
-  bool frontSampled = false;
-  for (int k = planeAtOrAfter(s); s < leave && k <= sliceCount; ++k)
+  int k = planeAtOrAfter(s);
+  vec2 front = marchSample(originI + s * stepI);
+  bool frontValid = true;
+  while (s < leave && k <= sliceCount)
   {
-    float next = k < sliceCount ? min(planeDepth(k), leave) : leave;
-    if (next <= s)
+    // March to the next slab whose ends lie in two regions: the loop a pixel spends its
+    // time in, so it only samples; the decision below runs once a candidate.
+    float next = leave;
+    vec2 back = front;
+    bool candidate = false;
+    for (; s < leave && k <= sliceCount; ++k)
     {
-      continue;
+      next = k < sliceCount ? min(planeDepth(k), leave) : leave;
+      if (next <= s)
+      {
+        continue;
+      }
+#if !FILTERED_MARCH
+      // Slabs in bricks without two regions are skipped after a fetch or two.
+      if (!mayHoldInterface(originI + s * stepI, originI + next * stepI))
+      {
+        frontValid = false;
+        s = next;
+        continue;
+      }
+      if (!frontValid)
+      {
+        front = marchSample(originI + s * stepI);
+        frontValid = true;
+      }
+#endif
+      back = marchSample(originI + next * stepI);
+      if (back.y != front.y)
+      {
+        candidate = true;
+        ++k;
+        break;
+      }
+      front = back;
+      s = next;
     }
-    float slabStart = s;
-    s = next;
-    vec3 a = originI + slabStart * stepI;
+    if (!candidate)
+    {
+      break;
+    }
+    vec3 a = originI + s * stepI;
     vec3 b = originI + next * stepI;
-    // Slabs in bricks without two regions are skipped after a fetch or two.
-    if (!mayHoldInterface(a, b))
-    {
-      frontSampled = false;
-      continue;
-    }
-    if (!frontSampled)
-    {
-      front = sampleField(a);
-    }
-    vec2 back = sampleField(b);
-    frontSampled = true;
+#if FILTERED_MARCH
+    vec2 exactFront = sampleField(a);
+    vec2 exactBack = sampleField(b);
+#else
+    vec2 exactFront = front;
+    vec2 exactBack = back;
+#endif
     float t;
-    if (interfaceIn(a, b, front, back, t))
+    if (interfaceIn(a, b, exactFront, exactBack, t))
     {
-      vec3 hitI = mix(a, b, t);
-      vec3 hitWC = originWC + mix(slabStart, next, t) * stepWC;
-      vec3 color = surfaceColor(hitI, front.y, dir);
+      vec3 hitWC = originWC + mix(s, next, t) * stepWC;
+      vec3 color = surfaceColor(mix(a, b, t), exactFront.y, dir);
       if (opacity >= 1.0)
       {
         vec4 clip = worldToClip * vec4(hitWC, 1.0);
@@ -351,6 +390,7 @@ void main()
       }
     }
     front = back;
+    s = next;
   }
   if (sum.a <= 0.0)
   {

@@ -3,8 +3,9 @@
 // lighting parameters, where a ray meets the volume's box, the slabs between the sample
 // planes, trilinear interpolation, and the headlight.
 //
-// One fragment a pixel: the box's back faces are drawn, and the fragment casts the ray
-// from the eye through its point. The ray is sampled where it crosses the planes at depths
+// One fragment a pixel: the box's back faces are drawn (its front faces culled, so that
+// an eye inside the box still has them), and the fragment casts the ray from the eye
+// through its point. The ray is sampled where it crosses the planes at depths
 // firstSliceDepth + k * sliceSpacing along the view direction (the planes a slice-based
 // renderer would draw), so a slab is the stretch between two planes, plus a first one from
 // where the ray enters the box (or the near plane) to the first plane.
@@ -32,13 +33,10 @@ uniform int useOpaqueDepth;
 uniform ivec2 viewportOrigin;     // the window pixel of opaqueDepth's first texel
 
 // The fragment's ray as points origin + s * step (world coordinates), s being the depth
-// along the view direction from the eye, and its unit direction. Only back faces cast.
-bool rayOfFragment(out vec3 dir, out vec3 originWC, out vec3 stepWC)
+// along the view direction from the eye, and its unit direction. The ray is the pixel's,
+// whichever face of the box the fragment is on.
+void rayOfFragment(out vec3 dir, out vec3 originWC, out vec3 stepWC)
 {
-  if (gl_FrontFacing)
-  {
-    return false;
-  }
   if (parallelProjection == 1)
   {
     dir = viewDirWC;
@@ -51,7 +49,6 @@ bool rayOfFragment(out vec3 dir, out vec3 originWC, out vec3 stepWC)
     originWC = eyeWC;
     stepWC = dir / max(dot(dir, viewDirWC), 1e-6);
   }
-  return true;
 }
 
 // The depths between which the ray p + s * step (index space) is inside the volume's box;

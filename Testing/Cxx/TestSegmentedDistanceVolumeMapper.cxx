@@ -386,6 +386,34 @@ int TestSigned(const std::string& data)
       d.P90 / hc);
     CHECK(d.Mismatch < 0.02 && d.P90 < 0.1 * hc, "the surface at the volume's sides is off");
   }
+  // The eye inside the volume's box (outside the bunny, near a corner of its box): the rays
+  // start at the near plane, and the box's faces in front of the eye are behind it.
+  {
+    mapper->SetInputData(field);
+    const double* b = field->GetBounds();
+    Scene scene(b, false, 0, 0);
+    vtkCamera* camera = scene.Renderer->GetActiveCamera();
+    const double eye[3] = {
+      b[0] + 0.05 * (b[1] - b[0]), b[2] + 0.05 * (b[3] - b[2]), b[4] + 0.95 * (b[5] - b[4])
+    };
+    camera->SetPosition(eye);
+    camera->SetFocalPoint((b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2);
+    camera->SetViewUp(0, 1, 0);
+    camera->OrthogonalizeViewUp();
+    camera->SetViewAngle(60);
+    camera->SetClippingRange(0.01 * (b[1] - b[0]), 4 * (b[1] - b[0]));
+    const Frame reference = scene.Draw({ levelSetActor });
+    const Frame drawn = scene.Draw({ volume });
+    const Difference d = Compare(drawn, reference, camera);
+    std::printf("eye inside the volume's box: %zu pixels covered by both, %.2f%% differ from the "
+                "level set, depth median %.3f p90 %.3f voxels\n",
+      d.Both,
+      100 * d.Mismatch,
+      d.Median / h,
+      d.P90 / h);
+    CHECK(d.Both > 5000 && d.Mismatch < 0.02 && d.Median < 0.05 * h && d.P90 < 0.15 * h,
+      "the surface seen from inside the volume's box is off");
+  }
   CHECK(messages.Errors.empty(), "errors: %s", messages.Errors.c_str());
   return 0;
 }
