@@ -205,40 +205,68 @@ struct DecodeField
 /// touch no such brick after a fetch or two, instead of sampling the field.
 constexpr int BrickSize = 4;
 
-/// Shaded composite volumes up to this many voxels store their gradients (16 bytes a voxel
-/// instead of 4: 1 GiB at most); larger ones difference their values in the shader.
+/// Shaded composite volumes up to this many voxels store their gradients (8 bytes a voxel
+/// instead of 4: 512 MiB at most); larger ones difference their values in the shader.
 constexpr double StoredGradientVoxels = 1 << 26;
 
-/// Each voxel's value followed by its central differences along x, y and z (one-sided at
-/// the grid's faces, as the shader's clamped interpolation gives them there).
-std::vector<float> WithCentralDifferences(const std::vector<float>& values, const int dims[3])
+/// Each voxel's value and its central differences along x, y and z (one-sided at the
+/// grid's faces, as the shader's clamped interpolation gives them there), as 16-bit signed
+/// normalized texels: the value over `range` mapped to [-1, 1] (65,535 steps, finer than
+/// the largest pre-integration table), the differences divided by `gradientScale`, the
+/// largest of them. Half the bytes of floats: the rays' fetches are bound by memory.
+std::vector<short> PackedWithGradients(const std::vector<float>& values,
+  const int dims[3],
+  const double range[2],
+  double& gradientScale)
 {
   const vtkIdType nx = dims[0], ny = dims[1], nz = dims[2];
-  std::vector<float> texels(4 * values.size());
+  std::vector<float> differences(3 * values.size());
   vtkSMPTools::For(0,
     nz,
     [&](vtkIdType zBegin, vtkIdType zEnd)
     {
+      const auto at = [&](vtkIdType x, vtkIdType y, vtkIdType z)
+      { return values[x + nx * (y + ny * z)]; };
       for (vtkIdType z = zBegin; z < zEnd; ++z)
       {
         for (vtkIdType y = 0; y < ny; ++y)
         {
           for (vtkIdType x = 0; x < nx; ++x)
           {
-            const vtkIdType i = x + nx * (y + ny * z);
-            const auto at = [&](vtkIdType xi, vtkIdType yi, vtkIdType zi)
-            { return values[xi + nx * (yi + ny * zi)]; };
-            float* texel = &texels[4 * i];
-            texel[0] = values[i];
-            texel[1] = at(std::min(x + 1, nx - 1), y, z) - at(std::max<vtkIdType>(x - 1, 0), y, z);
-            texel[2] = at(x, std::min(y + 1, ny - 1), z) - at(x, std::max<vtkIdType>(y - 1, 0), z);
-            texel[3] = at(x, y, std::min(z + 1, nz - 1)) - at(x, y, std::max<vtkIdType>(z - 1, 0));
+            float* d = &differences[3 * (x + nx * (y + ny * z))];
+            d[0] = at(std::min(x + 1, nx - 1), y, z) - at(std::max<vtkIdType>(x - 1, 0), y, z);
+            d[1] = at(x, std::min(y + 1, ny - 1), z) - at(x, std::max<vtkIdType>(y - 1, 0), z);
+            d[2] = at(x, y, std::min(z + 1, nz - 1)) - at(x, y, std::max<vtkIdType>(z - 1, 0));
           }
+        }
+      }
+    });
+  float largest = 0;
+  for (const float d : differences)
+  {
+    largest = std::max(largest, std::abs(d));
+  }
+  gradientScale = largest > 0 ? largest : 1.0;
+  const double toValue = 2.0 / (range[1] - range[0]);
+  const auto snorm = [](double f)
+  { return static_cast<short>(std::lround(std::clamp(f, -1.0, 1.0) * 32767.0)); };
+  std::vector<short> texels(4 * values.size());
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(values.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        texels[4 * i] = snorm((values[i] - range[0]) * toValue - 1.0);
+        for (int c = 0; c < 3; ++c)
+        {
+          texels[4 * i + 1 + c] = snorm(differences[3 * i + c] / gradientScale);
         }
       }
     });
   return texels;
 }
+
 std::vector<unsigned char> ActiveBricks(const float* texels, const int dims[3], int bricks[3])
 {
   const int cells[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
@@ -304,10 +332,11 @@ struct vtkSegmentedDistanceVolumeMapper::Internals
   bool HasClosestPoints = false;
   vtkOpenGLHelper Surfaces; // program and VAO of the box's faces, surface mode
   // Composite mode.
-  // R32F, or RGBA32F (value, central differences) for shaded volumes up to
+  // R32F, or RGBA16_SNORM (value, central differences) for shaded volumes up to
   // StoredGradientVoxels.
   vtkNew<vtkTextureObject> Scalars;
   bool ScalarsGradient = false;
+  double GradientScale = 1;
   bool ShadeComposite = false;    // whether the last composite frame was shaded
   vtkNew<vtkTextureObject> Table; // RGBA32F pre-integration table
   vtkOpenGLHelper Composite;
@@ -675,31 +704,36 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateScalars(vtkImageData* image, bool s
     range[0] = std::min(range[0], v);
     range[1] = std::max(range[1], v);
   }
-  if (gradient)
+  if (!(range[1] > range[0]))
   {
-    values = WithCentralDifferences(values, dims);
+    range[1] = range[0] + 1.0;
   }
+  bool made = false;
   if (gradient)
   {
-    PrepareTexture(impl.Scalars, vtkTextureObject::Linear, GL_RGBA32F, GL_RGBA, GL_FLOAT);
+    const std::vector<short> texels = PackedWithGradients(values, dims, range, impl.GradientScale);
+    PrepareTexture(impl.Scalars, vtkTextureObject::Linear, GL_RGBA16_SNORM, GL_RGBA, GL_SHORT);
+    made = impl.Scalars->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
+      static_cast<unsigned int>(dims[1]),
+      static_cast<unsigned int>(dims[2]),
+      4,
+      VTK_SHORT,
+      const_cast<short*>(texels.data()));
   }
   else
   {
     PrepareTexture(impl.Scalars, vtkTextureObject::Linear, GL_R32F, GL_RED, GL_FLOAT);
+    made = impl.Scalars->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
+      static_cast<unsigned int>(dims[1]),
+      static_cast<unsigned int>(dims[2]),
+      1,
+      VTK_FLOAT,
+      values.data());
   }
-  if (!impl.Scalars->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
-        static_cast<unsigned int>(dims[1]),
-        static_cast<unsigned int>(dims[2]),
-        gradient ? 4 : 1,
-        VTK_FLOAT,
-        values.data()))
+  if (!made)
   {
     vtkErrorMacro("Could not make the scalars' 3D texture");
     return false;
-  }
-  if (!(range[1] > range[0]))
-  {
-    range[1] = range[0] + 1.0;
   }
   std::copy(range, range + 2, impl.ScalarRange);
   this->SetGeometry(image, dims);
@@ -905,12 +939,15 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
   // every pixel whichever way it goes.
   std::string fragment = this->Mode == Surface ? SegmentedVolume_frag : PreIntegratedVolume_frag;
   const bool differenced = this->Mode == Composite && impl.ShadeComposite && !impl.ScalarsGradient;
+  const bool storedGradient =
+    this->Mode == Composite && impl.ShadeComposite && impl.ScalarsGradient;
   const bool filteredMarch =
     this->Mode == Surface && !impl.Segmented && this->Interpolation != Nearest;
   vtkShaderProgram::Substitute(fragment,
     "//DF::SlabCommon",
     std::string("#define DIFFERENCED_GRADIENT ") + (differenced ? "1" : "0") +
-      "\n#define FILTERED_MARCH " + (filteredMarch ? "1" : "0") + "\n" + SlabCommon);
+      "\n#define STORED_GRADIENT " + (storedGradient ? "1" : "0") + "\n#define FILTERED_MARCH " +
+      (filteredMarch ? "1" : "0") + "\n" + SlabCommon);
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(SegmentedVolume_vert, fragment.c_str(), "");
   if (!program)
@@ -1041,6 +1078,11 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindCompositeTe
     static_cast<float>(impl.ScalarRange[1]) };
   program->SetUniform2f("scalarRange", range);
   program->SetUniformf("tableSize", static_cast<float>(this->PreIntegrationTableSize));
+  // A stored gradient's texels are normalized: value = offset + scale * texel.
+  const double half = 0.5 * (impl.ScalarRange[1] - impl.ScalarRange[0]);
+  program->SetUniformf("packedValueOffset", static_cast<float>(impl.ScalarRange[0] + half));
+  program->SetUniformf("packedValueScale", static_cast<float>(half));
+  program->SetUniformf("packedGradientScale", static_cast<float>(impl.GradientScale));
   std::vector<vtkTextureObject*> active = { impl.Scalars, impl.Table };
   for (vtkTextureObject* texture : active)
   {

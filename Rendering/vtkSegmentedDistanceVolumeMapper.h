@@ -1,11 +1,12 @@
 /**
  * @class   vtkSegmentedDistanceVolumeMapper
- * @brief   Pre-integrated slice-based rendering of segmented and signed distance fields.
+ * @brief   Pre-integrated ray casting of segmented and signed distance fields.
  *
- * The renderer of Yamazaki et al. (SMI 2003) (section 4) through VTK's OpenGL layer. The volume is
- * cut by view-aligned slices (SampleDistance apart, or NumberOfSlices of them), drawn back to
- * front; a fragment of a slice stands for the slab between its slice and the next one along its
- * ray. It samples the field where the ray enters and where it leaves the slab, and decides what the
+ * The renderer of Yamazaki et al. (SMI 2003) (section 4) through VTK's OpenGL layer, ray cast:
+ * one fragment a pixel (the volume box's back faces) walks its ray front to back through the
+ * slabs between view-aligned sample planes (SampleDistance apart, or NumberOfSlices of them
+ * across the volume's depth: the slices the publication draws). Each slab is sampled where the
+ * ray enters and where it leaves it, which decides what the
  * paper's vertex generation diagram tabulated: whether an interface lies in the slab (the two
  * samples are in different regions, and eq. 7 holds: an edge of the interface point's cell joins
  * voxels of two regions whose distances add up to at most its length, as the polygonizer tests it,
@@ -13,8 +14,10 @@
  * interpolant's zero by RegionAware sampling), and in which colour (the region on the viewer's
  * side). The decision is evaluated in the shader, exactly, rather than looked up in a quantized
  * table: a table of (front, back) pairs at 8 bits was what 2002 hardware could do, and it
- * quantizes the interface position to 1/256 of a region. Slabs in bricks of cells that
- * hold no two regions are skipped after a fetch or two.
+ * quantizes the interface position to 1/256 of a region. The ray's loop only samples, until a
+ * slab's ends lie in two regions; the decision runs then. On a signed field it marches on the
+ * filtered signed value (one fetch a step), on a segmented one it skips bricks of cells that
+ * hold no two regions after a fetch or two.
  *
  * Input: vtkImageData with, as point scalars,
  * - `SegmentedDistance` and the field-data `RegionOffset` (vtkSegmentedDistanceField,
@@ -43,11 +46,15 @@
  * diffuse, specular and specular power when its Shade is on (a headlight); without
  * Shade they are flat. Each surface takes the colour of the region on the viewer's side
  * (SetRegionColor(), distinct defaults). With SurfaceOpacity = 1 the surfaces are opaque:
- * each fragment writes gl_FragDepth at its interface point and fragments of slabs
- * without an interface are discarded, so the depth buffer holds the surface and opaque
- * geometry occludes it, and it them, both ways. Below 1 the surfaces are blended back to
- * front (premultiplied), still depth-tested at their interface points against the
- * opaque geometry.
+ * a ray stops at its first interface and writes gl_FragDepth there (rays without one are
+ * discarded), so the depth buffer holds the surface and opaque geometry occludes it, and it
+ * them, both ways. Below 1 a ray composites its interfaces front to back (premultiplied)
+ * until it is opaque or meets the opaque geometry's depth.
+ *
+ * Composite rays (Mode) stop where they meet opaque geometry and once their alpha reaches
+ * 0.998; their samples come from the texture unit's trilinear filtering, and a shaded volume
+ * of up to 2^26 voxels keeps each voxel's central differences next to its value (16-bit
+ * normalized, 8 bytes a voxel) so that one fetch gives a sample's value and gradient.
  *
  * Needs an OpenGL 3.2 core context (vtkOpenGLRenderWindow); Mesa's llvmpipe will do.
  * All GL state changes go through vtkOpenGLState; ReleaseGraphicsResources() frees the
@@ -126,14 +133,16 @@ public:
   ///@}
 
   ///@{
-  /// The distance between slices, in world units; 0 (default): the smallest voxel
-  /// spacing (one slab a voxel: interfaces between slices are found by the slab test).
+  /// The distance between the sample planes (slices), in world units; 0 (default): the
+  /// smallest voxel spacing (one slab a voxel: interfaces between planes are found by the
+  /// slab test).
   vtkSetClampMacro(SampleDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(SampleDistance, double);
   ///@}
 
   ///@{
-  /// The number of slices across the volume's depth; 0 (default): from SampleDistance.
+  /// The number of sample planes (slices) across the volume's depth; 0 (default): from
+  /// SampleDistance.
   vtkSetClampMacro(NumberOfSlices, int, 0, 1 << 20);
   vtkGetMacro(NumberOfSlices, int);
   ///@}
@@ -166,7 +175,7 @@ public:
   ///@}
 
   ///@{
-  /// What the last Render() drew: the number of slices, the number of regions of the
+  /// What the last Render() drew: the number of sample planes, the number of regions of the
   /// field, and whether it was read as a segmented field (else a signed one).
   vtkGetMacro(LastNumberOfSlices, int);
   vtkGetMacro(LastRegionCount, int);

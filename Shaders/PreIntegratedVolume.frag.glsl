@@ -9,9 +9,12 @@
 // extinction-weighted average colour (rgb), so the slab's length enters exactly:
 // alpha = 1 - exp(-length * a).
 
-uniform sampler3D scalars;        // the scalar volume, linear filtering: value, and for a
-                                  // shaded volume without DIFFERENCED_GRADIENT its
-                                  // central differences
+uniform sampler3D scalars;        // the scalar volume, linear filtering: the value, or
+                                  // with STORED_GRADIENT the value and its central
+                                  // differences, normalized (16-bit signed):
+uniform float packedValueOffset;  // value = offset + scale * texel.r
+uniform float packedValueScale;
+uniform float packedGradientScale; // differences = scale * texel.gba
 uniform sampler2D preIntegrated;  // RGBA: average colour, average extinction
 uniform vec2 scalarRange;         // the table's first and last values
 uniform float tableSize;
@@ -24,11 +27,15 @@ uniform float tableSize;
 // central differences of the interpolated values a voxel each way (over half a voxel the
 // gradient of the trilinear interpolant shows every cell face: rings around the axes on a
 // sphere); stored per voxel, they are interpolated like the values (the same numbers:
-// interpolation is linear in the voxels).
+// interpolation is linear in the voxels), with the value in 16 bits over the array's
+// range (1/65,535 of it: finer than the largest table).
 vec4 sampleAt(vec3 index)
 {
   vec3 p = (index + 0.5) / gridSize;
   vec4 texel = texture(scalars, p);
+#if STORED_GRADIENT
+  texel = vec4(packedValueOffset + packedValueScale * texel.r, packedGradientScale * texel.gba);
+#endif
 #if DIFFERENCED_GRADIENT
   vec3 e = 1.0 / gridSize;
   texel.gba = vec3(texture(scalars, p + vec3(e.x, 0.0, 0.0)).r -
