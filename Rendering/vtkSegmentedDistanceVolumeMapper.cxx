@@ -28,6 +28,7 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
+#include "EmptySpace.h"
 #include "PreIntegratedVolume_frag.h"
 #include "PreIntegrationTable.h"
 #include "SegmentedVolume_frag.h"
@@ -200,9 +201,7 @@ struct DecodeField
     regions = highest + 1;
   }
 };
-/// Bricks of BrickSize^3 cells: 255 (1 normalized) where a cell of the brick, or a cell next to it,
-/// holds voxels of two regions (an interface may lie there), else 0. The shader skips slabs that
-/// touch no such brick after a fetch or two, instead of sampling the field.
+/// The empty-space leaps' bricks: BrickSize^3 cells.
 constexpr int BrickSize = 4;
 
 /// Shaded composite volumes up to this many voxels store their gradients (8 bytes a voxel
@@ -267,67 +266,28 @@ std::vector<short> PackedWithGradients(const std::vector<float>& values,
   return texels;
 }
 
-std::vector<unsigned char> ActiveBricks(const float* texels, const int dims[3], int bricks[3])
+/// Uploads per-brick leap distances (dfrender::LeapDistances) as an R8 texture.
+bool UploadLeaps(vtkTextureObject* texture,
+  const std::vector<unsigned char>& occupied,
+  const std::array<int, 3>& bricks)
 {
-  const int cells[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
-  for (int a = 0; a < 3; ++a)
-  {
-    bricks[a] = (cells[a] + BrickSize - 1) / BrickSize;
-  }
-  auto region = [&](int i, int j, int k)
-  {
-    return texels[2 * (i + static_cast<size_t>(dims[0]) * (j + static_cast<size_t>(dims[1]) * k)) +
-      1];
-  };
-  std::vector<unsigned char> active(static_cast<size_t>(bricks[0]) * bricks[1] * bricks[2], 0);
-  for (int k = 0; k < cells[2]; ++k)
-  {
-    for (int j = 0; j < cells[1]; ++j)
-    {
-      for (int i = 0; i < cells[0]; ++i)
-      {
-        const float r = region(i, j, k);
-        bool mixed = false;
-        for (int c = 1; c < 8 && !mixed; ++c)
-        {
-          mixed = region(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)) != r;
-        }
-        if (!mixed)
-        {
-          continue;
-        }
-        // Mark the bricks of this cell and of its neighbours.
-        for (int dk = -1; dk <= 1; ++dk)
-        {
-          for (int dj = -1; dj <= 1; ++dj)
-          {
-            for (int di = -1; di <= 1; ++di)
-            {
-              const int ci = i + di, cj = j + dj, ck = k + dk;
-              if (ci < 0 || cj < 0 || ck < 0 || ci >= cells[0] || cj >= cells[1] || ck >= cells[2])
-              {
-                continue;
-              }
-              active[ci / BrickSize +
-                static_cast<size_t>(bricks[0]) *
-                  (cj / BrickSize + static_cast<size_t>(bricks[1]) * (ck / BrickSize))] = 255;
-            }
-          }
-        }
-      }
-    }
-  }
-  return active;
+  const std::vector<unsigned char> leaps = dfrender::LeapDistances(occupied, bricks);
+  PrepareTexture(texture, vtkTextureObject::Nearest, GL_R8, GL_RED, GL_UNSIGNED_BYTE);
+  return texture->Create3DFromRaw(static_cast<unsigned int>(bricks[0]),
+    static_cast<unsigned int>(bricks[1]),
+    static_cast<unsigned int>(bricks[2]),
+    1,
+    VTK_UNSIGNED_CHAR,
+    const_cast<unsigned char*>(leaps.data()));
 }
 } // namespace
 
 struct vtkSegmentedDistanceVolumeMapper::Internals
 {
   // Surface mode.
-  vtkNew<vtkTextureObject> Field;  // RG32F: distance (signed value of a signed field), region
-  vtkNew<vtkTextureObject> Colors; // RGB32F, one texel a region
-  vtkNew<vtkTextureObject> Bricks; // R8: bricks where an interface may lie
-  int BrickDims[3] = { 1, 1, 1 };
+  vtkNew<vtkTextureObject> Field;        // RG32F: distance (signed value of a signed field), region
+  vtkNew<vtkTextureObject> Colors;       // RGB32F, one texel a region
+  vtkNew<vtkTextureObject> SurfaceLeaps; // R8: per brick, bricks to the nearest interface
   vtkNew<vtkTextureObject> ClosestPoints; // RGB32F, when the input has ClosestPoint
   bool HasClosestPoints = false;
   vtkOpenGLHelper Surfaces; // program and VAO of the box's faces, surface mode
@@ -340,6 +300,10 @@ struct vtkSegmentedDistanceVolumeMapper::Internals
   bool ShadeComposite = false;    // whether the last composite frame was shaded
   vtkNew<vtkTextureObject> Table; // RGBA32F pre-integration table
   vtkOpenGLHelper Composite;
+  vtkNew<vtkTextureObject> CompositeLeaps;       // R8: per brick, bricks to the nearest opaque one
+  std::vector<std::array<float, 2>> BrickRanges; // per brick, its values' range
+  std::vector<double> Extinction;                // the table's transfer samples
+  vtkTimeStamp CompositeLeapsTime;
   vtkTimeStamp ScalarsTime;
   vtkTimeStamp TableTime;
   vtkImageData* ScalarsImage = nullptr;
@@ -436,6 +400,7 @@ void vtkSegmentedDistanceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfSlices: " << this->NumberOfSlices << "\n";
   os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
   os << indent << "UseClosestPointNormals: " << this->UseClosestPointNormals << "\n";
+  os << indent << "EmptySpaceLeaping: " << this->EmptySpaceLeaping << "\n";
   os << indent << "RegionColors set: " << this->Impl->RegionColors.size() << "\n";
   os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
   os << indent << "LastRegionCount: " << this->LastRegionCount << "\n";
@@ -447,7 +412,8 @@ void vtkSegmentedDistanceVolumeMapper::ReleaseGraphicsResources(vtkWindow* windo
   Internals& impl = *this->Impl;
   for (vtkTextureObject* texture : { impl.Field.Get(),
          impl.Colors.Get(),
-         impl.Bricks.Get(),
+         impl.SurfaceLeaps.Get(),
+         impl.CompositeLeaps.Get(),
          impl.ClosestPoints.Get(),
          impl.Scalars.Get(),
          impl.Table.Get(),
@@ -609,15 +575,10 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
                                                             << dims[2] << ")");
     return false;
   }
-  // Where interfaces may lie, by bricks (the shader's empty-space skipping).
-  const std::vector<unsigned char> active = ActiveBricks(texels.data(), dims, impl.BrickDims);
-  PrepareTexture(impl.Bricks, vtkTextureObject::Nearest, GL_R8, GL_RED, GL_UNSIGNED_BYTE);
-  if (!impl.Bricks->Create3DFromRaw(static_cast<unsigned int>(impl.BrickDims[0]),
-        static_cast<unsigned int>(impl.BrickDims[1]),
-        static_cast<unsigned int>(impl.BrickDims[2]),
-        1,
-        VTK_UNSIGNED_CHAR,
-        const_cast<unsigned char*>(active.data())))
+  // Where interfaces may lie, by bricks: the rays leap over the others.
+  if (!UploadLeaps(impl.SurfaceLeaps,
+        dfrender::MixedBricks(texels.data(), dims, BrickSize),
+        dfrender::BrickCounts(dims, BrickSize)))
   {
     vtkErrorMacro("Could not make the bricks' 3D texture");
     return false;
@@ -708,6 +669,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateScalars(vtkImageData* image, bool s
   {
     range[1] = range[0] + 1.0;
   }
+  impl.BrickRanges = dfrender::BrickValueRanges(values.data(), dims, BrickSize);
   bool made = false;
   if (gradient)
   {
@@ -807,9 +769,33 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateTable(vtkVolumeProperty* property)
     vtkErrorMacro("Could not make the pre-integration table's texture");
     return false;
   }
+  impl.Extinction = std::move(samples.Extinction);
   impl.TableKey = key;
   impl.TableTime.Modified();
   ++this->TableBuilds;
+  return true;
+}
+
+bool vtkSegmentedDistanceVolumeMapper::UpdateCompositeLeaps()
+{
+  Internals& impl = *this->Impl;
+  if (impl.CompositeLeaps->GetHandle() && impl.CompositeLeapsTime > impl.ScalarsTime &&
+    impl.CompositeLeapsTime > impl.TableTime)
+  {
+    return true;
+  }
+  // A brick is transparent when every table entry a slab in it reads is zero: its values
+  // widened by a table step.
+  const double step =
+    (impl.ScalarRange[1] - impl.ScalarRange[0]) / (this->PreIntegrationTableSize - 1);
+  const std::vector<unsigned char> occupied = dfrender::OpaqueBricks(
+    impl.BrickRanges, impl.Extinction, impl.ScalarRange[0], impl.ScalarRange[1], step);
+  if (!UploadLeaps(impl.CompositeLeaps, occupied, dfrender::BrickCounts(impl.Dims, BrickSize)))
+  {
+    vtkErrorMacro("Could not make the bricks' 3D texture");
+    return false;
+  }
+  impl.CompositeLeapsTime.Modified();
   return true;
 }
 
@@ -839,15 +825,16 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
          impl.Scalars.Get(),
          impl.Table.Get(),
          impl.Colors.Get(),
-         impl.Bricks.Get(),
+         impl.SurfaceLeaps.Get(),
+         impl.CompositeLeaps.Get(),
          impl.ClosestPoints.Get(),
          impl.OpaqueDepth.Get() })
   {
     texture->SetContext(window);
   }
-  if (surface
-      ? !this->UpdateField(image)
-      : !(this->UpdateScalars(image, property->GetShade(0) != 0) && this->UpdateTable(property)))
+  if (surface ? !this->UpdateField(image)
+              : !(this->UpdateScalars(image, property->GetShade(0) != 0) &&
+                  this->UpdateTable(property) && this->UpdateCompositeLeaps()))
   {
     return;
   }
@@ -947,7 +934,8 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
     "//DF::SlabCommon",
     std::string("#define DIFFERENCED_GRADIENT ") + (differenced ? "1" : "0") +
       "\n#define STORED_GRADIENT " + (storedGradient ? "1" : "0") + "\n#define FILTERED_MARCH " +
-      (filteredMarch ? "1" : "0") + "\n" + SlabCommon);
+      (filteredMarch ? "1" : "0") + "\n#define LEAP " + (this->EmptySpaceLeaping ? "1" : "0") +
+      "\n" + SlabCommon);
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(SegmentedVolume_vert, fragment.c_str(), "");
   if (!program)
@@ -1039,7 +1027,7 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindSurfaceText
   program->SetUniformf("regionOffset", static_cast<float>(impl.RegionOffset));
   program->SetUniformi("regionColorCount", colorCount);
   program->SetUniformf("opacity", static_cast<float>(this->SurfaceOpacity));
-  std::vector<vtkTextureObject*> active = { impl.Field, impl.Colors, impl.Bricks };
+  std::vector<vtkTextureObject*> active = { impl.Field, impl.Colors, impl.SurfaceLeaps };
   const bool closestNormals = impl.HasClosestPoints && this->UseClosestPointNormals;
   if (closestNormals)
   {
@@ -1051,7 +1039,7 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindSurfaceText
   }
   program->SetUniformi("field", impl.Field->GetTextureUnit());
   program->SetUniformi("regionColors", impl.Colors->GetTextureUnit());
-  program->SetUniformi("bricks", impl.Bricks->GetTextureUnit());
+  program->SetUniformi("leaps", impl.SurfaceLeaps->GetTextureUnit());
   program->SetUniformf("brickSize", static_cast<float>(BrickSize));
   program->SetUniformi("useClosestPoint", closestNormals ? 1 : 0);
   // Unused, the closest-point sampler names the field's unit (a 3D texture too; never
@@ -1083,11 +1071,13 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindCompositeTe
   program->SetUniformf("packedValueOffset", static_cast<float>(impl.ScalarRange[0] + half));
   program->SetUniformf("packedValueScale", static_cast<float>(half));
   program->SetUniformf("packedGradientScale", static_cast<float>(impl.GradientScale));
-  std::vector<vtkTextureObject*> active = { impl.Scalars, impl.Table };
+  std::vector<vtkTextureObject*> active = { impl.Scalars, impl.Table, impl.CompositeLeaps };
   for (vtkTextureObject* texture : active)
   {
     texture->Activate();
   }
+  program->SetUniformi("leaps", impl.CompositeLeaps->GetTextureUnit());
+  program->SetUniformf("brickSize", static_cast<float>(BrickSize));
   program->SetUniformi("scalars", impl.Scalars->GetTextureUnit());
   program->SetUniformi("preIntegrated", impl.Table->GetTextureUnit());
   return active;

@@ -16,8 +16,7 @@
  * table: a table of (front, back) pairs at 8 bits was what 2002 hardware could do, and it
  * quantizes the interface position to 1/256 of a region. The ray's loop only samples, until a
  * slab's ends lie in two regions; the decision runs then. On a signed field it marches on the
- * filtered signed value (one fetch a step), on a segmented one it skips bricks of cells that
- * hold no two regions after a fetch or two.
+ * filtered signed value (one fetch a step). Rays leap over empty space (EmptySpaceLeaping).
  *
  * Input: vtkImageData with, as point scalars,
  * - `SegmentedDistance` and the field-data `RegionOffset` (vtkSegmentedDistanceField,
@@ -175,6 +174,17 @@ public:
   ///@}
 
   ///@{
+  /// Empty-space leaping (default on): a ray leaps over the bricks of 4^3 cells around it
+  /// that hold no interface (Surface) or whose values the transfer function makes
+  /// transparent (Composite), to the last sample plane before it leaves them. The picture
+  /// is the same either way (those slabs add nothing); off samples every slab, for
+  /// comparison.
+  vtkSetMacro(EmptySpaceLeaping, bool);
+  vtkGetMacro(EmptySpaceLeaping, bool);
+  vtkBooleanMacro(EmptySpaceLeaping, bool);
+  ///@}
+
+  ///@{
   /// What the last Render() drew: the number of sample planes, the number of regions of the
   /// field, and whether it was read as a segmented field (else a signed one).
   vtkGetMacro(LastNumberOfSlices, int);
@@ -191,6 +201,7 @@ protected:
 
   int Mode = Surface;
   bool UseClosestPointNormals = false;
+  bool EmptySpaceLeaping = true;
   int PreIntegrationTableSize = 256;
   int TableBuilds = 0;
   int Interpolation = RegionAware;
@@ -211,6 +222,7 @@ private:
   bool UpdateField(vtkImageData* image);
   bool UpdateScalars(vtkImageData* image, bool shade);
   bool UpdateTable(vtkVolumeProperty* property);
+  bool UpdateCompositeLeaps();
   bool CheckGrid(vtkImageData* image, int dims[3]);
   void SetGeometry(vtkImageData* image, const int dims[3]);
   bool HasArraySelection() const;

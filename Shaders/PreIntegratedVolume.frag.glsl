@@ -91,13 +91,30 @@ void main()
   vec4 front = sampleAt(originI + s * stepI);
   for (int j = 0; j < ends; ++j)
   {
-    float next = j + 1 < ends ? planeDepth(first + j) : leave;
-    vec4 back = sampleAt(originI + next * stepI);
-    sum += (1.0 - sum.a) * slabColor(front, back, (next - s) * worldPerDepth, dir);
-    // What lies behind would change no 8-bit channel by half a step.
-    if (sum.a >= 0.998)
+#if LEAP
+    // Leap over the slabs in transparent bricks (they add exactly nothing) to the last
+    // plane within reach.
+    float reach = leapReach(originI, stepI, s);
+    if (reach >= leave)
     {
       break;
+    }
+    int last = int(floor((reach - firstSliceDepth) / sliceSpacing)) - first;
+    bool leap = last >= j;
+    j = max(j, last);
+#else
+    bool leap = false;
+#endif
+    float next = j + 1 < ends ? planeDepth(first + j) : leave;
+    vec4 back = sampleAt(originI + next * stepI);
+    if (!leap)
+    {
+      sum += (1.0 - sum.a) * slabColor(front, back, (next - s) * worldPerDepth, dir);
+      // What lies behind would change no 8-bit channel by half a step.
+      if (sum.a >= 0.998)
+      {
+        break;
+      }
     }
     front = back;
     s = next;

@@ -13,8 +13,6 @@
 uniform sampler3D field;          // per voxel: distance (a signed field's signed value),
                                   // region index; linear filtering
 uniform sampler2D regionColors;   // one texel per region
-uniform sampler3D bricks;         // 1 where an interface may lie (bricks of cells)
-uniform float brickSize;          // cells a brick side
 uniform int regionColorCount;
 uniform vec3 spacing;             // voxel spacing, physical units
 uniform int interpolation;        // 0 region-aware, 1 nearest, 2 linear
@@ -256,23 +254,6 @@ bool interfaceIn(vec3 a, vec3 b, vec2 front, vec2 back, out float t)
   return surfaceInCell(hit);
 }
 
-// Whether the segment from a to b (index space) touches a brick where an interface may
-// lie, checked a voxel apart (bricks are marked one cell beyond their mixed cells).
-bool mayHoldInterface(vec3 a, vec3 b)
-{
-  ivec3 last = textureSize(bricks, 0) - 1;
-  int steps = int(ceil(max(max(abs(b.x - a.x), abs(b.y - a.y)), abs(b.z - a.z))));
-  for (int k = 0; k <= steps; ++k)
-  {
-    vec3 p = clamp(mix(a, b, float(k) / float(max(steps, 1))), vec3(0.0), vec3(dims() - 1));
-    if (texelFetch(bricks, min(ivec3(p / brickSize), last), 0).r > 0.5)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
 // The colour of the interface at hit (index space), seen along dir from region r.
 vec3 surfaceColor(vec3 hit, float r, vec3 dir)
 {
@@ -318,7 +299,6 @@ void main()
   vec4 sum = vec4(0.0);
   int k = planeAtOrAfter(s);
   vec2 front = marchSample(originI + s * stepI);
-  bool frontValid = true;
   while (s < leave && k <= sliceCount)
   {
     // March to the next slab whose ends lie in two regions: the loop a pixel spends its
@@ -328,25 +308,22 @@ void main()
     bool candidate = false;
     for (; s < leave && k <= sliceCount; ++k)
     {
+#if LEAP
+      // Leap over the bricks without two regions (one region all through) to the last
+      // plane within reach.
+      float reach = leapReach(originI, stepI, s);
+      if (reach >= leave)
+      {
+        s = leave;
+        break;
+      }
+      k = max(k, int(floor((reach - firstSliceDepth) / sliceSpacing)));
+#endif
       next = k < sliceCount ? min(planeDepth(k), leave) : leave;
       if (next <= s)
       {
         continue;
       }
-#if !FILTERED_MARCH
-      // Slabs in bricks without two regions are skipped after a fetch or two.
-      if (!mayHoldInterface(originI + s * stepI, originI + next * stepI))
-      {
-        frontValid = false;
-        s = next;
-        continue;
-      }
-      if (!frontValid)
-      {
-        front = marchSample(originI + s * stepI);
-        frontValid = true;
-      }
-#endif
       back = marchSample(originI + next * stepI);
       if (back.y != front.y)
       {

@@ -31,6 +31,10 @@ uniform float specularPower;
 uniform sampler2D opaqueDepth;    // the depth buffer before the volume was drawn
 uniform int useOpaqueDepth;
 uniform ivec2 viewportOrigin;     // the window pixel of opaqueDepth's first texel
+uniform sampler3D leaps;          // per brick of brickSize^3 cells: the Chebyshev distance
+                                  // in bricks to the nearest brick that may add to the
+                                  // picture (/ 255)
+uniform float brickSize;
 
 // The fragment's ray as points origin + s * step (world coordinates), s being the depth
 // along the view direction from the eye, and its unit direction. The ray is the pixel's,
@@ -94,6 +98,31 @@ float opaqueCut(vec3 originWC, vec3 stepWC, float start, float leave)
   float denominator = (back.z - front.z) - z * (back.w - front.w);
   float t = abs(denominator) > 1e-30 ? (z * front.w - front.z) / denominator : 1.0;
   return start + clamp(t, 0.0, 1.0) * (leave - start);
+}
+
+// How far (in depth) the ray can leap from depth s: to where it leaves the cube of bricks
+// around s's brick that holds none that may add to the picture (less a thousandth of a
+// voxel); s where s's own brick may.
+float leapReach(vec3 originI, vec3 stepI, float s)
+{
+  vec3 p = originI + s * stepI;
+  ivec3 b = clamp(ivec3(floor(p / brickSize)), ivec3(0), textureSize(leaps, 0) - 1);
+  float r = floor(texelFetch(leaps, b, 0).r * 255.0 + 0.5);
+  vec3 lo = (vec3(b) - (r - 1.0)) * brickSize + 1e-3;
+  vec3 hi = (vec3(b) + r) * brickSize - 1e-3;
+  float t = 1e30;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (stepI[a] > 0.0)
+    {
+      t = min(t, (hi[a] - p[a]) / stepI[a]);
+    }
+    else if (stepI[a] < 0.0)
+    {
+      t = min(t, (lo[a] - p[a]) / stepI[a]);
+    }
+  }
+  return r < 1.0 ? s : s + max(t, 0.0);
 }
 
 // The first sample plane at or beyond depth s, and plane k's depth.

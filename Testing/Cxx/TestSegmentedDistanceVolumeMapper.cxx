@@ -68,6 +68,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -810,6 +811,77 @@ int TestErrors()
       c.Expected);
     CHECK(!drawn, "%s: something was drawn", c.Name);
   }
+  return 0;
+}
+
+/// Empty-space leaping changes no pixel: the signed bunny with a wide padding (surfaces,
+/// opaque and translucent, region-aware and nearest), the segmented walled box, and
+/// pre-integrated shells around the bunny (transparent far from it, shaded), each drawn
+/// with leaping on and off.
+int TestLeaping(const std::string& data)
+{
+  double spacing[3];
+  auto bunny = SignedBunny(data, spacing, 0.3);
+  int regions = 0;
+  auto box = WalledBoxField(48, &regions);
+  vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
+  auto volume = FieldVolume(mapper, true);
+  testsupport::MessageRecorder messages(mapper);
+  const auto compare = [&](const char* what, vtkImageData* field)
+  {
+    Scene scene(field->GetBounds(), false, 35, 20);
+    mapper->SetInputData(field);
+    mapper->EmptySpaceLeapingOff();
+    const Frame all = scene.Draw({ volume });
+    mapper->EmptySpaceLeapingOn();
+    const Frame leaping = scene.Draw({ volume });
+    size_t drawn = 0, differ = 0;
+    for (size_t p = 0; p < all.Depth.size(); ++p)
+    {
+      drawn += all.Covered(p) || !SameColour(&all.Rgb[3 * p], Background, 1) ? 1 : 0;
+      differ += all.Depth[p] != leaping.Depth[p] ||
+          !std::equal(&all.Rgb[3 * p], &all.Rgb[3 * p] + 3, &leaping.Rgb[3 * p])
+        ? 1
+        : 0;
+    }
+    std::printf("%s: %zu pixels drawn, %zu differ with leaping\n", what, drawn, differ);
+    CHECK(drawn > 2000, "%s: %zu pixels drawn only", what, drawn);
+    CHECK(differ == 0, "%s: leaping changed %zu pixels", what, differ);
+  };
+  compare("signed bunny, region-aware", bunny);
+  mapper->SetInterpolationToNearest();
+  compare("signed bunny, nearest", bunny);
+  mapper->SetInterpolationToRegionAware();
+  mapper->SetSurfaceOpacity(0.5);
+  compare("signed bunny, translucent", bunny);
+  mapper->SetSurfaceOpacity(1);
+  compare("walled box, segmented", box);
+  // Shells: opaque at the surface, a faint one three voxels out, nothing further.
+  const double h = spacing[0];
+  double range[2];
+  bunny->GetPointData()->GetScalars()->GetRange(range);
+  vtkNew<vtkColorTransferFunction> colour;
+  colour->AddRGBPoint(range[0], 0.25, 0.45, 0.95);
+  colour->AddRGBPoint(0, 0.95, 0.85, 0.6);
+  colour->AddRGBPoint(range[1], 0.95, 0.4, 0.2);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  for (const auto& point : { std::array<double, 2>{ range[0], 0.02 },
+         { -h, 0.02 },
+         { 0, 1.0 },
+         { h, 0.0 },
+         { 3 * h, 0.0 },
+         { 4 * h, 0.25 },
+         { 5 * h, 0.0 },
+         { range[1], 0.0 } })
+  {
+    opacity->AddPoint(point[0], point[1]);
+  }
+  volume->GetProperty()->SetColor(colour);
+  volume->GetProperty()->SetScalarOpacity(opacity);
+  volume->GetProperty()->SetScalarOpacityUnitDistance(h);
+  mapper->SetModeToComposite();
+  compare("shells, composite", bunny);
+  CHECK(messages.Errors.empty(), "errors: %s", messages.Errors.c_str());
   return 0;
 }
 
@@ -1650,7 +1722,8 @@ int main(int argc, char* argv[])
   if (!testsupport::HasArguments(argc,
         argv,
         2,
-        "signed|segmented|occlusion|translucent|composite|lighting|lifecycle|errors|image "
+        "signed|segmented|occlusion|translucent|composite|leaping|lighting|lifecycle|errors|"
+        "image "
         "DATA_DIR "
         "[-V BASELINE -T TMP]"))
   {
@@ -1690,6 +1763,10 @@ int main(int argc, char* argv[])
   else if (mode == "composite")
   {
     TestComposite();
+  }
+  else if (mode == "leaping")
+  {
+    TestLeaping(data);
   }
   else if (mode == "lighting")
   {
