@@ -15,8 +15,9 @@
  * side). The decision is evaluated in the shader, exactly, rather than looked up in a quantized
  * table: a table of (front, back) pairs at 8 bits was what 2002 hardware could do, and it
  * quantizes the interface position to 1/256 of a region. The ray's loop only samples, until a
- * slab's ends lie in two regions; the decision runs then. On a signed field it marches on the
- * filtered signed value (one fetch a step). Rays leap over empty space (EmptySpaceLeaping).
+ * slab's ends lie in two regions; the decision runs then. On a signed field the march, the
+ * interface's placement and its gradient read the filtered signed value (one fetch each,
+ * the same interpolation). Rays leap over empty space (EmptySpaceLeaping).
  *
  * Input: vtkImageData with, as point scalars,
  * - `SegmentedDistance` and the field-data `RegionOffset` (vtkSegmentedDistanceField,
