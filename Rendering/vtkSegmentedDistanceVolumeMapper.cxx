@@ -40,6 +40,7 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -857,7 +858,8 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
     return;
   }
   vtkOpenGLHelper& helper = surface ? impl.Surfaces : impl.Composite;
-  vtkShaderProgram* program = this->ReadyProgram(window, triangles, helper);
+  vtkShaderProgram* program =
+    this->ReadyProgram(window, triangles, helper, property->GetShade(0) != 0);
   if (!program)
   {
     return;
@@ -873,13 +875,6 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   if (blended)
   {
     active.push_back(this->BindOpaqueDepth(program, renderer, window));
-  }
-  else
-  {
-    // Unread, the depth sampler names a 2D texture's unit, so that no sampler is left on a
-    // unit of another texture type.
-    program->SetUniformi("useOpaqueDepth", 0);
-    program->SetUniformi("opaqueDepth", impl.Colors->GetTextureUnit());
   }
   this->DrawBox(window, blended, static_cast<GLsizei>(triangles.size() / 3));
   for (vtkTextureObject* texture : active)
@@ -917,7 +912,8 @@ int vtkSegmentedDistanceVolumeMapper::UpdateRegionColors()
 
 vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRenderWindow* window,
   const std::vector<float>& triangles,
-  vtkOpenGLHelper& helper)
+  vtkOpenGLHelper& helper,
+  bool shade)
 {
   Internals& impl = *this->Impl;
   // Through VTK's shader cache. Both fragment shaders take the ray code they share in
@@ -930,12 +926,19 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
     this->Mode == Composite && impl.ShadeComposite && impl.ScalarsGradient;
   const bool filteredMarch =
     this->Mode == Surface && !impl.Segmented && this->Interpolation != Nearest;
-  vtkShaderProgram::Substitute(fragment,
-    "//DF::SlabCommon",
-    std::string("#define DIFFERENCED_GRADIENT ") + (differenced ? "1" : "0") +
-      "\n#define STORED_GRADIENT " + (storedGradient ? "1" : "0") + "\n#define FILTERED_MARCH " +
-      (filteredMarch ? "1" : "0") + "\n#define LEAP " + (this->EmptySpaceLeaping ? "1" : "0") +
-      "\n" + SlabCommon);
+  // Rays blended over the window stop at the opaque geometry's depth, read from a copy.
+  const bool opaqueDepth = this->Mode == Composite || this->SurfaceOpacity < 1.0;
+  std::string defines;
+  for (const auto& define : { std::make_pair("DIFFERENCED_GRADIENT", differenced),
+         std::make_pair("STORED_GRADIENT", storedGradient),
+         std::make_pair("FILTERED_MARCH", filteredMarch),
+         std::make_pair("LEAP", this->EmptySpaceLeaping),
+         std::make_pair("SHADE", shade),
+         std::make_pair("OPAQUE_DEPTH", opaqueDepth) })
+  {
+    defines += std::string("#define ") + define.first + (define.second ? " 1\n" : " 0\n");
+  }
+  vtkShaderProgram::Substitute(fragment, "//DF::SlabCommon", defines + SlabCommon);
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(SegmentedVolume_vert, fragment.c_str(), "");
   if (!program)
@@ -1005,7 +1008,6 @@ void vtkSegmentedDistanceVolumeMapper::SetViewUniforms(vtkShaderProgram* program
 void vtkSegmentedDistanceVolumeMapper::SetShadingUniforms(vtkShaderProgram* program,
   vtkVolumeProperty* property)
 {
-  program->SetUniformi("shade", property->GetShade(0) ? 1 : 0);
   program->SetUniformf("ambient", static_cast<float>(property->GetAmbient(0)));
   program->SetUniformf("diffuse", static_cast<float>(property->GetDiffuse(0)));
   program->SetUniformf("specular", static_cast<float>(property->GetSpecular(0)));
@@ -1065,7 +1067,15 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindCompositeTe
   const float range[2] = { static_cast<float>(impl.ScalarRange[0]),
     static_cast<float>(impl.ScalarRange[1]) };
   program->SetUniform2f("scalarRange", range);
-  program->SetUniformf("tableSize", static_cast<float>(this->PreIntegrationTableSize));
+  // Entry i of the table's n is for the value low + i (high - low) / (n - 1), at the
+  // coordinate (i + 0.5) / n.
+  const double n = this->PreIntegrationTableSize;
+  const double perValue = (n - 1) / (n * (impl.ScalarRange[1] - impl.ScalarRange[0]));
+  const float tableMap[2] = { static_cast<float>(perValue),
+    static_cast<float>(0.5 / n - impl.ScalarRange[0] * perValue) };
+  const float tableEnds[2] = { static_cast<float>(0.5 / n), static_cast<float>((n - 0.5) / n) };
+  program->SetUniform2f("tableMap", tableMap);
+  program->SetUniform2f("tableEnds", tableEnds);
   // A stored gradient's texels are normalized: value = offset + scale * texel.
   const double half = 0.5 * (impl.ScalarRange[1] - impl.ScalarRange[0]);
   program->SetUniformf("packedValueOffset", static_cast<float>(impl.ScalarRange[0] + half));
@@ -1105,7 +1115,6 @@ vtkTextureObject* vtkSegmentedDistanceVolumeMapper::BindOpaqueDepth(vtkShaderPro
   impl.OpaqueDepth->Activate();
   const int origin[2] = { x0, y0 };
   program->SetUniform2i("viewportOrigin", origin);
-  program->SetUniformi("useOpaqueDepth", 1);
   program->SetUniformi("opaqueDepth", impl.OpaqueDepth->GetTextureUnit());
   return impl.OpaqueDepth;
 }

@@ -246,7 +246,8 @@ private:
   int UpdateRegionColors();
   vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* window,
     const std::vector<float>& triangles,
-    vtkOpenGLHelper& helper);
+    vtkOpenGLHelper& helper,
+    bool shade);
   void SetViewUniforms(vtkShaderProgram* program,
     vtkRenderer* renderer,
     vtkMatrix4x4* indexToWorld,

@@ -17,7 +17,8 @@ uniform float packedValueScale;
 uniform float packedGradientScale; // differences = scale * texel.gba
 uniform sampler2D preIntegrated;  // RGBA: average colour, average extinction
 uniform vec2 scalarRange;         // the table's first and last values
-uniform float tableSize;
+uniform vec2 tableMap;            // value -> table coordinate: value * x + y ...
+uniform vec2 tableEnds;           // ... clamped to the first and last entries' centres
 
 // The interpolated value at an index-space point and, when shading, the gradient there
 // (per two index steps), by the texture unit's trilinear filtering: one fetch where eight
@@ -50,12 +51,12 @@ vec4 sampleAt(vec3 index)
 // and back, shaded with the mean of its ends' gradients.
 vec4 slabColor(vec4 front, vec4 back, float d, vec3 dir)
 {
-  vec2 table = (clamp((vec2(front.r, back.r) - scalarRange.x) / (scalarRange.y - scalarRange.x),
-                  0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
+  vec2 table = clamp(vec2(front.r, back.r) * tableMap.x + tableMap.y, tableEnds.x, tableEnds.y);
   vec4 entry = texture(preIntegrated, table);
   float alpha = 1.0 - exp(-d * entry.a);
   vec3 color = entry.rgb;
-  if (shade == 1 && alpha > 0.0)
+#if SHADE
+  if (alpha > 0.0)
   {
     vec3 g = 0.5 * (front.gba + back.gba);
     // Where the field is flat (under 1% of its range over two voxels) the gradient's
@@ -63,6 +64,7 @@ vec4 slabColor(vec4 front, vec4 back, float d, vec3 dir)
     float flatBelow = 0.01 * (scalarRange.y - scalarRange.x);
     color = headlight(color, length(g) > flatBelow ? indexToWorldNormal * g : vec3(0.0), dir);
   }
+#endif
   return vec4(color * alpha, alpha);
 }
 
@@ -72,6 +74,7 @@ void main()
   rayOfFragment(dir, originWC, stepWC);
   vec3 originI = (worldToIndex * vec4(originWC, 1.0)).xyz;
   vec3 stepI = mat3(worldToIndex) * stepWC;
+  vec3 inverseStepI = 1.0 / stepI;
   float enter, leave;
   boxInterval(originI, stepI, enter, leave);
   float start = max(enter, nearDepth);
@@ -94,7 +97,7 @@ void main()
 #if LEAP
     // Leap over the slabs in transparent bricks (they add exactly nothing) to the last
     // plane within reach.
-    float reach = leapReach(originI, stepI, s);
+    float reach = leapReach(originI, stepI, inverseStepI, s);
     if (reach >= leave)
     {
       break;

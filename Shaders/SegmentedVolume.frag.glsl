@@ -256,13 +256,12 @@ bool interfaceIn(vec3 a, vec3 b, vec2 front, vec2 back, out float t)
 vec3 surfaceColor(vec3 hit, float r, vec3 dir)
 {
   vec3 color = texelFetch(regionColors, ivec2(int(r) % regionColorCount, 0), 0).rgb;
-  if (shade == 1)
-  {
-    // A headlight; the normal points into the viewer's region.
-    vec3 n = useClosestPoint == 1 ? closestPointNormal(hit, r)
-                                  : indexToWorldNormal * gradientTo(hit, r);
-    color = headlight(color, n, dir);
-  }
+#if SHADE
+  // A headlight; the normal points into the viewer's region.
+  vec3 n = useClosestPoint == 1 ? closestPointNormal(hit, r)
+                                : indexToWorldNormal * gradientTo(hit, r);
+  color = headlight(color, n, dir);
+#endif
   return color;
 }
 
@@ -285,6 +284,7 @@ void main()
   rayOfFragment(dir, originWC, stepWC);
   vec3 originI = (worldToIndex * vec4(originWC, 1.0)).xyz;
   vec3 stepI = mat3(worldToIndex) * stepWC;
+  vec3 inverseStepI = 1.0 / stepI;
   float enter, leave;
   boxInterval(originI, stepI, enter, leave);
   float s = max(enter, nearDepth);
@@ -309,7 +309,7 @@ void main()
 #if LEAP
       // Leap over the bricks without two regions (one region all through) to the last
       // plane within reach.
-      float reach = leapReach(originI, stepI, s);
+      float reach = leapReach(originI, stepI, inverseStepI, s);
       if (reach >= leave)
       {
         s = leave;

@@ -23,14 +23,14 @@ uniform float sliceSpacing;       // world units, along viewDirWC
 uniform float firstSliceDepth;    // the first plane's depth along viewDirWC from the eye
 uniform int sliceCount;
 uniform float nearDepth;          // the near clipping plane's depth
-uniform int shade;
 uniform float ambient;
 uniform float diffuse;
 uniform float specular;
 uniform float specularPower;
+#if OPAQUE_DEPTH
 uniform sampler2D opaqueDepth;    // the depth buffer before the volume was drawn
-uniform int useOpaqueDepth;
 uniform ivec2 viewportOrigin;     // the window pixel of opaqueDepth's first texel
+#endif
 uniform sampler3D leaps;          // per brick of brickSize^3 cells: the Chebyshev distance
                                   // in bricks to the nearest brick that may add to the
                                   // picture (/ 255)
@@ -80,14 +80,13 @@ void boxInterval(vec3 p, vec3 step, out float enter, out float leave)
 }
 
 // The depth where the ray from depth start to leave meets the opaque geometry drawn before
-// the volume, or leave. Clip coordinates are linear along a line, so the window depth's
-// parameter along the segment is exact.
+// the volume (OPAQUE_DEPTH: rays blended over the window), or leave. Clip coordinates are
+// linear along a line, so the window depth's parameter along the segment is exact.
 float opaqueCut(vec3 originWC, vec3 stepWC, float start, float leave)
 {
-  if (useOpaqueDepth == 0)
-  {
-    return leave;
-  }
+#if !OPAQUE_DEPTH
+  return leave;
+#else
   float z = 2.0 * texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy) - viewportOrigin, 0).r - 1.0;
   vec4 front = worldToClip * vec4(originWC + start * stepWC, 1.0);
   vec4 back = worldToClip * vec4(originWC + leave * stepWC, 1.0);
@@ -98,31 +97,22 @@ float opaqueCut(vec3 originWC, vec3 stepWC, float start, float leave)
   float denominator = (back.z - front.z) - z * (back.w - front.w);
   float t = abs(denominator) > 1e-30 ? (z * front.w - front.z) / denominator : 1.0;
   return start + clamp(t, 0.0, 1.0) * (leave - start);
+#endif
 }
 
 // How far (in depth) the ray can leap from depth s: to where it leaves the cube of bricks
 // around s's brick that holds none that may add to the picture (less a thousandth of a
 // voxel); s where s's own brick may.
-float leapReach(vec3 originI, vec3 stepI, float s)
+float leapReach(vec3 originI, vec3 stepI, vec3 inverseStepI, float s)
 {
   vec3 p = originI + s * stepI;
   ivec3 b = clamp(ivec3(floor(p / brickSize)), ivec3(0), textureSize(leaps, 0) - 1);
   float r = floor(texelFetch(leaps, b, 0).r * 255.0 + 0.5);
-  vec3 lo = (vec3(b) - (r - 1.0)) * brickSize + 1e-3;
-  vec3 hi = (vec3(b) + r) * brickSize - 1e-3;
-  float t = 1e30;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (stepI[a] > 0.0)
-    {
-      t = min(t, (hi[a] - p[a]) / stepI[a]);
-    }
-    else if (stepI[a] < 0.0)
-    {
-      t = min(t, (lo[a] - p[a]) / stepI[a]);
-    }
-  }
-  return r < 1.0 ? s : s + max(t, 0.0);
+  // The cube's far side along each axis (a zero step's infinite inverse leaves it out).
+  vec3 far = mix((vec3(b) - (r - 1.0)) * brickSize + 1e-3, (vec3(b) + r) * brickSize - 1e-3,
+    greaterThanEqual(stepI, vec3(0.0)));
+  vec3 t = (far - p) * inverseStepI;
+  return r < 1.0 ? s : s + max(min(t.x, min(t.y, t.z)), 0.0);
 }
 
 // The first sample plane at or beyond depth s, and plane k's depth.
