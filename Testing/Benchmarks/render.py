@@ -5,15 +5,15 @@ at 128^3 / 256 slices and 1.5 fps at 256^3 / 256 slices on a GeForce4):
 - mapper surface (RegionAware, lit) and mapper composite (pre-integrated distance
   shells), with 32, 64, 128 and 256 sample planes across the volume's depth;
 - vtkOpenGLGPUVolumeRayCastMapper in ISOSURFACE (at 0) and COMPOSITE modes (the same
-  transfer functions, shading on), its sample distance set to the volume's depth along
-  the view direction divided by the same number (the mapper's plane spacing);
-at 512^2 and 1920x1080. A measure is the mean of FRAMES frames after a first one
+  transfer functions), its sample distance set to the volume's depth along the view
+  direction divided by the same number (the mapper's plane spacing);
+with shading on and off (SHADING: on, off or both), at 512^2 and 1920x1080. A measure is the mean of FRAMES frames after a first one
 (uploads, table, shader builds), with WaitForCompletion after the last; the four are
 measured in turn REPEATS times and each figure is the median of its REPEATS measures.
 
 usage: xvfb-run -a -s "-screen 0 1920x1200x24 -noreset" /usr/bin/python3 render.py \
-         BUILD MESHES [SIZES] [SLICES] [FRAMES] [REPEATS]
-  e.g. ... render.py build MESH_DIR 128,256 32,64,128,256 3 5
+         BUILD MESHES [SIZES] [SLICES] [FRAMES] [REPEATS] [SHADING]
+  e.g. ... render.py build MESH_DIR 128,256 32,64,128,256 3 5 both
 """
 import itertools
 import statistics
@@ -32,6 +32,8 @@ sizes = [int(n) for n in (sys.argv[3] if len(sys.argv) > 3 else "128,256").split
 slice_counts = [int(n) for n in (sys.argv[4] if len(sys.argv) > 4 else "32,64,128,256").split(",")]
 frames = int(sys.argv[5]) if len(sys.argv) > 5 else 3
 repeats = int(sys.argv[6]) if len(sys.argv) > 6 else 5
+shading = {"on": [True], "off": [False], "both": [True, False]}[
+    sys.argv[7] if len(sys.argv) > 7 else "both"]
 sys.path.insert(0, f"{build}/lib/python3/dist-packages")
 from vtkdistancefields import vtkLinearFactorDistanceField, vtkSegmentedDistanceVolumeMapper  # noqa
 
@@ -60,9 +62,9 @@ def fps(prop, width, height):
 
 reader = vtkXMLPolyDataReader()
 reader.SetFileName(f"{meshes}/bunny_75k.vtp")
-print("| N | window | planes | mapper surface fps | VTK isosurface fps | ratio | "
+print("| N | window | planes | shading | mapper surface fps | VTK isosurface fps | ratio | "
       "mapper composite fps | VTK composite fps | ratio |")
-print("|---|---|---|---|---|---|---|---|---|")
+print("|---|---|---|---|---|---|---|---|---|---|")
 for n in sizes:
     field = vtkLinearFactorDistanceField()
     field.SetInputConnection(reader.GetOutputPort())
@@ -118,26 +120,29 @@ for n in sizes:
     depths = [sum(corner[i] * direction[i] for i in range(3))
               for corner in itertools.product((b[0], b[1]), (b[2], b[3]), (b[4], b[5]))]
     depth = max(depths) - min(depths)
-    for width, height in ((512, 512), (1920, 1080)):
-        for slices in slice_counts:
-            mapper.SetNumberOfSlices(slices)
-            caster.SetSampleDistance(depth / slices)
-            measures = {"surface": [], "composite": [], "iso": [], "vtk composite": []}
-            for _ in range(repeats):
-                ours.SetProperty(surface)
-                mapper.SetModeToSurface()
-                measures["surface"].append(fps(ours, width, height))
-                theirs.SetProperty(iso)
-                caster.SetBlendModeToIsoSurface()
-                measures["iso"].append(fps(theirs, width, height))
-                ours.SetProperty(shells)
-                mapper.SetModeToComposite()
-                measures["composite"].append(fps(ours, width, height))
-                theirs.SetProperty(shells)
-                caster.SetBlendModeToComposite()
-                measures["vtk composite"].append(fps(theirs, width, height))
-            m = {key: statistics.median(values) for key, values in measures.items()}
-            print(f"| {n} | {width}x{height} | {slices} | {m['surface']:.2f} | {m['iso']:.2f} | "
-                  f"{m['surface'] / m['iso']:.2f} | {m['composite']:.2f} | "
-                  f"{m['vtk composite']:.2f} | {m['composite'] / m['vtk composite']:.2f} |",
-                  flush=True)
+    for (width, height), slices, shade in itertools.product(
+            ((512, 512), (1920, 1080)), slice_counts, shading):
+        for prop in (shells, surface, iso):
+            prop.SetShade(shade)
+        mapper.SetNumberOfSlices(slices)
+        caster.SetSampleDistance(depth / slices)
+        measures = {"surface": [], "composite": [], "iso": [], "vtk composite": []}
+        for _ in range(repeats):
+            ours.SetProperty(surface)
+            mapper.SetModeToSurface()
+            measures["surface"].append(fps(ours, width, height))
+            theirs.SetProperty(iso)
+            caster.SetBlendModeToIsoSurface()
+            measures["iso"].append(fps(theirs, width, height))
+            ours.SetProperty(shells)
+            mapper.SetModeToComposite()
+            measures["composite"].append(fps(ours, width, height))
+            theirs.SetProperty(shells)
+            caster.SetBlendModeToComposite()
+            measures["vtk composite"].append(fps(theirs, width, height))
+        m = {key: statistics.median(values) for key, values in measures.items()}
+        print(f"| {n} | {width}x{height} | {slices} | {'on' if shade else 'off'} | "
+              f"{m['surface']:.2f} | {m['iso']:.2f} | "
+              f"{m['surface'] / m['iso']:.2f} | {m['composite']:.2f} | "
+              f"{m['vtk composite']:.2f} | {m['composite'] / m['vtk composite']:.2f} |",
+              flush=True)
