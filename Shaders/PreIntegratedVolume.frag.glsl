@@ -70,19 +70,12 @@ vec4 slabColor(vec4 front, vec4 back, float d, vec3 dir)
 
 void main()
 {
-  vec3 dir, originWC, stepWC;
-  rayOfFragment(dir, originWC, stepWC);
-  vec3 originI = (worldToIndex * vec4(originWC, 1.0)).xyz;
-  vec3 stepI = mat3(worldToIndex) * stepWC;
-  vec3 inverseStepI = 1.0 / stepI;
-  float enter, leave;
-  boxInterval(originI, stepI, enter, leave);
-  float start = max(enter, nearDepth);
-  if (!(leave > start))
+  vec3 dir, originWC, stepWC, originI, stepI, inverseStepI;
+  float start, leave;
+  if (!castRay(dir, originWC, stepWC, originI, stepI, inverseStepI, start, leave))
   {
     discard;
   }
-  leave = opaqueCut(originWC, stepWC, start, leave);
   float worldPerDepth = length(stepWC);
   // Front to back: each slab's back value is the next one's front value. The slabs end
   // at the planes strictly between start and leave, and at leave.

@@ -280,20 +280,13 @@ vec2 marchSample(vec3 p)
 
 void main()
 {
-  vec3 dir, originWC, stepWC;
-  rayOfFragment(dir, originWC, stepWC);
-  vec3 originI = (worldToIndex * vec4(originWC, 1.0)).xyz;
-  vec3 stepI = mat3(worldToIndex) * stepWC;
-  vec3 inverseStepI = 1.0 / stepI;
-  float enter, leave;
-  boxInterval(originI, stepI, enter, leave);
-  float s = max(enter, nearDepth);
-  if (!(leave > s))
+  // Translucent surfaces stop at opaque geometry (opaque ones meet the depth test).
+  vec3 dir, originWC, stepWC, originI, stepI, inverseStepI;
+  float s, leave;
+  if (!castRay(dir, originWC, stepWC, originI, stepI, inverseStepI, s, leave))
   {
     discard;
   }
-  // Translucent surfaces stop at opaque geometry (opaque ones meet the depth test).
-  leave = opaqueCut(originWC, stepWC, s, leave);
   vec4 sum = vec4(0.0);
   int k = planeAtOrAfter(s);
   vec2 front = marchSample(originI + s * stepI);

@@ -100,6 +100,27 @@ float opaqueCut(vec3 originWC, vec3 stepWC, float start, float leave)
 #endif
 }
 
+// The fragment's ray (rayOfFragment), in index space too (with its step's inverse), and the
+// depths it spends in the volume: from where it enters the box (or the near plane) to
+// where it leaves it or meets the opaque geometry. False when it misses the volume.
+bool castRay(out vec3 dir, out vec3 originWC, out vec3 stepWC, out vec3 originI,
+  out vec3 stepI, out vec3 inverseStepI, out float start, out float leave)
+{
+  rayOfFragment(dir, originWC, stepWC);
+  originI = (worldToIndex * vec4(originWC, 1.0)).xyz;
+  stepI = mat3(worldToIndex) * stepWC;
+  inverseStepI = 1.0 / stepI;
+  float enter;
+  boxInterval(originI, stepI, enter, leave);
+  start = max(enter, nearDepth);
+  if (!(leave > start))
+  {
+    return false;
+  }
+  leave = opaqueCut(originWC, stepWC, start, leave);
+  return true;
+}
+
 // How far (in depth) the ray can leap from depth s: to where it leaves the cube of bricks
 // around s's brick that holds none that may add to the picture (less a thousandth of a
 // voxel); s where s's own brick may.
