@@ -47,25 +47,28 @@ vec4 sampleAt(vec3 index)
   return texel;
 }
 
-// The premultiplied colour of a slab of world length d whose ends have the values front
-// and back, shaded with the mean of its ends' gradients.
-vec4 slabColor(vec4 front, vec4 back, float d, vec3 dir)
+// The headlight's factors at a sample (value, gradient): where the field is flat (under 1%
+// of its range over two voxels) the gradient's direction is noise, and it is unlit.
+vec2 sampleLight(vec4 sample, vec3 dir)
 {
-  vec2 table = clamp(vec2(front.r, back.r) * tableMap.x + tableMap.y, tableEnds.x, tableEnds.y);
+#if SHADE
+  float flatBelow = 0.01 * (scalarRange.y - scalarRange.x);
+  return headlightFactors(
+    length(sample.gba) > flatBelow ? indexToWorldNormal * sample.gba : vec3(0.0), dir);
+#else
+  return vec2(1.0, 0.0);
+#endif
+}
+
+// The premultiplied colour of a slab of world length d whose ends have the values front
+// and back, lit with the mean of its ends' headlight factors (each end lit by its own
+// normal, as a ray caster lights its samples: a thin sheet's two sides stay lit).
+vec4 slabColor(float front, float back, vec2 light, float d)
+{
+  vec2 table = clamp(vec2(front, back) * tableMap.x + tableMap.y, tableEnds.x, tableEnds.y);
   vec4 entry = texture(preIntegrated, table);
   float alpha = 1.0 - exp(-d * entry.a);
-  vec3 color = entry.rgb;
-#if SHADE
-  if (alpha > 0.0)
-  {
-    vec3 g = 0.5 * (front.gba + back.gba);
-    // Where the field is flat (under 1% of its range over two voxels) the gradient's
-    // direction is noise: no directional shading there.
-    float flatBelow = 0.01 * (scalarRange.y - scalarRange.x);
-    color = headlight(color, length(g) > flatBelow ? indexToWorldNormal * g : vec3(0.0), dir);
-  }
-#endif
-  return vec4(color * alpha, alpha);
+  return vec4((entry.rgb * light.x + vec3(light.y)) * alpha, alpha);
 }
 
 void main()
@@ -85,6 +88,7 @@ void main()
   vec4 sum = vec4(0.0);
   float s = start;
   vec4 front = sampleAt(originI + s * stepI);
+  vec2 frontLight = sampleLight(front, dir);
   for (int j = 0; j < ends; ++j)
   {
 #if LEAP
@@ -103,9 +107,11 @@ void main()
 #endif
     float next = j + 1 < ends ? planeDepth(first + j) : leave;
     vec4 back = sampleAt(originI + next * stepI);
+    vec2 backLight = sampleLight(back, dir);
     if (!leap)
     {
-      sum += (1.0 - sum.a) * slabColor(front, back, (next - s) * worldPerDepth, dir);
+      vec2 light = 0.5 * (frontLight + backLight);
+      sum += (1.0 - sum.a) * slabColor(front.r, back.r, light, (next - s) * worldPerDepth);
       // What lies behind would change no 8-bit channel by half a step.
       if (sum.a >= 0.998)
       {
@@ -113,6 +119,7 @@ void main()
       }
     }
     front = back;
+    frontLight = backLight;
     s = next;
   }
   if (sum.a <= 0.0)

@@ -154,11 +154,19 @@ float trilinear(float v[8], vec3 t)
   return mix(y.x, y.y, t.z);
 }
 
-// A headlight on color: n (world, any length; zero: unlit directions) seen along dir.
-vec3 headlight(vec3 color, vec3 n, vec3 dir)
+// A headlight's factors for a normal n (world, any length; zero: unlit directions) seen
+// along dir: what multiplies the colour (ambient + diffuse) and what adds to it (specular).
+vec2 headlightFactors(vec3 n, vec3 dir)
 {
   float len = length(n);
   float facing = len > 0.0 ? abs(dot(n / len, dir)) : 1.0;
   float highlight = specular > 0.0 ? pow(facing, max(specularPower, 1.0)) : 0.0;
-  return color * (ambient + diffuse * facing) + vec3(specular * highlight);
+  return vec2(ambient + diffuse * facing, specular * highlight);
+}
+
+// A headlight on color.
+vec3 headlight(vec3 color, vec3 n, vec3 dir)
+{
+  vec2 factors = headlightFactors(n, dir);
+  return color * factors.x + vec3(factors.y);
 }
