@@ -455,7 +455,7 @@ void CheckCrossings()
   // The closed meshes scaled (with a grid a quarter step off the lattice, so that no
   // sample is on the surface) by powers of two, which keep every coincidence: near the
   // least and the largest doubles the exact predicates decide alone (the hierarchy's
-  // sums under- and overflow there; the filters run the cores in grid units).
+  // sums under- and overflow there: ComputeWindingSigns scales such input first, below).
   SampleGrid shifted = lattice;
   for (int a = 0; a < 3; ++a)
   {
@@ -492,6 +492,59 @@ void CheckCrossings()
         "%s scaled by %g: the crossings decide as every sample alone at scale 1",
         meshes[m].first,
         scale);
+    }
+  }
+  // Every mesh, open ones included, through the family's entry point at 2^+-1000: every
+  // sample decided alone by the hierarchy, and the default routes, as at scale 1 (the
+  // entry scales such coordinates by a power of two first).
+  for (const auto& [name, original] : meshes)
+  {
+    std::vector<uint8_t> reference(n);
+    for (const double scale : { 1.0, std::ldexp(1.0, -1000), std::ldexp(1.0, 1000) })
+    {
+      Mesh mesh = original;
+      for (double& x : mesh.Points)
+      {
+        x *= scale;
+      }
+      SampleGrid scaled = shifted;
+      for (int a = 0; a < 3; ++a)
+      {
+        scaled.Origin[a] *= scale;
+        scaled.Spacing[a] *= scale;
+      }
+      for (const bool blocks : { false, true })
+      {
+        WindingSignOptions options;
+        options.Blocks = blocks;
+        std::vector<uint8_t> signs(n);
+        WindingSignStatistics stats;
+        std::string error;
+        ComputeWindingSigns(mesh.Points,
+          mesh.Triangles,
+          scaled,
+          scaled.Whole,
+          signs.data(),
+          options,
+          nullptr,
+          ThreadFor,
+          stats,
+          error);
+        if (scale == 1 && !blocks)
+        {
+          reference = signs;
+        }
+        int64_t inside = 0;
+        for (const uint8_t sign : signs)
+        {
+          inside += sign;
+        }
+        Check(signs == reference && inside > 0,
+          "%s scaled by %g, %s: the signs differ from every sample alone at scale 1",
+          name,
+          scale,
+          blocks ? "routes" : "every sample alone");
+      }
     }
   }
   // An open box (one triangle missing) is not a closed chain; a box with a repeated

@@ -316,6 +316,28 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
   return DecideBlocks(winding, grid, extent, inside, options, parallelFor, nullptr, nullptr);
 }
 
+namespace
+{
+/// The power of two that brings the points and the grid's corners near 1 (0 where their
+/// largest coordinate lies within 2^+-100 already).
+int ScaleExponent(const std::vector<double>& points, const SampleGrid& grid)
+{
+  double largest = 0;
+  for (const double x : points)
+  {
+    largest = std::fmax(largest, std::fabs(x));
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    largest = std::fmax(largest, std::fabs(grid.Origin[a]));
+    largest = std::fmax(largest, std::fabs(grid.Coordinate(a, grid.Whole.Hi[a])));
+  }
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  return largest > 0 && std::isfinite(largest) && std::abs(exponent) > 100 ? exponent : 0;
+}
+} // namespace
+
 bool ComputeWindingSigns(const std::vector<double>& points,
   const std::vector<int64_t>& triangles,
   const SampleGrid& grid,
@@ -327,6 +349,35 @@ bool ComputeWindingSigns(const std::vector<double>& points,
   WindingSignStatistics& stats,
   std::string& error)
 {
+  // The hierarchy's sums (w's terms, their bounds) under- and overflow near the least and
+  // the largest doubles: there the points and the grid are scaled by a power of two, which
+  // is exact (short of subnormal coordinates) and keeps every sign and value.
+  if (const int exponent = ScaleExponent(points, grid))
+  {
+    std::vector<double> scaledPoints(points);
+    for (double& x : scaledPoints)
+    {
+      x = std::ldexp(x, -exponent);
+    }
+    SampleGrid scaledGrid = grid;
+    WindingSignOptions scaledOptions = options;
+    for (int a = 0; a < 3; ++a)
+    {
+      scaledGrid.Origin[a] = std::ldexp(grid.Origin[a], -exponent);
+      scaledGrid.Spacing[a] = std::ldexp(grid.Spacing[a], -exponent);
+    }
+    scaledOptions.DistanceScale = std::ldexp(options.DistanceScale, -exponent);
+    return ComputeWindingSigns(scaledPoints,
+      triangles,
+      scaledGrid,
+      extent,
+      inside,
+      scaledOptions,
+      gl,
+      parallelFor,
+      stats,
+      error);
+  }
   // On the CPU, a closed mesh: the crossings along the lines, the hierarchy built only
   // for samples on the surface; an open one closed by cones.
   WindingNumber winding;
