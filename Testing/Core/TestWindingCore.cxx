@@ -461,22 +461,32 @@ void CheckCrossings()
   {
     shifted.Origin[a] += 0.25 * shifted.Spacing[a];
   }
+  // A mesh and the shifted grid scaled by `scale`.
+  const auto scaledMesh = [](Mesh mesh, double scale)
+  {
+    for (double& x : mesh.Points)
+    {
+      x *= scale;
+    }
+    return mesh;
+  };
+  const auto scaledGrid = [&shifted](double scale)
+  {
+    SampleGrid scaled = shifted;
+    for (int a = 0; a < 3; ++a)
+    {
+      scaled.Origin[a] *= scale;
+      scaled.Spacing[a] *= scale;
+    }
+    return scaled;
+  };
   for (size_t m = 0; m < 5; ++m)
   {
     std::vector<uint8_t> reference(n);
     for (const double scale : { 1.0, std::ldexp(1.0, -1000), std::ldexp(1.0, 1000) })
     {
-      Mesh mesh = meshes[m].second;
-      for (double& x : mesh.Points)
-      {
-        x *= scale;
-      }
-      SampleGrid scaled = shifted;
-      for (int a = 0; a < 3; ++a)
-      {
-        scaled.Origin[a] *= scale;
-        scaled.Spacing[a] *= scale;
-      }
+      const Mesh mesh = scaledMesh(meshes[m].second, scale);
+      const SampleGrid scaled = scaledGrid(scale);
       WindingNumber w;
       w.Build(mesh.Points, mesh.Triangles);
       std::vector<uint8_t> lines(n);
@@ -502,17 +512,8 @@ void CheckCrossings()
     std::vector<uint8_t> reference(n);
     for (const double scale : { 1.0, std::ldexp(1.0, -1000), std::ldexp(1.0, 1000) })
     {
-      Mesh mesh = original;
-      for (double& x : mesh.Points)
-      {
-        x *= scale;
-      }
-      SampleGrid scaled = shifted;
-      for (int a = 0; a < 3; ++a)
-      {
-        scaled.Origin[a] *= scale;
-        scaled.Spacing[a] *= scale;
-      }
+      const Mesh mesh = scaledMesh(original, scale);
+      const SampleGrid scaled = scaledGrid(scale);
       for (const bool blocks : { false, true })
       {
         WindingSignOptions options;
