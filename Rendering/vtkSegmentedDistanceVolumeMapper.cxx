@@ -213,7 +213,7 @@ constexpr double StoredGradientVoxels = 1 << 26;
 /// grid's faces, as the shader's clamped interpolation gives them there), as 16-bit signed
 /// normalized texels: the value over `range` mapped to [-1, 1] (65,535 steps, finer than
 /// the largest pre-integration table), the differences divided by `gradientScale`, the
-/// largest of them. Half the bytes of floats: the rays' fetches are bound by memory.
+/// largest of them. Half the bytes of floats (at 128^3 on llvmpipe, 8% more frames).
 std::vector<short> PackedWithGradients(const std::vector<float>& values,
   const int dims[3],
   const double range[2],
