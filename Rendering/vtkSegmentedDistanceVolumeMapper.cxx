@@ -298,7 +298,6 @@ struct vtkSegmentedDistanceVolumeMapper::Internals
   vtkNew<vtkTextureObject> Scalars;
   bool ScalarsGradient = false;
   double GradientScale = 1;
-  bool ShadeComposite = false;    // whether the last composite frame was shaded
   vtkNew<vtkTextureObject> Table; // RGBA32F pre-integration table
   vtkOpenGLHelper Composite;
   vtkNew<vtkTextureObject> CompositeLeaps;       // R8: per brick, bricks to the nearest opaque one
@@ -625,7 +624,6 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateScalars(vtkImageData* image, bool s
   // (interpolation is linear in the voxels), for a quarter of the fetches.
   const bool gradient =
     shade && static_cast<double>(image->GetNumberOfPoints()) <= StoredGradientVoxels;
-  impl.ShadeComposite = shade;
   if (impl.ScalarsValid && impl.Scalars->GetHandle() && impl.ScalarsImage == image &&
     impl.ScalarsTime > image->GetMTime() && impl.ScalarsKey == this->ArraySelectionKey() &&
     impl.ScalarsGradient == gradient)
@@ -921,9 +919,8 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
   // rather than branched on: a software rasterizer runs a branch's texture fetches for
   // every pixel whichever way it goes.
   std::string fragment = this->Mode == Surface ? SegmentedVolume_frag : PreIntegratedVolume_frag;
-  const bool differenced = this->Mode == Composite && impl.ShadeComposite && !impl.ScalarsGradient;
-  const bool storedGradient =
-    this->Mode == Composite && impl.ShadeComposite && impl.ScalarsGradient;
+  const bool differenced = this->Mode == Composite && shade && !impl.ScalarsGradient;
+  const bool storedGradient = this->Mode == Composite && shade && impl.ScalarsGradient;
   const bool filteredMarch =
     this->Mode == Surface && !impl.Segmented && this->Interpolation != Nearest;
   // Rays blended over the window stop at the opaque geometry's depth, read from a copy.
