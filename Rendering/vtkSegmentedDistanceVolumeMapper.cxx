@@ -298,7 +298,11 @@ struct vtkSegmentedDistanceVolumeMapper::Internals
   vtkNew<vtkTextureObject> Scalars;
   bool ScalarsGradient = false;
   double GradientScale = 1;
-  vtkNew<vtkTextureObject> Table; // RGBA32F pre-integration table
+  vtkNew<vtkTextureObject> Table;     // RGBA32F pre-integration table: averages
+  std::vector<float> Averages;        // the same on the CPU, for the step table
+  vtkNew<vtkTextureObject> StepTable; // RGBA32F: premultiplied colour, opacity of a step
+  double StepLength = -1;             // the world length StepTable is for
+  vtkTimeStamp StepTableTime;
   vtkOpenGLHelper Composite;
   vtkNew<vtkTextureObject> CompositeLeaps;       // R8: per brick, bricks to the nearest opaque one
   std::vector<std::array<float, 2>> BrickRanges; // per brick, its values' range
@@ -396,6 +400,7 @@ void vtkSegmentedDistanceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Interpolation: " << this->GetInterpolationAsString() << "\n";
   os << indent << "PreIntegrationTableSize: " << this->PreIntegrationTableSize << "\n";
   os << indent << "TableBuilds: " << this->TableBuilds << "\n";
+  os << indent << "StepTableBuilds: " << this->StepTableBuilds << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "NumberOfSlices: " << this->NumberOfSlices << "\n";
   os << indent << "SurfaceOpacity: " << this->SurfaceOpacity << "\n";
@@ -417,6 +422,7 @@ void vtkSegmentedDistanceVolumeMapper::ReleaseGraphicsResources(vtkWindow* windo
          impl.ClosestPoints.Get(),
          impl.Scalars.Get(),
          impl.Table.Get(),
+         impl.StepTable.Get(),
          impl.OpaqueDepth.Get() })
   {
     texture->ReleaseGraphicsResources(window);
@@ -769,9 +775,36 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateTable(vtkVolumeProperty* property)
     return false;
   }
   impl.Extinction = std::move(samples.Extinction);
+  impl.Averages = table;
   impl.TableKey = key;
   impl.TableTime.Modified();
   ++this->TableBuilds;
+  return true;
+}
+
+bool vtkSegmentedDistanceVolumeMapper::UpdateStepTable(double length)
+{
+  Internals& impl = *this->Impl;
+  if (impl.StepTable->GetHandle() && impl.StepTableTime > impl.TableTime &&
+    impl.StepLength == length)
+  {
+    return true;
+  }
+  const int size = this->PreIntegrationTableSize;
+  const std::vector<float> table = dfrender::StepTable(impl.Averages, length);
+  PrepareTexture(impl.StepTable, vtkTextureObject::Linear, GL_RGBA32F, GL_RGBA, GL_FLOAT);
+  if (!impl.StepTable->Create2DFromRaw(static_cast<unsigned int>(size),
+        static_cast<unsigned int>(size),
+        4,
+        VTK_FLOAT,
+        const_cast<float*>(table.data())))
+  {
+    vtkErrorMacro("Could not make the step table's texture");
+    return false;
+  }
+  impl.StepLength = length;
+  impl.StepTableTime.Modified();
+  ++this->StepTableBuilds;
   return true;
 }
 
@@ -823,6 +856,7 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   for (vtkTextureObject* texture : { impl.Field.Get(),
          impl.Scalars.Get(),
          impl.Table.Get(),
+         impl.StepTable.Get(),
          impl.Colors.Get(),
          impl.SurfaceLeaps.Get(),
          impl.CompositeLeaps.Get(),
@@ -851,13 +885,17 @@ void vtkSegmentedDistanceVolumeMapper::Render(vtkRenderer* renderer, vtkVolume* 
   SamplePlanes planes;
   const std::vector<float> triangles =
     this->BoxFaces(indexToWorld, eye.data(), viewDir.data(), planes);
-  if (triangles.empty() || window->CheckAbortStatus())
+  if (triangles.empty() || window->CheckAbortStatus() ||
+    (!surface && !this->UpdateStepTable(planes.Spacing)))
   {
     return;
   }
   vtkOpenGLHelper& helper = surface ? impl.Surfaces : impl.Composite;
-  vtkShaderProgram* program =
-    this->ReadyProgram(window, triangles, helper, property->GetShade(0) != 0);
+  vtkShaderProgram* program = this->ReadyProgram(window,
+    triangles,
+    helper,
+    property->GetShade(0) != 0,
+    renderer->GetActiveCamera()->GetParallelProjection() != 0);
   if (!program)
   {
     return;
@@ -911,7 +949,8 @@ int vtkSegmentedDistanceVolumeMapper::UpdateRegionColors()
 vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRenderWindow* window,
   const std::vector<float>& triangles,
   vtkOpenGLHelper& helper,
-  bool shade)
+  bool shade,
+  bool parallel)
 {
   Internals& impl = *this->Impl;
   // Through VTK's shader cache. Both fragment shaders take the ray code they share in
@@ -931,7 +970,8 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
          std::make_pair("FILTERED_MARCH", filteredMarch),
          std::make_pair("LEAP", this->EmptySpaceLeaping),
          std::make_pair("SHADE", shade),
-         std::make_pair("OPAQUE_DEPTH", opaqueDepth) })
+         std::make_pair("OPAQUE_DEPTH", opaqueDepth),
+         std::make_pair("PARALLEL", parallel) })
   {
     defines += std::string("#define ") + define.first + (define.second ? " 1\n" : " 0\n");
   }
@@ -989,9 +1029,21 @@ void vtkSegmentedDistanceVolumeMapper::SetViewUniforms(vtkShaderProgram* program
   const float dirF[3] = {
     static_cast<float>(viewDir[0]), static_cast<float>(viewDir[1]), static_cast<float>(viewDir[2])
   };
+  // The eye and the view direction in index space too: the rays' set-up then needs no
+  // matrix per pixel.
+  const Vec3 eyeIndex = Apply(worldToIndex, { eye[0], eye[1], eye[2] });
+  const Vec3 viewDirIndex = Sub(Apply(worldToIndex, { viewDir[0], viewDir[1], viewDir[2] }),
+    Apply(worldToIndex, { 0.0, 0.0, 0.0 }));
+  const float eyeIndexF[3] = { static_cast<float>(eyeIndex[0]),
+    static_cast<float>(eyeIndex[1]),
+    static_cast<float>(eyeIndex[2]) };
+  const float dirIndexF[3] = { static_cast<float>(viewDirIndex[0]),
+    static_cast<float>(viewDirIndex[1]),
+    static_cast<float>(viewDirIndex[2]) };
   program->SetUniform3f("eyeWC", eyeF);
   program->SetUniform3f("viewDirWC", dirF);
-  program->SetUniformi("parallelProjection", camera->GetParallelProjection() != 0 ? 1 : 0);
+  program->SetUniform3f("eyeI", eyeIndexF);
+  program->SetUniform3f("viewDirI", dirIndexF);
   program->SetUniformf("sliceSpacing", static_cast<float>(planes.Spacing));
   program->SetUniformf("firstSliceDepth", static_cast<float>(planes.First));
   program->SetUniformi("sliceCount", planes.Count);
@@ -1078,7 +1130,9 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindCompositeTe
   program->SetUniformf("packedValueOffset", static_cast<float>(impl.ScalarRange[0] + half));
   program->SetUniformf("packedValueScale", static_cast<float>(half));
   program->SetUniformf("packedGradientScale", static_cast<float>(impl.GradientScale));
-  std::vector<vtkTextureObject*> active = { impl.Scalars, impl.Table, impl.CompositeLeaps };
+  std::vector<vtkTextureObject*> active = {
+    impl.Scalars, impl.Table, impl.StepTable, impl.CompositeLeaps
+  };
   for (vtkTextureObject* texture : active)
   {
     texture->Activate();
@@ -1087,6 +1141,7 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindCompositeTe
   program->SetUniformf("brickSize", static_cast<float>(BrickSize));
   program->SetUniformi("scalars", impl.Scalars->GetTextureUnit());
   program->SetUniformi("preIntegrated", impl.Table->GetTextureUnit());
+  program->SetUniformi("preIntegratedStep", impl.StepTable->GetTextureUnit());
   return active;
 }
 

@@ -52,7 +52,11 @@
  * until it is opaque or meets the opaque geometry's depth.
  *
  * Composite rays (Mode) stop where they meet opaque geometry and once their alpha reaches
- * 0.998; their samples come from the texture unit's trilinear filtering, and a shaded volume
+ * 0.998. Their samples lie SampleDistance apart along each ray, at the sample planes'
+ * distances from the eye (the planes in a parallel projection, spheres around the eye in a
+ * perspective one), so that every whole step has one length and takes its opacity from a
+ * table made for it; the first and last slabs, cut short, from the table of averages. The
+ * samples come from the texture unit's trilinear filtering, and a shaded volume
  * of up to 2^26 voxels keeps each voxel's central differences next to its value (16-bit
  * normalized, 8 bytes a voxel) so that one fetch gives a sample's value and gradient.
  *
@@ -110,10 +114,15 @@ public:
   ///@{
   /// Composite: the pre-integration table's entries a side (default 256), over the
   /// array's range; rebuilt only when the transfer functions, the range, the unit
-  /// distance or this change. TableBuilds counts the builds.
+  /// distance or this change. TableBuilds counts the builds. From it, a second table holds
+  /// each entry's premultiplied colour and opacity for a ray's whole step (so the ray's
+  /// loop has no exponential): made again when the step's length changes
+  /// (NumberOfSlices with a view that changes the volume's depth; never with a fixed
+  /// SampleDistance), size^2 exponentials. StepTableBuilds counts those.
   vtkSetClampMacro(PreIntegrationTableSize, int, 2, 4096);
   vtkGetMacro(PreIntegrationTableSize, int);
   vtkGetMacro(TableBuilds, int);
+  vtkGetMacro(StepTableBuilds, int);
   ///@}
 
   enum InterpolationModes
@@ -177,9 +186,9 @@ public:
   ///@{
   /// Empty-space leaping (default on): a ray leaps over the bricks of 4^3 cells around it
   /// that hold no interface (Surface) or whose values the transfer function makes
-  /// transparent (Composite), to the last sample plane before it leaves them. The picture
-  /// is the same either way (those slabs add nothing); off samples every slab, for
-  /// comparison.
+  /// transparent (Composite: at the ray's two ends only), to the last sample before it
+  /// leaves them. The picture is the same either way (those slabs add nothing); off
+  /// samples every slab, for comparison.
   vtkSetMacro(EmptySpaceLeaping, bool);
   vtkGetMacro(EmptySpaceLeaping, bool);
   vtkBooleanMacro(EmptySpaceLeaping, bool);
@@ -205,6 +214,7 @@ protected:
   bool EmptySpaceLeaping = true;
   int PreIntegrationTableSize = 256;
   int TableBuilds = 0;
+  int StepTableBuilds = 0;
   int Interpolation = RegionAware;
   double SampleDistance = 0.0;
   int NumberOfSlices = 0;
@@ -223,6 +233,7 @@ private:
   bool UpdateField(vtkImageData* image);
   bool UpdateScalars(vtkImageData* image, bool shade);
   bool UpdateTable(vtkVolumeProperty* property);
+  bool UpdateStepTable(double length);
   bool UpdateCompositeLeaps();
   bool CheckGrid(vtkImageData* image, int dims[3]);
   void SetGeometry(vtkImageData* image, const int dims[3]);
@@ -247,7 +258,8 @@ private:
   vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* window,
     const std::vector<float>& triangles,
     vtkOpenGLHelper& helper,
-    bool shade);
+    bool shade,
+    bool parallel);
   void SetViewUniforms(vtkShaderProgram* program,
     vtkRenderer* renderer,
     vtkMatrix4x4* indexToWorld,

@@ -4,10 +4,12 @@
 
 // Pre-integrated compositing of a scalar volume (Engel, Kraus, Ertl 2001), ray cast: one
 // fragment a pixel walks its ray's slabs front to back, cut where the ray leaves the
-// volume or meets opaque geometry, and stops once the pixel is opaque. The table holds,
-// per (front value, back value), the slab's average extinction (a) and its
-// extinction-weighted average colour (rgb), so the slab's length enters exactly:
-// alpha = 1 - exp(-length * a).
+// volume or meets opaque geometry, and stops once the pixel is opaque. The table of
+// averages holds, per (front value, back value), the slab's average extinction (a) and
+// its extinction-weighted average colour (rgb), so that a slab of any length d is exact:
+// alpha = 1 - exp(-d * a); the ray's first and last slabs, cut short, use it. The whole
+// steps between use the step table, made from it for their one length: the loop has no
+// exponential.
 
 uniform sampler3D scalars;        // the scalar volume, linear filtering: the value, or
                                   // with STORED_GRADIENT the value and its central
@@ -16,6 +18,7 @@ uniform float packedValueOffset;  // value = offset + scale * texel.r
 uniform float packedValueScale;
 uniform float packedGradientScale; // differences = scale * texel.gba
 uniform sampler2D preIntegrated;  // RGBA: average colour, average extinction
+uniform sampler2D preIntegratedStep; // RGBA: premultiplied colour, opacity of a whole step
 uniform vec2 scalarRange;         // the table's first and last values
 uniform vec2 tableMap;            // value -> table coordinate: value * x + y ...
 uniform vec2 tableEnds;           // ... clamped to the first and last entries' centres
@@ -30,9 +33,8 @@ uniform vec2 tableEnds;           // ... clamped to the first and last entries' 
 // sphere); stored per voxel, they are interpolated like the values (the same numbers:
 // interpolation is linear in the voxels), with the value in 16 bits over the array's
 // range (1/65,535 of it: finer than the largest table).
-vec4 sampleAt(vec3 index)
+vec4 sampleAt(vec3 p)
 {
-  vec3 p = (index + 0.5) / gridSize;
   vec4 texel = texture(scalars, p);
 #if STORED_GRADIENT
   texel = vec4(packedValueOffset + packedValueScale * texel.r, packedGradientScale * texel.gba);
@@ -62,13 +64,24 @@ vec2 sampleLight(vec4 sample, vec3 dir)
 
 // The premultiplied colour of a slab of world length d whose ends have the values front
 // and back, lit with the mean of its ends' headlight factors (each end lit by its own
-// normal, as a ray caster lights its samples: a thin sheet's two sides stay lit).
+// normal, as a ray caster lights its samples: a thin sheet's two sides stay lit): from the
+// table of averages, for the slabs cut short by the volume's box, the near plane or opaque
+// geometry.
 vec4 slabColor(float front, float back, vec2 light, float d)
 {
   vec2 table = clamp(vec2(front, back) * tableMap.x + tableMap.y, tableEnds.x, tableEnds.y);
   vec4 entry = texture(preIntegrated, table);
-  float alpha = 1.0 - exp(-d * entry.a);
+  float alpha = d > 0.0 ? 1.0 - exp(-d * entry.a) : 0.0;
   return vec4((entry.rgb * light.x + vec3(light.y)) * alpha, alpha);
+}
+
+// The same for a whole step (world length sliceSpacing), from the table made for that
+// length: no exponential in the ray's loop.
+vec4 stepColor(float front, float back, vec2 light)
+{
+  vec2 table = clamp(vec2(front, back) * tableMap.x + tableMap.y, tableEnds.x, tableEnds.y);
+  vec4 entry = texture(preIntegratedStep, table);
+  return vec4(entry.rgb * light.x + vec3(light.y * entry.a), entry.a);
 }
 
 void main()
@@ -79,48 +92,79 @@ void main()
   {
     discard;
   }
+  // The ray's samples lie sliceSpacing apart along it, at the distances
+  // firstSliceDepth + k * sliceSpacing from the eye (on the sample planes in a parallel
+  // projection, on spheres around the eye in a perspective one), so that every whole step
+  // has the same length; as depths s along the view direction (the ray's parameter):
   float worldPerDepth = length(stepWC);
-  // Front to back: each slab's back value is the next one's front value. The slabs end
-  // at the planes strictly between start and leave, and at leave.
-  int first = planeAtOrAfter(start);
-  first += planeDepth(first) <= start ? 1 : 0;
-  int ends = max(min(planeAtOrAfter(leave), sliceCount) - first + 1, 1);
+  float spacing = sliceSpacing / worldPerDepth;
+  float offset = firstSliceDepth / worldPerDepth;
+  // Samples k0 .. k1 lie strictly between start and leave (or, after a leap, at them); the
+  // slabs run from start to k0, from each to the next, and from k1 to leave.
+  int k0 = max(0, int(floor((start - offset) / spacing)) + 1);
+  int k1 = int(ceil((leave - offset) / spacing)) - 1;
+#if LEAP
+  // Leaping over transparent bricks (their slabs add exactly nothing): a ray through them
+  // only is discarded; one that starts in them starts at the last sample within reach
+  // (the slab from start to it has no length); one that ends in them ends at the first
+  // sample within reach of its end, seen backwards.
+  float reach = leapReach(originI, stepI, inverseStepI, start);
+  if (reach >= leave)
+  {
+    discard;
+  }
+  int skip = int(floor((reach - offset) / spacing));
+  if (skip >= k0)
+  {
+    start = offset + float(skip) * spacing;
+    k0 = skip;
+  }
+  float reachBack = leapReach(originI + leave * stepI, -stepI, -inverseStepI, 0.0);
+  int stop = int(ceil((leave - reachBack - offset) / spacing));
+  if (stop >= k0 && stop <= k1)
+  {
+    k1 = stop;
+    leave = offset + float(stop) * spacing;
+  }
+#endif
+  // The ray in texture coordinates.
+  vec3 originT = (originI + 0.5) / gridSize;
+  vec3 stepT = stepI / gridSize;
   vec4 sum = vec4(0.0);
   float s = start;
-  vec4 front = sampleAt(originI + s * stepI);
+  vec4 front = sampleAt(originT + s * stepT);
   vec2 frontLight = sampleLight(front, dir);
-  for (int j = 0; j < ends; ++j)
+  float next = k0 <= k1 ? offset + float(k0) * spacing : leave;
+  vec4 back = sampleAt(originT + next * stepT);
+  vec2 backLight = sampleLight(back, dir);
+  sum = slabColor(front.r, back.r, 0.5 * (frontLight + backLight), (next - s) * worldPerDepth);
+  front = back;
+  frontLight = backLight;
+  s = next;
+  // Front to back: each slab's back value is the next one's front value.
+  bool rest = k0 <= k1;
+  for (int k = k0 + 1; k <= k1; ++k)
   {
-#if LEAP
-    // Leap over the slabs in transparent bricks (they add exactly nothing) to the last
-    // plane within reach.
-    float reach = leapReach(originI, stepI, inverseStepI, s);
-    if (reach >= leave)
+    next = offset + float(k) * spacing;
+    back = sampleAt(originT + next * stepT);
+    backLight = sampleLight(back, dir);
+    sum += (1.0 - sum.a) * stepColor(front.r, back.r, 0.5 * (frontLight + backLight));
+    // What lies behind would change no 8-bit channel by half a step.
+    if (sum.a >= 0.998)
     {
+      rest = false;
       break;
-    }
-    int last = int(floor((reach - firstSliceDepth) / sliceSpacing)) - first;
-    bool leap = last >= j;
-    j = max(j, last);
-#else
-    bool leap = false;
-#endif
-    float next = j + 1 < ends ? planeDepth(first + j) : leave;
-    vec4 back = sampleAt(originI + next * stepI);
-    vec2 backLight = sampleLight(back, dir);
-    if (!leap)
-    {
-      vec2 light = 0.5 * (frontLight + backLight);
-      sum += (1.0 - sum.a) * slabColor(front.r, back.r, light, (next - s) * worldPerDepth);
-      // What lies behind would change no 8-bit channel by half a step.
-      if (sum.a >= 0.998)
-      {
-        break;
-      }
     }
     front = back;
     frontLight = backLight;
     s = next;
+  }
+  if (rest && sum.a < 0.998)
+  {
+    back = sampleAt(originT + leave * stepT);
+    backLight = sampleLight(back, dir);
+    sum += (1.0 - sum.a) *
+      slabColor(front.r, back.r, 0.5 * (frontLight + backLight), (leave - s) * worldPerDepth);
   }
   if (sum.a <= 0.0)
   {

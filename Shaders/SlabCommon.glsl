@@ -10,15 +10,16 @@
 // renderer would draw), so a slab is the stretch between two planes, plus a first one from
 // where the ray enters the box (or the near plane) to the first plane.
 
-in vec3 positionWC;
+in vec3 positionWC;               // the fragment's point, world and index coordinates
+in vec3 positionI;
 
 uniform vec3 gridSize;            // samples per axis
-uniform mat4 worldToIndex;
 uniform mat4 worldToClip;
 uniform mat3 indexToWorldNormal;
 uniform vec3 eyeWC;
+uniform vec3 eyeI;                // the eye, index coordinates
 uniform vec3 viewDirWC;
-uniform int parallelProjection;
+uniform vec3 viewDirI;            // the view direction, index coordinates (not unit)
 uniform float sliceSpacing;       // world units, along viewDirWC
 uniform float firstSliceDepth;    // the first plane's depth along viewDirWC from the eye
 uniform int sliceCount;
@@ -36,82 +37,72 @@ uniform sampler3D leaps;          // per brick of brickSize^3 cells: the Chebysh
                                   // picture (/ 255)
 uniform float brickSize;
 
-// The fragment's ray as points origin + s * step (world coordinates), s being the depth
-// along the view direction from the eye, and its unit direction. The ray is the pixel's,
-// whichever face of the box the fragment is on.
-void rayOfFragment(out vec3 dir, out vec3 originWC, out vec3 stepWC)
+// The fragment's ray as points origin + s * step, in world and index coordinates, s being
+// the depth along the view direction from the eye, and its unit direction. The ray is the
+// pixel's, whichever face of the box the fragment is on. The vertex shader hands over the
+// fragment's point in both spaces (interpolation is exact for affine maps), so that no
+// matrix is applied per pixel.
+void rayOfFragment(out vec3 dir, out vec3 originWC, out vec3 stepWC, out vec3 originI,
+  out vec3 stepI)
 {
-  if (parallelProjection == 1)
-  {
-    dir = viewDirWC;
-    originWC = positionWC - dot(positionWC - eyeWC, viewDirWC) * viewDirWC; // at depth 0
-    stepWC = viewDirWC;
-  }
-  else
-  {
-    dir = normalize(positionWC - eyeWC);
-    originWC = eyeWC;
-    stepWC = dir / max(dot(dir, viewDirWC), 1e-6);
-  }
+  vec3 toPoint = positionWC - eyeWC;
+  float depth = dot(toPoint, viewDirWC);
+#if PARALLEL
+  dir = viewDirWC;
+  stepWC = viewDirWC;
+  stepI = viewDirI;
+  originWC = positionWC - depth * viewDirWC; // at depth 0
+  originI = positionI - depth * viewDirI;
+#else
+  dir = normalize(toPoint);
+  float perDepth = 1.0 / max(depth, 1e-30);
+  stepWC = toPoint * perDepth;
+  stepI = (positionI - eyeI) * perDepth;
+  originWC = eyeWC;
+  originI = eyeI;
+#endif
 }
 
-// The depths between which the ray p + s * step (index space) is inside the volume's box;
-// empty (enter > leave) when it misses it.
-void boxInterval(vec3 p, vec3 step, out float enter, out float leave)
+// The depths between which the ray p + s * step (index space) is inside the volume's box,
+// from the step's inverse; empty (enter > leave) when it misses it.
+void boxInterval(vec3 p, vec3 inverseStep, out float enter, out float leave)
 {
-  vec3 last = gridSize - 1.0;
-  enter = -1e30;
-  leave = 1e30;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (abs(step[a]) < 1e-30)
-    {
-      if (p[a] < 0.0 || p[a] > last[a])
-      {
-        leave = -1e30;
-      }
-      continue;
-    }
-    float t0 = -p[a] / step[a];
-    float t1 = (last[a] - p[a]) / step[a];
-    enter = max(enter, min(t0, t1));
-    leave = min(leave, max(t0, t1));
-  }
+  vec3 t0 = -p * inverseStep;
+  vec3 t1 = (gridSize - 1.0 - p) * inverseStep;
+  vec3 near = min(t0, t1);
+  vec3 far = max(t0, t1);
+  enter = max(near.x, max(near.y, near.z));
+  leave = min(far.x, min(far.y, far.z));
 }
 
 // The depth where the ray from depth start to leave meets the opaque geometry drawn before
 // the volume (OPAQUE_DEPTH: rays blended over the window), or leave. Clip coordinates are
-// linear along a line, so the window depth's parameter along the segment is exact.
+// linear along the ray, so the depth where the window depth is reached is exact.
 float opaqueCut(vec3 originWC, vec3 stepWC, float start, float leave)
 {
 #if !OPAQUE_DEPTH
   return leave;
 #else
   float z = 2.0 * texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy) - viewportOrigin, 0).r - 1.0;
-  vec4 front = worldToClip * vec4(originWC + start * stepWC, 1.0);
-  vec4 back = worldToClip * vec4(originWC + leave * stepWC, 1.0);
-  if (back.z / back.w <= z)
-  {
-    return leave;
-  }
-  float denominator = (back.z - front.z) - z * (back.w - front.w);
-  float t = abs(denominator) > 1e-30 ? (z * front.w - front.z) / denominator : 1.0;
-  return start + clamp(t, 0.0, 1.0) * (leave - start);
+  vec4 origin = worldToClip * vec4(originWC, 1.0);
+  vec4 step = worldToClip * vec4(stepWC, 0.0);
+  // (origin.z + s step.z) / (origin.w + s step.w) = z; clip depth grows along the ray, so
+  // geometry behind leave gives a depth beyond it.
+  return clamp((z * origin.w - origin.z) / (step.z - z * step.w), start, leave);
 #endif
 }
 
-// The fragment's ray (rayOfFragment), in index space too (with its step's inverse), and the
-// depths it spends in the volume: from where it enters the box (or the near plane) to
-// where it leaves it or meets the opaque geometry. False when it misses the volume.
+// The fragment's ray (rayOfFragment), with its index-space step's inverse (a zero
+// component made tiny, so that a ray along a face of the box stays finite), and the depths
+// it spends in the volume: from where it enters the box (or the near plane) to where it
+// leaves it or meets the opaque geometry. False when it misses the volume.
 bool castRay(out vec3 dir, out vec3 originWC, out vec3 stepWC, out vec3 originI,
   out vec3 stepI, out vec3 inverseStepI, out float start, out float leave)
 {
-  rayOfFragment(dir, originWC, stepWC);
-  originI = (worldToIndex * vec4(originWC, 1.0)).xyz;
-  stepI = mat3(worldToIndex) * stepWC;
-  inverseStepI = 1.0 / stepI;
+  rayOfFragment(dir, originWC, stepWC, originI, stepI);
+  inverseStepI = 1.0 / mix(stepI, vec3(1e-30), lessThan(abs(stepI), vec3(1e-30)));
   float enter;
-  boxInterval(originI, stepI, enter, leave);
+  boxInterval(originI, inverseStepI, enter, leave);
   start = max(enter, nearDepth);
   if (!(leave > start))
   {

@@ -67,4 +67,23 @@ std::vector<float> BuildPreIntegrationTable(const TransferSamples& samples, int 
   }
   return table;
 }
+
+std::vector<float> StepTable(const std::vector<float>& averages, double length)
+{
+  if (averages.size() % 4 != 0 || !(length >= 0) || !std::isfinite(length))
+  {
+    throw std::invalid_argument("StepTable: bad table or length");
+  }
+  std::vector<float> step(averages.size());
+  for (size_t e = 0; e < averages.size(); e += 4)
+  {
+    const double alpha = -std::expm1(-length * static_cast<double>(averages[e + 3]));
+    for (int c = 0; c < 3; ++c)
+    {
+      step[e + c] = static_cast<float>(averages[e + c] * alpha);
+    }
+    step[e + 3] = static_cast<float>(alpha);
+  }
+  return step;
+}
 } // namespace dfrender

@@ -41,6 +41,12 @@ constexpr int Refinement = 32;
 /// front value Low + j (High - Low) / (size - 1) and the back value Low + i (...).
 /// `samples` must hold PreIntegrationSamples(size) samples.
 std::vector<float> BuildPreIntegrationTable(const TransferSamples& samples, int size);
+
+/// The table for slabs of one world length `length` (a ray's whole steps), from
+/// BuildPreIntegrationTable's: rgb = cBar * alpha and a = alpha = 1 - exp(-length * tauBar),
+/// so that a ray's loop reads a step's premultiplied colour and opacity without an
+/// exponential. Rebuilt when the step's length changes: size^2 exponentials.
+std::vector<float> StepTable(const std::vector<float>& averages, double length);
 } // namespace dfrender
 
 #endif

@@ -4,7 +4,8 @@
 // integral of tau * c / integral of tau, by Simpson's rule on 20000 intervals of the
 // transfer function evaluated directly from its nodes. Also: the slab opacity
 // 1 - exp(-d * tauBar) is the exact transmittance of a linear ramp, so two half slabs
-// compose to one whole (the table is exact in the slab's length).
+// compose to one whole (the table is exact in the slab's length). The step table (one
+// slab length baked in) against the same formula in double precision.
 #include "CoreTest.h"
 #include "PreIntegrationTable.h"
 
@@ -148,6 +149,38 @@ int main()
   }
   std::printf("whole slab against two halves: opacity within %.2e\n", worstCompose);
   Check(worstCompose < 1e-5, "the table is not consistent in the slab length (%.2e)", worstCompose);
+
+  // The step table: each entry's opacity is the averages' over the step's length, and its
+  // colour the average colour premultiplied by it (against the double-precision formula);
+  // a length of zero is transparent, and a negative length is refused.
+  const double length = 0.04;
+  const std::vector<float> step = dfrender::StepTable(table, length);
+  double worstStep = 0;
+  for (size_t e = 0; e < table.size(); e += 4)
+  {
+    const double alpha = 1.0 - std::exp(-length * table[e + 3]);
+    worstStep = std::max(worstStep, std::abs(step[e + 3] - alpha));
+    for (int c = 0; c < 3; ++c)
+    {
+      worstStep = std::max(worstStep, std::abs(step[e + c] - table[e + c] * alpha));
+    }
+  }
+  std::printf("step table against 1 - exp(-d * tauBar): within %.2e\n", worstStep);
+  Check(step.size() == table.size() && worstStep < 1e-6, "step table off by %.2e", worstStep);
+  const std::vector<float> none = dfrender::StepTable(table, 0.0);
+  Check(std::all_of(none.begin(), none.end(), [](float v) { return v == 0.0f; }),
+    "a step of length 0 is not transparent");
+  bool refusedLength = false;
+  try
+  {
+    dfrender::StepTable(table, -1.0);
+  }
+  catch (const std::invalid_argument&)
+  {
+    refusedLength = true;
+  }
+  Check(refusedLength, "a negative step length was accepted");
+
   // Bad samples are refused.
   samples.Extinction.pop_back();
   bool refused = false;

@@ -73,6 +73,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -936,115 +937,161 @@ int TestComposite()
   const double white[3] = { 1, 1, 1 };
   auto plane = SurfaceActor(planeSource->GetOutput(), white);
   const double bounds[6] = { 0, 1, 0, 1, 0, 1 };
+  // In a perspective projection the samples lie on spheres around the eye, in a parallel
+  // one on planes: both against the integral along each pixel's ray. The parallel scene
+  // stays for the tables' checks below.
+  std::unique_ptr<Scene> perspective(new Scene(bounds, false, 30, 20));
   Scene scene(bounds, true, 30, 20);
-  vtkCamera* camera = scene.Renderer->GetActiveCamera();
-  double dir[3];
-  camera->GetDirectionOfProjection(dir);
   // One slab a voxel (the default), and three: the slab test is exact in the slab's
   // length, the rest is the colour's weighting inside a slab and 8-bit output.
-  for (const double sampleDistance : { 0.0, 1.0 / (3 * (n - 1)) })
+  for (Scene* view : { perspective.get(), &scene })
   {
-    mapper->SetSampleDistance(sampleDistance);
-    const Frame frame = scene.Draw({ plane, volume });
-    size_t compared = 0, off = 0, throughPlane = 0;
-    double worst = 0;
-    for (int y = 3; y < Size; y += 6)
+    vtkCamera* camera = view->Renderer->GetActiveCamera();
+    const bool parallel = camera->GetParallelProjection() != 0;
+    for (const double sampleDistance : { 0.0, 1.0 / (3 * (n - 1)) })
     {
-      for (int x = 3; x < Size; x += 6)
+      mapper->SetSampleDistance(sampleDistance);
+      const Frame frame = view->Draw({ plane, volume });
+      size_t compared = 0, off = 0, throughPlane = 0;
+      double worst = 0;
+      for (int y = 3; y < Size; y += 6)
       {
-        double start[4];
-        scene.Renderer->SetDisplayPoint(x + 0.5, y + 0.5, 0.0);
-        scene.Renderer->DisplayToWorld();
-        scene.Renderer->GetWorldPoint(start);
-        for (int c = 0; c < 3; ++c)
+        for (int x = 3; x < Size; x += 6)
         {
-          start[c] /= start[3];
-        }
-        // The ray's entry into and exit from the unit cube, and where it meets the plane.
-        double enter = 0, leave = std::numeric_limits<double>::max();
-        for (int c = 0; c < 3; ++c)
-        {
-          if (std::abs(dir[c]) < 1e-12)
+          // The pixel's ray: from its point on the near plane along the view direction, or
+          // from the eye through that point.
+          double start[4], dir[3];
+          view->Renderer->SetDisplayPoint(x + 0.5, y + 0.5, 0.0);
+          view->Renderer->DisplayToWorld();
+          view->Renderer->GetWorldPoint(start);
+          for (int c = 0; c < 3; ++c)
           {
-            enter = (start[c] < 0 || start[c] > 1) ? leave : enter;
-            continue;
+            start[c] /= start[3];
           }
-          const double t0 = (0 - start[c]) / dir[c], t1 = (1 - start[c]) / dir[c];
-          enter = std::max(enter, std::min(t0, t1));
-          leave = std::min(leave, std::max(t0, t1));
-        }
-        double stop = leave;
-        bool hitsPlane = false;
-        const double tPlane = (0.6 - start[2]) / dir[2];
-        const double px = start[0] + tPlane * dir[0], py = start[1] + tPlane * dir[1];
-        if (tPlane > 0 && px >= -0.5 && px <= 0.5 && py >= -0.5 && py <= 1.5)
-        {
-          hitsPlane = true;
-          stop = std::min(stop, tPlane);
-        }
-        double expected[3] = { 0, 0, 0 }, transmitted = 1;
-        if (leave > enter)
-        {
-          const int steps = 4000;
-          const double dt = (stop - enter) / steps;
-          for (int k = 0; k < steps && dt > 0; ++k)
+          camera->GetDirectionOfProjection(dir);
+          if (!parallel)
           {
-            const double t = enter + (k + 0.5) * dt;
-            const double s = std::clamp(start[0] + t * dir[0], 0.0, 1.0);
-            const double a = std::min(opacity->GetValue(s), 1.0 - 1e-7);
-            const double tau = -std::log1p(-a) / unit;
-            const double slab = 1.0 - std::exp(-tau * dt);
-            double rgb[3];
-            colour->GetColor(s, rgb);
+            double eye[3];
+            camera->GetPosition(eye);
+            const double length = std::sqrt(std::pow(start[0] - eye[0], 2) +
+              std::pow(start[1] - eye[1], 2) + std::pow(start[2] - eye[2], 2));
             for (int c = 0; c < 3; ++c)
             {
-              expected[c] += transmitted * slab * rgb[c];
+              dir[c] = (start[c] - eye[c]) / length;
+              start[c] = eye[c];
             }
-            transmitted *= 1.0 - slab;
           }
+          // The ray's entry into and exit from the unit cube, and where it meets the plane.
+          double enter = 0, leave = std::numeric_limits<double>::max();
+          for (int c = 0; c < 3; ++c)
+          {
+            if (std::abs(dir[c]) < 1e-12)
+            {
+              enter = (start[c] < 0 || start[c] > 1) ? leave : enter;
+              continue;
+            }
+            const double t0 = (0 - start[c]) / dir[c], t1 = (1 - start[c]) / dir[c];
+            enter = std::max(enter, std::min(t0, t1));
+            leave = std::min(leave, std::max(t0, t1));
+          }
+          double stop = leave;
+          bool hitsPlane = false;
+          const double tPlane = (0.6 - start[2]) / dir[2];
+          const double px = start[0] + tPlane * dir[0], py = start[1] + tPlane * dir[1];
+          if (tPlane > 0 && px >= -0.5 && px <= 0.5 && py >= -0.5 && py <= 1.5)
+          {
+            hitsPlane = true;
+            stop = std::min(stop, tPlane);
+          }
+          double expected[3] = { 0, 0, 0 }, transmitted = 1;
+          if (leave > enter)
+          {
+            const int steps = 4000;
+            const double dt = (stop - enter) / steps;
+            for (int k = 0; k < steps && dt > 0; ++k)
+            {
+              const double t = enter + (k + 0.5) * dt;
+              const double s = std::clamp(start[0] + t * dir[0], 0.0, 1.0);
+              const double a = std::min(opacity->GetValue(s), 1.0 - 1e-7);
+              const double tau = -std::log1p(-a) / unit;
+              const double slab = 1.0 - std::exp(-tau * dt);
+              double rgb[3];
+              colour->GetColor(s, rgb);
+              for (int c = 0; c < 3; ++c)
+              {
+                expected[c] += transmitted * slab * rgb[c];
+              }
+              transmitted *= 1.0 - slab;
+            }
+          }
+          // Skip pixels within a pixel of the plane's or the cube's outline.
+          if (leave > enter && (leave - enter) < 0.02)
+          {
+            continue;
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            expected[c] += transmitted * (hitsPlane ? white[c] : Background[c]);
+          }
+          const unsigned char* pixel = &frame.Rgb[3 * (static_cast<size_t>(y) * Size + x)];
+          double error = 0;
+          for (int c = 0; c < 3; ++c)
+          {
+            error = std::max(error, std::abs(pixel[c] - 255 * expected[c]));
+          }
+          ++compared;
+          throughPlane += hitsPlane && leave > enter;
+          off += error > 3;
+          worst = std::max(worst, error);
         }
-        // Skip pixels within a pixel of the plane's or the cube's outline.
-        if (leave > enter && (leave - enter) < 0.02)
-        {
-          continue;
-        }
-        for (int c = 0; c < 3; ++c)
-        {
-          expected[c] += transmitted * (hitsPlane ? white[c] : Background[c]);
-        }
-        const unsigned char* pixel = &frame.Rgb[3 * (static_cast<size_t>(y) * Size + x)];
-        double error = 0;
-        for (int c = 0; c < 3; ++c)
-        {
-          error = std::max(error, std::abs(pixel[c] - 255 * expected[c]));
-        }
-        ++compared;
-        throughPlane += hitsPlane && leave > enter;
-        off += error > 3;
-        worst = std::max(worst, error);
       }
+      std::printf("composite, %s: %d slices, %zu pixels compared (%zu with the plane behind "
+                  "volume), %zu off by more than 3/255, worst %.1f/255\n",
+        parallel ? "parallel" : "perspective",
+        mapper->GetLastNumberOfSlices(),
+        compared,
+        throughPlane,
+        off,
+        worst);
+      CHECK(compared > 1000 && throughPlane > 100, "too few pixels compared");
+      CHECK(off <= compared / 200, "%zu pixels differ from the integral", off);
+      CHECK(sampleDistance == 0 || worst <= 3, "thin slabs: off by up to %.1f/255", worst);
     }
-    std::printf("composite: %d slices, %zu pixels compared (%zu with the plane behind volume), "
-                "%zu off by more than 3/255, worst %.1f/255\n",
-      mapper->GetLastNumberOfSlices(),
-      compared,
-      throughPlane,
-      off,
-      worst);
-    CHECK(compared > 1000 && throughPlane > 100, "too few pixels compared");
-    CHECK(off <= compared / 200, "%zu pixels differ from the integral", off);
-    CHECK(sampleDistance == 0 || worst <= 3, "thin slabs: off by up to %.1f/255", worst);
   }
+  // The perspective window's end releases the mapper's resources: draw once more first.
+  perspective.reset();
+  scene.Draw({ plane, volume });
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
 
-  // The table is built once, and again only when a transfer function changes.
+  // The table is built once, and again only when a transfer function changes; the step
+  // table with it, and when the step's length changes: never under a fixed SampleDistance,
+  // with the volume's depth under NumberOfSlices.
   const int builds = mapper->GetTableBuilds();
+  const int stepBuilds = mapper->GetStepTableBuilds();
   camera->Azimuth(10);
   scene.Draw({ plane, volume });
   CHECK(mapper->GetTableBuilds() == builds, "a camera move rebuilt the table");
+  CHECK(mapper->GetStepTableBuilds() == stepBuilds,
+    "a camera move rebuilt the step table under a fixed SampleDistance");
   opacity->AddPoint(0.2, 0.5);
   scene.Draw({ plane, volume });
   CHECK(mapper->GetTableBuilds() == builds + 1, "a transfer function change did not rebuild");
-  std::printf("table builds: %d\n", mapper->GetTableBuilds());
+  CHECK(mapper->GetStepTableBuilds() == stepBuilds + 1,
+    "a transfer function change did not rebuild the step table");
+  mapper->SetNumberOfSlices(40);
+  scene.Draw({ plane, volume });
+  scene.Draw({ plane, volume });
+  CHECK(mapper->GetStepTableBuilds() == stepBuilds + 2,
+    "a new step length made %d step tables",
+    mapper->GetStepTableBuilds() - stepBuilds - 1);
+  camera->Elevation(25);
+  camera->OrthogonalizeViewUp();
+  scene.Draw({ plane, volume });
+  CHECK(mapper->GetStepTableBuilds() == stepBuilds + 3,
+    "a view with another depth kept the step table under NumberOfSlices");
+  CHECK(mapper->GetTableBuilds() == builds + 1, "a new step length rebuilt the table");
+  std::printf(
+    "table builds: %d, step tables: %d\n", mapper->GetTableBuilds(), mapper->GetStepTableBuilds());
   CHECK(messages.Errors.empty(), "errors: %s", messages.Errors.c_str());
   return 0;
 }
