@@ -964,16 +964,20 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
     this->Mode == Surface && !impl.Segmented && this->Interpolation != Nearest;
   // Rays blended over the window stop at the opaque geometry's depth, read from a copy.
   const bool opaqueDepth = this->Mode == Composite || this->SurfaceOpacity < 1.0;
+  const bool closestNormals = impl.HasClosestPoints && this->UseClosestPointNormals;
   std::string defines;
-  for (const auto& define : { std::make_pair("DIFFERENCED_GRADIENT", differenced),
-         std::make_pair("STORED_GRADIENT", storedGradient),
-         std::make_pair("FILTERED_MARCH", filteredMarch),
-         std::make_pair("LEAP", this->EmptySpaceLeaping),
-         std::make_pair("SHADE", shade),
-         std::make_pair("OPAQUE_DEPTH", opaqueDepth),
-         std::make_pair("PARALLEL", parallel) })
+  for (const auto& define : { std::make_pair("DIFFERENCED_GRADIENT", int(differenced)),
+         std::make_pair("STORED_GRADIENT", int(storedGradient)),
+         std::make_pair("FILTERED_MARCH", int(filteredMarch)),
+         std::make_pair("LEAP", int(this->EmptySpaceLeaping)),
+         std::make_pair("SHADE", int(shade)),
+         std::make_pair("OPAQUE_DEPTH", int(opaqueDepth)),
+         std::make_pair("PARALLEL", int(parallel)),
+         std::make_pair("SEGMENTED", int(impl.Segmented)),
+         std::make_pair("INTERPOLATION", this->Interpolation),
+         std::make_pair("CLOSEST_POINT_NORMALS", int(closestNormals)) })
   {
-    defines += std::string("#define ") + define.first + (define.second ? " 1\n" : " 0\n");
+    defines += std::string("#define ") + define.first + " " + std::to_string(define.second) + "\n";
   }
   vtkShaderProgram::Substitute(fragment, "//DF::SlabCommon", defines + SlabCommon);
   vtkShaderProgram* program =
@@ -1073,8 +1077,6 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindSurfaceText
     static_cast<float>(std::abs(impl.Spacing[1])),
     static_cast<float>(std::abs(impl.Spacing[2])) };
   program->SetUniform3f("spacing", spacingF);
-  program->SetUniformi("interpolation", this->Interpolation);
-  program->SetUniformi("segmented", impl.Segmented ? 1 : 0);
   program->SetUniformf("regionOffset", static_cast<float>(impl.RegionOffset));
   program->SetUniformi("regionColorCount", colorCount);
   program->SetUniformf("opacity", static_cast<float>(this->SurfaceOpacity));
@@ -1092,7 +1094,6 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindSurfaceText
   program->SetUniformi("regionColors", impl.Colors->GetTextureUnit());
   program->SetUniformi("leaps", impl.SurfaceLeaps->GetTextureUnit());
   program->SetUniformf("brickSize", static_cast<float>(BrickSize));
-  program->SetUniformi("useClosestPoint", closestNormals ? 1 : 0);
   // Unused, the closest-point sampler names the field's unit (a 3D texture too; never
   // read), so that no sampler is left on a unit of another texture type.
   program->SetUniformi("closestPoints",

@@ -15,11 +15,8 @@ uniform sampler3D field;          // per voxel: distance (a signed field's signe
 uniform sampler2D regionColors;   // one texel per region
 uniform int regionColorCount;
 uniform vec3 spacing;             // voxel spacing, physical units
-uniform int interpolation;        // 0 region-aware, 1 nearest, 2 linear
-uniform int segmented;            // else a signed field: region 1 where negative
 uniform float regionOffset;
 uniform float opacity;
-uniform int useClosestPoint;       // normals from ClosestPoint rather than the gradient
 uniform sampler3D closestPoints;   // per voxel, physical coordinates
 uniform mat4 indexToPhysical;
 uniform mat3 physicalToWorldNormal;
@@ -69,16 +66,20 @@ float relativeTo(vec2 c[8], vec3 t, float r)
 // The stored value (segmented or signed) of a voxel, and back.
 float encoded(vec2 c)
 {
-  return segmented == 1 ? c.x + regionOffset * c.y : (c.y > 0.5 ? -c.x : c.x);
+#if SEGMENTED
+  return c.x + regionOffset * c.y;
+#else
+  return c.y > 0.5 ? -c.x : c.x;
+#endif
 }
 vec2 decoded(float f)
 {
-  if (segmented == 1)
-  {
-    float r = floor(f / regionOffset);
-    return vec2(f - r * regionOffset, r);
-  }
+#if SEGMENTED
+  float r = floor(f / regionOffset);
+  return vec2(f - r * regionOffset, r);
+#else
   return vec2(abs(f), f < 0.0 ? 1.0 : 0.0);
+#endif
 }
 
 // (distance, region) at index-space point p.
@@ -88,19 +89,16 @@ vec2 sampleField(vec3 p)
   vec3 t;
   cellAt(p, c, t);
   int nearest = int(t.x > 0.5) + 2 * int(t.y > 0.5) + 4 * int(t.z > 0.5);
-  if (interpolation == 1)
+#if INTERPOLATION == 1
+  return c[nearest];
+#elif INTERPOLATION == 2
+  float v[8];
+  for (int k = 0; k < 8; ++k)
   {
-    return c[nearest];
+    v[k] = encoded(c[k]);
   }
-  if (interpolation == 2)
-  {
-    float v[8];
-    for (int k = 0; k < 8; ++k)
-    {
-      v[k] = encoded(c[k]);
-    }
-    return decoded(trilinear(v, t));
-  }
+  return decoded(trilinear(v, t));
+#else
   float r = c[nearest].y;
   float inside = relativeTo(c, t, r);
   if (inside >= 0.0)
@@ -121,6 +119,7 @@ vec2 sampleField(vec3 p)
     }
   }
   return vec2(max(relativeTo(c, t, other), 0.0), other);
+#endif
 }
 
 // The distance relative to region r at p, interpolated.
@@ -207,7 +206,7 @@ bool interfaceIn(vec3 a, vec3 b, vec2 front, vec2 back, out float t)
   float sum = front.x + back.x;
   // Eq. 6: the interface lies u / (u + v) of the way.
   t = sum > 0.0 ? front.x / sum : 0.0;
-  if (interpolation == 0)
+#if INTERPOLATION == 0
   {
     // Region-aware sampling refines it to the zero of the interpolated distance relative
     // to the front region along the slab (regula falsi from eq. 6's estimate): the surface
@@ -236,20 +235,21 @@ bool interfaceIn(vec3 a, vec3 b, vec2 front, vec2 back, out float t)
       t = lo + (hi - lo) * gLo / (gLo - gHi);
     }
   }
+#endif
   vec3 hit = mix(a, b, t);
   if (any(lessThan(hit, vec3(-1e-3))) || any(greaterThan(hit, vec3(dims() - 1) + 1e-3)))
   {
     return false;
   }
-  if (interpolation == 1)
-  {
-    // Nearest sampling, the paper's eq. 7 on the two voxels sampled: a surface lies
-    // between them only if their distances add up to at most their distance apart.
-    vec3 last = vec3(dims() - 1);
-    vec3 apart = (round(clamp(b, vec3(0.0), last)) - round(clamp(a, vec3(0.0), last))) * spacing;
-    return sum <= length(apart) * 1.001;
-  }
+#if INTERPOLATION == 1
+  // Nearest sampling, the paper's eq. 7 on the two voxels sampled: a surface lies between
+  // them only if their distances add up to at most their distance apart.
+  vec3 last = vec3(dims() - 1);
+  vec3 apart = (round(clamp(b, vec3(0.0), last)) - round(clamp(a, vec3(0.0), last))) * spacing;
+  return sum <= length(apart) * 1.001;
+#else
   return surfaceInCell(hit);
+#endif
 }
 
 // The colour of the interface at hit (index space), seen along dir from region r.
@@ -258,8 +258,11 @@ vec3 surfaceColor(vec3 hit, float r, vec3 dir)
   vec3 color = texelFetch(regionColors, ivec2(int(r) % regionColorCount, 0), 0).rgb;
 #if SHADE
   // A headlight; the normal points into the viewer's region.
-  vec3 n = useClosestPoint == 1 ? closestPointNormal(hit, r)
-                                : indexToWorldNormal * gradientTo(hit, r);
+#if CLOSEST_POINT_NORMALS
+  vec3 n = closestPointNormal(hit, r);
+#else
+  vec3 n = indexToWorldNormal * gradientTo(hit, r);
+#endif
   color = headlight(color, n, dir);
 #endif
   return color;
