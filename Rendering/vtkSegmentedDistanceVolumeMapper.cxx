@@ -205,6 +205,14 @@ struct DecodeField
 /// The empty-space leaps' bricks: BrickSize^3 cells.
 constexpr int BrickSize = 4;
 
+/// The leap texture's last brick per axis, for the shader's clamp.
+void SetLastBrick(vtkShaderProgram* program, const int dims[3])
+{
+  const std::array<int, 3> counts = dfrender::BrickCounts(dims, BrickSize);
+  const float last[3] = { counts[0] - 1.0f, counts[1] - 1.0f, counts[2] - 1.0f };
+  program->SetUniform3f("lastBrick", last);
+}
+
 /// Shaded composite volumes up to this many voxels store their gradients (8 bytes a voxel
 /// instead of 4: 512 MiB at most); larger ones difference their values in the shader.
 constexpr double StoredGradientVoxels = 1 << 26;
@@ -975,7 +983,8 @@ vtkShaderProgram* vtkSegmentedDistanceVolumeMapper::ReadyProgram(vtkOpenGLRender
          std::make_pair("PARALLEL", int(parallel)),
          std::make_pair("SEGMENTED", int(impl.Segmented)),
          std::make_pair("INTERPOLATION", this->Interpolation),
-         std::make_pair("CLOSEST_POINT_NORMALS", int(closestNormals)) })
+         std::make_pair("CLOSEST_POINT_NORMALS", int(closestNormals)),
+         std::make_pair("BRICK_SIZE", BrickSize) })
   {
     defines += std::string("#define ") + define.first + " " + std::to_string(define.second) + "\n";
   }
@@ -1049,6 +1058,7 @@ void vtkSegmentedDistanceVolumeMapper::SetViewUniforms(vtkShaderProgram* program
   program->SetUniform3f("eyeI", eyeIndexF);
   program->SetUniform3f("viewDirI", dirIndexF);
   program->SetUniformf("sliceSpacing", static_cast<float>(planes.Spacing));
+  program->SetUniformf("inverseSliceSpacing", static_cast<float>(1.0 / planes.Spacing));
   program->SetUniformf("firstSliceDepth", static_cast<float>(planes.First));
   program->SetUniformi("sliceCount", planes.Count);
   program->SetUniformf("nearDepth", static_cast<float>(camera->GetClippingRange()[0]));
@@ -1093,7 +1103,7 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindSurfaceText
   program->SetUniformi("field", impl.Field->GetTextureUnit());
   program->SetUniformi("regionColors", impl.Colors->GetTextureUnit());
   program->SetUniformi("leaps", impl.SurfaceLeaps->GetTextureUnit());
-  program->SetUniformf("brickSize", static_cast<float>(BrickSize));
+  SetLastBrick(program, impl.Dims);
   // Unused, the closest-point sampler names the field's unit (a 3D texture too; never
   // read), so that no sampler is left on a unit of another texture type.
   program->SetUniformi("closestPoints",
@@ -1139,7 +1149,7 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindCompositeTe
     texture->Activate();
   }
   program->SetUniformi("leaps", impl.CompositeLeaps->GetTextureUnit());
-  program->SetUniformf("brickSize", static_cast<float>(BrickSize));
+  SetLastBrick(program, impl.Dims);
   program->SetUniformi("scalars", impl.Scalars->GetTextureUnit());
   program->SetUniformi("preIntegrated", impl.Table->GetTextureUnit());
   program->SetUniformi("preIntegratedStep", impl.StepTable->GetTextureUnit());

@@ -97,12 +97,13 @@ void main()
   // projection, on spheres around the eye in a perspective one), so that every whole step
   // has the same length; as depths s along the view direction (the ray's parameter):
   float worldPerDepth = length(stepWC);
-  float spacing = sliceSpacing / worldPerDepth;
-  float offset = firstSliceDepth / worldPerDepth;
+  float depthPerWorld = inversesqrt(dot(stepWC, stepWC));
+  float spacing = sliceSpacing * depthPerWorld;
+  float offset = firstSliceDepth * depthPerWorld;
   // Samples k0 .. k1 lie strictly between start and leave (or, after a leap, at them); the
   // slabs run from start to k0, from each to the next, and from k1 to leave.
-  int k0 = max(0, int(floor((start - offset) / spacing)) + 1);
-  int k1 = int(ceil((leave - offset) / spacing)) - 1;
+  int k0 = max(0, int(floor((start * worldPerDepth - firstSliceDepth) * inverseSliceSpacing)) + 1);
+  int k1 = int(ceil((leave * worldPerDepth - firstSliceDepth) * inverseSliceSpacing)) - 1;
 #if LEAP
   // Leaping over transparent bricks (their slabs add exactly nothing): a ray through them
   // only is discarded; one that starts in them starts at the last sample within reach
@@ -113,14 +114,15 @@ void main()
   {
     discard;
   }
-  int skip = int(floor((reach - offset) / spacing));
+  int skip = int(floor((reach * worldPerDepth - firstSliceDepth) * inverseSliceSpacing));
   if (skip >= k0)
   {
     start = offset + float(skip) * spacing;
     k0 = skip;
   }
   float reachBack = leapReach(originI + leave * stepI, -stepI, -inverseStepI, 0.0);
-  int stop = int(ceil((leave - reachBack - offset) / spacing));
+  int stop =
+    int(ceil(((leave - reachBack) * worldPerDepth - firstSliceDepth) * inverseSliceSpacing));
   if (stop >= k0 && stop <= k1)
   {
     k1 = stop;

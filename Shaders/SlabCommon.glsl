@@ -21,6 +21,7 @@ uniform vec3 eyeI;                // the eye, index coordinates
 uniform vec3 viewDirWC;
 uniform vec3 viewDirI;            // the view direction, index coordinates (not unit)
 uniform float sliceSpacing;       // world units, along viewDirWC
+uniform float inverseSliceSpacing;
 uniform float firstSliceDepth;    // the first plane's depth along viewDirWC from the eye
 uniform int sliceCount;
 uniform float nearDepth;          // the near clipping plane's depth
@@ -32,10 +33,10 @@ uniform float specularPower;
 uniform sampler2D opaqueDepth;    // the depth buffer before the volume was drawn
 uniform ivec2 viewportOrigin;     // the window pixel of opaqueDepth's first texel
 #endif
-uniform sampler3D leaps;          // per brick of brickSize^3 cells: the Chebyshev distance
+uniform sampler3D leaps;          // per brick of BRICK_SIZE^3 cells: the Chebyshev distance
                                   // in bricks to the nearest brick that may add to the
                                   // picture (/ 255)
-uniform float brickSize;
+uniform vec3 lastBrick;           // leaps' size - 1
 
 // The fragment's ray as points origin + s * step, in world and index coordinates, s being
 // the depth along the view direction from the eye, and its unit direction. The ray is the
@@ -118,11 +119,12 @@ bool castRay(out vec3 dir, out vec3 originWC, out vec3 stepWC, out vec3 originI,
 float leapReach(vec3 originI, vec3 stepI, vec3 inverseStepI, float s)
 {
   vec3 p = originI + s * stepI;
-  ivec3 b = clamp(ivec3(floor(p / brickSize)), ivec3(0), textureSize(leaps, 0) - 1);
+  // Truncation is floor for p >= 0 (p is in the box, to rounding).
+  ivec3 b = ivec3(clamp(p * (1.0 / float(BRICK_SIZE)), vec3(0.0), lastBrick));
   float r = floor(texelFetch(leaps, b, 0).r * 255.0 + 0.5);
-  // The cube's far side along each axis (a zero step's infinite inverse leaves it out).
-  vec3 far = mix((vec3(b) - (r - 1.0)) * brickSize + 1e-3, (vec3(b) + r) * brickSize - 1e-3,
-    greaterThanEqual(stepI, vec3(0.0)));
+  // The cube's far side along each axis (a zero step's tiny inverse leaves it out).
+  vec3 far = mix((vec3(b) - (r - 1.0)) * float(BRICK_SIZE) + 1e-3,
+    (vec3(b) + r) * float(BRICK_SIZE) - 1e-3, greaterThanEqual(stepI, vec3(0.0)));
   vec3 t = (far - p) * inverseStepI;
   return r < 1.0 ? s : s + max(min(t.x, min(t.y, t.z)), 0.0);
 }
