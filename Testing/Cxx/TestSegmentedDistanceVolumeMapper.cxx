@@ -12,8 +12,9 @@
 //   the nearer of the two drawn alone, and the colours follow, both ways.
 // - translucent: SurfaceOpacity 0.5 blends over the background and writes no depth.
 // - composite: pre-integrated rendering of a ramp against the emission-absorption
-//   integral per pixel, slabs cut by an opaque plane inside the volume; the table is
-//   rebuilt only when a transfer function changes.
+//   integral per pixel, in perspective and parallel projections, slabs cut by an opaque
+//   plane inside the volume; the table is rebuilt only when a transfer function changes,
+//   the step table also when the step's length does.
 // - accuracy MESH: a mesh's segmented field drawn by the mapper against its polygonized
 //   surface, against the mesh's own depth, and every drawn point against the mesh in 3D
 //   (for bunny_small also its signed field, next to VTK's ray caster in ISOSURFACE mode).
