@@ -205,6 +205,17 @@ struct DecodeField
 /// The empty-space leaps' bricks: BrickSize^3 cells.
 constexpr int BrickSize = 4;
 
+/// A size x size RGBA float table (pre-integration: averages or a step's), filtered.
+bool UploadTable(vtkTextureObject* texture, const std::vector<float>& table, int size)
+{
+  PrepareTexture(texture, vtkTextureObject::Linear, GL_RGBA32F, GL_RGBA, GL_FLOAT);
+  return texture->Create2DFromRaw(static_cast<unsigned int>(size),
+    static_cast<unsigned int>(size),
+    4,
+    VTK_FLOAT,
+    const_cast<float*>(table.data()));
+}
+
 /// The leap texture's last brick per axis, for the shader's clamp.
 void SetLastBrick(vtkShaderProgram* program, const int dims[3])
 {
@@ -771,19 +782,14 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateTable(vtkVolumeProperty* property)
     samples.Extinction[m] = -std::log1p(-a) / unit;
     samples.Colour[m] = { rgb[3 * m], rgb[3 * m + 1], rgb[3 * m + 2] };
   }
-  const std::vector<float> table = dfrender::BuildPreIntegrationTable(samples, size);
-  PrepareTexture(impl.Table, vtkTextureObject::Linear, GL_RGBA32F, GL_RGBA, GL_FLOAT);
-  if (!impl.Table->Create2DFromRaw(static_cast<unsigned int>(size),
-        static_cast<unsigned int>(size),
-        4,
-        VTK_FLOAT,
-        const_cast<float*>(table.data())))
+  std::vector<float> table = dfrender::BuildPreIntegrationTable(samples, size);
+  if (!UploadTable(impl.Table, table, size))
   {
     vtkErrorMacro("Could not make the pre-integration table's texture");
     return false;
   }
   impl.Extinction = std::move(samples.Extinction);
-  impl.Averages = table;
+  impl.Averages = std::move(table);
   impl.TableKey = key;
   impl.TableTime.Modified();
   ++this->TableBuilds;
@@ -798,14 +804,8 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateStepTable(double length)
   {
     return true;
   }
-  const int size = this->PreIntegrationTableSize;
-  const std::vector<float> table = dfrender::StepTable(impl.Averages, length);
-  PrepareTexture(impl.StepTable, vtkTextureObject::Linear, GL_RGBA32F, GL_RGBA, GL_FLOAT);
-  if (!impl.StepTable->Create2DFromRaw(static_cast<unsigned int>(size),
-        static_cast<unsigned int>(size),
-        4,
-        VTK_FLOAT,
-        const_cast<float*>(table.data())))
+  if (!UploadTable(
+        impl.StepTable, dfrender::StepTable(impl.Averages, length), this->PreIntegrationTableSize))
   {
     vtkErrorMacro("Could not make the step table's texture");
     return false;

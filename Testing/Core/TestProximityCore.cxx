@@ -693,6 +693,13 @@ int main()
           {
             first = part;
           }
+          // Only the first share tests for contact and searches the separation.
+          Check(share == 0 || (part.Contact.ContactTests == 0 && part.Contact.DistanceTests == 0),
+            "share %d of %d tested %lld pairs for contact and %lld for the separation",
+            share,
+            shares,
+            static_cast<long long>(part.Contact.ContactTests),
+            static_cast<long long>(part.Contact.DistanceTests));
         }
         std::vector<ProximityReport> parts;
         ProximityReport merged;
@@ -704,6 +711,10 @@ int main()
         bool same = merged.Contact.Colliding == whole.Contact.Colliding &&
           merged.Contact.Separation == whole.Contact.Separation &&
           merged.Contact.ClosestA == whole.Contact.ClosestA &&
+          merged.Contact.ContactA == whole.Contact.ContactA &&
+          merged.Contact.ContactB == whole.Contact.ContactB &&
+          merged.Contact.ContactTests == whole.Contact.ContactTests &&
+          merged.Contact.DistanceTests == whole.Contact.DistanceTests &&
           merged.PointQueries == whole.PointQueries && merged.DistanceA == whole.DistanceA &&
           merged.DistanceB == whole.DistanceB;
         for (const auto& sides :

@@ -886,23 +886,28 @@ bool ComputeProximity(const ProximityModel& modelA,
   }
   const OnDevice gpuAB{ device, 0, 1 }, gpuBA{ device, 1, 0 };
 
-  // Contact: a pair of triangles with a point in common.
+  // Contact: a pair of triangles with a point in common. The merged report takes the
+  // contact pair and the separation from the first share: the others skip both.
   ProximityResult& contact = report.Contact;
-  a.Tree->ForEachOverlappingPair(*b.Tree,
-    [&](size_t s, size_t t)
-    {
-      Point3 p[3], q[3];
-      a.Model.Corners(s, p);
-      b.Model.Corners(t, q);
-      ++contact.ContactTests;
-      if (ClosedTrianglesIntersect(p, q))
+  const bool first = request.Share == 0;
+  if (first)
+  {
+    a.Tree->ForEachOverlappingPair(*b.Tree,
+      [&](size_t s, size_t t)
       {
-        contact.ContactA = static_cast<int64_t>(s);
-        contact.ContactB = static_cast<int64_t>(t);
-        return false;
-      }
-      return true;
-    });
+        Point3 p[3], q[3];
+        a.Model.Corners(s, p);
+        b.Model.Corners(t, q);
+        ++contact.ContactTests;
+        if (ClosedTrianglesIntersect(p, q))
+        {
+          contact.ContactA = static_cast<int64_t>(s);
+          contact.ContactB = static_cast<int64_t>(t);
+          return false;
+        }
+        return true;
+      });
+  }
   if (!execution.Report(0.1))
   {
     error = "aborted";
@@ -979,7 +984,7 @@ bool ComputeProximity(const ProximityModel& modelA,
   contact.AInsideB = report.AInB.SamplesInside > 0;
   contact.BInsideA = report.BInA.SamplesInside > 0;
   contact.Colliding = contact.ContactA >= 0 || contact.AInsideB || contact.BInsideA;
-  if (contact.Colliding)
+  if (contact.Colliding || !first)
   {
     contact.Separation = 0;
   }

@@ -118,8 +118,10 @@ struct ProximityRequest
   bool Contacts = true;
   /// A distributed query: this call takes share `Share` of `Shares` of the face samples
   /// (consecutive blocks of triangles; the vertices are the first share's). Every share
-  /// computes the rest alike; MergeProximityShares puts the shares' reports together into
-  /// the report of one call, bit for bit.
+  /// computes the points' distances alike (its face samples start from them); only the
+  /// first tests the triangle pairs for contact and searches the separation.
+  /// MergeProximityShares puts the shares' reports together into the report of one call,
+  /// bit for bit.
   int Share = 0, Shares = 1;
   /// The most face samples a query may take (a step far below the triangles' size
   /// otherwise asks for billions): more is an error, not a slow run.
