@@ -205,6 +205,43 @@ struct DecodeField
 /// The empty-space leaps' bricks: BrickSize^3 cells.
 constexpr int BrickSize = 4;
 
+/// The depth format of the framebuffer the window reads from, as vtkTextureObject names
+/// it: the opaque depth's copy in the same format is a plain copy (into a float texture
+/// from a 32-bit fixed-point buffer, llvmpipe converted for 5 ms a 1920x1080 frame) and
+/// exact. Float32 where the buffer's format is not one of those.
+int ReadDepthFormat()
+{
+  GLint framebuffer = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &framebuffer);
+  const GLenum attachment = framebuffer != 0 ? GL_DEPTH_ATTACHMENT : GL_DEPTH;
+  GLint object = GL_NONE, type = GL_NONE, bits = 0;
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &object);
+  if (object == GL_NONE)
+  {
+    return vtkTextureObject::Float32;
+  }
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
+  if (type == GL_UNSIGNED_NORMALIZED)
+  {
+    switch (bits)
+    {
+      case 16:
+        return vtkTextureObject::Fixed16;
+      case 24:
+        return vtkTextureObject::Fixed24;
+      case 32:
+        return vtkTextureObject::Fixed32;
+      default:
+        break;
+    }
+  }
+  return vtkTextureObject::Float32;
+}
+
 /// A size x size RGBA float table (pre-integration: averages or a step's), filtered.
 bool UploadTable(vtkTextureObject* texture, const std::vector<float>& table, int size)
 {
@@ -335,6 +372,7 @@ struct vtkSegmentedDistanceVolumeMapper::Internals
   double ScalarRange[2] = { 0, 1 };
   std::array<double, 5> TableKey = { 0, 0, 0, 0, 0 };
   int DepthSize[2] = { 0, 0 };
+  int DepthFormat = -1; // vtkTextureObject's depth format of OpaqueDepth
   // Both.
   vtkNew<vtkTextureObject> OpaqueDepth; // the depth buffer before the volume
   vtkNew<vtkOpenGLVertexBufferObject> Vertices;
@@ -1163,16 +1201,18 @@ vtkTextureObject* vtkSegmentedDistanceVolumeMapper::BindOpaqueDepth(vtkShaderPro
   Internals& impl = *this->Impl;
   int width, height, x0, y0;
   renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  if (!impl.OpaqueDepth->GetHandle() || impl.DepthSize[0] != width || impl.DepthSize[1] != height)
+  const int format = ReadDepthFormat();
+  if (!impl.OpaqueDepth->GetHandle() || impl.DepthSize[0] != width || impl.DepthSize[1] != height ||
+    impl.DepthFormat != format)
   {
     impl.OpaqueDepth->ReleaseGraphicsResources(window);
     impl.OpaqueDepth->SetContext(window);
     PrepareTexture(impl.OpaqueDepth, vtkTextureObject::Nearest);
-    impl.OpaqueDepth->AllocateDepth(static_cast<unsigned int>(width),
-      static_cast<unsigned int>(height),
-      vtkTextureObject::Float32);
+    impl.OpaqueDepth->AllocateDepth(
+      static_cast<unsigned int>(width), static_cast<unsigned int>(height), format);
     impl.DepthSize[0] = width;
     impl.DepthSize[1] = height;
+    impl.DepthFormat = format;
   }
   impl.OpaqueDepth->CopyFromFrameBuffer(x0, y0, 0, 0, width, height);
   impl.OpaqueDepth->Activate();
