@@ -1166,18 +1166,19 @@ std::vector<vtkTextureObject*> vtkSegmentedDistanceVolumeMapper::BindCompositeTe
     static_cast<float>(impl.ScalarRange[1]) };
   program->SetUniform2f("scalarRange", range);
   // Entry i of the table's n is for the value low + i (high - low) / (n - 1), at the
-  // coordinate (i + 0.5) / n.
+  // coordinate (i + 0.5) / n. A stored gradient's texels are normalized: value =
+  // low + half + half * texel.
   const double n = this->PreIntegrationTableSize;
   const double perValue = (n - 1) / (n * (impl.ScalarRange[1] - impl.ScalarRange[0]));
-  const float tableMap[2] = { static_cast<float>(perValue),
-    static_cast<float>(0.5 / n - impl.ScalarRange[0] * perValue) };
-  const float tableEnds[2] = { static_cast<float>(0.5 / n), static_cast<float>((n - 0.5) / n) };
+  double map[2] = { perValue, 0.5 / n - impl.ScalarRange[0] * perValue };
+  if (impl.ScalarsGradient)
+  {
+    const double half = 0.5 * (impl.ScalarRange[1] - impl.ScalarRange[0]);
+    map[1] += (impl.ScalarRange[0] + half) * map[0];
+    map[0] *= half;
+  }
+  const float tableMap[2] = { static_cast<float>(map[0]), static_cast<float>(map[1]) };
   program->SetUniform2f("tableMap", tableMap);
-  program->SetUniform2f("tableEnds", tableEnds);
-  // A stored gradient's texels are normalized: value = offset + scale * texel.
-  const double half = 0.5 * (impl.ScalarRange[1] - impl.ScalarRange[0]);
-  program->SetUniformf("packedValueOffset", static_cast<float>(impl.ScalarRange[0] + half));
-  program->SetUniformf("packedValueScale", static_cast<float>(half));
   program->SetUniformf("packedGradientScale", static_cast<float>(impl.GradientScale));
   std::vector<vtkTextureObject*> active = {
     impl.Scalars, impl.Table, impl.StepTable, impl.CompositeLeaps

@@ -14,14 +14,12 @@
 uniform sampler3D scalars;        // the scalar volume, linear filtering: the value, or
                                   // with STORED_GRADIENT the value and its central
                                   // differences, normalized (16-bit signed):
-uniform float packedValueOffset;  // value = offset + scale * texel.r
-uniform float packedValueScale;
 uniform float packedGradientScale; // differences = scale * texel.gba
 uniform sampler2D preIntegrated;  // RGBA: average colour, average extinction
 uniform sampler2D preIntegratedStep; // RGBA: premultiplied colour, opacity of a whole step
 uniform vec2 scalarRange;         // the table's first and last values
-uniform vec2 tableMap;            // value -> table coordinate: value * x + y ...
-uniform vec2 tableEnds;           // ... clamped to the first and last entries' centres
+uniform vec2 tableMap;            // texel.r -> table coordinate: texel.r * x + y (the
+                                  // value's, or with STORED_GRADIENT the normalized one's)
 
 // The interpolated value at an index-space point and, when shading, the gradient there
 // (per two index steps), by the texture unit's trilinear filtering: one fetch where eight
@@ -32,12 +30,15 @@ uniform vec2 tableEnds;           // ... clamped to the first and last entries' 
 // gradient of the trilinear interpolant shows every cell face: rings around the axes on a
 // sphere); stored per voxel, they are interpolated like the values (the same numbers:
 // interpolation is linear in the voxels), with the value in 16 bits over the array's
-// range (1/65,535 of it: finer than the largest table).
+// range (1/65,535 of it: finer than the largest table). The value comes back as its
+// coordinate in the tables, once a sample rather than once a slab each end (outside the
+// first and last entries' centres the tables' clamped linear filtering gives those
+// entries, as clamping the value to their range would).
 vec4 sampleAt(vec3 p)
 {
   vec4 texel = texture(scalars, p);
 #if STORED_GRADIENT
-  texel = vec4(packedValueOffset + packedValueScale * texel.r, packedGradientScale * texel.gba);
+  texel.gba *= packedGradientScale;
 #endif
 #if DIFFERENCED_GRADIENT
   vec3 e = 1.0 / gridSize;
@@ -46,6 +47,7 @@ vec4 sampleAt(vec3 p)
     texture(scalars, p + vec3(0.0, e.y, 0.0)).r - texture(scalars, p - vec3(0.0, e.y, 0.0)).r,
     texture(scalars, p + vec3(0.0, 0.0, e.z)).r - texture(scalars, p - vec3(0.0, 0.0, e.z)).r);
 #endif
+  texel.r = texel.r * tableMap.x + tableMap.y;
   return texel;
 }
 
@@ -62,15 +64,14 @@ vec2 sampleLight(vec4 sample, vec3 dir)
 #endif
 }
 
-// The premultiplied colour of a slab of world length d whose ends have the values front
-// and back, lit with the mean of its ends' headlight factors (each end lit by its own
+// The premultiplied colour of a slab of world length d whose ends have the table
+// coordinates front and back, lit with the mean of its ends' headlight factors (each end lit by its own
 // normal, as a ray caster lights its samples: a thin sheet's two sides stay lit): from the
 // table of averages, for the slabs cut short by the volume's box, the near plane or opaque
 // geometry.
 vec4 slabColor(float front, float back, vec2 light, float d)
 {
-  vec2 table = clamp(vec2(front, back) * tableMap.x + tableMap.y, tableEnds.x, tableEnds.y);
-  vec4 entry = texture(preIntegrated, table);
+  vec4 entry = texture(preIntegrated, vec2(front, back));
   float alpha = d > 0.0 ? 1.0 - exp(-d * entry.a) : 0.0;
   return vec4((entry.rgb * light.x + vec3(light.y)) * alpha, alpha);
 }
@@ -79,8 +80,7 @@ vec4 slabColor(float front, float back, vec2 light, float d)
 // length: no exponential in the ray's loop.
 vec4 stepColor(float front, float back, vec2 light)
 {
-  vec2 table = clamp(vec2(front, back) * tableMap.x + tableMap.y, tableEnds.x, tableEnds.y);
-  vec4 entry = texture(preIntegratedStep, table);
+  vec4 entry = texture(preIntegratedStep, vec2(front, back));
   return vec4(entry.rgb * light.x + vec3(light.y * entry.a), entry.a);
 }
 

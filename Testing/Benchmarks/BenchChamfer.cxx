@@ -147,6 +147,12 @@ int main(int argc, char* argv[])
     triangles->SetInputData(reader->GetOutput());
     triangles->Update();
     vtkPolyData* mesh = triangles->GetOutput();
+    if (mesh->GetNumberOfPolys() == 0)
+    {
+      std::fprintf(
+        stderr, "BenchChamfer: %s holds no triangles (not a .vtp mesh?)\n", path.c_str());
+      return 1;
+    }
     std::string name = path.substr(path.find_last_of('/') + 1);
     name = name.substr(0, name.find_last_of('.'));
     for (const std::string& size : sizes)
