@@ -122,9 +122,10 @@ float leapReach(vec3 originI, vec3 stepI, vec3 inverseStepI, float s)
   // Truncation is floor for p >= 0 (p is in the box, to rounding).
   ivec3 b = ivec3(clamp(p * (1.0 / float(BRICK_SIZE)), vec3(0.0), lastBrick));
   float r = floor(texelFetch(leaps, b, 0).r * 255.0 + 0.5);
-  // The cube's far side along each axis (a zero step's tiny inverse leaves it out).
+  // The cube's far side along each axis, on the side the inverse step points to (a zero
+  // step's huge inverse then leaves the axis out, whichever way the ray is walked).
   vec3 far = mix((vec3(b) - (r - 1.0)) * float(BRICK_SIZE) + 1e-3,
-    (vec3(b) + r) * float(BRICK_SIZE) - 1e-3, greaterThanEqual(stepI, vec3(0.0)));
+    (vec3(b) + r) * float(BRICK_SIZE) - 1e-3, greaterThanEqual(inverseStepI, vec3(0.0)));
   vec3 t = (far - p) * inverseStepI;
   return r < 1.0 ? s : s + max(min(t.x, min(t.y, t.z)), 0.0);
 }
