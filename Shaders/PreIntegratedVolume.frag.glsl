@@ -16,7 +16,8 @@ uniform sampler3D scalars;        // the scalar volume, linear filtering: the va
                                   // differences, normalized (16-bit signed):
 uniform float packedGradientScale; // differences = scale * texel.gba
 uniform sampler2D preIntegrated;  // RGBA: average colour, average extinction
-uniform sampler2D preIntegratedStep; // RGBA: premultiplied colour, opacity of a whole step
+uniform sampler2D preIntegratedStep; // RGBA (half floats): premultiplied colour, opacity
+                                     // of a whole step
 uniform vec2 scalarRange;         // the table's first and last values
 uniform vec2 tableMap;            // texel.r -> table coordinate: texel.r * x + y (the
                                   // value's, or with STORED_GRADIENT the normalized one's)
