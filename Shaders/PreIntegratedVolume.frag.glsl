@@ -135,14 +135,19 @@ void main()
   vec3 stepT = stepI / gridSize;
   vec4 sum = vec4(0.0);
   float s = start;
-  vec4 front = sampleAt(originT + s * stepT);
-  vec2 frontLight = sampleLight(front, dir);
   float next = k0 <= k1 ? offset + float(k0) * spacing : leave;
   vec4 back = sampleAt(originT + next * stepT);
   vec2 backLight = sampleLight(back, dir);
-  sum = slabColor(front.r, back.r, 0.5 * (frontLight + backLight), (next - s) * worldPerDepth);
-  front = back;
-  frontLight = backLight;
+  // The first slab, cut by the box or the near plane; after a leap it has no length and
+  // adds nothing (on a GPU, neighbouring rays skip its fetches together).
+  if (next > s)
+  {
+    vec4 entry = sampleAt(originT + s * stepT);
+    vec2 entryLight = sampleLight(entry, dir);
+    sum = slabColor(entry.r, back.r, 0.5 * (entryLight + backLight), (next - s) * worldPerDepth);
+  }
+  vec4 front = back;
+  vec2 frontLight = backLight;
   s = next;
   // Front to back: each slab's back value is the next one's front value.
   bool rest = k0 <= k1;
@@ -162,7 +167,8 @@ void main()
     frontLight = backLight;
     s = next;
   }
-  if (rest && sum.a < 0.998)
+  // The last slab, cut by the box or opaque geometry (none after a leap to its end).
+  if (rest && sum.a < 0.998 && leave > s)
   {
     back = sampleAt(originT + leave * stepT);
     backLight = sampleLight(back, dir);
