@@ -85,6 +85,14 @@ vec4 stepColor(float front, float back, vec2 light)
   return vec4(entry.rgb * light.x + vec3(light.y * entry.a), entry.a);
 }
 
+// The ray's samples, as a fractional index, at its depth s (the ray's parameter along the
+// view direction): sample k lies at the distance firstSliceDepth + k * sliceSpacing from
+// the eye.
+float sampleIndex(float s, float worldPerDepth)
+{
+  return (s * worldPerDepth - firstSliceDepth) * inverseSliceSpacing;
+}
+
 void main()
 {
   vec3 dir, originWC, stepWC, originI, stepI, inverseStepI;
@@ -103,8 +111,8 @@ void main()
   float offset = firstSliceDepth * depthPerWorld;
   // Samples k0 .. k1 lie strictly between start and leave (or, after a leap, at them); the
   // slabs run from start to k0, from each to the next, and from k1 to leave.
-  int k0 = max(0, int(floor((start * worldPerDepth - firstSliceDepth) * inverseSliceSpacing)) + 1);
-  int k1 = int(ceil((leave * worldPerDepth - firstSliceDepth) * inverseSliceSpacing)) - 1;
+  int k0 = max(0, int(floor(sampleIndex(start, worldPerDepth))) + 1);
+  int k1 = int(ceil(sampleIndex(leave, worldPerDepth))) - 1;
 #if LEAP
   // Leaping over transparent bricks (their slabs add exactly nothing): a ray through them
   // only is discarded; one that starts in them starts at the last sample within reach
@@ -115,15 +123,14 @@ void main()
   {
     discard;
   }
-  int skip = int(floor((reach * worldPerDepth - firstSliceDepth) * inverseSliceSpacing));
+  int skip = int(floor(sampleIndex(reach, worldPerDepth)));
   if (skip >= k0)
   {
     start = offset + float(skip) * spacing;
     k0 = skip;
   }
   float reachBack = leapReach(originI + leave * stepI, -stepI, -inverseStepI, 0.0);
-  int stop =
-    int(ceil(((leave - reachBack) * worldPerDepth - firstSliceDepth) * inverseSliceSpacing));
+  int stop = int(ceil(sampleIndex(leave - reachBack, worldPerDepth)));
   if (stop >= k0 && stop <= k1)
   {
     k1 = stop;
