@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Benchmark (not a test): every distance-field filter on the GPU and on the CPU of the same
 # host, for a machine with a hardware GPU. Prints vtkdf's --timing lines (backend, renderer,
-# stages) and BenchChamfer's table; run it with the thread count you want to compare
-# against (vtkSMPTools uses every core by default).
+# stages), BenchChamfer's and BenchUnion's tables and BenchRender's (the volume mapper next
+# to VTK's ray caster, in the module's headless EGL context: no X server needed); run it
+# with the thread count you want to compare against (vtkSMPTools uses every core by
+# default).
 # usage: Testing/Benchmarks/gpu.sh BUILD_DIR MESH_DIR [SIZES]
 set -uo pipefail
 build=${1:?usage: Testing/Benchmarks/gpu.sh BUILD_DIR MESH_DIR [SIZES]}
@@ -34,3 +36,8 @@ for n in $sizes; do
     run segment "$meshes/bunny_75k.vtp" -o "$out/s.vti" --resolution "$n" --backend "$backend"
   done
 done
+echo "== convex queries: union closest point, penetration depth"
+"$build/bin/BenchUnion" --backends cpu,gpu
+echo "== volume mapper next to VTK's ray caster (headless)"
+"$build/bin/BenchRender" "$meshes" --headless --sizes "$(tr ' ' ',' <<<"$sizes")" \
+  --planes 32,64,256 --frames 30 --repeats 5
