@@ -437,6 +437,31 @@ int main(int argc, char* argv[])
     }
     const double depth = farthest - nearest;
 
+    // The four renderings, in the order they are measured: the mapper's surface, VTK's
+    // isosurface, the mapper's composite, VTK's composite.
+    const char* names[4] = { "surface", "iso", "composite", "vtk-composite" };
+    const auto select = [&](int which) -> vtkProp*
+    {
+      switch (which)
+      {
+        case 0:
+          ours->SetProperty(surface);
+          mapper->SetModeToSurface();
+          return ours;
+        case 1:
+          theirs->SetProperty(iso);
+          caster->SetBlendModeToIsoSurface();
+          return theirs;
+        case 2:
+          ours->SetProperty(shells);
+          mapper->SetModeToComposite();
+          return ours;
+        default:
+          theirs->SetProperty(shells);
+          caster->SetBlendModeToComposite();
+          return theirs;
+      }
+    };
     for (const auto& size : options.Windows)
     {
       for (const int planes : options.Planes)
@@ -452,34 +477,18 @@ int main(int argc, char* argv[])
           if (!snapshotTaken)
           {
             snapshotTaken = true;
-            ours->SetProperty(surface);
-            mapper->SetModeToSurface();
-            bench.Snapshot(ours, w, hgt, options.Snapshot + "/surface.png");
-            theirs->SetProperty(iso);
-            caster->SetBlendModeToIsoSurface();
-            bench.Snapshot(theirs, w, hgt, options.Snapshot + "/iso.png");
-            ours->SetProperty(shells);
-            mapper->SetModeToComposite();
-            bench.Snapshot(ours, w, hgt, options.Snapshot + "/composite.png");
-            theirs->SetProperty(shells);
-            caster->SetBlendModeToComposite();
-            bench.Snapshot(theirs, w, hgt, options.Snapshot + "/vtk-composite.png");
+            for (int which = 0; which < 4; ++which)
+            {
+              bench.Snapshot(select(which), w, hgt, options.Snapshot + "/" + names[which] + ".png");
+            }
           }
           std::vector<double> measures[4];
           for (int r = 0; r < options.Repeats; ++r)
           {
-            ours->SetProperty(surface);
-            mapper->SetModeToSurface();
-            measures[0].push_back(bench.FramesPerSecond(ours, w, hgt));
-            theirs->SetProperty(iso);
-            caster->SetBlendModeToIsoSurface();
-            measures[1].push_back(bench.FramesPerSecond(theirs, w, hgt));
-            ours->SetProperty(shells);
-            mapper->SetModeToComposite();
-            measures[2].push_back(bench.FramesPerSecond(ours, w, hgt));
-            theirs->SetProperty(shells);
-            caster->SetBlendModeToComposite();
-            measures[3].push_back(bench.FramesPerSecond(theirs, w, hgt));
+            for (int which = 0; which < 4; ++which)
+            {
+              measures[which].push_back(bench.FramesPerSecond(select(which), w, hgt));
+            }
           }
           if (!printedRenderer)
           {
