@@ -96,7 +96,7 @@ protected:
 vtkStandardNewMacro(HeadlessRenderWindow);
 
 /// The framebuffer a headless window's frames are blitted to (what a window's back
-/// buffer is to an X window), one per window size.
+/// buffer is to an X window), resized with the window.
 class TargetFramebuffer
 {
 public:
@@ -198,6 +198,10 @@ struct Options
       }
       else if (option == "--shading")
       {
+        if (value != "on" && value != "off" && value != "both")
+        {
+          return false;
+        }
         this->Shading = value == "on" ? std::vector<bool>{ true }
           : value == "off"            ? std::vector<bool>{ false }
                                       : std::vector<bool>{ true, false };
@@ -222,8 +226,10 @@ struct Options
         return false;
       }
     }
-    return this->Frames > 0 && this->Repeats > 0 && !this->Sizes.empty() && !this->Planes.empty() &&
-      !this->Windows.empty();
+    const auto positive = [](const std::vector<int>& values)
+    { return !values.empty() && *std::min_element(values.begin(), values.end()) > 0; };
+    return this->Frames > 0 && this->Repeats > 0 && positive(this->Sizes) &&
+      positive(this->Planes) && !this->Windows.empty();
   }
 };
 
