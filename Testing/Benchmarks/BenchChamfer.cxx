@@ -4,8 +4,10 @@
 // the same grid.
 //
 // usage: BenchChamfer MESH [MESH...] [--sizes 128,256,512] [--backends cpu,gpu] [--reps 3]
+//                     [--metric manhattan|chessboard18|chessboard26]
 // Columns: boundary and solid voxelization (both masks from one pass for "solid"), one
-// chamfer layer and the complete field (Manhattan, from the boundary mask), the floor
+// chamfer layer and the complete field (in --metric, Manhattan by default, from the
+// boundary mask), the floor
 // under the field (a float array of the grid's size allocated and written once, first
 // touch included, on the same threads) and the field's multiple of it, voxelize +
 // complete field, the memory of one layer, and the VTK route's time.
@@ -102,10 +104,22 @@ int main(int argc, char* argv[])
 {
   std::vector<std::string> meshes, sizes = { "128", "256", "512" }, backends = { "cpu" };
   int reps = 3;
+  std::string metric = "manhattan";
   for (int a = 1; a < argc; ++a)
   {
     const std::string arg = argv[a];
-    if (arg == "--sizes" && a + 1 < argc)
+    if (arg == "--metric" && a + 1 < argc)
+    {
+      metric = argv[++a];
+      if (metric != "manhattan" && metric != "chessboard18" && metric != "chessboard26")
+      {
+        std::fprintf(stderr,
+          "BenchChamfer: --metric must be manhattan, chessboard18 or chessboard26, not %s\n",
+          metric.c_str());
+        return 2;
+      }
+    }
+    else if (arg == "--sizes" && a + 1 < argc)
     {
       sizes = Split(argv[++a]);
     }
@@ -191,6 +205,21 @@ int main(int argc, char* argv[])
       }
       for (const std::string& backend : backends)
       {
+        auto setMetric = [&](vtkChamferVoxelDistance* f)
+        {
+          if (metric == "chessboard18")
+          {
+            f->SetMetricToChessboard18();
+          }
+          else if (metric == "chessboard26")
+          {
+            f->SetMetricToChessboard26();
+          }
+          else
+          {
+            f->SetMetricToManhattan();
+          }
+        };
         auto configure = [&](vtkDistanceFieldAlgorithm* f)
         {
           f->SetResolution(n);
@@ -220,14 +249,14 @@ int main(int argc, char* argv[])
         // Chamfer from the boundary mask: one layer, the complete field.
         vtkNew<vtkChamferVoxelDistance> layer1, field, meshField;
         layer1->SetInputData(boundary->GetOutput());
-        layer1->SetMetricToManhattan();
+        setMetric(layer1);
         layer1->SetMaximumLayers(1);
         configure(layer1);
         field->SetInputData(boundary->GetOutput());
-        field->SetMetricToManhattan();
+        setMetric(field);
         configure(field);
         meshField->SetInputData(mesh);
-        meshField->SetMetricToManhattan();
+        setMetric(meshField);
         configure(meshField);
         const double layerTime = Best(layer1.GetPointer(), reps);
         const double fieldTime = Best(field.GetPointer(), reps);

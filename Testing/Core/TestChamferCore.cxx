@@ -1,6 +1,7 @@
 // The VTK-free chamfer transform against a breadth-first search with the same
 // neighbourhood, on hand-made voxel sets: one voxel, a plane, the grid's corners and
-// faces, random sparse sets; nz = 1, 64, 65, 129, 300 and 66000 (more than 2^16 layers);
+// faces, random sets of several densities; nz = 1, 64, 65, 129, 300 and 66000 (more than
+// 2^16 layers);
 // every metric, with and without a maximum number of layers (3: within the first block
 // of eight layers, 11: within the second), unsigned and signed.
 #include "CoreTest.h"
@@ -266,6 +267,37 @@ int main()
         v.Set(rx(random), ry(random), rz(random));
       }
       CompareAll("random sparse " + size, v, random);
+    }
+  }
+  {
+    // Random sets of several densities on odd sizes: many shortest paths meet, and the
+    // sweeps of the metrics without a layer limit must still give the breadth-first
+    // search's layers.
+    for (const Dims d : { Dims{ 31, 29, 67 }, Dims{ 65, 3, 40 }, Dims{ 2, 70, 33 } })
+    {
+      for (int per : { 40, 400, 4000 })
+      {
+        BitVolume v(d.X, d.Y, d.Z);
+        std::uniform_int_distribution<int> pick(0, per - 1);
+        for (int z = 0; z < d.Z; ++z)
+        {
+          for (int y = 0; y < d.Y; ++y)
+          {
+            for (int x = 0; x < d.X; ++x)
+            {
+              if (pick(random) == 0)
+              {
+                v.Set(x, y, z);
+              }
+            }
+          }
+        }
+        v.Set(d.X - 1, d.Y / 2, 0); // never empty (the field needs a zero set)
+        CompareAll("random 1/" + std::to_string(per) + " " + std::to_string(d.X) + "x" +
+            std::to_string(d.Y) + "x" + std::to_string(d.Z),
+          v,
+          random);
+      }
     }
   }
   {
