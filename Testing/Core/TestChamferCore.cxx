@@ -2,8 +2,9 @@
 // neighbourhood, on hand-made voxel sets: one voxel, a plane, the grid's corners and
 // faces, random sets of several densities; nz = 1, 64, 65, 129, 300 and 66000 (more than
 // 2^16 layers);
-// every metric, with and without a maximum number of layers (3: within the first block
-// of eight layers, 11: within the second), unsigned and signed.
+// every metric, with and without a maximum number of layers (3: within the wavefront's
+// first block of eight layers, 11: within the second, 30: beyond what the wavefront
+// computes, the sweeps with a limit), unsigned and signed.
 #include "CoreTest.h"
 #include "ThreadFor.h"
 #include "Voxels/ChamferTransform.h"
@@ -187,7 +188,7 @@ void CompareAll(const std::string& name, const BitVolume& zero, std::mt19937& ra
   }
   for (int m = 0; m < 3; ++m)
   {
-    for (int maxLayers : { 0, 3, 11 })
+    for (int maxLayers : { 0, 3, 11, 30 })
     {
       CompareOne(name, zero, static_cast<ChamferMetric>(m), maxLayers, nullptr);
     }
@@ -306,6 +307,15 @@ int main()
     line.Set(0, 0, 0);
     CompareOne(
       "one voxel at the end of a line 1x2x66000", line, ChamferMetric::Manhattan, 0, nullptr);
+    // The largest limit there is: every layer, and unreached voxels hold INT32_MAX.
+    for (int m = 0; m < 3; ++m)
+    {
+      CompareOne("one voxel at the end of a line 1x2x66000",
+        line,
+        static_cast<ChamferMetric>(m),
+        INT32_MAX - 1,
+        nullptr);
+    }
   }
   {
     BitVolume empty(4, 4, 4);

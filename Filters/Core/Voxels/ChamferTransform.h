@@ -39,14 +39,14 @@ struct ChamferResult
 /// `maximumLayers` > 0 stops after that layer. `progress` (optional) is called with the
 /// fraction done; when it aborts, `distance` is incomplete.
 ///
-/// With a layer limit (or an empty zero set), the layers are found one by one, and not
-/// written into `distance` as they are found: each new voxel's layer index is OR-ed bit
-/// by bit into bit-plane lane grids (one word operation per 64 voxels and plane), and
-/// the planes are turned into the int32 array once at the end, in 64 x 64 tiles, so that
-/// every output row is written once and in order. Without one, the layer indices come
-/// from sweeps over the array, the same bits: the separable L1 transform for Manhattan,
-/// three sweeps (z and x per row of lanes, then y forward and back) for the
-/// chessboards.
+/// A chessboard field of at most 24 layers (or an empty zero set) is found a layer at a
+/// time, the layers not written into `distance` as they are found: each new voxel's
+/// layer index is OR-ed bit by bit into bit-plane lane grids (one word operation per 64
+/// voxels and plane), and the planes are turned into the int32 array once at the end, in
+/// 64 x 64 tiles, so that every output row is written once and in order. Otherwise the
+/// layer indices come from sweeps over the array, the same bits (the layers beyond a
+/// limit unreached): the separable L1 transform for Manhattan, three sweeps (z and x per
+/// row of lanes, then y forward and back) for the chessboards.
 ChamferResult ChamferPropagate(const BitVolume& zero,
   ChamferMetric metric,
   int maximumLayers,
