@@ -545,6 +545,7 @@ constexpr int32_t Far = int32_t(1) << 29; // beyond any distance on a grid of in
 VTKDF_INLINE void LaneDistances(const BitVolume& zero, int y, int32_t* lanes)
 {
   const int nx = zero.Size(0), nz = zero.Size(2), words = zero.WordsPerLane();
+  const uint64_t last = zero.LastWordMask(); // the bits past nz are not voxels
   for (int x = 0; x < nx; ++x)
   {
     const uint64_t* lane = zero.Lane(x, y);
@@ -552,7 +553,8 @@ VTKDF_INLINE void LaneDistances(const BitVolume& zero, int y, int32_t* lanes)
     int32_t previous = -1; // the last zero voxel so far
     for (int w = 0; w < words; ++w)
     {
-      for (uint64_t bits = lane[w]; bits != 0; bits &= bits - 1)
+      for (uint64_t bits = lane[w] & (w + 1 < words ? ~uint64_t(0) : last); bits != 0;
+           bits &= bits - 1)
       {
         const int32_t z = 64 * w + __builtin_ctzll(bits);
         if (previous < 0)
