@@ -1,11 +1,14 @@
 /**
  * @class   vtkChamferVoxelDistance
- * @brief   Chamfer distance transform by wavefront propagation on voxel lanes.
+ * @brief   Chamfer distance transform on voxel lanes.
  *
  * Implements the distance transform of Martinek, Grosso and Greiner, "Fast and
  * Efficient 3D Chamfer Distance Transform for Polygonal Meshes" (VMV 2011), §5: layer
  * n+1 is computed from layer n and the accumulation grid of all earlier layers, a whole
- * voxel lane (64 voxels per word) at a time, with bit shifts and ORs.
+ * voxel lane (64 voxels per word) at a time, with bit shifts and ORs. That wavefront
+ * runs on the GPU, and on the CPU for chessboard fields of at most 24 layers; the CPU
+ * computes the other fields, the same layer indices bit for bit, in sweeps over the
+ * array (the separable L1 transform for Manhattan, three sweeps for the chessboards).
  *
  * Input, either:
  * - a vtkPolyData, voxelized internally (vtkPolyDataVoxelizer's scheme) on the grid
