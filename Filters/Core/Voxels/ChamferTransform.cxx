@@ -526,16 +526,18 @@ void WriteDistances(const Wavefront& f,
       WriteDistancesLoop(f, inside, unreached, distance, begin, end);
     });
 }
-/// The Manhattan field without a layer limit is the L1 distance transform of the zero
-/// set, which is separable: the distance along z to the nearest zero voxel of the lane,
-/// then min over x' of (|x - x'| + that), then the same over y'. Two passes over the
-/// output instead of one per layer. Pass 1, a row y of lanes at a time (the lanes of a
-/// row lie side by side): the z and x transforms in a buffer of the row's lanes, then
-/// written into the row y of every z-slice, each value doubled and its inside bit added
-/// (the y transform keeps each voxel's own bit: min(e, ((e' >> 1) + 1) << 1 | (e & 1))
-/// compares the distances alone). Pass 2, a z-slice at a time (in cache): the y
-/// transform, and each value decoded and signed. The layer indices are the wavefront's,
-/// bit for bit: a voxel's layer is its L1 distance to the zero set.
+
+/// The Manhattan field is the L1 distance transform of the zero set (its layers beyond a
+/// limit unreached), which is separable: the distance along z to the nearest zero voxel
+/// of the lane, then min over x' of (|x - x'| + that), then the same over y'. Two passes
+/// over the output instead of one per layer. Pass 1, a row y of lanes at a time (the
+/// lanes of a row lie side by side): the z and x transforms in a buffer of the row's
+/// lanes, then written into the row y of every z-slice, each value doubled and its inside
+/// bit added (the y transform keeps each voxel's own bit: min(e, ((e' >> 1) + 1) << 1 |
+/// (e & 1)) compares the distances alone). Pass 2, a z-slice at a time (in cache): the y
+/// transform, and each value decoded (unreached beyond the limit) and signed. The layer
+/// indices are the wavefront's, bit for bit: a voxel's layer is its L1 distance to the
+/// zero set.
 constexpr int32_t Far = int32_t(1) << 29; // beyond any distance on a grid of int extents
 
 /// Along z, for every lane x of row y: the distance to the lane's nearest zero voxel (Far
@@ -811,17 +813,17 @@ ChamferResult SeparableManhattan(const BitVolume& zero,
   return result;
 }
 
-/// The chessboard fields (18 and 26 neighbours) without a layer limit, in three sweeps
-/// of the output instead of one pass per layer. A voxel's layer index is the fewest
-/// steps from the zero set, each to a neighbour of the metric. A shortest path can be
-/// taken monotone (no step moves a coordinate away from the end point; with 18
-/// neighbours, a displacement (a, b, c), a >= b >= c >= 0, takes max(a, ceil((a + b +
-/// c) / 2)) steps of (1, 1, 0), (1, 0, 1), (0, 1, 1) and (1, 0, 0)), and the steps of
-/// a monotone path can be reordered without leaving the box between its ends, so without
-/// leaving the grid: first the steps along z alone, then those that move x (and maybe z),
-/// then those that move y (and maybe x and z). Each class is a sweep along its axis,
-/// forward then backward, in which a voxel takes min(its value, a neighbour's in the
-/// previous lane or plane + 1):
+/// The chessboard fields (18 and 26 neighbours) in three sweeps of the output instead of
+/// one pass per layer (a limit only leaves the layers beyond it unreached). A voxel's
+/// layer index is the fewest steps from the zero set, each to a neighbour of the metric.
+/// A shortest path can be taken monotone (no step moves a coordinate away from the end
+/// point; with 18 neighbours, a displacement (a, b, c), a >= b >= c >= 0, takes max(a,
+/// ceil((a + b + c) / 2)) steps of (1, 1, 0), (1, 0, 1), (0, 1, 1) and (1, 0, 0)), and
+/// the steps of a monotone path can be reordered without leaving the box between its
+/// ends, so without leaving the grid: first the steps along z alone, then those that
+/// move x (and maybe z), then those that move y (and maybe x and z). Each class is a
+/// sweep along its axis, forward then backward, in which a voxel takes min(its value, a
+/// neighbour's in the previous lane or plane + 1):
 ///   pass 1, a row y of lanes at a time: the distance along z to each lane's nearest zero
 ///   voxel, then the x sweeps across the row's lanes (their z runs side by side), written
 ///   into row y of every slice;
