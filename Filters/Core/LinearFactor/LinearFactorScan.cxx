@@ -216,7 +216,13 @@ private:
   /// may win. The site's Voronoi region is star-shaped about the site, so the slices that
   /// hold a part of it form one run around the anchor's. The test is per slice only: a
   /// block holds a sample or two of a typical domain, so testing the blocks of every row
-  /// costs more than the evaluations it saves.
+  /// costs more than the evaluations it saves (measured: testing them where a slice
+  /// spans more than two blocks cut the evaluations 2-3 times and cost 10-20 % more).
+  /// A polygon with no whole row or column inside the region holds no sample: the walk
+  /// goes on past it without the block tests (a fine mesh on a coarse grid has mostly
+  /// such slivers: 8 % less scan time for the dragon of 871k triangles at 64 samples).
+  /// Going on where a dead sliver would have stopped the walk only adds slices where the
+  /// site may win, so the nearest sites are the same.
   bool Slice(int k)
   {
     const int u = this->U, v = this->V, w = this->W;
@@ -224,6 +230,15 @@ private:
     if (!this->Domain.SliceBox(k, box))
     {
       return false;
+    }
+    const IndexBox& region = this->Region;
+    const int j0 = std::max(region.Lo[v], static_cast<int>(std::ceil(box[2])));
+    const int j1 = std::min(region.Hi[v], static_cast<int>(std::floor(box[3])));
+    const double firstColumn = std::max<double>(region.Lo[u], std::ceil(box[0]));
+    const double lastColumn = std::min<double>(region.Hi[u], std::floor(box[1]));
+    if (j1 < j0 || lastColumn < firstColumn)
+    {
+      return true;
     }
     const int bu0 = this->Culling.BlockOf(u, box[0]), bu1 = this->Culling.BlockOf(u, box[1]);
     const int bv0 = this->Culling.BlockOf(v, box[2]), bv1 = this->Culling.BlockOf(v, box[3]);
@@ -247,9 +262,6 @@ private:
       this->D0[0] + k * this->Dw[0], this->D0[1] + k * this->Dw[1], this->D0[2] + k * this->Dw[2]
     };
     const int64_t sliceStart = this->Base + k * this->StrideW;
-    const IndexBox& region = this->Region;
-    const int j0 = std::max(region.Lo[v], static_cast<int>(std::ceil(box[2])));
-    const int j1 = std::min(region.Hi[v], static_cast<int>(std::floor(box[3])));
     for (int j = j0; j <= j1; ++j)
     {
       double xl, xr;
