@@ -217,7 +217,7 @@ private:
   /// hold a part of it form one run around the anchor's. The test is per slice only: a
   /// block holds a sample or two of a typical domain, so testing the blocks of every row
   /// costs more than the evaluations it saves (measured: testing them where a slice
-  /// spans more than two blocks cut the evaluations 2-3 times and cost 10-20 % more).
+  /// spans more than two blocks cut the evaluations up to 3 times and cost 6-20 % more).
   /// A polygon with no whole row or column inside the region holds no sample: the walk
   /// goes on past it without the block tests (a fine mesh on a coarse grid has mostly
   /// such slivers: 8 % less scan time for the dragon of 871k triangles at 64 samples).
