@@ -40,6 +40,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   output->Initialize();
   this->LastEvaluations = 0;
   this->LastCullingFactor = 0;
+  this->LastRoute = "none";
   if (!input || input->GetNumberOfCells() == 0 || input->GetNumberOfPoints() == 0)
   {
     vtkWarningMacro("The input mesh is empty: the output is an empty image.");
@@ -76,6 +77,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
       });
   }
   request.Domains = static_cast<vtkdf::Culling>(this->Culling);
+  request.Route = static_cast<vtkdf::FieldRoute>(this->Route);
   request.Sign = static_cast<vtkdf::SignMode>(this->SignMode);
   request.MaximumDistance = this->MaximumDistance;
 
@@ -132,6 +134,8 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     output->Initialize();
     return 1;
   }
+  this->LastRoute =
+    report.Route == vtkdf::FieldRoute::SampleQueries ? "sample queries" : "site scan";
   this->LastEvaluations = report.Evaluations;
   this->LastCullingFactor = report.Evaluations >= 0 ? double(report.Evaluations) / n : -1.0;
   this->LastWindingBlockSamples = report.WindingBlockSamples;
@@ -157,7 +161,8 @@ bool vtkLinearFactorDistanceField::CheckProperties()
 {
   if (!this->Superclass::CheckProperties() ||
     !this->CheckEnum("SignMode", this->SignMode, { "Unsigned", "PseudoNormal", "WindingNumber" }) ||
-    !this->CheckEnum("Culling", this->Culling, { "Auto", "NonManifold", "Manifold" }))
+    !this->CheckEnum("Culling", this->Culling, { "Auto", "NonManifold", "Manifold" }) ||
+    !this->CheckEnum("Route", this->Route, { "Auto", "SiteScan", "SampleQueries" }))
   {
     return false;
   }
@@ -178,6 +183,9 @@ void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "Culling: " << EnumName(this->Culling, { "Auto", "NonManifold", "Manifold" })
      << "\n";
+  os << indent << "Route: " << EnumName(this->Route, { "Auto", "SiteScan", "SampleQueries" })
+     << "\n";
+  os << indent << "LastRoute: " << this->LastRoute << "\n";
   os << indent << "MaximumDistance: " << this->MaximumDistance << "\n";
   os << indent << "ComputeDistance: " << this->ComputeDistance << "\n";
   os << indent << "ComputeClosestCellId: " << this->ComputeClosestCellId << "\n";

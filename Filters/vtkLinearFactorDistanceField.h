@@ -75,6 +75,28 @@ public:
   void SetCullingToNonManifold() { this->SetCulling(CULLING_NON_MANIFOLD); }
   void SetCullingToManifold() { this->SetCulling(CULLING_MANIFOLD); }
 
+  /// How the CPU finds each sample's nearest feature. SiteScan: the linear factorization
+  /// above. SampleQueries: one nearest-triangle query per sample through a bounding-volume
+  /// hierarchy, faster where the mesh has more cells than the grid has samples (a fine
+  /// mesh on a coarse grid; CPU only, no MaximumDistance). Auto (the default) takes
+  /// SampleQueries where the mesh has at least 3 times more cells than the whole grid
+  /// has samples, on the CPU without MaximumDistance. Both are exact: the same
+  /// distances, features and cell ids, but where a sample lies within rounding of two
+  /// features.
+  enum RouteType
+  {
+    ROUTE_AUTO = 0,
+    ROUTE_SITE_SCAN = 1,
+    ROUTE_SAMPLE_QUERIES = 2
+  };
+  vtkSetMacro(Route, int);
+  vtkGetMacro(Route, int);
+  void SetRouteToAuto() { this->SetRoute(ROUTE_AUTO); }
+  void SetRouteToSiteScan() { this->SetRoute(ROUTE_SITE_SCAN); }
+  void SetRouteToSampleQueries() { this->SetRoute(ROUTE_SAMPLE_QUERIES); }
+  /// The route the last run took: "site scan", "sample queries" or "none".
+  const char* GetLastRoute() const { return this->LastRoute.c_str(); }
+
   ///@{
   /// Samples farther than this hold exactly this value (a narrow band); it also clips
   /// the domains, which saves time. 0 (the default) means no limit. Otherwise it must be
@@ -105,8 +127,9 @@ public:
   vtkBooleanMacro(ComputeWindingNumber, bool);
   ///@}
 
-  /// Distance evaluations of the last run (samples covered by a domain; -1 when the
-  /// GPU could not count them) and that number divided by the number of samples.
+  /// Distance evaluations of the last run (samples covered by a domain, or with
+  /// SampleQueries point-triangle distances; -1 when the GPU could not count them) and
+  /// that number divided by the number of samples.
   vtkGetMacro(LastEvaluations, vtkTypeInt64);
   vtkGetMacro(LastCullingFactor, double);
   /// Samples whose winding-number sign a block decided at once in the last run (the rest
@@ -133,6 +156,7 @@ protected:
 
   int SignMode = UNSIGNED;
   int Culling = CULLING_AUTO;
+  int Route = ROUTE_AUTO;
   double MaximumDistance = 0;
   bool ComputeDistance = true;
   bool ComputeClosestCellId = true;
@@ -145,6 +169,7 @@ protected:
   vtkTypeInt64 LastWindingLineSamples = 0;
   vtkTypeInt64 LastWindingExactSamples = 0;
   std::string LastSignBackend = "none";
+  std::string LastRoute = "none";
 
 private:
   vtkLinearFactorDistanceField(const vtkLinearFactorDistanceField&) = delete;

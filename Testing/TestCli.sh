@@ -43,10 +43,14 @@ run() {
 }
 
 timing='backend=cpu renderer="cpu" time_s=[0-9.]+'
-run linfac "^vtkdf: linfac dims=[0-9]+x[0-9]+x[0-9]+ $timing culling_factor=[0-9.]+ stages=sites:" \
+run linfac "^vtkdf: linfac dims=[0-9]+x[0-9]+x[0-9]+ $timing culling_factor=[0-9.]+ route=scan stages=sites:" \
   "$out/linfac.vti" "$out/linfac.png" -- \
   linfac "$data/bunny_small.vtp" -o "$out/linfac.vti" --resolution 24 --signed \
   --arrays distance,point --backend cpu --timing --png "$out/linfac.png"
+run linfac-queries "^vtkdf: linfac dims=[0-9]+x[0-9]+x[0-9]+ $timing culling_factor=[0-9.]+ route=queries stages=queries:" \
+  "$out/linfac-queries.vti" -- \
+  linfac "$data/bunny_small.vtp" -o "$out/linfac-queries.vti" --resolution 24 --signed \
+  --route queries --arrays distance,cellid,feature --backend cpu --timing
 run medial "^vtkdf: medial dims=[0-9]+x[0-9]+x[0-9]+ $timing medial_voxels=[1-9]" \
   "$out/medial.vti" "$out/medial.vtp" "$out/medial.png" -- \
   medial "$out/linfac.vti" -o "$out/medial.vti" --points "$out/medial.vtp" --backend cpu --timing \

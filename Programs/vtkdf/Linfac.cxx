@@ -16,7 +16,7 @@ namespace vtkdfcli
 int Linfac(int argc, char* argv[])
 {
   CommonOptions common;
-  std::string png, arrays = "distance,cellid", culling = "auto", sign;
+  std::string png, arrays = "distance,cellid", culling = "auto", route = "auto", sign;
   double maxDistance = 0;
   bool signedField = false;
   ParseOptions(argc,
@@ -25,6 +25,7 @@ int Linfac(int argc, char* argv[])
     { Flag("--signed", signedField),
       Text("--sign", sign),
       Text("--culling", culling),
+      Text("--route", route),
       Text("--arrays", arrays),
       Number("--max-distance", maxDistance),
       Text("--png", png) });
@@ -42,6 +43,18 @@ int Linfac(int argc, char* argv[])
   else if (culling != "auto")
   {
     return Usage("--culling takes auto, nonmanifold or manifold");
+  }
+  if (route == "scan")
+  {
+    filter->SetRouteToSiteScan();
+  }
+  else if (route == "queries")
+  {
+    filter->SetRouteToSampleQueries();
+  }
+  else if (route != "auto")
+  {
+    return Usage("--route takes auto, scan or queries");
   }
   // --sign implies --signed; --signed alone is the pseudonormal sign.
   if (sign == "winding")
@@ -67,8 +80,12 @@ int Linfac(int argc, char* argv[])
     common,
     [&]()
     {
-      char extra[64];
-      std::snprintf(extra, sizeof(extra), " culling_factor=%.3f", filter->GetLastCullingFactor());
+      char extra[96];
+      std::snprintf(extra,
+        sizeof(extra),
+        " culling_factor=%.3f route=%s",
+        filter->GetLastCullingFactor(),
+        std::string(filter->GetLastRoute()) == "sample queries" ? "queries" : "scan");
       if (filter->GetSignMode() == vtkLinearFactorDistanceField::WINDING_NUMBER)
       {
         char blocks[160];

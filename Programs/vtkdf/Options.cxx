@@ -19,6 +19,7 @@ void PrintUsage(FILE* out)
   std::fprintf(out,
     "usage: vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--sign pseudonormal|winding]\n"
     "             [--backend auto|gpu|cpu] [--culling auto|nonmanifold|manifold]\n"
+    "             [--route auto|scan|queries]\n"
     "             [--arrays distance,cellid,feature,point,winding] [--max-distance D]\n"
     "             [--png SLICE.png] [--timing]\n"
     "       vtkdf voxelize MESH -o OUT.vti [--mode boundary|solid|both] [grid]\n"

@@ -3,6 +3,7 @@
 //
 //   vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--sign pseudonormal|winding]
 //         [--backend auto|gpu|cpu] [--culling auto|nonmanifold|manifold]
+//         [--route auto|scan|queries]
 //         [--arrays distance,cellid,feature,point,winding]
 //         [--max-distance D] [--png SLICE.png] [--timing]
 //   vtkdf voxelize MESH -o OUT.vti [--mode boundary|solid|both] [grid] [--backend ...]

@@ -1,5 +1,6 @@
 // Unit test of the VTK-free core: procedural meshes, every culling mode, the CPU scan
-// against an exact brute-force reference on every sample.
+// against an exact brute-force reference on every sample; the per-sample query route
+// against the brute force and against the scan.
 #include "CoreTest.h"
 #include "ExactDistance.h"
 #include "LinearFactor/LinearFactorField.h"
@@ -325,9 +326,151 @@ void CheckDomainSpans()
 }
 } // namespace
 
+/// The per-sample query route: exact against the brute force; the same signs, cells and
+/// features as the site scan but where the two routes' closest points are both nearest
+/// within the scan's accuracy (a tie: two features at the same distance, or the scan's
+/// domains widened by 1e-4 h); slabs equal to the whole grid bit for bit.
+void RunQueryCase(const std::string& name, const MeshInput& input, int resolution, bool closed)
+{
+  MeshInput mesh = input;
+  Check(UsedPointBounds(mesh, mesh.Bounds), "%s: no point used", name.c_str());
+  LinearFactorRequest request;
+  request.Grid = SampleGrid::FromBounds(mesh.Bounds.data(), resolution, 0.25);
+  request.Extent = request.Grid.Whole;
+  request.Sign = SignMode::PseudoNormal;
+  const double h = request.Grid.MinSpacing();
+  const size_t n = static_cast<size_t>(request.Extent.Count());
+  struct Field
+  {
+    std::vector<float> Distance, Point;
+    std::vector<int64_t> Cell;
+    std::vector<uint8_t> Feature;
+    LinearFactorReport Report;
+  };
+  auto compute = [&](FieldRoute route, Field& f)
+  {
+    f.Distance.assign(n, 0), f.Point.assign(3 * n, 0), f.Cell.assign(n, 0), f.Feature.assign(n, 0);
+    LinearFactorArrays arrays;
+    arrays.Distance = f.Distance.data();
+    arrays.ClosestPoint = f.Point.data();
+    arrays.ClosestCellId = f.Cell.data();
+    arrays.ClosestFeature = f.Feature.data();
+    Execution execution;
+    execution.For = ThreadFor;
+    std::string error;
+    LinearFactorRequest r = request;
+    r.Route = route;
+    Check(ComputeLinearFactorField(mesh, r, nullptr, arrays, execution, f.Report, error),
+      "%s: %s",
+      name.c_str(),
+      error.c_str());
+  };
+  Field scan, queries;
+  compute(FieldRoute::SiteScan, scan);
+  compute(FieldRoute::SampleQueries, queries);
+  Check(
+    scan.Report.Route == FieldRoute::SiteScan && queries.Report.Route == FieldRoute::SampleQueries,
+    "%s: the routes asked for ran",
+    name.c_str());
+  double worst = 0;
+  int64_t ties = 0, wrong = 0, signs = 0;
+  const IndexBox& e = request.Extent;
+  for (int k = e.Lo[2]; k <= e.Hi[2]; ++k)
+  {
+    for (int j = e.Lo[1]; j <= e.Hi[1]; ++j)
+    {
+      for (int i = e.Lo[0]; i <= e.Hi[0]; ++i)
+      {
+        const double x[3] = { request.Grid.Coordinate(0, i),
+          request.Grid.Coordinate(1, j),
+          request.Grid.Coordinate(2, k) };
+        const size_t at = i + size_t(e.Size(0)) * (j + size_t(e.Size(1)) * k);
+        const double exact = BruteForce(mesh, x);
+        worst = std::max(worst, std::fabs(std::fabs(queries.Distance[at]) - exact));
+        if (scan.Cell[at] == queries.Cell[at] && scan.Feature[at] == queries.Feature[at] &&
+          std::signbit(scan.Distance[at]) == std::signbit(queries.Distance[at]))
+        {
+          continue;
+        }
+        // Both closest points nearest within the scan's accuracy (and float rounding).
+        auto reach = [&](const std::vector<float>& p)
+        {
+          double d2 = 0;
+          for (int a = 0; a < 3; ++a)
+          {
+            d2 += (p[3 * at + a] - x[a]) * (p[3 * at + a] - x[a]);
+          }
+          return std::fabs(std::sqrt(d2) - exact);
+        };
+        const bool tie = reach(scan.Point) <= 2e-4 * h && reach(queries.Point) <= 2e-4 * h;
+        ties += tie;
+        wrong += !tie;
+        signs += closed && exact > 1e-3 * h &&
+          std::signbit(scan.Distance[at]) != std::signbit(queries.Distance[at]);
+      }
+    }
+  }
+  std::printf("%-14s queries      max|err| = %.3g h  %.1f evaluations a sample, %lld samples "
+              "name another feature at a tie\n",
+    name.c_str(),
+    worst / h,
+    double(queries.Report.Evaluations) / double(n),
+    (long long)ties);
+  Check(worst <= 1e-6 * h, "%s: the queries' error is %g h", name.c_str(), worst / h);
+  Check(wrong == 0,
+    "%s: %lld samples name another cell or feature than the scan's, away from ties",
+    name.c_str(),
+    (long long)wrong);
+  Check(signs == 0,
+    "%s: %lld samples of a closed mesh off the surface change sign between the routes",
+    name.c_str(),
+    (long long)signs);
+  LinearFactorRequest pieces = request;
+  pieces.Route = FieldRoute::SampleQueries;
+  CheckPieces(name + " queries", mesh, pieces);
+}
+
+/// Auto takes the queries where the mesh has 3 times more cells than the grid has
+/// samples, the scan elsewhere; the queries refuse a cap on the distances.
+void CheckRouteChoice()
+{
+  MeshInput mesh = Sphere(30, 40, 0.1, 5);
+  const int64_t cells = static_cast<int64_t>(mesh.Triangles.size() / 3);
+  Check(UsedPointBounds(mesh, mesh.Bounds), "sphere: no point used");
+  Execution execution;
+  execution.For = ThreadFor;
+  for (int resolution : { 8, 16 })
+  {
+    LinearFactorRequest request;
+    request.Grid = SampleGrid::FromBounds(mesh.Bounds.data(), resolution, 0.1);
+    request.Extent = request.Grid.Whole;
+    std::vector<float> distance(request.Extent.Count());
+    LinearFactorArrays arrays;
+    arrays.Distance = distance.data();
+    LinearFactorReport report;
+    std::string error;
+    Check(ComputeLinearFactorField(mesh, request, nullptr, arrays, execution, report, error),
+      "route choice: %s",
+      error.c_str());
+    const bool queries = cells >= 3 * request.Extent.Count();
+    Check((report.Route == FieldRoute::SampleQueries) == queries,
+      "route choice at %d samples: Auto took the %s",
+      int(request.Extent.Count()),
+      queries ? "scan" : "queries");
+    request.Route = FieldRoute::SampleQueries;
+    request.MaximumDistance = request.Grid.MinSpacing();
+    Check(!ComputeLinearFactorField(mesh, request, nullptr, arrays, execution, report, error) &&
+        error.find("MaximumDistance") != std::string::npos,
+      "the queries refuse MaximumDistance");
+  }
+}
+
 int main()
 {
   CheckDomainSpans();
+  CheckRouteChoice();
+  RunQueryCase("bumpy sphere", Sphere(9, 12, 0.15, 7), 24, true);
+  RunQueryCase("fine sphere", Sphere(30, 40, 0.1, 5), 20, true);
   {
     MeshInput m;
     m.Points = { 0, 0, 0, 1, 0.2, 0.1, 0.3, 0.9, -0.2 };
@@ -394,6 +537,17 @@ int main()
       m.TriangleCells.push_back(t);
     }
     RunCase("cube", m, 21);
+    RunQueryCase("cube", m, 21, true);
+    // The same cube as a soup: every triangle with its own points.
+    MeshInput soup;
+    for (size_t t = 0; t < m.Triangles.size(); ++t)
+    {
+      const double* x = &m.Points[3 * m.Triangles[t]];
+      soup.Points.insert(soup.Points.end(), x, x + 3);
+      soup.Triangles.push_back(static_cast<int64_t>(t));
+    }
+    soup.TriangleCells = m.TriangleCells;
+    RunQueryCase("cube soup", soup, 17, true);
   }
   RunCase("bumpy sphere", Sphere(9, 12, 0.15, 7), 24);
   {
@@ -424,6 +578,7 @@ int main()
     m.Vertices = { 10, 20 };
     m.VertexCells = { 32, 33 };
     RunCase("soup", m, 20);
+    RunQueryCase("soup", m, 20, false);
   }
   return Verdict();
 }

@@ -4,6 +4,7 @@
 #include "LinearFactor/LinearFactorGPU.h"
 #include "LinearFactor/LinearFactorScan.h"
 #include "LinearFactor/MeshSites.h"
+#include "LinearFactor/NearestTriangleQueries.h"
 #include "LinearFactor/RangeCulling.h"
 #include "Winding/WindingSigns.h"
 
@@ -23,10 +24,8 @@ struct LocalSites
   MeshSites Sites;
 };
 
-/// Moves `mesh` into the local frame of the request's grid and builds its sites there.
-/// The domains' slack is 1e-4 of the smallest spacing plus what the float planes need
-/// over the box that holds the mesh and the grid (MeshSites::PlaneSlack).
-bool BuildLocalSites(MeshInput& mesh,
+/// Moves `mesh` into the local frame of the request's grid.
+bool MoveToGridFrame(MeshInput& mesh,
   const LinearFactorRequest& request,
   const ParallelFor& parallelFor,
   LocalSites& local,
@@ -45,6 +44,22 @@ bool BuildLocalSites(MeshInput& mesh,
     local.Request.MaximumDistance = request.MaximumDistance / local.Frame.Scale;
   }
   MoveToLocalFrame(mesh, local.Frame, parallelFor);
+  return true;
+}
+
+/// Moves `mesh` into the local frame of the request's grid and builds its sites there.
+/// The domains' slack is 1e-4 of the smallest spacing plus what the float planes need
+/// over the box that holds the mesh and the grid (MeshSites::PlaneSlack).
+bool BuildLocalSites(MeshInput& mesh,
+  const LinearFactorRequest& request,
+  const ParallelFor& parallelFor,
+  LocalSites& local,
+  std::string& error)
+{
+  if (!MoveToGridFrame(mesh, request, parallelFor, local, error))
+  {
+    return false;
+  }
   // The planes are used between the mesh and the samples: the diagonal of the box that
   // holds both bounds that distance.
   const SampleGrid& grid = local.Request.Grid;
@@ -127,6 +142,27 @@ bool WindingSign(const MeshInput& mesh,
   }
   return true;
 }
+/// The winding sign or value, when the request asks for either.
+bool WindingSignIfAsked(const MeshInput& mesh,
+  const LinearFactorRequest& request,
+  const LocalSites& local,
+  HeadlessGL* gl,
+  const LinearFactorArrays& arrays,
+  const Execution& execution,
+  LinearFactorReport& report,
+  std::string& error)
+{
+  if ((request.Sign == SignMode::WindingNumber && arrays.Distance) || arrays.WindingNumber)
+  {
+    HeadlessGL* signGL = gl ? gl : request.SignContext;
+    if (!WindingSign(mesh, request.Sign, local, signGL, !gl, arrays, execution, report, error))
+    {
+      return false;
+    }
+    execution.EndStage("sign");
+  }
+  return true;
+}
 } // namespace
 
 bool ComputeLinearFactorField(MeshInput mesh,
@@ -146,7 +182,52 @@ bool ComputeLinearFactorField(MeshInput mesh,
       "): use 0 for no cap, or a larger one.";
     return false;
   }
+  bool queries = request.Route == FieldRoute::SampleQueries;
+  if (queries && (gl || request.MaximumDistance > 0))
+  {
+    error = gl ? "The sample-query route runs on the CPU only."
+               : "The sample-query route computes the whole field: use no MaximumDistance, "
+                 "or the site scan.";
+    return false;
+  }
+  queries = queries ||
+    (request.Route == FieldRoute::Auto && !gl && !(request.MaximumDistance > 0) &&
+      PreferSampleQueries(mesh, request.Grid));
   LocalSites local;
+  if (queries)
+  {
+    report.Route = FieldRoute::SampleQueries;
+    if (!MoveToGridFrame(mesh, request, execution.For, local, error))
+    {
+      return false;
+    }
+    if (mesh.Empty())
+    {
+      report.NoUsableCell = true;
+      return true;
+    }
+    FieldArrays field;
+    field.Frame = local.Frame;
+    field.Distance = arrays.Distance;
+    field.Signed = request.Sign == SignMode::PseudoNormal;
+    field.ClosestCellId = arrays.ClosestCellId;
+    field.ClosestFeature = arrays.ClosestFeature;
+    field.ClosestPoint = arrays.ClosestPoint;
+    ScanStatistics stats;
+    if (!QueryNearestTriangles(mesh, local.Request, field, execution.Part(0.0, 0.9), stats, error))
+    {
+      error = "Invalid input mesh: " + error + ".";
+      return false;
+    }
+    report.Evaluations = stats.Evaluations;
+    if (stats.Aborted)
+    {
+      report.Aborted = true;
+      return true;
+    }
+    execution.EndStage("queries");
+    return WindingSignIfAsked(mesh, request, local, gl, arrays, execution, report, error);
+  }
   if (!BuildLocalSites(mesh, request, execution.For, local, error))
   {
     return false;
@@ -210,16 +291,7 @@ bool ComputeLinearFactorField(MeshInput mesh,
   field.ClosestPoint = arrays.ClosestPoint;
   Finalize(local.Sites, local.Request, nearest, field, execution.For);
   execution.EndStage("finalize");
-  if ((request.Sign == SignMode::WindingNumber && arrays.Distance) || arrays.WindingNumber)
-  {
-    HeadlessGL* signGL = gl ? gl : request.SignContext;
-    if (!WindingSign(mesh, request.Sign, local, signGL, !gl, arrays, execution, report, error))
-    {
-      return false;
-    }
-    execution.EndStage("sign");
-  }
-  return true;
+  return WindingSignIfAsked(mesh, request, local, gl, arrays, execution, report, error);
 }
 
 bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,

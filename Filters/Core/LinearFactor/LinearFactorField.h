@@ -8,7 +8,9 @@
 // regions of the grid where each site can still win (RangeCulling), the scan that keeps
 // every sample's nearest site (LinearFactorScan on the CPU, LinearFactorGPU on the GPU),
 // the arrays from the nearest sites in double precision (Finalize), and the sign
-// (pseudonormal at the closest feature, or the winding number, Winding/).
+// (pseudonormal at the closest feature, or the winding number, Winding/). Where the
+// mesh's triangles outnumber the samples, one nearest-triangle query per sample
+// (NearestTriangleQueries) gives the same exact field without building the sites.
 //
 // Everything runs in the grid's local frame (SampleGrid.h, GridFrame), so that a mesh
 // and grid scaled by 2^k give the same numbers bit for bit; the arrays come out in world
@@ -44,6 +46,15 @@ enum class SignMode
   WindingNumber // inside where the generalized winding number has |w| > 1/2
 };
 
+/// How the CPU finds every sample's nearest feature. Both are exact (the same
+/// distances, features and cells but where a sample lies within rounding of two).
+enum class FieldRoute
+{
+  Auto,         // SampleQueries where the mesh has 3 times more cells than the whole grid
+  SiteScan,     // the linear factorization: every site's domain scanned over the grid
+  SampleQueries // one nearest-primitive query per sample (CPU, no MaximumDistance)
+};
+
 struct LinearFactorRequest
 {
   SampleGrid Grid; // world coordinates
@@ -57,6 +68,8 @@ struct LinearFactorRequest
   /// signs are the same (the same rigorous rule); w itself within float rounding. Where
   /// the crossings decide (Winding/WindingCrossings.h), the signs stay on the CPU.
   HeadlessGL* SignContext = nullptr;
+  /// The site scan or per-sample queries (Auto: by the counts of cells and samples).
+  FieldRoute Route = FieldRoute::Auto;
 };
 
 /// Where the field goes: any pointer may be null. Each array covers the request's
@@ -85,6 +98,9 @@ struct LinearFactorReport
   int64_t WindingLineSamples = 0;
   bool WindingOnGPU = false; // where the sign ran
   int64_t WindingExactSamples = 0;
+  /// The route that ran: SiteScan or SampleQueries (whose Evaluations count
+  /// point-triangle distances).
+  FieldRoute Route = FieldRoute::SiteScan;
 };
 
 /// The field of `mesh` (world coordinates, Bounds filled; taken by value: it is moved

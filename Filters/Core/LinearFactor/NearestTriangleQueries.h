@@ -1,0 +1,48 @@
+// NearestTriangleQueries: the exact field by one nearest-primitive query per sample, the
+// route for a mesh whose triangles outnumber the grid's samples (a fine mesh on a coarse
+// grid), where building every site's domain costs more than the samples need.
+//
+// A bounding-volume hierarchy over the mesh's triangles, segments and points (Morton
+// order of their boxes' centres, split at the highest differing bit of the codes, leaves
+// of at most four), and per sample a depth-first search, nearest child first, bounded
+// from the start by the distance to the previous sample's closest point. The arrays are
+// those of the site scan (LinearFactorScan.h, Finalize):
+//   - the distance and closest point from the nearest primitive, in double precision;
+//   - the closest feature (vertex, edge or face interior) where that point lies;
+//   - ClosestCellId the smallest input cell holding that feature (the site scan's rule
+//     for edge and vertex sites), so that duplicate and shared cells give the same id;
+//   - the pseudonormal sign from the feature's angle-weighted normal, with the faces,
+//     degenerate ones and the mesh's orientation (signed volume) as MeshSites has them.
+// Both routes are exact; where a sample lies within rounding of two features, they may
+// name different ones (the tests check that they differ only there).
+#ifndef vtkdf_NearestTriangleQueries_h
+#define vtkdf_NearestTriangleQueries_h
+
+#include "Common/MeshInput.h"
+#include "Common/Parallel.h"
+#include "LinearFactor/LinearFactorScan.h"
+
+#include <string>
+
+namespace vtkdf
+{
+
+/// Whether the query route should run where the site scan could: the mesh's primitives
+/// (triangles, segments, points) at least three times the whole grid's samples (measured
+/// on the dragon, bunny and armadillo meshes, docs/benchmarks.md). From whole-grid
+/// counts, so that every piece of a distributed grid takes the same route.
+bool PreferSampleQueries(const MeshInput& mesh, const SampleGrid& wholeGrid);
+
+/// The arrays of `request` (local frame, no MaximumDistance) from `mesh` (moved into the
+/// same frame). Evaluations counts primitive distances computed. False and `error` when
+/// the mesh is invalid (a cell's point id out of range, a non-finite coordinate).
+bool QueryNearestTriangles(const MeshInput& mesh,
+  const FieldRequest& request,
+  const FieldArrays& arrays,
+  const Execution& execution,
+  ScanStatistics& stats,
+  std::string& error);
+
+} // namespace vtkdf
+
+#endif
