@@ -1,8 +1,10 @@
 #include "LinearFactor/NearestTriangleQueries.h"
 
+#include "Common/LargeVector.h"
 #include "Common/PointTriangleDistance.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -13,14 +15,13 @@ namespace vtkdf
 
 namespace
 {
-constexpr int LeafSize = 4;
+constexpr int LeafSize = 8;
+constexpr int StackSize = 128; // see QueryTree::Nearest
 
-/// A triangle, segment (b = c) or point (a = b = c) of the mesh, in the tree's order.
+/// The corners a, b, c of a triangle, segment (b = c) or point (a = b = c) of the mesh.
 struct Primitive
 {
-  double X[9];  // corners a, b, c
-  int64_t Cell; // the input cell
-  bool Face;    // a proper triangle (MeshSites' rule): otherwise only its edges count
+  double X[9];
 };
 
 /// A node's box is rounded outward to float; a leaf holds primitives [First, First +
@@ -30,6 +31,29 @@ struct Node
   float Lo[3], Hi[3];
   int32_t First;
   int32_t Count; // 0 for an inner node
+};
+
+/// The tree the queries descend: up to four children's boxes side by side (a binary
+/// node's grandchildren), so that one node's memory holds every box the next step tests.
+/// Child c is a wide node (Count[c] == 0, at First[c]), leaf First[c] (Count[c] > 0,
+/// its number of primitives), or absent (Count[c] < 0).
+struct WideNode
+{
+  float Lo[3][4], Hi[3][4];
+  int32_t First[4];
+  int32_t Count[4];
+};
+
+/// A leaf's primitives [First, First + Count) and the box that holds them in the frame
+/// of their mean normal: on a finely tessellated surface the axis-aligned boxes of
+/// neighbouring leaves overlap a sample's sphere of reach far more often than these
+/// thin ones do.
+struct Leaf
+{
+  float Centre[3];
+  float Axes[3][3]; // unit and orthogonal, up to float rounding
+  float Extent[3];
+  int32_t First, Count;
 };
 
 double Dot(const double* u, const double* v)
@@ -102,6 +126,18 @@ float Above(double v)
   return f >= v ? f : std::nextafter(f, HUGE_VALF);
 }
 
+/// An inner node's box: the union of its children's.
+void UniteChildren(std::vector<Node>& nodes, int32_t slot)
+{
+  Node& node = nodes[slot];
+  const Node &left = nodes[node.First], &right = nodes[node.First + 1];
+  for (int a = 0; a < 3; ++a)
+  {
+    node.Lo[a] = std::min(left.Lo[a], right.Lo[a]);
+    node.Hi[a] = std::max(left.Hi[a], right.Hi[a]);
+  }
+}
+
 class QueryTree
 {
 public:
@@ -128,12 +164,14 @@ public:
     double normal[3]) const;
 
   const Primitive& Get(int64_t i) const { return this->Primitives[i]; }
+  int64_t Cell(int64_t i) const { return this->Cells[i]; }
   /// A face's pseudonormal: its unit normal, turned by the mesh's orientation.
   void FaceNormalOf(int64_t i, double normal[3]) const
   {
+    FaceNormal(this->Primitives[i].X, this->Degenerate, normal);
     for (int k = 0; k < 3; ++k)
     {
-      normal[k] = this->FaceNormals[3 * i + k] * this->Orientation;
+      normal[k] *= this->Orientation;
     }
   }
   double Orientation = 1; // -1 when the faces' signed volume is negative (MeshSites)
@@ -141,13 +179,21 @@ public:
   double Tolerance2 = 0; // absolute slack on squared distances (coordinates' rounding)
 
 private:
-  void BuildNode(int32_t slot, int32_t begin, int32_t end);
-  double BoxDistance2(const Node& node, const double p[3]) const;
+  void BuildNodes(int32_t n, const ParallelFor& parallelFor);
+  void Widen();
+  void FrameLeaves(const ParallelFor& parallelFor);
+  double LeafDistance2(const Leaf& leaf, const double p[3]) const;
 
-  std::vector<Primitive> Primitives;
-  std::vector<uint32_t> Codes;
-  std::vector<Node> Nodes;
-  std::vector<double> FaceNormals; // 3 per primitive (zeros for non-faces)
+  // Per primitive, in the tree's order: its corners, input cell, whether it is a proper
+  // triangle (MeshSites' rule; otherwise only its edges count) and its unit normal.
+  LargeVector<Primitive> Primitives;
+  LargeVector<int64_t> Cells;
+  LargeVector<uint8_t> Faces;
+  LargeVector<uint32_t> Codes;
+  std::vector<Node> Nodes; // the binary tree, widened into WideNodes
+  std::vector<WideNode> WideNodes;
+  std::vector<Leaf> Leaves;
+  double Margin = 0; // how far the leaves' frames are widened beyond rounding
 };
 
 bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std::string& error)
@@ -228,7 +274,7 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
 
   // Morton codes of the boxes' centres over the points' box, sorted by radix.
   const double extent = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300 });
-  std::vector<uint64_t> keys(n);
+  LargeVector<uint64_t> keys(n);
   auto code = [&](int64_t begin, int64_t end)
   {
     for (int64_t i = begin; i < end; ++i)
@@ -250,7 +296,7 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
   };
   parallelFor ? parallelFor(n, 8192, code) : code(0, n);
   {
-    std::vector<uint64_t> sorted(n);
+    LargeVector<uint64_t> sorted(n);
     for (int pass = 0; pass < 3; ++pass)
     {
       const int shift = 32 + 10 * pass;
@@ -271,21 +317,23 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
     }
   }
   this->Primitives.resize(n);
+  this->Cells.resize(n);
+  this->Faces.resize(n);
   this->Codes.resize(n);
-  this->FaceNormals.assign(3 * n, 0.0);
   auto gather = [&](int64_t begin, int64_t end)
   {
     for (int64_t i = begin; i < end; ++i)
     {
       Primitive& p = this->Primitives[i];
       int64_t c[3];
-      corners(static_cast<int64_t>(keys[i] & 0xffffffffu), c, p.Cell);
+      corners(static_cast<int64_t>(keys[i] & 0xffffffffu), c, this->Cells[i]);
       for (int k = 0; k < 3; ++k)
       {
         std::copy(&mesh.Points[3 * c[k]], &mesh.Points[3 * c[k]] + 3, p.X + 3 * k);
       }
       const bool triangle = static_cast<int64_t>(keys[i] & 0xffffffffu) < nt;
-      p.Face = triangle && FaceNormal(p.X, this->Degenerate, &this->FaceNormals[3 * i]);
+      double normal[3];
+      this->Faces[i] = triangle && FaceNormal(p.X, this->Degenerate, normal);
       this->Codes[i] = static_cast<uint32_t>(keys[i] >> 32);
     }
   };
@@ -295,7 +343,7 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
   for (int64_t i = 0; i < n; ++i)
   {
     const Primitive& p = this->Primitives[i];
-    if (p.Face)
+    if (this->Faces[i])
     {
       double a[3], b[3], c[3], bc[3];
       for (int k = 0; k < 3; ++k)
@@ -307,17 +355,41 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
     }
   }
   this->Orientation = volume < 0 ? -1.0 : 1.0;
-  this->Nodes.reserve(2 * (n / LeafSize + 1));
-  this->Nodes.emplace_back();
-  this->BuildNode(0, 0, static_cast<int32_t>(n));
+  this->BuildNodes(static_cast<int32_t>(n), parallelFor);
+  this->Widen();
+  this->Margin = 1e-12 * (1 + magnitude);
+  this->FrameLeaves(parallelFor);
   return true;
 }
 
-void QueryTree::BuildNode(int32_t slot, int32_t begin, int32_t end)
+/// Where a range of codes splits: where the highest bit in which they differ turns on
+/// (the middle when they are all equal).
+int32_t SplitCodes(const LargeVector<uint32_t>& codes, int32_t begin, int32_t end)
+{
+  const uint32_t first = codes[begin], last = codes[end - 1];
+  if (first == last)
+  {
+    return begin + (end - begin) / 2;
+  }
+  const uint32_t bit = 1u << (31 - __builtin_clz(first ^ last));
+  return static_cast<int32_t>(
+    std::partition_point(
+      codes.begin() + begin, codes.begin() + end, [bit](uint32_t c) { return (c & bit) == 0; }) -
+    codes.begin());
+}
+
+/// Builds the subtree of primitives [begin, end) at nodes[slot], its descendants
+/// appended to `nodes` (children after their parent, siblings side by side).
+void BuildSubtree(std::vector<Node>& nodes,
+  const LargeVector<uint32_t>& codes,
+  const LargeVector<Primitive>& primitives,
+  int32_t slot,
+  int32_t begin,
+  int32_t end)
 {
   if (end - begin <= LeafSize)
   {
-    Node& leaf = this->Nodes[slot];
+    Node& leaf = nodes[slot];
     for (int a = 0; a < 3; ++a)
     {
       leaf.Lo[a] = HUGE_VALF, leaf.Hi[a] = -HUGE_VALF;
@@ -326,51 +398,266 @@ void QueryTree::BuildNode(int32_t slot, int32_t begin, int32_t end)
     {
       for (int k = 0; k < 9; ++k)
       {
-        leaf.Lo[k % 3] = std::min(leaf.Lo[k % 3], Below(this->Primitives[i].X[k]));
-        leaf.Hi[k % 3] = std::max(leaf.Hi[k % 3], Above(this->Primitives[i].X[k]));
+        leaf.Lo[k % 3] = std::min(leaf.Lo[k % 3], Below(primitives[i].X[k]));
+        leaf.Hi[k % 3] = std::max(leaf.Hi[k % 3], Above(primitives[i].X[k]));
       }
     }
     leaf.First = begin;
     leaf.Count = end - begin;
     return;
   }
-  // Split where the highest bit in which the range's codes differ turns on (the middle
-  // when they are all equal).
-  int32_t split = begin + (end - begin) / 2;
-  const uint32_t first = this->Codes[begin], last = this->Codes[end - 1];
-  if (first != last)
-  {
-    const uint32_t bit = 1u << (31 - __builtin_clz(first ^ last));
-    split = static_cast<int32_t>(std::partition_point(this->Codes.begin() + begin,
-                                   this->Codes.begin() + end,
-                                   [bit](uint32_t c) { return (c & bit) == 0; }) -
-      this->Codes.begin());
-  }
-  const int32_t left = static_cast<int32_t>(this->Nodes.size());
-  this->Nodes.emplace_back();
-  this->Nodes.emplace_back();
-  this->BuildNode(left, begin, split);
-  this->BuildNode(left + 1, split, end);
-  Node& node = this->Nodes[slot];
-  for (int a = 0; a < 3; ++a)
-  {
-    node.Lo[a] = std::min(this->Nodes[left].Lo[a], this->Nodes[left + 1].Lo[a]);
-    node.Hi[a] = std::max(this->Nodes[left].Hi[a], this->Nodes[left + 1].Hi[a]);
-  }
-  node.First = left;
-  node.Count = 0;
+  const int32_t split = SplitCodes(codes, begin, end);
+  const int32_t left = static_cast<int32_t>(nodes.size());
+  nodes.emplace_back();
+  nodes.emplace_back();
+  BuildSubtree(nodes, codes, primitives, left, begin, split);
+  BuildSubtree(nodes, codes, primitives, left + 1, split, end);
+  nodes[slot].First = left;
+  nodes[slot].Count = 0;
+  UniteChildren(nodes, slot);
 }
 
-double QueryTree::BoxDistance2(const Node& node, const double p[3]) const
+void QueryTree::BuildNodes(int32_t n, const ParallelFor& parallelFor)
+{
+  // The top levels here, down to subtrees of at most 1/64 of the primitives (or leaves);
+  // the subtrees in parallel, each in its own array, then appended in order: the same
+  // tree on any number of threads.
+  struct Subtree
+  {
+    int32_t Slot, Begin, End;
+    std::vector<Node> Nodes;
+  };
+  std::vector<Subtree> subtrees;
+  const int32_t small = std::max<int32_t>(LeafSize, n / 64);
+  this->Nodes.assign(1, Node{});
+  std::vector<int32_t> inner; // top nodes that are split here, parents first
+  std::vector<std::array<int32_t, 3>> pending{ { 0, 0, n } };
+  while (!pending.empty())
+  {
+    const auto range = pending.back();
+    pending.pop_back();
+    if (range[2] - range[1] <= small)
+    {
+      subtrees.push_back(Subtree{ range[0], range[1], range[2], {} });
+      continue;
+    }
+    const int32_t split = SplitCodes(this->Codes, range[1], range[2]);
+    const int32_t left = static_cast<int32_t>(this->Nodes.size());
+    this->Nodes.emplace_back();
+    this->Nodes.emplace_back();
+    this->Nodes[range[0]].First = left;
+    this->Nodes[range[0]].Count = 0;
+    inner.push_back(range[0]);
+    pending.push_back({ left + 1, split, range[2] });
+    pending.push_back({ left, range[1], split });
+  }
+  auto build = [&](int64_t begin, int64_t end)
+  {
+    for (int64_t k = begin; k < end; ++k)
+    {
+      Subtree& t = subtrees[k];
+      t.Nodes.reserve(2 * static_cast<size_t>((t.End - t.Begin) / LeafSize + 1));
+      t.Nodes.emplace_back();
+      BuildSubtree(t.Nodes, this->Codes, this->Primitives, 0, t.Begin, t.End);
+    }
+  };
+  parallelFor ? parallelFor(static_cast<int64_t>(subtrees.size()), 1, build)
+              : build(0, static_cast<int64_t>(subtrees.size()));
+  for (const Subtree& t : subtrees)
+  {
+    // Node j > 0 of the subtree goes to offset + j - 1; its root to t.Slot.
+    const int32_t offset = static_cast<int32_t>(this->Nodes.size());
+    auto place = [offset](Node node)
+    {
+      if (node.Count == 0)
+      {
+        node.First += offset - 1;
+      }
+      return node;
+    };
+    this->Nodes[t.Slot] = place(t.Nodes[0]);
+    for (size_t j = 1; j < t.Nodes.size(); ++j)
+    {
+      this->Nodes.push_back(place(t.Nodes[j]));
+    }
+  }
+  for (size_t k = inner.size(); k-- > 0;)
+  {
+    UniteChildren(this->Nodes, inner[k]);
+  }
+}
+
+void QueryTree::Widen()
+{
+  this->WideNodes.clear();
+  this->Leaves.clear();
+  if (this->Nodes.empty())
+  {
+    return;
+  }
+  // Wide node w gathers binary node b's children, each inner one replaced by its own two.
+  std::vector<std::pair<int32_t, int32_t>> pending{ { 0, 0 } }; // (b, w)
+  // About a third as many wide nodes as binary ones, and half as many leaves.
+  this->WideNodes.reserve(this->Nodes.size() / 3 + 1);
+  this->Leaves.reserve(this->Nodes.size() / 2 + 1);
+  this->WideNodes.emplace_back();
+  while (!pending.empty())
+  {
+    const auto [b, w] = pending.back();
+    pending.pop_back();
+    int32_t kids[4], count = 0;
+    const Node& node = this->Nodes[b];
+    if (node.Count > 0)
+    {
+      kids[count++] = b; // a leaf root
+    }
+    else
+    {
+      for (const int32_t child : { node.First, node.First + 1 })
+      {
+        const Node& c = this->Nodes[child];
+        if (c.Count > 0)
+        {
+          kids[count++] = child;
+        }
+        else
+        {
+          kids[count++] = c.First;
+          kids[count++] = c.First + 1;
+        }
+      }
+    }
+    for (int k = 0; k < 4; ++k)
+    {
+      WideNode& wide = this->WideNodes[w];
+      if (k >= count)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          wide.Lo[a][k] = HUGE_VALF, wide.Hi[a][k] = -HUGE_VALF;
+        }
+        wide.First[k] = 0, wide.Count[k] = -1;
+        continue;
+      }
+      const Node& c = this->Nodes[kids[k]];
+      for (int a = 0; a < 3; ++a)
+      {
+        wide.Lo[a][k] = c.Lo[a], wide.Hi[a][k] = c.Hi[a];
+      }
+      if (c.Count > 0)
+      {
+        wide.First[k] = static_cast<int32_t>(this->Leaves.size()), wide.Count[k] = c.Count;
+        Leaf leaf{};
+        leaf.First = c.First, leaf.Count = c.Count;
+        this->Leaves.push_back(leaf);
+      }
+      else
+      {
+        const int32_t slot = static_cast<int32_t>(this->WideNodes.size());
+        this->WideNodes.emplace_back(); // invalidates `wide`
+        this->WideNodes[w].First[k] = slot, this->WideNodes[w].Count[k] = 0;
+        pending.emplace_back(kids[k], slot);
+      }
+    }
+  }
+  this->Nodes.clear();
+  this->Nodes.shrink_to_fit();
+}
+
+void QueryTree::FrameLeaves(const ParallelFor& parallelFor)
+{
+  auto frame = [&](int64_t begin, int64_t end)
+  {
+    for (int64_t l = begin; l < end; ++l)
+    {
+      Leaf& leaf = this->Leaves[l];
+      // The mean normal (area-weighted), and two axes across it.
+      double n[3] = { 0, 0, 0 }, lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL },
+             hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+      for (int32_t i = leaf.First; i < leaf.First + leaf.Count; ++i)
+      {
+        const double* x = this->Primitives[i].X;
+        double e1[3], e2[3], c[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          e1[a] = x[3 + a] - x[a], e2[a] = x[6 + a] - x[a];
+          for (int k = 0; k < 3; ++k)
+          {
+            lo[a] = std::min(lo[a], x[3 * k + a]), hi[a] = std::max(hi[a], x[3 * k + a]);
+          }
+        }
+        Cross(e1, e2, c);
+        for (int a = 0; a < 3; ++a)
+        {
+          n[a] += c[a];
+        }
+      }
+      double length = std::sqrt(Dot(n, n));
+      double axes[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+      if (length > 0 && std::isfinite(length))
+      {
+        double u[3] = { 0, n[2], -n[1] };
+        if (std::fabs(n[0]) >= 0.5 * length)
+        {
+          u[0] = -n[2], u[1] = 0, u[2] = n[0];
+        }
+        const double ul = std::sqrt(Dot(u, u));
+        for (int a = 0; a < 3; ++a)
+        {
+          axes[0][a] = n[a] / length, axes[1][a] = u[a] / ul;
+        }
+        Cross(axes[0], axes[1], axes[2]);
+      }
+      // Extents from the stored (float) centre and axes, widened past rounding.
+      for (int a = 0; a < 3; ++a)
+      {
+        leaf.Centre[a] = static_cast<float>(0.5 * (lo[a] + hi[a]));
+        for (int k = 0; k < 3; ++k)
+        {
+          leaf.Axes[k][a] = static_cast<float>(axes[k][a]);
+        }
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        double extent = 0;
+        for (int32_t i = leaf.First; i < leaf.First + leaf.Count; ++i)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            double along = 0;
+            for (int a = 0; a < 3; ++a)
+            {
+              along += (this->Primitives[i].X[3 * c + a] - double(leaf.Centre[a])) *
+                double(leaf.Axes[k][a]);
+            }
+            extent = std::max(extent, std::fabs(along));
+          }
+        }
+        leaf.Extent[k] = Above(extent * (1 + 1e-6) + this->Margin);
+      }
+    }
+  };
+  const int64_t count = static_cast<int64_t>(this->Leaves.size());
+  parallelFor ? parallelFor(count, 4096, frame) : frame(0, count);
+}
+
+double QueryTree::LeafDistance2(const Leaf& leaf, const double p[3]) const
 {
   double d2 = 0;
-  for (int a = 0; a < 3; ++a)
+  for (int k = 0; k < 3; ++k)
   {
-    const double gap = std::max(0.0, std::max(node.Lo[a] - p[a], p[a] - node.Hi[a]));
+    double along = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      along += (p[a] - double(leaf.Centre[a])) * double(leaf.Axes[k][a]);
+    }
+    const double gap = std::max(0.0, std::fabs(along) - double(leaf.Extent[k]));
     d2 += gap * gap;
   }
-  // Rounded down: a lower bound on the squared distance to anything in the box.
-  return d2 * (1 - 8 * std::numeric_limits<double>::epsilon());
+  // The float axes are orthonormal within 1e-6 (so a sum of squared projections exceeds
+  // the squared distance by at most that much), and the extents were widened past the
+  // projections' rounding: a lower bound on the squared distance to the leaf.
+  return d2 * (1 - 1e-5);
 }
 
 int64_t QueryTree::Nearest(const double p[3],
@@ -383,60 +670,107 @@ int64_t QueryTree::Nearest(const double p[3],
   index = -1;
   best2 = bound2;
   int64_t evaluations = 0;
-  if (this->Nodes.empty())
+  if (this->WideNodes.empty())
   {
     return 0;
   }
   // A box is skipped when even its nearest point is farther than the best so far by more
   // than rounding could explain, so that exact ties are always seen.
   auto reach = [this](double d2) { return d2 * (1 + 1e-9) + this->Tolerance2; };
-  int32_t stack[128];
+  struct Entry
+  {
+    int32_t First, Count;
+    double Bound; // a lower bound on the squared distance to the entry's box
+  };
+  // Each step pops one entry and pushes at most four: the stack grows by at most 3 a
+  // level of the wide tree, which has at most 31 (the binary tree's 30 levels that split
+  // a code bit and 31 that halve equal codes, two at a time).
+  Entry stack[StackSize];
   int depth = 0;
-  stack[depth++] = 0;
+  stack[depth++] = Entry{ 0, 0, 0.0 };
   while (depth > 0)
   {
-    const Node& node = this->Nodes[stack[--depth]];
-    if (node.Count > 0)
+    const Entry entry = stack[--depth];
+    if (entry.Bound > reach(best2))
     {
-      for (int32_t i = node.First; i < node.First + node.Count; ++i)
+      continue;
+    }
+    if (entry.Count > 0)
+    {
+      const Leaf& leaf = this->Leaves[entry.First];
+      if (this->LeafDistance2(leaf, p) > reach(best2))
+      {
+        continue;
+      }
+      for (int32_t i = leaf.First; i < leaf.First + leaf.Count; ++i)
       {
         const Primitive& t = this->Primitives[i];
-        double on[3];
-        int where;
-        const double d2 = t.Face
-          ? SquaredDistanceToTriangle(p, t.X, t.X + 3, t.X + 6, on, &where)
-          : SquaredDistanceToTriangleEdges(p, t.X, t.X + 3, t.X + 6, on, &where);
+        // The closest point and feature only for the winner, afterwards.
+        const double d2 = this->Faces[i] ? SquaredDistanceToTriangle(p, t.X, t.X + 3, t.X + 6)
+                                         : SquaredDistanceToTriangleEdges(p, t.X, t.X + 3, t.X + 6);
         ++evaluations;
         const bool better = index < 0
           ? d2 <= best2
           : (d2 < best2 ||
               (d2 == best2 &&
-                (t.Cell < this->Primitives[index].Cell ||
-                  (t.Cell == this->Primitives[index].Cell && i < index))));
+                (this->Cells[i] < this->Cells[index] ||
+                  (this->Cells[i] == this->Cells[index] && i < index))));
         if (better)
         {
           index = i;
           best2 = d2;
-          std::copy(on, on + 3, closest);
-          feature = where;
         }
       }
       continue;
     }
-    const double limit = reach(best2);
-    const int32_t a = node.First, b = node.First + 1;
-    const double da = this->BoxDistance2(this->Nodes[a], p);
-    const double db = this->BoxDistance2(this->Nodes[b], p);
-    // Nearest child on top of the stack (popped first).
-    const int32_t nearChild = da <= db ? a : b, farChild = da <= db ? b : a;
-    const double nearD = std::min(da, db), farD = std::max(da, db);
-    if (farD <= limit && depth < 127)
+    const WideNode& node = this->WideNodes[entry.First];
+    // The four boxes at once (the loops over k vectorize).
+    double bound[4] = { 0, 0, 0, 0 };
+    for (int a = 0; a < 3; ++a)
     {
-      stack[depth++] = farChild;
+      for (int k = 0; k < 4; ++k)
+      {
+        const double below = double(node.Lo[a][k]) - p[a], above = p[a] - double(node.Hi[a][k]);
+        const double gap = std::max(0.0, std::max(below, above));
+        bound[k] += gap * gap;
+      }
     }
-    if (nearD <= limit && depth < 127)
+    for (int k = 0; k < 4; ++k)
     {
-      stack[depth++] = nearChild;
+      // Rounded down: a lower bound on the squared distance to anything in the box.
+      bound[k] *= 1 - 8 * std::numeric_limits<double>::epsilon();
+    }
+    // The children within reach, nearest on top of the stack (popped first).
+    const double limit = reach(best2);
+    int order[4], hits = 0;
+    for (int k = 0; k < 4; ++k)
+    {
+      if (node.Count[k] >= 0 && bound[k] <= limit)
+      {
+        int at = hits++;
+        for (; at > 0 && bound[order[at - 1]] < bound[k]; --at)
+        {
+          order[at] = order[at - 1];
+        }
+        order[at] = k;
+      }
+    }
+    for (int h = 0; h < hits; ++h)
+    {
+      const int k = order[h];
+      stack[depth++] = Entry{ node.First[k], node.Count[k], bound[k] };
+    }
+  }
+  if (index >= 0)
+  {
+    const Primitive& t = this->Primitives[index];
+    if (this->Faces[index])
+    {
+      SquaredDistanceToTriangle(p, t.X, t.X + 3, t.X + 6, closest, &feature);
+    }
+    else
+    {
+      SquaredDistanceToTriangleEdges(p, t.X, t.X + 3, t.X + 6, closest, &feature);
     }
   }
   return evaluations;
@@ -449,23 +783,30 @@ void QueryTree::FeatureCellAndNormal(const double* a,
 {
   cell = std::numeric_limits<int64_t>::max();
   normal[0] = normal[1] = normal[2] = 0;
-  int32_t stack[128];
+  struct Range
+  {
+    int32_t First, Count;
+  };
+  Range stack[StackSize]; // as in Nearest
   int depth = 0;
-  stack[depth++] = 0;
+  stack[depth++] = Range{ 0, 0 };
   while (depth > 0)
   {
-    const Node& node = this->Nodes[stack[--depth]];
-    if (node.Lo[0] > a[0] || node.Hi[0] < a[0] || node.Lo[1] > a[1] || node.Hi[1] < a[1] ||
-      node.Lo[2] > a[2] || node.Hi[2] < a[2])
-    {
-      continue;
-    }
+    const Range node = stack[--depth];
     if (node.Count == 0)
     {
-      if (depth < 126)
+      // The children whose boxes hold a.
+      const WideNode& wide = this->WideNodes[node.First];
+      for (int k = 0; k < 4; ++k)
       {
-        stack[depth++] = node.First + 1;
-        stack[depth++] = node.First;
+        if (wide.Count[k] >= 0 && wide.Lo[0][k] <= a[0] && a[0] <= wide.Hi[0][k] &&
+          wide.Lo[1][k] <= a[1] && a[1] <= wide.Hi[1][k] && wide.Lo[2][k] <= a[2] &&
+          a[2] <= wide.Hi[2][k])
+        {
+          stack[depth++] = wide.Count[k] > 0
+            ? Range{ this->Leaves[wide.First[k]].First, wide.Count[k] }
+            : Range{ wide.First[k], 0 };
+        }
       }
       continue;
     }
@@ -483,12 +824,13 @@ void QueryTree::FeatureCellAndNormal(const double* a,
       {
         continue;
       }
-      cell = std::min(cell, t.Cell);
-      if (!t.Face)
+      cell = std::min(cell, this->Cells[i]);
+      if (!this->Faces[i])
       {
         continue;
       }
-      const double* n = &this->FaceNormals[3 * i];
+      double n[3];
+      FaceNormal(t.X, this->Degenerate, n);
       double weight = 1;
       if (!b)
       {
@@ -541,7 +883,8 @@ bool QueryNearestTriangles(const MeshInput& mesh,
   const bool wantFeature = arrays.ClosestCellId || arrays.Signed;
   std::atomic<int64_t> evaluations{ 0 };
   // Rows are independent: each is walked in x, every sample seeded with the previous
-  // sample's closest point (the distance to it bounds the next one's).
+  // sample's closest point (the distance to it bounds the next one's). Seeds change the
+  // work, never the answer.
   auto queryRows = [&](int64_t rowBegin, int64_t rowEnd)
   {
     int64_t count = 0;
@@ -578,7 +921,7 @@ bool QueryNearestTriangles(const MeshInput& mesh,
         const Primitive& t = tree.Get(index);
         // The feature: 0 vertex, 1 edge, 2 face (the site types).
         const uint8_t type = feature == InFace ? 2 : (feature >= OnEdgeAB ? 1 : 0);
-        int64_t cell = t.Cell;
+        int64_t cell = tree.Cell(index);
         double normal[3] = { 0, 0, 0 };
         if (wantFeature && type != 2)
         {

@@ -4,8 +4,11 @@
 //
 // A bounding-volume hierarchy over the mesh's triangles, segments and points (Morton
 // order of their boxes' centres, split at the highest differing bit of the codes, leaves
-// of at most four), and per sample a depth-first search, nearest child first, bounded
-// from the start by the distance to the previous sample's closest point. The arrays are
+// of at most 8; four children's boxes a node; each leaf also boxed in the frame of its
+// mean normal, thin on a fine surface), and per sample a depth-first search, nearest
+// child first, bounded from the start by the distance to the previous sample's closest
+// point. On the dragon (871k triangles) at 64^3 a sample evaluates 86 triangles. The
+// arrays are
 // those of the site scan (LinearFactorScan.h, Finalize):
 //   - the distance and closest point from the nearest primitive, in double precision;
 //   - the closest feature (vertex, edge or face interior) where that point lies;
