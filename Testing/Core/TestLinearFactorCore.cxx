@@ -6,6 +6,7 @@
 #include "LinearFactor/LinearFactorField.h"
 #include "LinearFactor/LinearFactorScan.h"
 #include "LinearFactor/MeshSites.h"
+#include "LinearFactor/NearestTriangleQueries.h"
 #include "LinearFactor/SliceDomain.h"
 #include "ThreadFor.h"
 
@@ -430,7 +431,7 @@ void RunQueryCase(const std::string& name, const MeshInput& input, int resolutio
   CheckPieces(name + " queries", mesh, pieces);
 }
 
-/// Auto takes the queries where the mesh has 3 times more cells than the grid has
+/// Auto takes the queries where the mesh has 2.5 times more cells than the grid has
 /// samples, the scan elsewhere; the queries refuse a cap on the distances.
 void CheckRouteChoice()
 {
@@ -452,7 +453,7 @@ void CheckRouteChoice()
     Check(ComputeLinearFactorField(mesh, request, nullptr, arrays, execution, report, error),
       "route choice: %s",
       error.c_str());
-    const bool queries = cells >= 3 * request.Extent.Count();
+    const bool queries = cells >= SampleQueriesCellsPerSample * request.Extent.Count();
     Check((report.Route == FieldRoute::SampleQueries) == queries,
       "route choice at %d samples: Auto took the %s",
       int(request.Extent.Count()),

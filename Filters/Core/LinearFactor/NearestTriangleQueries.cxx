@@ -859,7 +859,7 @@ bool PreferSampleQueries(const MeshInput& mesh, const SampleGrid& wholeGrid)
 {
   const double primitives = double(mesh.Triangles.size() / 3) + double(mesh.Segments.size() / 2) +
     double(mesh.Vertices.size());
-  return primitives >= 3.0 * double(wholeGrid.Whole.Count());
+  return primitives >= SampleQueriesCellsPerSample * double(wholeGrid.Whole.Count());
 }
 
 bool QueryNearestTriangles(const MeshInput& mesh,

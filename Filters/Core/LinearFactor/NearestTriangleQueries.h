@@ -30,9 +30,13 @@
 namespace vtkdf
 {
 
-/// Whether the query route should run where the site scan could: the mesh's primitives
-/// (triangles, segments, points) at least three times the whole grid's samples (measured
-/// on the dragon, bunny and armadillo meshes, docs/benchmarks.md). From whole-grid
+/// Auto's threshold: the queries where the mesh's primitives (triangles, segments,
+/// points) number at least this many times the whole grid's samples. The measured
+/// crossovers (docs/benchmarks.md) lie between 1.5 (armadillo_52k) and 2.6
+/// (dragon_871k).
+constexpr double SampleQueriesCellsPerSample = 2.5;
+
+/// Whether Auto takes the query route where the site scan could run. From whole-grid
 /// counts, so that every piece of a distributed grid takes the same route.
 bool PreferSampleQueries(const MeshInput& mesh, const SampleGrid& wholeGrid);
 
