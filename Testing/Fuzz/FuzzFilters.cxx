@@ -182,6 +182,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     filter->SetMaximumDistance(in.Pick(caps));
     filter->SetSignMode(in.U8() % 3);
     filter->SetCulling(in.U8() % 4);
+    filter->SetRoute(in.U8() % 4); // Auto, SiteScan, SampleQueries, or invalid
     filter->ComputeClosestFeatureOn();
     filter->ComputeClosestPointOn();
     if (Succeeded(filter))
