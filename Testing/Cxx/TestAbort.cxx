@@ -2,7 +2,7 @@
 // vtkChamferVoxelDistance report progress per batch (GPU: per batch of slices or of
 // layers, once the GPU has finished it) and stop within one batch when aborted at 30 %,
 // with an empty output; the same filter then runs to the end and matches a fresh run.
-// usage: TestAbort DATA_DIR linfac|chamfer cpu|gpu
+// usage: TestAbort DATA_DIR linfac|linfac-queries|chamfer cpu|gpu
 #include "vtkChamferVoxelDistance.h"
 #include "vtkLinearFactorDistanceField.h"
 
@@ -49,9 +49,14 @@ vtkSmartPointer<vtkDistanceFieldAlgorithm> Make(const std::string& name,
   const std::string& backend)
 {
   vtkSmartPointer<vtkDistanceFieldAlgorithm> filter;
-  if (name == "linfac")
+  if (name == "linfac" || name == "linfac-queries")
   {
-    filter = vtkSmartPointer<vtkLinearFactorDistanceField>::New();
+    auto linfac = vtkSmartPointer<vtkLinearFactorDistanceField>::New();
+    if (name == "linfac-queries")
+    {
+      linfac->SetRouteToSampleQueries();
+    }
+    filter = linfac;
   }
   else
   {
@@ -85,7 +90,7 @@ double Difference(vtkImageData* a, vtkImageData* b)
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 3, "DATA_DIR linfac|chamfer cpu|gpu"))
+  if (!testsupport::HasArguments(argc, argv, 3, "DATA_DIR linfac|linfac-queries|chamfer cpu|gpu"))
   {
     return 2;
   }
@@ -130,7 +135,7 @@ int main(int argc, char* argv[])
   // most double, also bounded by time (on the CPU, every tenth); chamfer reports every
   // batch of layers, as the share of voxels reached, which the first layers around a
   // surface raise fastest.
-  const size_t fewest = name == "linfac" ? 3 : 2;
+  const size_t fewest = name == "chamfer" ? 2 : 3;
   const double coarsest = 0.5;
   CHECK(recorder.Values.size() >= fewest,
     "only %zu progress values before 30 %%",
