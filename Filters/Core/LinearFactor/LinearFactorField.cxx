@@ -142,6 +142,7 @@ bool WindingSign(const MeshInput& mesh,
   }
   return true;
 }
+
 /// The winding sign or value, when the request asks for either.
 bool WindingSignIfAsked(const MeshInput& mesh,
   const LinearFactorRequest& request,

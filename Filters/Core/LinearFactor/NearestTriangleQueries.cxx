@@ -2,6 +2,7 @@
 
 #include "Common/LargeVector.h"
 #include "Common/PointTriangleDistance.h"
+#include "Common/Vector3.h"
 
 #include <algorithm>
 #include <array>
@@ -55,18 +56,6 @@ struct Leaf
   float Extent[3];
   int32_t First, Count;
 };
-
-double Dot(const double* u, const double* v)
-{
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
-
-void Cross(const double* u, const double* v, double* w)
-{
-  w[0] = u[1] * v[2] - u[2] * v[1];
-  w[1] = u[2] * v[0] - u[0] * v[2];
-  w[2] = u[0] * v[1] - u[1] * v[0];
-}
 
 bool SamePoint(const double* u, const double* v)
 {

@@ -1,5 +1,6 @@
 #include "Proximity/ProximityQuery.h"
 
+#include "Common/Vector3.h"
 #include "Proximity/ProximityGPU.h"
 #include "Proximity/ProximitySearch.h"
 #include "Segment/TriangleCrossings.h"
@@ -48,11 +49,6 @@ struct ProximityModel::Data
 
 namespace
 {
-double Dot(const double* u, const double* v)
-{
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
-
 /// The unit vector along v, or 0 for a zero vector.
 Point3 Unit(const Point3& v)
 {

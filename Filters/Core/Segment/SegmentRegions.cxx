@@ -1,5 +1,7 @@
 #include "Segment/SegmentRegions.h"
 
+#include "Common/Vector3.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -12,18 +14,6 @@ namespace vtkdf
 
 namespace
 {
-double Dot(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-void Cross(const double* a, const double* b, double* out)
-{
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /// Scales v to unit length; false (v unchanged) when it is 0.
 bool Normalize(double* v)
 {

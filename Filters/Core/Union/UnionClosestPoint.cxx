@@ -1,5 +1,7 @@
 #include "Union/UnionClosestPoint.h"
 
+#include "Common/Vector3.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,11 +14,6 @@ namespace vtkdf
 
 namespace
 {
-double Dot(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 struct V2
 {
   double X, Y;

@@ -1,5 +1,7 @@
 #include "Winding/WindingNumber.h"
 
+#include "Common/Vector3.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,11 +14,6 @@ namespace
 {
 constexpr double FourPi = 4 * M_PI;
 constexpr int64_t LeafSize = 8;
-
-double Dot(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 } // namespace
 
 void AngleProduct::Add(const double a[3], const double b[3], const double c[3], const double q[3])
