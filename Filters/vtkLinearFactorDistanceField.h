@@ -78,11 +78,11 @@ public:
   /// How the CPU finds each sample's nearest feature. SiteScan: the linear factorization
   /// above. SampleQueries: one nearest-triangle query per sample through a bounding-volume
   /// hierarchy, faster where the mesh has more cells than the grid has samples (a fine
-  /// mesh on a coarse grid; CPU only, no MaximumDistance). Auto (the default) takes
-  /// SampleQueries where the mesh has at least 2.5 times more cells than the whole grid
-  /// has samples, on the CPU without MaximumDistance. Both are exact: the same
-  /// distances, features and cell ids, but where a sample lies within rounding of two
-  /// features.
+  /// mesh on a coarse grid; CPU only). Auto (the default) takes SampleQueries on the CPU
+  /// where the mesh has at least 2.5 times more cells than the whole grid has samples
+  /// (with a MaximumDistance, samples within the band, estimated from the mesh's area).
+  /// Both are exact: the same distances, features and cell ids, but where a sample lies
+  /// within rounding of two features.
   enum RouteType
   {
     ROUTE_AUTO = 0,

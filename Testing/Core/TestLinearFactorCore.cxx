@@ -330,7 +330,8 @@ void CheckDomainSpans()
 /// The per-sample query route: exact against the brute force; the same signs, cells and
 /// features as the site scan but where the two routes' closest points are both nearest
 /// within the scan's accuracy (a tie: two features at the same distance, or the scan's
-/// domains widened by 1e-4 h); slabs equal to the whole grid bit for bit.
+/// domains widened by 1e-4 h); slabs equal to the whole grid bit for bit. With a cap
+/// (MaximumDistance = 1.5 h) too: beyond it the cap, no cell, and the scan's sides.
 void RunQueryCase(const std::string& name, const MeshInput& input, int resolution, bool closed)
 {
   MeshInput mesh = input;
@@ -348,7 +349,7 @@ void RunQueryCase(const std::string& name, const MeshInput& input, int resolutio
     std::vector<uint8_t> Feature;
     LinearFactorReport Report;
   };
-  auto compute = [&](FieldRoute route, Field& f)
+  auto compute = [&](FieldRoute route, double cap, Field& f)
   {
     f.Distance.assign(n, 0), f.Point.assign(3 * n, 0), f.Cell.assign(n, 0), f.Feature.assign(n, 0);
     LinearFactorArrays arrays;
@@ -361,78 +362,96 @@ void RunQueryCase(const std::string& name, const MeshInput& input, int resolutio
     std::string error;
     LinearFactorRequest r = request;
     r.Route = route;
+    r.MaximumDistance = cap;
     Check(ComputeLinearFactorField(mesh, r, nullptr, arrays, execution, f.Report, error),
       "%s: %s",
       name.c_str(),
       error.c_str());
   };
-  Field scan, queries;
-  compute(FieldRoute::SiteScan, scan);
-  compute(FieldRoute::SampleQueries, queries);
-  Check(
-    scan.Report.Route == FieldRoute::SiteScan && queries.Report.Route == FieldRoute::SampleQueries,
-    "%s: the routes asked for ran",
-    name.c_str());
-  double worst = 0;
-  int64_t ties = 0, wrong = 0, signs = 0;
-  const IndexBox& e = request.Extent;
-  for (int k = e.Lo[2]; k <= e.Hi[2]; ++k)
+  for (const double cap : { 0.0, 1.5 * h })
   {
-    for (int j = e.Lo[1]; j <= e.Hi[1]; ++j)
+    const std::string label = name + (cap > 0 ? " banded" : "");
+    Field scan, queries;
+    compute(FieldRoute::SiteScan, cap, scan);
+    compute(FieldRoute::SampleQueries, cap, queries);
+    Check(scan.Report.Route == FieldRoute::SiteScan &&
+        queries.Report.Route == FieldRoute::SampleQueries,
+      "%s: the routes asked for ran",
+      label.c_str());
+    double worst = 0;
+    int64_t ties = 0, wrong = 0, signs = 0, band = 0;
+    const IndexBox& e = request.Extent;
+    for (int k = e.Lo[2]; k <= e.Hi[2]; ++k)
     {
-      for (int i = e.Lo[0]; i <= e.Hi[0]; ++i)
+      for (int j = e.Lo[1]; j <= e.Hi[1]; ++j)
       {
-        const double x[3] = { request.Grid.Coordinate(0, i),
-          request.Grid.Coordinate(1, j),
-          request.Grid.Coordinate(2, k) };
-        const size_t at = i + size_t(e.Size(0)) * (j + size_t(e.Size(1)) * k);
-        const double exact = BruteForce(mesh, x);
-        worst = std::max(worst, std::fabs(std::fabs(queries.Distance[at]) - exact));
-        if (scan.Cell[at] == queries.Cell[at] && scan.Feature[at] == queries.Feature[at] &&
-          std::signbit(scan.Distance[at]) == std::signbit(queries.Distance[at]))
+        for (int i = e.Lo[0]; i <= e.Hi[0]; ++i)
         {
-          continue;
-        }
-        // Both closest points nearest within the scan's accuracy (and float rounding).
-        auto reach = [&](const std::vector<float>& p)
-        {
-          double d2 = 0;
-          for (int a = 0; a < 3; ++a)
+          const double x[3] = { request.Grid.Coordinate(0, i),
+            request.Grid.Coordinate(1, j),
+            request.Grid.Coordinate(2, k) };
+          const size_t at = i + size_t(e.Size(0)) * (j + size_t(e.Size(1)) * k);
+          const double exact = BruteForce(mesh, x);
+          const bool beyond = cap > 0 && exact > cap;
+          worst =
+            std::max(worst, std::fabs(std::fabs(queries.Distance[at]) - (beyond ? cap : exact)));
+          signs += closed && exact > 1e-3 * h &&
+            std::signbit(scan.Distance[at]) != std::signbit(queries.Distance[at]);
+          if (cap > 0 && std::fabs(exact - cap) > 1e-6 * h)
           {
-            d2 += (p[3 * at + a] - x[a]) * (p[3 * at + a] - x[a]);
+            // Clear of the cap: no cell beyond it, one within it, as the scan has them.
+            band +=
+              beyond != (queries.Cell[at] < 0) || (scan.Cell[at] < 0) != (queries.Cell[at] < 0);
           }
-          return std::fabs(std::sqrt(d2) - exact);
-        };
-        const bool tie = reach(scan.Point) <= 2e-4 * h && reach(queries.Point) <= 2e-4 * h;
-        ties += tie;
-        wrong += !tie;
-        signs += closed && exact > 1e-3 * h &&
-          std::signbit(scan.Distance[at]) != std::signbit(queries.Distance[at]);
+          if (scan.Cell[at] < 0 || queries.Cell[at] < 0 ||
+            (scan.Cell[at] == queries.Cell[at] && scan.Feature[at] == queries.Feature[at] &&
+              std::signbit(scan.Distance[at]) == std::signbit(queries.Distance[at])))
+          {
+            continue;
+          }
+          // Both closest points nearest within the scan's accuracy (and float rounding).
+          auto reach = [&](const std::vector<float>& p)
+          {
+            double d2 = 0;
+            for (int a = 0; a < 3; ++a)
+            {
+              d2 += (p[3 * at + a] - x[a]) * (p[3 * at + a] - x[a]);
+            }
+            return std::fabs(std::sqrt(d2) - exact);
+          };
+          const bool tie = reach(scan.Point) <= 2e-4 * h && reach(queries.Point) <= 2e-4 * h;
+          ties += tie;
+          wrong += !tie;
+        }
       }
     }
+    std::printf("%-21s queries      max|err| = %.3g h  %.1f evaluations a sample, %lld samples "
+                "name another feature at a tie\n",
+      label.c_str(),
+      worst / h,
+      double(queries.Report.Evaluations) / double(n),
+      (long long)ties);
+    Check(worst <= 1e-6 * h, "%s: the queries' error is %g h", label.c_str(), worst / h);
+    Check(wrong == 0,
+      "%s: %lld samples name another cell or feature than the scan's, away from ties",
+      label.c_str(),
+      (long long)wrong);
+    Check(signs == 0,
+      "%s: %lld samples of a closed mesh off the surface change sign between the routes",
+      label.c_str(),
+      (long long)signs);
+    Check(band == 0,
+      "%s: %lld samples clear of the cap on the wrong side of it",
+      label.c_str(),
+      (long long)band);
   }
-  std::printf("%-14s queries      max|err| = %.3g h  %.1f evaluations a sample, %lld samples "
-              "name another feature at a tie\n",
-    name.c_str(),
-    worst / h,
-    double(queries.Report.Evaluations) / double(n),
-    (long long)ties);
-  Check(worst <= 1e-6 * h, "%s: the queries' error is %g h", name.c_str(), worst / h);
-  Check(wrong == 0,
-    "%s: %lld samples name another cell or feature than the scan's, away from ties",
-    name.c_str(),
-    (long long)wrong);
-  Check(signs == 0,
-    "%s: %lld samples of a closed mesh off the surface change sign between the routes",
-    name.c_str(),
-    (long long)signs);
   LinearFactorRequest pieces = request;
   pieces.Route = FieldRoute::SampleQueries;
   CheckPieces(name + " queries", mesh, pieces);
 }
 
 /// Auto takes the queries where the mesh has 2.5 times more cells than the grid has
-/// samples, the scan elsewhere; the queries refuse a cap on the distances.
+/// samples (with a cap, samples within the band), the scan elsewhere.
 void CheckRouteChoice()
 {
   MeshInput mesh = Sphere(30, 40, 0.1, 5);
@@ -440,11 +459,16 @@ void CheckRouteChoice()
   Check(UsedPointBounds(mesh, mesh.Bounds), "sphere: no point used");
   Execution execution;
   execution.For = ThreadFor;
-  for (int resolution : { 8, 16 })
+  // (resolution, cap in spacings): queries, scan, queries for the band alone.
+  const std::pair<int, double> cases[] = { { 8, 0.0 }, { 16, 0.0 }, { 16, 0.5 } };
+  const bool expected[] = { true, false, true };
+  for (int c = 0; c < 3; ++c)
   {
+    const int resolution = cases[c].first;
     LinearFactorRequest request;
     request.Grid = SampleGrid::FromBounds(mesh.Bounds.data(), resolution, 0.1);
     request.Extent = request.Grid.Whole;
+    request.MaximumDistance = cases[c].second * request.Grid.MinSpacing();
     std::vector<float> distance(request.Extent.Count());
     LinearFactorArrays arrays;
     arrays.Distance = distance.data();
@@ -453,16 +477,14 @@ void CheckRouteChoice()
     Check(ComputeLinearFactorField(mesh, request, nullptr, arrays, execution, report, error),
       "route choice: %s",
       error.c_str());
-    const bool queries = cells >= SampleQueriesCellsPerSample * request.Extent.Count();
+    const bool queries = cells >=
+      SampleQueriesCellsPerSample * QueriedSamples(mesh, request.Grid, request.MaximumDistance);
+    Check(queries == expected[c], "route choice case %d: the counts changed", c);
     Check((report.Route == FieldRoute::SampleQueries) == queries,
-      "route choice at %d samples: Auto took the %s",
+      "route choice at %d samples, cap %g h: Auto took the %s",
       int(request.Extent.Count()),
+      cases[c].second,
       queries ? "scan" : "queries");
-    request.Route = FieldRoute::SampleQueries;
-    request.MaximumDistance = request.Grid.MinSpacing();
-    Check(!ComputeLinearFactorField(mesh, request, nullptr, arrays, execution, report, error) &&
-        error.find("MaximumDistance") != std::string::npos,
-      "the queries refuse MaximumDistance");
   }
 }
 

@@ -506,6 +506,15 @@ int main(int argc, char* argv[])
       Reference(c.Mesh),
       o.MaximumDistance,
       c.Closed);
+    if (base.Backend == "cpu")
+    {
+      o.Route = vtkLinearFactorDistanceField::ROUTE_SAMPLE_QUERIES;
+      CompareBanded(c.Name + " cpu sample queries MaximumDistance",
+        Run(c.Mesh, o),
+        Reference(c.Mesh),
+        o.MaximumDistance,
+        c.Closed);
+    }
   }
 
   // Streaming: three sub-extents computed alone equal the whole.

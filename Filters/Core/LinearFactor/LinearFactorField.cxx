@@ -184,16 +184,14 @@ bool ComputeLinearFactorField(MeshInput mesh,
     return false;
   }
   bool queries = request.Route == FieldRoute::SampleQueries;
-  if (queries && (gl || request.MaximumDistance > 0))
+  if (queries && gl)
   {
-    error = gl ? "The sample-query route runs on the CPU only."
-               : "The sample-query route computes the whole field: use no MaximumDistance, "
-                 "or the site scan.";
+    error = "The sample-query route runs on the CPU only: use the site scan on the GPU.";
     return false;
   }
   queries = queries ||
-    (request.Route == FieldRoute::Auto && !gl && !(request.MaximumDistance > 0) &&
-      PreferSampleQueries(mesh, request.Grid));
+    (request.Route == FieldRoute::Auto && !gl &&
+      PreferSampleQueries(mesh, request.Grid, request.MaximumDistance));
   LocalSites local;
   if (queries)
   {

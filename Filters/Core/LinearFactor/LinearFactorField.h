@@ -50,9 +50,10 @@ enum class SignMode
 /// distances, features and cells but where a sample lies within rounding of two).
 enum class FieldRoute
 {
-  Auto,         // SampleQueries where the mesh has 2.5 times more cells than the whole grid
+  Auto,         // SampleQueries where the mesh has 2.5 times more cells than samples to
+                //   query (NearestTriangleQueries.h, PreferSampleQueries)
   SiteScan,     // the linear factorization: every site's domain scanned over the grid
-  SampleQueries // one nearest-primitive query per sample (CPU, no MaximumDistance)
+  SampleQueries // one nearest-primitive query per sample (CPU only)
 };
 
 struct LinearFactorRequest

@@ -451,8 +451,18 @@ void Finalize(const MeshSites& sites,
   {
     return;
   }
+  FloodBandSides(ext, side, arrays.Distance, worldCap);
+}
+
+void FloodBandSides(const IndexBox& extent,
+  std::vector<int8_t>& side,
+  float* distance,
+  float worldCap)
+{
   // Beyond the band the closest site is unknown, but inside/outside cannot change
   // without crossing the surface, which lies in the band: flood the known sides.
+  const int64_t nx = extent.Size(0), ny = extent.Size(1), nz = extent.Size(2);
+  const int64_t n = static_cast<int64_t>(side.size()), nxy = nx * ny;
   std::deque<int64_t> queue;
   for (int64_t at = 0; at < n; ++at)
   {
@@ -461,7 +471,6 @@ void Finalize(const MeshSites& sites,
       queue.push_back(at);
     }
   }
-  const int64_t nxy = nx * ny, nz = ext.Size(2);
   while (!queue.empty())
   {
     const int64_t at = queue.front();
@@ -480,7 +489,7 @@ void Finalize(const MeshSites& sites,
         side[b] = side[at];
         if (side[b] < 0)
         {
-          arrays.Distance[b] = -worldCap;
+          distance[b] = -worldCap;
         }
         queue.push_back(b);
       }

@@ -124,6 +124,15 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress);
 
+/// With a MaximumDistance and a sign: the sides (+1 outside, -1 inside, 0 unknown) of the
+/// samples beyond the band, flooded from those within it (the surface lies in the band,
+/// so a side cannot change beyond it); the distances of those found inside become
+/// -worldCap. `side` covers `extent`, x fastest.
+void FloodBandSides(const IndexBox& extent,
+  std::vector<int8_t>& side,
+  float* distance,
+  float worldCap);
+
 /// Writes the arrays from the nearest site of every sample.
 void Finalize(const MeshSites& sites,
   const FieldRequest& request,

@@ -844,11 +844,39 @@ void QueryTree::FeatureCellAndNormal(const double* a,
 }
 } // namespace
 
-bool PreferSampleQueries(const MeshInput& mesh, const SampleGrid& wholeGrid)
+double QueriedSamples(const MeshInput& mesh, const SampleGrid& wholeGrid, double maximumDistance)
+{
+  const double samples = double(wholeGrid.Whole.Count());
+  if (!(maximumDistance > 0))
+  {
+    return samples;
+  }
+  // Within the band: about its volume (twice the cap times the surface's area) over a
+  // sample's cell. Beyond it a query stops at the tree's first levels: a 64th of one.
+  double area = 0;
+  const double* P = mesh.Points.data();
+  for (size_t t = 0; t + 2 < mesh.Triangles.size(); t += 3)
+  {
+    const double* a = P + 3 * mesh.Triangles[t];
+    const double* b = P + 3 * mesh.Triangles[t + 1];
+    const double* c = P + 3 * mesh.Triangles[t + 2];
+    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    double n[3];
+    Cross(u, v, n);
+    area += 0.5 * std::sqrt(Dot(n, n));
+  }
+  const double cell = wholeGrid.Spacing[0] * wholeGrid.Spacing[1] * wholeGrid.Spacing[2];
+  const double band = 2 * maximumDistance * area / cell;
+  return std::min(samples, std::max(band, samples / 64));
+}
+
+bool PreferSampleQueries(const MeshInput& mesh, const SampleGrid& wholeGrid, double maximumDistance)
 {
   const double primitives = double(mesh.Triangles.size() / 3) + double(mesh.Segments.size() / 2) +
     double(mesh.Vertices.size());
-  return primitives >= SampleQueriesCellsPerSample * double(wholeGrid.Whole.Count());
+  return primitives >=
+    SampleQueriesCellsPerSample * QueriedSamples(mesh, wholeGrid, maximumDistance);
 }
 
 bool QueryNearestTriangles(const MeshInput& mesh,
@@ -870,6 +898,13 @@ bool QueryNearestTriangles(const MeshInput& mesh,
   stats.Samples = ext.Count();
   const GridFrame& frame = arrays.Frame;
   const bool wantFeature = arrays.ClosestCellId || arrays.Signed;
+  // A narrow band: samples farther than the cap hold it, with no closest feature; their
+  // sides are flooded from the band's afterwards (FloodBandSides), as the scan does.
+  const double cap = request.MaximumDistance;
+  const bool banded = std::isfinite(cap);
+  const double capBound2 = banded ? cap * cap * (1 + 1e-9) + tree.Tolerance2 : HUGE_VAL;
+  const float worldCap = banded ? static_cast<float>(cap * frame.Scale) : 0.0f;
+  std::vector<int8_t> side(banded && arrays.Signed && arrays.Distance ? stats.Samples : 0, 0);
   std::atomic<int64_t> evaluations{ 0 };
   // Rows are independent: each is walked in x, every sample seeded with the previous
   // sample's closest point (the distance to it bounds the next one's). Seeds change the
@@ -886,7 +921,7 @@ bool QueryNearestTriangles(const MeshInput& mesh,
       for (int64_t at = row * nx, i = ext.Lo[0]; at < (row + 1) * nx; ++at, ++i)
       {
         const double x[3] = { grid.Coordinate(0, static_cast<int>(i)), y, z };
-        double bound2 = HUGE_VAL;
+        double bound2 = capBound2;
         if (seeded)
         {
           double r2 = 0;
@@ -894,16 +929,38 @@ bool QueryNearestTriangles(const MeshInput& mesh,
           {
             r2 += (x[a] - previous[a]) * (x[a] - previous[a]);
           }
-          bound2 = r2 * (1 + 1e-9) + tree.Tolerance2;
+          bound2 = std::min(bound2, r2 * (1 + 1e-9) + tree.Tolerance2);
         }
         int64_t index;
         double best2, closest[3];
         int feature = InFace;
         count += tree.Nearest(x, bound2, index, best2, closest, feature);
-        if (index < 0)
+        if (index < 0 && bound2 < capBound2)
         {
           // The seed fell short by rounding: search without it.
-          count += tree.Nearest(x, HUGE_VAL, index, best2, closest, feature);
+          count += tree.Nearest(x, capBound2, index, best2, closest, feature);
+        }
+        if (index < 0 || (banded && std::sqrt(best2) > cap))
+        {
+          // Beyond the band (the previous seed, a point of the mesh, still bounds the next
+          // sample's distance).
+          if (arrays.Distance)
+          {
+            arrays.Distance[at] = worldCap;
+          }
+          if (arrays.ClosestCellId)
+          {
+            arrays.ClosestCellId[at] = -1;
+          }
+          if (arrays.ClosestFeature)
+          {
+            arrays.ClosestFeature[at] = 255;
+          }
+          if (arrays.ClosestPoint)
+          {
+            std::fill(arrays.ClosestPoint + 3 * at, arrays.ClosestPoint + 3 * at + 3, NAN);
+          }
+          continue;
         }
         std::copy(closest, closest + 3, previous);
         seeded = true;
@@ -935,6 +992,10 @@ bool QueryNearestTriangles(const MeshInput& mesh,
             }
             const double s = d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2];
             value = s > 0 ? -value : value;
+            if (!side.empty())
+            {
+              side[at] = s > 0 ? -1 : 1;
+            }
           }
           arrays.Distance[at] = value;
         }
@@ -977,6 +1038,10 @@ bool QueryNearestTriangles(const MeshInput& mesh,
     }
   }
   stats.Evaluations = evaluations.load();
+  if (!side.empty() && !stats.Aborted)
+  {
+    FloodBandSides(ext, side, arrays.Distance, worldCap);
+  }
   return true;
 }
 

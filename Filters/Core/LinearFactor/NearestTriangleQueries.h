@@ -31,18 +31,28 @@ namespace vtkdf
 {
 
 /// Auto's threshold: the queries where the mesh's primitives (triangles, segments,
-/// points) number at least this many times the whole grid's samples. The measured
-/// crossovers (docs/benchmarks.md) lie between 1.5 (armadillo_52k) and 2.6
+/// points) number at least this many times the samples that need a full query. The
+/// measured crossovers (docs/benchmarks.md) lie between 1.5 (armadillo_52k) and 2.6
 /// (dragon_871k).
 constexpr double SampleQueriesCellsPerSample = 2.5;
 
-/// Whether Auto takes the query route where the site scan could run. From whole-grid
-/// counts, so that every piece of a distributed grid takes the same route.
-bool PreferSampleQueries(const MeshInput& mesh, const SampleGrid& wholeGrid);
+/// The samples that need a full query: the whole grid's; with a cap on the distances
+/// (world units), those within the band (twice the cap times the triangles' area over a
+/// grid cell's volume, at most the grid's), and at least a 64th of the grid's for the
+/// queries beyond it that stop at the tree's first levels.
+double QueriedSamples(const MeshInput& mesh, const SampleGrid& wholeGrid, double maximumDistance);
 
-/// The arrays of `request` (local frame, no MaximumDistance) from `mesh` (moved into the
-/// same frame). Evaluations counts primitive distances computed. False and `error` when
-/// the mesh is invalid (a cell's point id out of range, a non-finite coordinate).
+/// Whether Auto takes the query route where the site scan could run: the primitives at
+/// least SampleQueriesCellsPerSample times the queried samples. From the whole mesh and
+/// grid (world units), so that every piece of a distributed grid takes the same route.
+bool PreferSampleQueries(const MeshInput& mesh,
+  const SampleGrid& wholeGrid,
+  double maximumDistance);
+
+/// The arrays of `request` (local frame) from `mesh` (moved into the same frame); with a
+/// MaximumDistance, those of the scan's narrow band (Finalize). Evaluations counts primitive
+/// distances computed. False and `error` when the mesh is invalid (a cell's point id out of range,
+/// a non-finite coordinate).
 bool QueryNearestTriangles(const MeshInput& mesh,
   const FieldRequest& request,
   const FieldArrays& arrays,
