@@ -1,5 +1,5 @@
 // Scale invariance of every filter (issue: results must not depend on the user's unit).
-// usage: TestScaleInvariance DATA_DIR linfac|voxelize|chamfer|medial cpu|gpu
+// usage: TestScaleInvariance DATA_DIR linfac|linfac-queries|voxelize|chamfer|medial cpu|gpu
 //
 // The trefoil knot and its default grid are scaled by k. For k = 2^100 and 2^-100 every
 // output must be exactly k times the unscaled one (distances, closest points, radii) or
@@ -90,10 +90,14 @@ void Configure(Filter* filter, vtkPolyData* mesh, const std::string& backend)
   testsupport::UseBackend(filter, backend);
 }
 
-Output LinearFactor(vtkPolyData* mesh, const std::string& backend)
+Output LinearFactor(vtkPolyData* mesh, const std::string& backend, bool queries)
 {
   vtkNew<vtkLinearFactorDistanceField> filter;
   Configure(filter.Get(), mesh, backend);
+  if (queries)
+  {
+    filter->SetRouteToSampleQueries();
+  }
   filter->SetSignModeToPseudoNormal();
   filter->ComputeClosestFeatureOn();
   filter->ComputeClosestPointOn();
@@ -103,9 +107,9 @@ Output LinearFactor(vtkPolyData* mesh, const std::string& backend)
 
 Output Run(const std::string& name, vtkPolyData* mesh, const std::string& backend)
 {
-  if (name == "linfac")
+  if (name == "linfac" || name == "linfac-queries")
   {
-    return LinearFactor(mesh, backend);
+    return LinearFactor(mesh, backend, name == "linfac-queries");
   }
   if (name == "voxelize")
   {
@@ -136,7 +140,7 @@ struct Arrays
 };
 Arrays ArraysOf(const std::string& name)
 {
-  if (name == "linfac")
+  if (name == "linfac" || name == "linfac-queries")
   {
     return { { "Distance", "ClosestPoint" }, { "ClosestCellId", "ClosestFeature" } };
   }
@@ -160,7 +164,8 @@ void Position(vtkImageData* image, vtkIdType v, double x[3])
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 3, "DATA_DIR linfac|voxelize|chamfer|medial cpu|gpu"))
+  if (!testsupport::HasArguments(
+        argc, argv, 3, "DATA_DIR linfac|linfac-queries|voxelize|chamfer|medial cpu|gpu"))
   {
     return 2;
   }
@@ -183,7 +188,7 @@ int main(int argc, char* argv[])
   Output baseField;
   if (name == "medial")
   {
-    baseField = LinearFactor(mesh, backend);
+    baseField = LinearFactor(mesh, backend, false);
   }
 
   const double scales[] = {
