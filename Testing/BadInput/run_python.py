@@ -71,6 +71,7 @@ def configure(f, sub, options, contour=None):
         i += 2
         enums = {"--backend": ("Backend", ["auto", "gpu", "cpu"]),
                  "--culling": ("Culling", ["auto", "nonmanifold", "manifold"]),
+                 "--route": ("Route", ["auto", "scan", "queries"]),
                  "--mode": ("Mode", ["boundary", "solid", "both"]),
                  "--metric": ("Metric", ["manhattan", "chessboard18", "chessboard26"]),
                  "--region": ("Region", ["inside", "outside", "both"])}

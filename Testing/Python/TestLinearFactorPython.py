@@ -1,5 +1,6 @@
 """vtkLinearFactorDistanceField from Python: points and a polyline, checked against a
-numpy brute force on every sample, through a numpy view of the Distance array."""
+numpy brute force on every sample, through a numpy view of the Distance array, on both
+backends and by both CPU routes (the site scan and the per-sample queries)."""
 import sys
 
 import numpy as np
@@ -23,12 +24,19 @@ mesh.SetPoints(points)
 mesh.SetVerts(verts)
 mesh.SetLines(lines)
 
-for backend in ("SetBackendToCPU", "SetBackendToGPU"):
+runs = (("SetBackendToCPU", "SetRouteToSiteScan", "site scan"),
+        ("SetBackendToCPU", "SetRouteToSampleQueries", "sample queries"),
+        ("SetBackendToGPU", "SetRouteToAuto", "site scan"))
+for backend, route, expected in runs:
     f = vtkLinearFactorDistanceField()
     f.SetInputData(mesh)
     f.SetResolution(24)
     getattr(f, backend)()
+    getattr(f, route)()
     f.Update()
+    if f.GetLastRoute() != expected:
+        print(f"FAIL: {route} ran {f.GetLastRoute()!r}")
+        sys.exit(1)
     image = f.GetOutput()
     distance = vtk_to_numpy(image.GetPointData().GetArray("Distance"))
     nx, ny, nz = image.GetDimensions()
@@ -41,8 +49,8 @@ for backend in ("SetBackendToCPU", "SetBackendToGPU"):
         t = np.clip(((x - a) @ (b - a)) / np.dot(b - a, b - a), 0.0, 1.0)
         best = np.minimum(best, np.linalg.norm(x - (a + t[:, None] * (b - a)), axis=1))
     err = np.max(np.abs(distance - best)) / h.min()
-    print(f"{backend[12:]}: {distance.size} samples, renderer {f.GetLastRenderer()!r}, "
-          f"max |error| {err:.2e} h")
+    print(f"{backend[12:]}, {f.GetLastRoute()}: {distance.size} samples, renderer "
+          f"{f.GetLastRenderer()!r}, max |error| {err:.2e} h")
     if not err <= 1e-3:
         print("FAIL")
         sys.exit(1)
