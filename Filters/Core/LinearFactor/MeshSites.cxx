@@ -1,5 +1,7 @@
 #include "LinearFactor/MeshSites.h"
 
+#include "Common/FloatBounds.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -10,17 +12,6 @@ namespace vtkdf
 namespace
 {
 
-/// The largest float <= x and the smallest float >= x.
-float FloatBelow(double x)
-{
-  const float f = static_cast<float>(x);
-  return f > x ? std::nextafter(f, -HUGE_VALF) : f;
-}
-float FloatAbove(double x)
-{
-  const float f = static_cast<float>(x);
-  return f < x ? std::nextafter(f, HUGE_VALF) : f;
-}
 using Vec = std::array<double, 3>;
 
 Vec Sub(const double* a, const double* b)

@@ -1,5 +1,6 @@
 #include "LinearFactor/NearestTriangleQueries.h"
 
+#include "Common/FloatBounds.h"
 #include "Common/LargeVector.h"
 #include "Common/PointTriangleDistance.h"
 #include "Common/Vector3.h"
@@ -101,18 +102,6 @@ uint32_t SpreadBits(uint32_t x)
   x = (x | (x << 4)) & 0x30c30c3;
   x = (x | (x << 2)) & 0x9249249;
   return x;
-}
-
-float Below(double v)
-{
-  const float f = static_cast<float>(v);
-  return f <= v ? f : std::nextafter(f, -HUGE_VALF);
-}
-
-float Above(double v)
-{
-  const float f = static_cast<float>(v);
-  return f >= v ? f : std::nextafter(f, HUGE_VALF);
 }
 
 /// An inner node's box: the union of its children's.
@@ -387,8 +376,8 @@ void BuildSubtree(std::vector<Node>& nodes,
     {
       for (int k = 0; k < 9; ++k)
       {
-        leaf.Lo[k % 3] = std::min(leaf.Lo[k % 3], Below(primitives[i].X[k]));
-        leaf.Hi[k % 3] = std::max(leaf.Hi[k % 3], Above(primitives[i].X[k]));
+        leaf.Lo[k % 3] = std::min(leaf.Lo[k % 3], FloatBelow(primitives[i].X[k]));
+        leaf.Hi[k % 3] = std::max(leaf.Hi[k % 3], FloatAbove(primitives[i].X[k]));
       }
     }
     leaf.First = begin;
@@ -622,7 +611,7 @@ void QueryTree::FrameLeaves(const ParallelFor& parallelFor)
             extent = std::max(extent, std::fabs(along));
           }
         }
-        leaf.Extent[k] = Above(extent * (1 + 1e-6) + this->Margin);
+        leaf.Extent[k] = FloatAbove(extent * (1 + 1e-6) + this->Margin);
       }
     }
   };
