@@ -152,7 +152,10 @@ public:
       normal[k] *= this->Orientation;
     }
   }
-  double Orientation = 1; // -1 when the faces' signed volume is negative (MeshSites)
+  // -1 when the faces' signed volume is negative. MeshSites measures it from another
+  // point: the same sign on a closed mesh; on an open one (where the pseudonormal sign is
+  // arbitrary anyway) the two may differ.
+  double Orientation = 1;
   double Degenerate = 0;
   double Tolerance2 = 0; // absolute slack on squared distances (coordinates' rounding)
 
@@ -163,7 +166,7 @@ private:
   double LeafDistance2(const Leaf& leaf, const double p[3]) const;
 
   // Per primitive, in the tree's order: its corners, input cell, whether it is a proper
-  // triangle (MeshSites' rule; otherwise only its edges count) and its unit normal.
+  // triangle (MeshSites' rule; otherwise only its edges count) and its Morton code.
   LargeVector<Primitive> Primitives;
   LargeVector<int64_t> Cells;
   LargeVector<uint8_t> Faces;

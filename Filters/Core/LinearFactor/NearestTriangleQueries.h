@@ -15,7 +15,8 @@
 //   - ClosestCellId the smallest input cell holding that feature (the site scan's rule
 //     for edge and vertex sites), so that duplicate and shared cells give the same id;
 //   - the pseudonormal sign from the feature's angle-weighted normal, with the faces,
-//     degenerate ones and the mesh's orientation (signed volume) as MeshSites has them.
+//     degenerate ones and the mesh's orientation (signed volume) as MeshSites has them
+//     (the orientation from another reference point: equal on closed meshes).
 // Both routes are exact; where a sample lies within rounding of two features, they may
 // name different ones (the tests check that they differ only there).
 #ifndef vtkdf_NearestTriangleQueries_h
