@@ -53,6 +53,28 @@ double BruteForce(const MeshInput& m, const double x[3])
   return best;
 }
 
+/// Calls visit(x, at) for every sample of the request's extent: its position and its
+/// index in the extent's arrays (x fastest).
+template<typename Visit>
+void ForEachSample(const LinearFactorRequest& request, const Visit& visit)
+{
+  const IndexBox& e = request.Extent;
+  int64_t at = 0;
+  for (int k = e.Lo[2]; k <= e.Hi[2]; ++k)
+  {
+    for (int j = e.Lo[1]; j <= e.Hi[1]; ++j)
+    {
+      for (int i = e.Lo[0]; i <= e.Hi[0]; ++i, ++at)
+      {
+        const double x[3] = { request.Grid.Coordinate(0, i),
+          request.Grid.Coordinate(1, j),
+          request.Grid.Coordinate(2, k) };
+        visit(x, at);
+      }
+    }
+  }
+}
+
 /// The field of `mesh` by the family's entry point (as the filter calls it) against the
 /// brute force, every culling mode; and the parallel build of its sites against the
 /// serial one.
@@ -161,25 +183,16 @@ void RunCase(const std::string& name, const MeshInput& input, int resolution)
     double worst = 0;
     int64_t worstAt = -1;
     const IndexBox& e = request.Extent;
-    for (int k = e.Lo[2]; k <= e.Hi[2]; ++k)
-    {
-      for (int j = e.Lo[1]; j <= e.Hi[1]; ++j)
+    ForEachSample(request,
+      [&](const double* x, int64_t at)
       {
-        for (int i = e.Lo[0]; i <= e.Hi[0]; ++i)
+        const double err = std::fabs(distance[at] - BruteForce(mesh, x));
+        if (!(err <= worst))
         {
-          const double x[3] = { request.Grid.Coordinate(0, i),
-            request.Grid.Coordinate(1, j),
-            request.Grid.Coordinate(2, k) };
-          const int64_t at = i + int64_t(e.Size(0)) * (j + int64_t(e.Size(1)) * k);
-          const double err = std::fabs(distance[at] - BruteForce(mesh, x));
-          if (!(err <= worst))
-          {
-            worst = err;
-            worstAt = at;
-          }
+          worst = err;
+          worstAt = at;
         }
-      }
-    }
+      });
     const char* mode = culling == Culling::Auto ? "auto"
       : culling == Culling::NonManifold         ? "nonmanifold"
                                                 : "manifold";
@@ -380,51 +393,40 @@ void RunQueryCase(const std::string& name, const MeshInput& input, int resolutio
       label.c_str());
     double worst = 0;
     int64_t ties = 0, wrong = 0, signs = 0, band = 0;
-    const IndexBox& e = request.Extent;
-    for (int k = e.Lo[2]; k <= e.Hi[2]; ++k)
-    {
-      for (int j = e.Lo[1]; j <= e.Hi[1]; ++j)
+    ForEachSample(request,
+      [&](const double* x, int64_t at)
       {
-        for (int i = e.Lo[0]; i <= e.Hi[0]; ++i)
+        const double exact = BruteForce(mesh, x);
+        const bool beyond = cap > 0 && exact > cap;
+        worst =
+          std::max(worst, std::fabs(std::fabs(queries.Distance[at]) - (beyond ? cap : exact)));
+        signs += closed && exact > 1e-3 * h &&
+          std::signbit(scan.Distance[at]) != std::signbit(queries.Distance[at]);
+        if (cap > 0 && std::fabs(exact - cap) > 1e-6 * h)
         {
-          const double x[3] = { request.Grid.Coordinate(0, i),
-            request.Grid.Coordinate(1, j),
-            request.Grid.Coordinate(2, k) };
-          const size_t at = i + size_t(e.Size(0)) * (j + size_t(e.Size(1)) * k);
-          const double exact = BruteForce(mesh, x);
-          const bool beyond = cap > 0 && exact > cap;
-          worst =
-            std::max(worst, std::fabs(std::fabs(queries.Distance[at]) - (beyond ? cap : exact)));
-          signs += closed && exact > 1e-3 * h &&
-            std::signbit(scan.Distance[at]) != std::signbit(queries.Distance[at]);
-          if (cap > 0 && std::fabs(exact - cap) > 1e-6 * h)
-          {
-            // Clear of the cap: no cell beyond it, one within it, as the scan has them.
-            band +=
-              beyond != (queries.Cell[at] < 0) || (scan.Cell[at] < 0) != (queries.Cell[at] < 0);
-          }
-          if (scan.Cell[at] < 0 || queries.Cell[at] < 0 ||
-            (scan.Cell[at] == queries.Cell[at] && scan.Feature[at] == queries.Feature[at] &&
-              std::signbit(scan.Distance[at]) == std::signbit(queries.Distance[at])))
-          {
-            continue;
-          }
-          // Both closest points nearest within the scan's accuracy (and float rounding).
-          auto reach = [&](const std::vector<float>& p)
-          {
-            double d2 = 0;
-            for (int a = 0; a < 3; ++a)
-            {
-              d2 += (p[3 * at + a] - x[a]) * (p[3 * at + a] - x[a]);
-            }
-            return std::fabs(std::sqrt(d2) - exact);
-          };
-          const bool tie = reach(scan.Point) <= 2e-4 * h && reach(queries.Point) <= 2e-4 * h;
-          ties += tie;
-          wrong += !tie;
+          // Clear of the cap: no cell beyond it, one within it, as the scan has them.
+          band += beyond != (queries.Cell[at] < 0) || (scan.Cell[at] < 0) != (queries.Cell[at] < 0);
         }
-      }
-    }
+        if (scan.Cell[at] < 0 || queries.Cell[at] < 0 ||
+          (scan.Cell[at] == queries.Cell[at] && scan.Feature[at] == queries.Feature[at] &&
+            std::signbit(scan.Distance[at]) == std::signbit(queries.Distance[at])))
+        {
+          return;
+        }
+        // Both closest points nearest within the scan's accuracy (and float rounding).
+        auto reach = [&](const std::vector<float>& p)
+        {
+          double d2 = 0;
+          for (int a = 0; a < 3; ++a)
+          {
+            d2 += (p[3 * at + a] - x[a]) * (p[3 * at + a] - x[a]);
+          }
+          return std::fabs(std::sqrt(d2) - exact);
+        };
+        const bool tie = reach(scan.Point) <= 2e-4 * h && reach(queries.Point) <= 2e-4 * h;
+        ties += tie;
+        wrong += !tie;
+      });
     std::printf("%-21s queries      max|err| = %.3g h  %.1f evaluations a sample, %lld samples "
                 "name another feature at a tie\n",
       label.c_str(),
