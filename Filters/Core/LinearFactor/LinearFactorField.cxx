@@ -143,6 +143,21 @@ bool WindingSign(const MeshInput& mesh,
   return true;
 }
 
+/// Where the field's arrays go, as Finalize and the queries take them.
+FieldArrays ArraysInFrame(const LinearFactorArrays& arrays,
+  const LinearFactorRequest& request,
+  const GridFrame& frame)
+{
+  FieldArrays field;
+  field.Frame = frame;
+  field.Distance = arrays.Distance;
+  field.Signed = request.Sign == SignMode::PseudoNormal;
+  field.ClosestCellId = arrays.ClosestCellId;
+  field.ClosestFeature = arrays.ClosestFeature;
+  field.ClosestPoint = arrays.ClosestPoint;
+  return field;
+}
+
 /// The winding sign or value, when the request asks for either.
 bool WindingSignIfAsked(const MeshInput& mesh,
   const LinearFactorRequest& request,
@@ -205,15 +220,13 @@ bool ComputeLinearFactorField(MeshInput mesh,
       report.NoUsableCell = true;
       return true;
     }
-    FieldArrays field;
-    field.Frame = local.Frame;
-    field.Distance = arrays.Distance;
-    field.Signed = request.Sign == SignMode::PseudoNormal;
-    field.ClosestCellId = arrays.ClosestCellId;
-    field.ClosestFeature = arrays.ClosestFeature;
-    field.ClosestPoint = arrays.ClosestPoint;
     ScanStatistics stats;
-    if (!QueryNearestTriangles(mesh, local.Request, field, execution.Part(0.0, 0.9), stats, error))
+    if (!QueryNearestTriangles(mesh,
+          local.Request,
+          ArraysInFrame(arrays, request, local.Frame),
+          execution.Part(0.0, 0.9),
+          stats,
+          error))
     {
       error = "Invalid input mesh: " + error + ".";
       return false;
@@ -281,14 +294,11 @@ bool ComputeLinearFactorField(MeshInput mesh,
   execution.EndStage("scan");
   report.Evaluations = stats.Evaluations;
 
-  FieldArrays field;
-  field.Frame = local.Frame;
-  field.Distance = arrays.Distance;
-  field.Signed = request.Sign == SignMode::PseudoNormal;
-  field.ClosestCellId = arrays.ClosestCellId;
-  field.ClosestFeature = arrays.ClosestFeature;
-  field.ClosestPoint = arrays.ClosestPoint;
-  Finalize(local.Sites, local.Request, nearest, field, execution.For);
+  Finalize(local.Sites,
+    local.Request,
+    nearest,
+    ArraysInFrame(arrays, request, local.Frame),
+    execution.For);
   execution.EndStage("finalize");
   return WindingSignIfAsked(mesh, request, local, gl, arrays, execution, report, error);
 }

@@ -166,7 +166,8 @@ private:
   double LeafDistance2(const Leaf& leaf, const double p[3]) const;
 
   // Per primitive, in the tree's order: its corners, input cell, whether it is a proper
-  // triangle (MeshSites' rule; otherwise only its edges count) and its Morton code.
+  // triangle (MeshSites' rule; otherwise only its edges count) and, while the tree is
+  // built, its Morton code.
   LargeVector<Primitive> Primitives;
   LargeVector<int64_t> Cells;
   LargeVector<uint8_t> Faces;
@@ -337,6 +338,7 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
   }
   this->Orientation = volume < 0 ? -1.0 : 1.0;
   this->BuildNodes(static_cast<int32_t>(n), parallelFor);
+  this->Codes = LargeVector<uint32_t>(); // only the build needs them
   this->Widen();
   this->Margin = 1e-12 * (1 + magnitude);
   this->FrameLeaves(parallelFor);
