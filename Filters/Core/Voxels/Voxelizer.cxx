@@ -82,54 +82,71 @@ void RasterizeSolid(const MeshInput& mesh,
     });
 }
 
-/// The boundary voxels of the triangles whose view is `view` (BoundaryTriangle): the
-/// candidates of each lane of the grown footprint, decided by the exact distance.
-void RasterizeBoundary(const std::vector<BoundaryTriangle>& triangles,
-  const std::vector<int64_t>& ids,
+/// The boundary voxels of one triangle set up for the boundary rule: the candidates of
+/// each lane of its grown footprint in its view, decided by the exact distance.
+void RasterizeBoundaryTriangle(const BoundaryTriangle& t,
   const SampleGrid& grid,
-  View& view,
-  const ParallelFor& parallelFor)
+  double limit2,
+  double reach,
+  View& view)
 {
   const IndexBox& whole = grid.Whole;
   const int a = view.A, b = view.B, c = view.C;
+  for (int q = t.Q0; q <= t.Q1; ++q)
+  {
+    for (int p = t.P0; p <= t.P1; ++p)
+    {
+      int k0, k1;
+      if (!BoundaryLaneCandidates(t, p, q, reach, k0, k1))
+      {
+        continue;
+      }
+      uint64_t* lane = view.Boundary.Lane(p, q);
+      for (int k = k0; k <= k1; ++k)
+      {
+        if ((__atomic_load_n(&lane[k >> 6], __ATOMIC_RELAXED) >> (k & 63)) & 1u)
+        {
+          continue;
+        }
+        int ijk[3];
+        ijk[a] = k, ijk[b] = p, ijk[c] = q;
+        double centre[3];
+        for (int d = 0; d < 3; ++d)
+        {
+          centre[d] = grid.Coordinate(d, whole.Lo[d] + ijk[d]);
+        }
+        if (SquaredDistanceToTriangle(centre, t.P[0], t.P[1], t.P[2]) <= limit2)
+        {
+          AtomicOr(&lane[k >> 6], uint64_t(1) << (k & 63));
+        }
+      }
+    }
+  }
+}
+
+/// The boundary voxels of every triangle, each in the view its setup chooses
+/// (BoundaryTriangle). One pass: each triangle is set up on the stack and rasterized at
+/// once, so that no per-triangle setup is stored (on a fine mesh the stored setups were
+/// 200 MB written and read back).
+void RasterizeBoundary(const MeshInput& mesh,
+  const SampleGrid& grid,
+  View views[3],
+  const ParallelFor& parallelFor)
+{
   const double limit2 = BoundaryLimit2(grid);
-  const double reach = BoundaryReach(grid, a);
-  parallelFor(static_cast<int64_t>(ids.size()),
-    64,
+  const double reach[3] = {
+    BoundaryReach(grid, 0), BoundaryReach(grid, 1), BoundaryReach(grid, 2)
+  };
+  parallelFor(static_cast<int64_t>(mesh.Triangles.size() / 3),
+    256,
     [&](int64_t begin, int64_t end)
     {
-      for (int64_t i = begin; i < end; ++i)
+      BoundaryTriangle t;
+      for (int64_t index = begin; index < end; ++index)
       {
-        const BoundaryTriangle& t = triangles[ids[i]];
-        for (int q = t.Q0; q <= t.Q1; ++q)
+        if (SetupBoundaryTriangle(mesh, index, grid, t))
         {
-          for (int p = t.P0; p <= t.P1; ++p)
-          {
-            int k0, k1;
-            if (!BoundaryLaneCandidates(t, p, q, reach, k0, k1))
-            {
-              continue;
-            }
-            uint64_t* lane = view.Boundary.Lane(p, q);
-            for (int k = k0; k <= k1; ++k)
-            {
-              if ((__atomic_load_n(&lane[k >> 6], __ATOMIC_RELAXED) >> (k & 63)) & 1u)
-              {
-                continue;
-              }
-              int ijk[3];
-              ijk[a] = k, ijk[b] = p, ijk[c] = q;
-              double centre[3];
-              for (int d = 0; d < 3; ++d)
-              {
-                centre[d] = grid.Coordinate(d, whole.Lo[d] + ijk[d]);
-              }
-              if (SquaredDistanceToTriangle(centre, t.P[0], t.P[1], t.P[2]) <= limit2)
-              {
-                AtomicOr(&lane[k >> 6], uint64_t(1) << (k & 63));
-              }
-            }
-          }
+          RasterizeBoundaryTriangle(t, grid, limit2, reach[t.View], views[t.View]);
         }
       }
     });
@@ -332,30 +349,6 @@ bool VoxelizeCPU(const MeshInput& mesh,
   const double orientation = MeshOrientation(mesh);
   statistics.FlippedOrientation = orientation < 0;
 
-  // Each triangle's boundary view (its setup), and the triangles of each view.
-  std::vector<BoundaryTriangle> setups;
-  std::vector<int64_t> ofView[3];
-  if (boundary)
-  {
-    setups.resize(statistics.Triangles);
-    std::vector<char> useful(statistics.Triangles);
-    parallelFor(statistics.Triangles,
-      1024,
-      [&](int64_t begin, int64_t end)
-      {
-        for (int64_t t = begin; t < end; ++t)
-        {
-          useful[t] = SetupBoundaryTriangle(mesh, t, grid, setups[t]);
-        }
-      });
-    for (int64_t t = 0; t < statistics.Triangles; ++t)
-    {
-      if (useful[t])
-      {
-        ofView[setups[t].View].push_back(t);
-      }
-    }
-  }
   View views[3];
   std::atomic<int64_t> far{ 0 };
   for (int a = 0; a < 3; ++a)
@@ -367,7 +360,6 @@ bool VoxelizeCPU(const MeshInput& mesh,
     if (boundary)
     {
       v.Boundary.Resize(n[v.B], n[v.C], n[a]);
-      RasterizeBoundary(setups, ofView[a], grid, v, parallelFor);
     }
     if (solid)
     {
@@ -375,6 +367,10 @@ bool VoxelizeCPU(const MeshInput& mesh,
       v.Back.Resize(n[v.B], n[v.C], 2 * n[a] + 1 + SolidGuard);
       RasterizeSolid(mesh, grid, orientation, v, parallelFor, far);
     }
+  }
+  if (boundary)
+  {
+    RasterizeBoundary(mesh, grid, views, parallelFor);
   }
   statistics.FarTriangles = far.load() / 3;
 
