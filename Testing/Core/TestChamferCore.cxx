@@ -4,11 +4,15 @@
 // 2^16 layers);
 // every metric, with and without a maximum number of layers (3: within the wavefront's
 // first block of eight layers, 11: within the second, 30: beyond what the wavefront
-// computes, the sweeps with a limit), unsigned and signed.
+// computes, the sweeps with a limit), unsigned and signed. And the voxelizer's inline
+// rounding of snapped vertices against std::llround.
 #include "CoreTest.h"
 #include "ThreadFor.h"
 #include "Voxels/ChamferTransform.h"
 #include "Voxels/VoxelFields.h"
+#include "Voxels/VoxelizerRules.h"
+
+#include <cmath>
 
 #include <cstdio>
 #include <deque>
@@ -328,6 +332,45 @@ int main()
       all = all && v == -7;
     }
     Check(all, "an empty zero set must leave every voxel unreached");
+  }
+  {
+    // The snapped vertices' range (SnapRange * Subpixel = 2^30): halfway cases, their
+    // neighbours one ulp away, and random values.
+    std::vector<double> values = { 0.0,
+      -0.0,
+      0.5,
+      -0.5,
+      1.5,
+      -1.5,
+      2.5,
+      -2.5,
+      0.49999999999999994,
+      -0.49999999999999994,
+      1073741823.5,
+      -1073741823.5 };
+    for (double h = 0.5; h < 1 << 30; h += 1.0)
+    {
+      values.push_back(h);
+      values.push_back(std::nextafter(h, 0.0));
+      values.push_back(std::nextafter(h, HUGE_VAL));
+      values.push_back(-values[values.size() - 2]);
+      if (h > 64)
+      {
+        h = h * 1.7 + 0.5 - std::fmod(h * 1.7, 1.0); // the next halfway value, sparser
+      }
+    }
+    std::uniform_real_distribution<double> uniform(-1073741824.0, 1073741824.0);
+    for (int i = 0; i < 100000; ++i)
+    {
+      values.push_back(uniform(random));
+    }
+    int wrong = 0;
+    for (const double x : values)
+    {
+      wrong += voxelizer::RoundHalfAway(x) != std::llround(x);
+    }
+    Check(
+      wrong == 0, "RoundHalfAway differs from llround on %d of %zu values", wrong, values.size());
   }
   return Verdict();
 }

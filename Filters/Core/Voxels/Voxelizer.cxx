@@ -28,57 +28,69 @@ struct View
   BitVolume Boundary, Front, Back;
 };
 
-/// Rasterizes every triangle into a view's solid lanes (vertices snapped to 1/256 of a
-/// spacing, exact integer edge functions): each lane whose centre the projected
-/// triangle covers (top-left rule) meets it at depth z; the half-voxel bin of z goes to
-/// Front (triangle facing the view) or Back.
+/// Rasterizes a triangle projected for a view into its solid lanes (vertices snapped
+/// to 1/256 of a spacing, exact integer edge functions): each lane whose centre the
+/// projected triangle covers (top-left rule) meets it at depth z; the half-voxel bin of z
+/// goes to Front (triangle facing the view) or Back.
+void RasterizeSolidTriangle(const ProjectedTriangle& t, const SampleGrid& grid, View& view)
+{
+  const IndexBox& whole = grid.Whole;
+  const int nb = whole.Size(view.B), nc = whole.Size(view.C), na = whole.Size(view.A);
+  const int64_t xmin = std::min(t.X[0], std::min(t.X[1], t.X[2]));
+  const int64_t xmax = std::max(t.X[0], std::max(t.X[1], t.X[2]));
+  const int64_t ymin = std::min(t.Y[0], std::min(t.Y[1], t.Y[2]));
+  const int64_t ymax = std::max(t.Y[0], std::max(t.Y[1], t.Y[2]));
+  int64_t e[3];
+  BitVolume& half = t.Entering ? view.Front : view.Back;
+  const int64_t p0 = std::max<int64_t>(0, -FloorDiv(-xmin, Subpixel));
+  const int64_t p1 = std::min<int64_t>(nb - 1, FloorDiv(xmax, Subpixel));
+  const int64_t q0 = std::max<int64_t>(0, -FloorDiv(-ymin, Subpixel));
+  const int64_t q1 = std::min<int64_t>(nc - 1, FloorDiv(ymax, Subpixel));
+  for (int64_t q = q0; q <= q1; ++q)
+  {
+    for (int64_t p = p0; p <= p1; ++p)
+    {
+      if (CoversCentre(t, p, q, e))
+      {
+        const int at = SolidBit(DepthAt(t, e), na);
+        uint64_t* lane = half.Lane(static_cast<int>(p), static_cast<int>(q));
+        AtomicOr(&lane[at >> 6], uint64_t(1) << (at & 63));
+      }
+    }
+  }
+}
+
+/// Every triangle into the three views' solid lanes, in one pass over the triangles:
+/// the views share each corner's grid coordinates and snapped values (ComputeCorners).
+/// `far` counts the triangles too far from the grid, once per view.
 void RasterizeSolid(const MeshInput& mesh,
   const SampleGrid& grid,
   double orientation,
-  View& view,
+  View views[3],
   const ParallelFor& parallelFor,
   std::atomic<int64_t>& far)
 {
-  const IndexBox& whole = grid.Whole;
-  const int a = view.A, b = view.B, c = view.C;
-  const int nb = whole.Size(b), nc = whole.Size(c), na = whole.Size(a);
-  const int64_t numTriangles = static_cast<int64_t>(mesh.Triangles.size() / 3);
-  parallelFor(numTriangles,
+  parallelFor(static_cast<int64_t>(mesh.Triangles.size() / 3),
     256,
     [&](int64_t begin, int64_t end)
     {
+      int64_t farHere = 0;
+      TriangleCorners corners;
+      ProjectedTriangle t;
       for (int64_t index = begin; index < end; ++index)
       {
-        ProjectedTriangle t;
-        bool isFar = false;
-        if (!ProjectTriangle(mesh, index, grid, a, orientation, t, isFar))
+        ComputeCorners(mesh, index, grid, corners);
+        for (int a = 0; a < 3; ++a)
         {
-          far += isFar;
-          continue;
-        }
-        const int64_t xmin = std::min(t.X[0], std::min(t.X[1], t.X[2]));
-        const int64_t xmax = std::max(t.X[0], std::max(t.X[1], t.X[2]));
-        const int64_t ymin = std::min(t.Y[0], std::min(t.Y[1], t.Y[2]));
-        const int64_t ymax = std::max(t.Y[0], std::max(t.Y[1], t.Y[2]));
-        int64_t e[3];
-        BitVolume& half = t.Entering ? view.Front : view.Back;
-        const int64_t p0 = std::max<int64_t>(0, -FloorDiv(-xmin, Subpixel));
-        const int64_t p1 = std::min<int64_t>(nb - 1, FloorDiv(xmax, Subpixel));
-        const int64_t q0 = std::max<int64_t>(0, -FloorDiv(-ymin, Subpixel));
-        const int64_t q1 = std::min<int64_t>(nc - 1, FloorDiv(ymax, Subpixel));
-        for (int64_t q = q0; q <= q1; ++q)
-        {
-          for (int64_t p = p0; p <= p1; ++p)
+          bool isFar = false;
+          if (ProjectTriangle(corners, a, orientation, t, isFar))
           {
-            if (CoversCentre(t, p, q, e))
-            {
-              const int at = SolidBit(DepthAt(t, e), na);
-              uint64_t* lane = half.Lane(static_cast<int>(p), static_cast<int>(q));
-              AtomicOr(&lane[at >> 6], uint64_t(1) << (at & 63));
-            }
+            RasterizeSolidTriangle(t, grid, views[a]);
           }
+          farHere += isFar;
         }
       }
+      far += farHere;
     });
 }
 
@@ -365,8 +377,11 @@ bool VoxelizeCPU(const MeshInput& mesh,
     {
       v.Front.Resize(n[v.B], n[v.C], 2 * n[a] + 1 + SolidGuard);
       v.Back.Resize(n[v.B], n[v.C], 2 * n[a] + 1 + SolidGuard);
-      RasterizeSolid(mesh, grid, orientation, v, parallelFor, far);
     }
+  }
+  if (solid)
+  {
+    RasterizeSolid(mesh, grid, orientation, views, parallelFor, far);
   }
   if (boundary)
   {

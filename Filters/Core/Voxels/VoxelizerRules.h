@@ -42,37 +42,72 @@ struct ProjectedTriangle
   bool Owns[3];  // top-left rule: edge k (vertex k to k+1) owns the lanes on it
 };
 
-/// Projects triangle `t` for view `a`. False when it covers no lane (seen edge-on) or
-/// lies too far from the grid (`far` is then set).
-inline bool ProjectTriangle(const MeshInput& mesh,
+/// llround(x) for |x| < 2^62, inline: the fractional part x - trunc(x) is exact, so the
+/// halfway cases round away from zero as llround rounds them.
+inline int64_t RoundHalfAway(double x)
+{
+  const int64_t whole = static_cast<int64_t>(x); // truncates
+  const double fraction = x - static_cast<double>(whole);
+  return whole + (fraction >= 0.5) - (fraction <= -0.5);
+}
+
+/// A triangle's corners in voxel units along each axis, and snapped to Subpixel along the
+/// axes where every corner lies within SnapRange: what all three views' projections
+/// share.
+struct TriangleCorners
+{
+  const double* P[3];    // the corners in world coordinates
+  double V[3][3];        // V[k][d]: corner k along axis d, in voxel units
+  int64_t Snapped[3][3]; // round(V[k][d] * Subpixel) where InRange[d]
+  bool InRange[3];
+};
+
+inline void ComputeCorners(const MeshInput& mesh,
   int64_t t,
   const SampleGrid& grid,
+  TriangleCorners& out)
+{
+  const IndexBox& whole = grid.Whole;
+  for (int k = 0; k < 3; ++k)
+  {
+    out.P[k] = &mesh.Points[3 * mesh.Triangles[3 * t + k]];
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    bool inRange = true;
+    for (int k = 0; k < 3; ++k)
+    {
+      out.V[k][d] = (out.P[k][d] - grid.Origin[d]) / grid.Spacing[d] - whole.Lo[d];
+      inRange = inRange && std::fabs(out.V[k][d]) < SnapRange;
+    }
+    out.InRange[d] = inRange;
+    for (int k = 0; k < 3; ++k)
+    {
+      out.Snapped[k][d] = inRange ? RoundHalfAway(out.V[k][d] * Subpixel) : 0;
+    }
+  }
+}
+
+/// Projects a triangle for view `a`. False when it covers no lane (seen edge-on) or lies
+/// too far from the grid (`far` is then set).
+inline bool ProjectTriangle(const TriangleCorners& corners,
   int a,
   double orientation,
   ProjectedTriangle& out,
   bool& far)
 {
   const int b = (a + 1) % 3, c = (a + 2) % 3;
-  const IndexBox& whole = grid.Whole;
-  double X[3], Y[3];
-  far = false;
-  for (int k = 0; k < 3; ++k)
-  {
-    const double* p = &mesh.Points[3 * mesh.Triangles[3 * t + k]];
-    std::copy(p, p + 3, out.P[k]);
-    X[k] = (p[b] - grid.Origin[b]) / grid.Spacing[b] - whole.Lo[b];
-    Y[k] = (p[c] - grid.Origin[c]) / grid.Spacing[c] - whole.Lo[c];
-    out.Z[k] = (p[a] - grid.Origin[a]) / grid.Spacing[a] - whole.Lo[a];
-    far = far || !(std::fabs(X[k]) < SnapRange && std::fabs(Y[k]) < SnapRange);
-  }
+  far = !corners.InRange[b] || !corners.InRange[c];
   if (far)
   {
     return false;
   }
   for (int k = 0; k < 3; ++k)
   {
-    out.X[k] = std::llround(X[k] * Subpixel);
-    out.Y[k] = std::llround(Y[k] * Subpixel);
+    std::copy(corners.P[k], corners.P[k] + 3, out.P[k]);
+    out.X[k] = corners.Snapped[k][b];
+    out.Y[k] = corners.Snapped[k][c];
+    out.Z[k] = corners.V[k][a];
   }
   int64_t area =
     (out.X[1] - out.X[0]) * (out.Y[2] - out.Y[0]) - (out.Y[1] - out.Y[0]) * (out.X[2] - out.X[0]);
@@ -96,6 +131,20 @@ inline bool ProjectTriangle(const MeshInput& mesh,
     out.Owns[k] = dy < 0 || (dy == 0 && dx < 0);
   }
   return true;
+}
+
+/// Projects triangle `t` for view `a` (ComputeCorners, then the view's projection).
+inline bool ProjectTriangle(const MeshInput& mesh,
+  int64_t t,
+  const SampleGrid& grid,
+  int a,
+  double orientation,
+  ProjectedTriangle& out,
+  bool& far)
+{
+  TriangleCorners corners;
+  ComputeCorners(mesh, t, grid, corners);
+  return ProjectTriangle(corners, a, orientation, out, far);
 }
 
 /// Edge function k at lane (p, q): > 0 inside.
