@@ -284,7 +284,27 @@ void TransposeInto(const BitVolume& view,
                 tile[r] = lane[c0 >> 6];
               }
             }
-            TransposeBits64(tile);
+            // Empty tiles (most of a boundary's) and, for an intersection, full ones
+            // need no transpose: an OR with zeros and an AND with ones change nothing,
+            // and an AND with zeros clears.
+            uint64_t any = 0, all = ~uint64_t(0);
+            for (int r = 0; r < 64; ++r)
+            {
+              any |= tile[r];
+              all &= tile[r];
+            }
+            if (any == 0 && !intersect)
+            {
+              continue;
+            }
+            if (all == ~uint64_t(0) && intersect)
+            {
+              continue;
+            }
+            if (any != 0)
+            {
+              TransposeBits64(tile);
+            }
             for (int c = 0; c < 64 && c0 + c < columns; ++c)
             {
               uint64_t* lane = a == 0 ? out.Lane(c0 + c, fixed) : out.Lane(fixed, c0 + c);
