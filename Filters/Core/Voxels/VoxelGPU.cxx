@@ -289,10 +289,11 @@ public:
   void SetUpBoundary()
   {
     const int64_t numTriangles = static_cast<int64_t>(this->Mesh.Triangles.size() / 3);
+    const BoundaryReaches reaches(this->Grid);
     for (int64_t t = 0; t < numTriangles; ++t)
     {
       BoundaryTriangle setup;
-      if (SetupBoundaryTriangle(this->Mesh, t, this->Grid, setup))
+      if (SetupBoundaryTriangle(this->Mesh, t, this->Grid, reaches, setup))
       {
         this->BoundaryRecords[setup.View].push_back(Pack(setup));
       }

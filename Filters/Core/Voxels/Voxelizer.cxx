@@ -146,9 +146,7 @@ void RasterizeBoundary(const MeshInput& mesh,
   const ParallelFor& parallelFor)
 {
   const double limit2 = BoundaryLimit2(grid);
-  const double reach[3] = {
-    BoundaryReach(grid, 0), BoundaryReach(grid, 1), BoundaryReach(grid, 2)
-  };
+  const BoundaryReaches reaches(grid);
   parallelFor(static_cast<int64_t>(mesh.Triangles.size() / 3),
     256,
     [&](int64_t begin, int64_t end)
@@ -156,9 +154,9 @@ void RasterizeBoundary(const MeshInput& mesh,
       BoundaryTriangle t;
       for (int64_t index = begin; index < end; ++index)
       {
-        if (SetupBoundaryTriangle(mesh, index, grid, t))
+        if (SetupBoundaryTriangle(mesh, index, grid, reaches, t))
         {
-          RasterizeBoundaryTriangle(t, grid, limit2, reach[t.View], views[t.View]);
+          RasterizeBoundaryTriangle(t, grid, limit2, reaches.R[t.View], views[t.View]);
         }
       }
     });

@@ -225,11 +225,22 @@ inline double BoundaryReach(const SampleGrid& grid, int a)
   return std::sqrt(BoundaryLimit2(grid)) / grid.Spacing[a] * (1 + 1e-6) + 1e-6;
 }
 
+/// The reaches along the three axes (BoundaryReach), computed once per grid.
+struct BoundaryReaches
+{
+  double R[3];
+  explicit BoundaryReaches(const SampleGrid& grid)
+    : R{ BoundaryReach(grid, 0), BoundaryReach(grid, 1), BoundaryReach(grid, 2) }
+  {
+  }
+};
+
 /// Sets up triangle `t` for the boundary rule; false when no voxel of the grid can be
 /// within reach of it.
 inline bool SetupBoundaryTriangle(const MeshInput& mesh,
   int64_t t,
   const SampleGrid& grid,
+  const BoundaryReaches& reaches,
   BoundaryTriangle& out)
 {
   const double* corner[3];
@@ -294,8 +305,7 @@ inline bool SetupBoundaryTriangle(const MeshInput& mesh,
   {
     planar = planar && std::fabs(lo[d]) < SnapRange && std::fabs(hi[d]) < SnapRange;
   }
-  const double rb = BoundaryReach(grid, b), rc = BoundaryReach(grid, c),
-               ra = BoundaryReach(grid, a);
+  const double rb = reaches.R[b], rc = reaches.R[c], ra = reaches.R[a];
   const double nb = grid.Whole.Size(b), nc = grid.Whole.Size(c), na = grid.Whole.Size(a);
   // The grown box, clamped in double before the conversion to int.
   auto first = [](double x, double size)
