@@ -372,8 +372,11 @@ inline bool BoundaryLaneCandidates(const BoundaryTriangle& t,
     lo = std::max(depth - t.Spread, zmin) - reach;
     hi = std::min(depth + t.Spread, zmax) + reach;
   }
-  k0 = std::max(t.K0, static_cast<int>(std::ceil(std::max(lo, -1.0))));
-  k1 = std::min(t.K1, static_cast<int>(std::floor(std::min(hi, double(t.K1) + 1))));
+  // ceil and floor by truncation (the clamped values fit an int).
+  const double first = std::max(lo, -1.0), last = std::min(hi, double(t.K1) + 1);
+  const int firstWhole = static_cast<int>(first), lastWhole = static_cast<int>(last);
+  k0 = std::max(t.K0, firstWhole + (firstWhole < first));
+  k1 = std::min(t.K1, lastWhole - (lastWhole > last));
   return k0 <= k1;
 }
 
