@@ -4,13 +4,14 @@
 // 2^16 layers);
 // every metric, with and without a maximum number of layers (3: within the wavefront's
 // first block of eight layers, 11: within the second, 30: beyond what the wavefront
-// computes, the sweeps with a limit), unsigned and signed. And the voxelizer's inline
-// rounding of snapped vertices against std::llround.
+// computes, the sweeps with a limit), unsigned and signed. And the rounding by
+// truncation (Common/Rounding.h) that the voxelizer and the scan use, against std::llround,
+// std::ceil and std::floor.
+#include "Common/Rounding.h"
 #include "CoreTest.h"
 #include "ThreadFor.h"
 #include "Voxels/ChamferTransform.h"
 #include "Voxels/VoxelFields.h"
-#include "Voxels/VoxelizerRules.h"
 
 #include <cmath>
 
@@ -367,10 +368,34 @@ int main()
     int wrong = 0;
     for (const double x : values)
     {
-      wrong += voxelizer::RoundHalfAway(x) != std::llround(x);
+      wrong += RoundHalfAway(x) != std::llround(x);
     }
     Check(
       wrong == 0, "RoundHalfAway differs from llround on %d of %zu values", wrong, values.size());
+    // Ceil and floor on an int's range: integers, their neighbours one ulp away, halves.
+    std::vector<double> small = { 0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2147483646.5, -2147483647.5 };
+    for (int i = -70000; i <= 70000; i += 7)
+    {
+      for (const double x : { double(i),
+             std::nextafter(double(i), -HUGE_VAL),
+             std::nextafter(double(i), HUGE_VAL),
+             i + 0.5 })
+      {
+        small.push_back(x);
+      }
+    }
+    std::uniform_real_distribution<double> wide(-2147483647.0, 2147483647.0);
+    for (int i = 0; i < 100000; ++i)
+    {
+      small.push_back(wide(random));
+    }
+    wrong = 0;
+    for (const double x : small)
+    {
+      wrong += CeilToInt(x) != static_cast<int>(std::ceil(x));
+      wrong += FloorToInt(x) != static_cast<int>(std::floor(x));
+    }
+    Check(wrong == 0, "CeilToInt or FloorToInt differ from ceil and floor %d times", wrong);
   }
   return Verdict();
 }

@@ -1,5 +1,6 @@
 #include "LinearFactor/LinearFactorScan.h"
 
+#include "Common/Rounding.h"
 #include "LinearFactor/SliceDomain.h"
 
 #include <algorithm>
@@ -232,10 +233,11 @@ private:
       return false;
     }
     const IndexBox& region = this->Region;
-    const int j0 = std::max(region.Lo[v], static_cast<int>(std::ceil(box[2])));
-    const int j1 = std::min(region.Hi[v], static_cast<int>(std::floor(box[3])));
-    const double firstColumn = std::max<double>(region.Lo[u], std::ceil(box[0]));
-    const double lastColumn = std::min<double>(region.Hi[u], std::floor(box[1]));
+    // The box lies within the region's rectangle: its bounds fit an int.
+    const int j0 = std::max(region.Lo[v], CeilToInt(box[2]));
+    const int j1 = std::min(region.Hi[v], FloorToInt(box[3]));
+    const int firstColumn = std::max(region.Lo[u], CeilToInt(box[0]));
+    const int lastColumn = std::min(region.Hi[u], FloorToInt(box[1]));
     if (j1 < j0 || lastColumn < firstColumn)
     {
       return true;
@@ -269,8 +271,8 @@ private:
       {
         continue;
       }
-      const int i0 = std::max(region.Lo[u], static_cast<int>(std::ceil(xl)));
-      const int i1 = std::min(region.Hi[u], static_cast<int>(std::floor(xr)));
+      const int i0 = std::max(region.Lo[u], CeilToInt(xl));
+      const int i1 = std::min(region.Hi[u], FloorToInt(xr));
       if (i1 < i0)
       {
         continue;

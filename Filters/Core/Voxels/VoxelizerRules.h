@@ -10,6 +10,7 @@
 
 #include "Common/MeshInput.h"
 #include "Common/PointTriangleDistance.h"
+#include "Common/Rounding.h"
 #include "Common/SampleGrid.h"
 
 #include <algorithm>
@@ -41,15 +42,6 @@ struct ProjectedTriangle
   bool Entering; // faces the viewer looking along +A: a lane enters the solid here
   bool Owns[3];  // top-left rule: edge k (vertex k to k+1) owns the lanes on it
 };
-
-/// llround(x) for |x| < 2^62, inline: the fractional part x - trunc(x) is exact, so the
-/// halfway cases round away from zero as llround rounds them.
-inline int64_t RoundHalfAway(double x)
-{
-  const int64_t whole = static_cast<int64_t>(x); // truncates
-  const double fraction = x - static_cast<double>(whole);
-  return whole + (fraction >= 0.5) - (fraction <= -0.5);
-}
 
 /// A triangle's corners in voxel units along each axis, and snapped to Subpixel along the
 /// axes where every corner lies within SnapRange: what all three views' projections
@@ -372,11 +364,8 @@ inline bool BoundaryLaneCandidates(const BoundaryTriangle& t,
     lo = std::max(depth - t.Spread, zmin) - reach;
     hi = std::min(depth + t.Spread, zmax) + reach;
   }
-  // ceil and floor by truncation (the clamped values fit an int).
-  const double first = std::max(lo, -1.0), last = std::min(hi, double(t.K1) + 1);
-  const int firstWhole = static_cast<int>(first), lastWhole = static_cast<int>(last);
-  k0 = std::max(t.K0, firstWhole + (firstWhole < first));
-  k1 = std::min(t.K1, lastWhole - (lastWhole > last));
+  k0 = std::max(t.K0, CeilToInt(std::max(lo, -1.0)));
+  k1 = std::min(t.K1, FloorToInt(std::min(hi, double(t.K1) + 1)));
   return k0 <= k1;
 }
 
