@@ -172,7 +172,7 @@ inline double DepthAt(const ProjectedTriangle& t, const int64_t e[3])
 inline int SolidBit(double depth, int na)
 {
   const double u = 2 * depth + 1;
-  return static_cast<int>(std::floor(std::min(std::max(u, -1.0), 2.0 * na))) + SolidGuard;
+  return FloorToInt(std::min(std::max(u, -1.0), 2.0 * na)) + SolidGuard;
 }
 
 /// Half the cell diagonal, squared: the boundary's distance limit.
@@ -300,10 +300,8 @@ inline bool SetupBoundaryTriangle(const MeshInput& mesh,
   const double rb = reaches.R[b], rc = reaches.R[c], ra = reaches.R[a];
   const double nb = grid.Whole.Size(b), nc = grid.Whole.Size(c), na = grid.Whole.Size(a);
   // The grown box, clamped in double before the conversion to int.
-  auto first = [](double x, double size)
-  { return static_cast<int>(std::ceil(std::min(std::max(x, -1.0), size))); };
-  auto last = [](double x, double size)
-  { return static_cast<int>(std::floor(std::min(std::max(x, -1.0), size))); };
+  auto first = [](double x, double size) { return CeilToInt(std::min(std::max(x, -1.0), size)); };
+  auto last = [](double x, double size) { return FloorToInt(std::min(std::max(x, -1.0), size)); };
   out.P0 = std::max(0, first(lo[b] - rb, nb));
   out.P1 = std::min(grid.Whole.Size(b) - 1, last(hi[b] + rb, nb));
   out.Q0 = std::max(0, first(lo[c] - rc, nc));
