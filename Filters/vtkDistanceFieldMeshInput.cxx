@@ -6,12 +6,15 @@
 #include "vtkDataArrayRange.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 
 #include "vtkDistanceFieldExecution.h"
 
 #include "Polygons/PolygonTriangulation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
@@ -57,6 +60,63 @@ struct UsedBoundsWorker
   }
 };
 
+/// Calls `body(ids, count)` with the raw point ids of a cell array's cells (vtkIdType or
+/// 32-bit storage): the connectivity up to the last cell's end.
+template<typename Body>
+void ForConnectivity(vtkCellArray* cells, const Body& body)
+{
+  const vtkIdType numCells = cells->GetNumberOfCells();
+  if (cells->IsStorage64Bit())
+  {
+    vtkTypeInt64Array* ids = cells->GetConnectivityArray64();
+    const vtkIdType end = numCells > 0 ? cells->GetOffsetsArray64()->GetValue(numCells) : 0;
+    body(ids->GetPointer(0), std::min<vtkIdType>(end, ids->GetNumberOfValues()));
+  }
+  else
+  {
+    vtkTypeInt32Array* ids = cells->GetConnectivityArray32();
+    const vtkIdType end = numCells > 0 ? cells->GetOffsetsArray32()->GetValue(numCells) : 0;
+    body(ids->GetPointer(0), std::min<vtkIdType>(end, ids->GetNumberOfValues()));
+  }
+}
+
+/// Marks the points that the cells use in `used`, in parallel; false when an id is out
+/// of range (the caller then finds the first such cell in order).
+bool MarkUsedPoints(vtkPolyData* input, vtkIdType numPoints, std::vector<uint8_t>& used)
+{
+  std::atomic<bool> inRange{ true };
+  for (vtkCellArray* cells :
+    { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+  {
+    ForConnectivity(cells,
+      [&](const auto* ids, vtkIdType count)
+      {
+        SMPFor(count,
+          1 << 14,
+          [&](int64_t begin, int64_t end)
+          {
+            bool ok = true;
+            for (int64_t i = begin; i < end; ++i)
+            {
+              const vtkIdType id = ids[i];
+              const bool valid = id >= 0 && id < numPoints;
+              ok = ok && valid;
+              if (valid)
+              {
+                // Threads may mark the same point: the same value, stored atomically.
+                __atomic_store_n(&used[id], uint8_t(1), __ATOMIC_RELAXED);
+              }
+            }
+            if (!ok)
+            {
+              inRange = false;
+            }
+          });
+      });
+  }
+  return inRange;
+}
+
 /// The first cell (in the filters' numbering: verts, lines, polys, strips) using `point`.
 vtkIdType FirstCellUsing(vtkPolyData* input, vtkIdType point)
 {
@@ -89,27 +149,35 @@ bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error)
   // The ids first, checked before any point is read (a file may hold any number
   // there); then each used point once, from the typed array.
   std::vector<uint8_t> used(numPoints, 0);
+  if (!MarkUsedPoints(input, numPoints, used))
+  {
+    // The first bad id in the filters' cell order, for the message.
+    vtkIdType cellId = 0;
+    for (vtkCellArray* cells :
+      { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+    {
+      vtkIdType count;
+      const vtkIdType* ids;
+      for (cells->InitTraversal(); cells->GetNextCell(count, ids); ++cellId)
+      {
+        for (vtkIdType i = 0; i < count; ++i)
+        {
+          if (ids[i] < 0 || ids[i] >= numPoints)
+          {
+            error = "cell " + std::to_string(cellId) + " refers to point " +
+              std::to_string(ids[i]) + ", but the mesh has " + std::to_string(numPoints) +
+              " points";
+            return false;
+          }
+        }
+      }
+    }
+  }
   bool any = false;
-  vtkIdType cellId = 0;
   for (vtkCellArray* cells :
     { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
   {
-    vtkIdType count;
-    const vtkIdType* ids;
-    for (cells->InitTraversal(); cells->GetNextCell(count, ids); ++cellId)
-    {
-      for (vtkIdType i = 0; i < count; ++i)
-      {
-        if (ids[i] < 0 || ids[i] >= numPoints)
-        {
-          error = "cell " + std::to_string(cellId) + " refers to point " + std::to_string(ids[i]) +
-            ", but the mesh has " + std::to_string(numPoints) + " points";
-          return false;
-        }
-        used[ids[i]] = 1;
-        any = true;
-      }
-    }
+    ForConnectivity(cells, [&](const auto*, vtkIdType count) { any = any || count > 0; });
   }
   if (!any)
   {
@@ -197,6 +265,10 @@ private:
 
   bool Polygons(vtkIdType& cellId, std::string& error)
   {
+    if (this->CopyTriangles(cellId))
+    {
+      return true;
+    }
     vtkIdType count;
     const vtkIdType* ids;
     vtkCellArray* polys = this->Input->GetPolys();
@@ -216,6 +288,75 @@ private:
       }
     }
     return true;
+  }
+
+  /// When every polygon is a triangle (offsets 0, 3, 6, ...), the usual case: their ids
+  /// copied in parallel, and `cellId` moved past them. False (nothing done) otherwise.
+  bool CopyTriangles(vtkIdType& cellId)
+  {
+    vtkCellArray* polys = this->Input->GetPolys();
+    const vtkIdType n = polys->GetNumberOfCells();
+    bool copied = false;
+    auto copy = [&](const auto* offsets, const auto* ids, vtkIdType numIds)
+    {
+      if (n == 0 || numIds < 3 * n)
+      {
+        return;
+      }
+      std::atomic<bool> triangles{ true };
+      SMPFor(n + 1,
+        1 << 14,
+        [&](int64_t begin, int64_t end)
+        {
+          bool all = true;
+          for (int64_t i = begin; i < end; ++i)
+          {
+            all = all && offsets[i] == 3 * i;
+          }
+          if (!all)
+          {
+            triangles = false;
+          }
+        });
+      if (!triangles)
+      {
+        return;
+      }
+      std::vector<int64_t>& out = this->Mesh.Triangles;
+      std::vector<int64_t>& outCells = this->Mesh.TriangleCells;
+      const size_t base = out.size(), baseCells = outCells.size();
+      out.resize(base + 3 * n);
+      outCells.resize(baseCells + n);
+      const vtkIdType first = cellId;
+      SMPFor(n,
+        1 << 14,
+        [&](int64_t begin, int64_t end)
+        {
+          for (int64_t i = begin; i < end; ++i)
+          {
+            for (int k = 0; k < 3; ++k)
+            {
+              out[base + 3 * i + k] = ids[3 * i + k];
+            }
+            outCells[baseCells + i] = first + i;
+          }
+        });
+      cellId += n;
+      copied = true;
+    };
+    if (polys->IsStorage64Bit())
+    {
+      copy(polys->GetOffsetsArray64()->GetPointer(0),
+        polys->GetConnectivityArray64()->GetPointer(0),
+        polys->GetConnectivityArray64()->GetNumberOfValues());
+    }
+    else
+    {
+      copy(polys->GetOffsetsArray32()->GetPointer(0),
+        polys->GetConnectivityArray32()->GetPointer(0),
+        polys->GetConnectivityArray32()->GetNumberOfValues());
+    }
+    return copied;
   }
 
   /// Ear clipping in the polygon's best-fit plane (concave polygons included); never a

@@ -1,6 +1,9 @@
 """vtkLinearFactorDistanceField from Python: points and a polyline, checked against a
 numpy brute force on every sample, through a numpy view of the Distance array, on both
-backends and by both CPU routes (the site scan and the per-sample queries)."""
+backends and by both CPU routes (the site scan and the per-sample queries). And a
+triangle mesh whose cells are stored in 32-bit and in 64-bit arrays, all triangles (the
+parallel copy) or with a quad among them (the cell-by-cell copy): the same field and
+closest cells either way."""
 import sys
 
 import numpy as np
@@ -53,5 +56,59 @@ for backend, route, expected in runs:
           f"{f.GetLastRenderer()!r}, max |error| {err:.2e} h")
     if not err <= 1e-3:
         print("FAIL")
+        sys.exit(1)
+
+
+def triangle_mesh(storage32, with_quad):
+    """A vertex cell, then triangles over a jittered grid (and a quad for the last two)."""
+    pts = vtkPoints()
+    for y in range(4):
+        for x in range(4):
+            pts.InsertNextPoint(x + 0.1 * rng.uniform(), y + 0.1 * rng.uniform(),
+                                0.3 * np.sin(x + y))
+    verts, polys = vtkCellArray(), vtkCellArray()
+    if storage32:
+        verts.Use32BitStorage()
+        polys.Use32BitStorage()
+    verts.InsertNextCell(1, [0])
+    for y in range(3):
+        for x in range(3):
+            a = 4 * y + x
+            if with_quad and (x, y) == (2, 2):
+                polys.InsertNextCell(4, [a, a + 1, a + 5, a + 4])
+            else:
+                polys.InsertNextCell(3, [a, a + 1, a + 5])
+                polys.InsertNextCell(3, [a, a + 5, a + 4])
+    m = vtkPolyData()
+    m.SetPoints(pts)
+    m.SetVerts(verts)
+    m.SetPolys(polys)
+    return m
+
+
+for with_quad in (False, True):
+    rng = np.random.default_rng(11)
+    fields = []
+    for storage32 in (True, False):
+        rng = np.random.default_rng(11)
+        f = vtkLinearFactorDistanceField()
+        f.SetInputData(triangle_mesh(storage32, with_quad))
+        f.SetResolution(20)
+        f.SetBackendToCPU()
+        f.Update()
+        data = f.GetOutput().GetPointData()
+        fields.append((vtk_to_numpy(data.GetArray("Distance")).copy(),
+                       vtk_to_numpy(data.GetArray("ClosestCellId")).copy()))
+    (d32, c32), (d64, c64) = fields
+    cells = 1 + (17 if with_quad else 18)
+    print(f"cells in 32-bit and 64-bit arrays, quad {with_quad}: closest cells "
+          f"{c64.min()}..{c64.max()} of {cells}")
+    if not (np.array_equal(d32, d64) and np.array_equal(c32, c64)):
+        print("FAIL: the storages give different fields")
+        sys.exit(1)
+    # The vertex cell is 0 (nearest where the corner it shares wins the tie), the
+    # polygons 1.. in order: the last one is reported near its far corner.
+    if not (c64.min() == 0 and c64.max() == cells - 1):
+        print("FAIL: the closest cells do not number the vertex cell first")
         sys.exit(1)
 print("1 passed, 0 failed")

@@ -371,7 +371,7 @@ bool VoxelizeCPU(const MeshInput& mesh,
   statistics = VoxelizeStatistics();
   const IndexBox& whole = grid.Whole;
   const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
-  if (!ValidateMesh(mesh, grid, error))
+  if (!ValidateMesh(mesh, grid, error, parallelFor))
   {
     return false;
   }

@@ -14,6 +14,7 @@
 #include "Common/SampleGrid.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -387,8 +388,12 @@ inline double MeshOrientation(const MeshInput& mesh)
 constexpr int MaximumAxisVoxels = 1 << 29;
 
 /// Point ids in range, finite coordinates and a grid whose lanes fit; false and `error`
-/// otherwise.
-inline bool ValidateMesh(const MeshInput& mesh, const SampleGrid& grid, std::string& error)
+/// otherwise (about the first bad id in order). `parallelFor` (optional) scans the ids
+/// in parallel.
+inline bool ValidateMesh(const MeshInput& mesh,
+  const SampleGrid& grid,
+  std::string& error,
+  const ParallelFor& parallelFor = ParallelFor())
 {
   for (int a = 0; a < 3; ++a)
   {
@@ -400,23 +405,47 @@ inline bool ValidateMesh(const MeshInput& mesh, const SampleGrid& grid, std::str
     }
   }
   const int64_t numPoints = static_cast<int64_t>(mesh.Points.size() / 3);
-  for (int64_t id : mesh.Triangles)
+  const int64_t numIds = static_cast<int64_t>(mesh.Triangles.size());
+  auto inRange = [&](int64_t id) { return id >= 0 && id < numPoints; };
+  auto finite = [&](int64_t id)
   {
-    if (id < 0 || id >= numPoints)
+    const double* x = &mesh.Points[3 * id];
+    return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+  };
+  // The first bad position, as the least over the chunks.
+  std::atomic<int64_t> firstBad{ numIds };
+  auto scan = [&](int64_t begin, int64_t end)
+  {
+    for (int64_t i = begin; i < end && i < firstBad.load(std::memory_order_relaxed); ++i)
     {
-      error = "a cell refers to point " + std::to_string(id) + " of " + std::to_string(numPoints);
-      return false;
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      if (!std::isfinite(mesh.Points[3 * id + a]))
+      const int64_t id = mesh.Triangles[i];
+      if (!inRange(id) || !finite(id))
       {
-        error = "point " + std::to_string(id) + " has a NaN or infinite coordinate";
-        return false;
+        int64_t seen = firstBad.load(std::memory_order_relaxed);
+        while (i < seen && !firstBad.compare_exchange_weak(seen, i, std::memory_order_relaxed))
+        {
+        }
+        return;
       }
     }
+  };
+  if (parallelFor)
+  {
+    parallelFor(numIds, 1 << 15, scan);
   }
-  return true;
+  else
+  {
+    scan(0, numIds);
+  }
+  if (firstBad.load() == numIds)
+  {
+    return true;
+  }
+  const int64_t id = mesh.Triangles[firstBad.load()];
+  error = !inRange(id)
+    ? "a cell refers to point " + std::to_string(id) + " of " + std::to_string(numPoints)
+    : "point " + std::to_string(id) + " has a NaN or infinite coordinate";
+  return false;
 }
 
 } // namespace voxelizer
