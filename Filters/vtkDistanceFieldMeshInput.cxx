@@ -117,8 +117,10 @@ bool MarkUsedPoints(vtkPolyData* input, vtkIdType numPoints, std::vector<uint8_t
   return inRange;
 }
 
-/// The first cell (in the filters' numbering: verts, lines, polys, strips) using `point`.
-vtkIdType FirstCellUsing(vtkPolyData* input, vtkIdType point)
+/// The first cell (in the filters' numbering: verts, lines, polys, strips) with a point
+/// id for which `match(id)` holds, and that id in `found`; -1 when there is none.
+template<typename Match>
+vtkIdType FirstCellWith(vtkPolyData* input, const Match& match, vtkIdType& found)
 {
   vtkIdType cellId = 0;
   for (vtkCellArray* cells :
@@ -128,8 +130,10 @@ vtkIdType FirstCellUsing(vtkPolyData* input, vtkIdType point)
     const vtkIdType* ids;
     for (cells->InitTraversal(); cells->GetNextCell(count, ids); ++cellId)
     {
-      if (std::find(ids, ids + count, point) != ids + count)
+      const vtkIdType* at = std::find_if(ids, ids + count, match);
+      if (at != ids + count)
       {
+        found = *at;
         return cellId;
       }
     }
@@ -152,25 +156,14 @@ bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error)
   if (!MarkUsedPoints(input, numPoints, used))
   {
     // The first bad id in the filters' cell order, for the message.
-    vtkIdType cellId = 0;
-    for (vtkCellArray* cells :
-      { input->GetVerts(), input->GetLines(), input->GetPolys(), input->GetStrips() })
+    vtkIdType id = -1;
+    const vtkIdType cellId = FirstCellWith(
+      input, [&](vtkIdType i) { return i < 0 || i >= numPoints; }, id);
+    if (cellId >= 0)
     {
-      vtkIdType count;
-      const vtkIdType* ids;
-      for (cells->InitTraversal(); cells->GetNextCell(count, ids); ++cellId)
-      {
-        for (vtkIdType i = 0; i < count; ++i)
-        {
-          if (ids[i] < 0 || ids[i] >= numPoints)
-          {
-            error = "cell " + std::to_string(cellId) + " refers to point " +
-              std::to_string(ids[i]) + ", but the mesh has " + std::to_string(numPoints) +
-              " points";
-            return false;
-          }
-        }
-      }
+      error = "cell " + std::to_string(cellId) + " refers to point " + std::to_string(id) +
+        ", but the mesh has " + std::to_string(numPoints) + " points";
+      return false;
     }
   }
   bool any = false;
@@ -194,9 +187,11 @@ bool UsedPointBounds(vtkPolyData* input, double bounds[6], std::string& error)
   {
     double x[3];
     input->GetPoint(worker.FirstBad, x);
+    vtkIdType unused;
     error = "point " + std::to_string(worker.FirstBad) + " (used by cell " +
-      std::to_string(FirstCellUsing(input, worker.FirstBad)) + ") has " +
-      (std::isnan(x[0] + x[1] + x[2]) ? "a NaN" : "an infinite") + " coordinate";
+      std::to_string(FirstCellWith(
+        input, [&](vtkIdType i) { return i == worker.FirstBad; }, unused)) +
+      ") has " + (std::isnan(x[0] + x[1] + x[2]) ? "a NaN" : "an infinite") + " coordinate";
     return false;
   }
   return true;
