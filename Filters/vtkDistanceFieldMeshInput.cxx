@@ -60,24 +60,37 @@ struct UsedBoundsWorker
   }
 };
 
-/// Calls `body(ids, count)` with the raw point ids of a cell array's cells (vtkIdType or
-/// 32-bit storage): the connectivity up to the last cell's end.
+/// Calls `body(offsets, ids, numIds)` with a cell array's raw arrays, in whichever
+/// storage (64- or 32-bit) it has.
+template<typename Body>
+void WithRawArrays(vtkCellArray* cells, const Body& body)
+{
+  if (cells->IsStorage64Bit())
+  {
+    body(cells->GetOffsetsArray64()->GetPointer(0),
+      cells->GetConnectivityArray64()->GetPointer(0),
+      cells->GetConnectivityArray64()->GetNumberOfValues());
+  }
+  else
+  {
+    body(cells->GetOffsetsArray32()->GetPointer(0),
+      cells->GetConnectivityArray32()->GetPointer(0),
+      cells->GetConnectivityArray32()->GetNumberOfValues());
+  }
+}
+
+/// Calls `body(ids, count)` with the point ids of a cell array's cells: the connectivity
+/// up to the last cell's end.
 template<typename Body>
 void ForConnectivity(vtkCellArray* cells, const Body& body)
 {
   const vtkIdType numCells = cells->GetNumberOfCells();
-  if (cells->IsStorage64Bit())
-  {
-    vtkTypeInt64Array* ids = cells->GetConnectivityArray64();
-    const vtkIdType end = numCells > 0 ? cells->GetOffsetsArray64()->GetValue(numCells) : 0;
-    body(ids->GetPointer(0), std::min<vtkIdType>(end, ids->GetNumberOfValues()));
-  }
-  else
-  {
-    vtkTypeInt32Array* ids = cells->GetConnectivityArray32();
-    const vtkIdType end = numCells > 0 ? cells->GetOffsetsArray32()->GetValue(numCells) : 0;
-    body(ids->GetPointer(0), std::min<vtkIdType>(end, ids->GetNumberOfValues()));
-  }
+  WithRawArrays(cells,
+    [&](const auto* offsets, const auto* ids, vtkIdType numIds)
+    {
+      const vtkIdType end = numCells > 0 ? static_cast<vtkIdType>(offsets[numCells]) : 0;
+      body(ids, std::min(end, numIds));
+    });
 }
 
 /// Marks the points that the cells use in `used`, in parallel; false when an id is out
@@ -339,18 +352,7 @@ private:
       cellId += n;
       copied = true;
     };
-    if (polys->IsStorage64Bit())
-    {
-      copy(polys->GetOffsetsArray64()->GetPointer(0),
-        polys->GetConnectivityArray64()->GetPointer(0),
-        polys->GetConnectivityArray64()->GetNumberOfValues());
-    }
-    else
-    {
-      copy(polys->GetOffsetsArray32()->GetPointer(0),
-        polys->GetConnectivityArray32()->GetPointer(0),
-        polys->GetConnectivityArray32()->GetNumberOfValues());
-    }
+    WithRawArrays(polys, copy);
     return copied;
   }
 
