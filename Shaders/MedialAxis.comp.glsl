@@ -1,6 +1,7 @@
 #version 450 core
 // The medial axis pass (Filters/Core/Medial/MedialAxis.cxx MedialAxisCPU and SmallestCapCosine
-// in MedialAxis.h: the same arithmetic in double precision, `precise`, so that both
+// in MedialAxis.h: the same arithmetic in double precision, `precise`, with IEEE's
+// square roots and quotients (SqrtRN, DivRN: a GL's own may be less exact), so that both
 // backends mark the same voxels): per voxel, over the 2x2x2 cells whose marked corner it
 // is (largest |distance|, ties to the lower index), the smallest cosine of the cells'
 // apertures that count (not a fan's) and reach the threshold; 2 when none.
@@ -27,14 +28,32 @@ uniform int First;           // voxel index of invocation 0 (dispatches are spli
 uniform int Last;            // one past the last voxel of this dispatch
 // The buffers are bound by ranges (slabs of z): element offsets of their first element.
 uniform int DistanceBase, ClosestBase, CosineBase;
+//DF::CorrectlyRounded
 
-dvec3 u[8];
+// The cell's 8 closest-point directions, as the bits of their doubles: NVIDIA's GL
+// (driver 580, H100) kept a dvec3 array here in single precision (the dot products of
+// unit vectors came 1e-8 from the CPU's), and the caps' tolerance is 1e-9.
+uvec2 directionBits[24];
+
+dvec3 U(int k)
+{
+  return dvec3(packDouble2x32(directionBits[3 * k]), packDouble2x32(directionBits[3 * k + 1]),
+    packDouble2x32(directionBits[3 * k + 2]));
+}
+
+void SetU(int k, dvec3 v)
+{
+  directionBits[3 * k] = unpackDouble2x32(v.x);
+  directionBits[3 * k + 1] = unpackDouble2x32(v.y);
+  directionBits[3 * k + 2] = unpackDouble2x32(v.z);
+}
 
 bool HoldsAll(dvec3 centre, double cosRadius)
 {
   for (int k = 0; k < 8; ++k)
   {
-    precise double c = centre.x * u[k].x + centre.y * u[k].y + centre.z * u[k].z;
+    dvec3 uk = U(k);
+    precise double c = centre.x * uk.x + centre.y * uk.y + centre.z * uk.z;
     if (c < cosRadius - CapTolerance)
     {
       return false;
@@ -52,12 +71,12 @@ double Dot(dvec3 a, dvec3 b)
 double SmallestCapCosine()
 {
   int wi = 0, wj = 1;
-  double widest = Dot(u[0], u[1]);
+  double widest = Dot(U(0), U(1));
   for (int i = 0; i < 8; ++i)
   {
     for (int j = i + 1; j < 8; ++j)
     {
-      double c = Dot(u[i], u[j]);
+      double c = Dot(U(i), U(j));
       if (c < widest)
       {
         widest = c;
@@ -66,14 +85,14 @@ double SmallestCapCosine()
       }
     }
   }
-  precise dvec3 s = u[wi] + u[wj];
-  precise double sn = sqrt(Dot(s, s));
+  precise dvec3 s = U(wi) + U(wj);
+  precise double sn = SqrtRN(Dot(s, s));
   if (!(sn > 1e-12lf))
   {
     return 0.0lf;
   }
-  s = s / sn;
-  double pairCos = Dot(s, u[wi]);
+  s = dvec3(DivRN(s.x, sn), DivRN(s.y, sn), DivRN(s.z, sn));
+  double pairCos = Dot(s, U(wi));
   if (HoldsAll(s, pairCos))
   {
     return pairCos;
@@ -85,17 +104,17 @@ double SmallestCapCosine()
     {
       for (int k = j + 1; k < 8; ++k)
       {
-        precise dvec3 e = u[j] - u[i];
-        precise dvec3 f = u[k] - u[i];
+        precise dvec3 e = U(j) - U(i);
+        precise dvec3 f = U(k) - U(i);
         precise dvec3 n =
           dvec3(e.y * f.z - e.z * f.y, e.z * f.x - e.x * f.z, e.x * f.y - e.y * f.x);
-        precise double nn = sqrt(Dot(n, n));
+        precise double nn = SqrtRN(Dot(n, n));
         if (!(nn > 1e-12lf))
         {
           continue;
         }
-        n = n / nn;
-        double c = Dot(n, u[i]);
+        n = dvec3(DivRN(n.x, nn), DivRN(n.y, nn), DivRN(n.z, nn));
+        double c = Dot(n, U(i));
         if (c < 0.0lf)
         {
           c = -c;
@@ -158,8 +177,8 @@ void main()
     {
       squares += double(d[k]) * double(d[k]);
     }
-    precise double fan2 = squares / 8.0lf - HalfDiagonal * HalfDiagonal;
-    precise double depth = fan2 > 0.0lf ? sqrt(fan2) / HalfDiagonal : 0.0lf;
+    precise double fan2 = DivRN(squares, 8.0lf) - HalfDiagonal * HalfDiagonal;
+    precise double depth = fan2 > 0.0lf ? DivRN(SqrtRN(fan2), HalfDiagonal) : 0.0lf;
     if (!(depth > FanMargin))
     {
       continue;
@@ -172,9 +191,9 @@ void main()
       precise dvec3 x = Origin + dvec3(Lo + kijk) * Spacing;
       precise dvec3 v =
         dvec3(double(closest[c]), double(closest[c + 1]), double(closest[c + 2])) - x;
-      precise double norm = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+      precise double norm = SqrtRN(v.x * v.x + v.y * v.y + v.z * v.z);
       usable = norm > 0.0lf && !isinf(norm);
-      u[k] = v / norm;
+      SetU(k, dvec3(DivRN(v.x, norm), DivRN(v.y, norm), DivRN(v.z, norm)));
     }
     if (!usable)
     {
@@ -184,16 +203,16 @@ void main()
     double farthest = 1.0lf;
     for (int k = 1; k < 8; ++k)
     {
-      farthest = min(farthest, Dot(u[0], u[k]));
+      farthest = min(farthest, Dot(U(0), U(k)));
     }
     precise double doubled = 2.0lf * farthest * farthest - 1.0lf;
-    precise double farReach = sqrt(1.0lf - farthest * farthest) * depth;
+    precise double farReach = SqrtRN(1.0lf - farthest * farthest) * depth;
     if (farthest >= 0.0lf && (doubled > Threshold + 1e-6lf || farReach < FanMargin - 1e-6lf))
     {
       continue;
     }
     precise double capCos = SmallestCapCosine();
-    precise double reach = sqrt(1.0lf - capCos * capCos) * depth;
+    precise double reach = SqrtRN(1.0lf - capCos * capCos) * depth;
     precise double cs = 2.0lf * capCos * capCos - 1.0lf;
     if (reach > FanMargin && cs <= Threshold && cs < best)
     {

@@ -1,6 +1,7 @@
 #version 450 core
 // The side label of every sample (Filters/Core/Segment/SegmentRegions.cxx SideLabel, the
-// same arithmetic in double precision, `precise`): among the triangles at the sample's
+// same arithmetic in double precision, `precise`; a GL's sqrt may differ from IEEE's by an
+// ulp or two, NVIDIA's does, which can change a label only at a near tie): among the triangles at the sample's
 // closest feature, the one whose wedge is nearest in angle to the direction from the
 // closest point to the sample; the label is 2 patch + side (-1: no site, or a triangle
 // without a patch). Reads the nearest sites and closest points that the GPU scan and its

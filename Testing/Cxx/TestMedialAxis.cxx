@@ -353,10 +353,25 @@ void Check(const std::string& name,
       const Result cpu = Medial(field, e.Theta, inside, "cpu");
       if (cpu.Mask != r.Mask || cpu.Angle != r.Angle || r.Angle.size() != r.Mask.size())
       {
+        size_t differ = 0, first = 0;
+        for (size_t v = cpu.Mask.size(); v-- > 0;)
+        {
+          const bool same = v < r.Mask.size() && v < r.Angle.size() && v < cpu.Angle.size() &&
+            cpu.Mask[v] == r.Mask[v] && cpu.Angle[v] == r.Angle[v];
+          differ += same ? 0 : 1;
+          first = same ? first : v;
+        }
         std::printf("FAIL: %s theta %g: GPU and CPU mark different voxels or apertures from "
-                    "the same field\n",
+                    "the same field (%zu voxels; the first, %zu: medial %d / %d, angle %.9g / "
+                    "%.9g, GPU / CPU)\n",
           name.c_str(),
-          e.Theta);
+          e.Theta,
+          differ,
+          first,
+          first < r.Mask.size() ? int(r.Mask[first]) : -1,
+          int(cpu.Mask[first]),
+          first < r.Angle.size() ? r.Angle[first] : -1.0f,
+          first < cpu.Angle.size() ? cpu.Angle[first] : -1.0f);
         ++testsupport::Failures;
       }
     }

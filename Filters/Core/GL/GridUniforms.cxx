@@ -1,5 +1,6 @@
 #include "GL/GridUniforms.h"
 
+#include "CorrectlyRounded.h"   // Shaders/CorrectlyRounded.glsl, embedded
 #include "SampleGridUniforms.h" // Shaders/SampleGridUniforms.glsl, embedded
 #include "TriangleDistance.h"   // Shaders/TriangleDistance.glsl, embedded
 
@@ -24,7 +25,8 @@ std::string WithSharedCode(const char* source)
 {
   std::string text = source;
   const std::pair<const char*, const char*> shared[] = { { "//DF::SampleGrid", SampleGridUniforms },
-    { "//DF::TriangleDistance", TriangleDistance } };
+    { "//DF::TriangleDistance", TriangleDistance },
+    { "//DF::CorrectlyRounded", CorrectlyRounded } };
   for (const auto& [marker, code] : shared)
   {
     const size_t at = text.find(marker);

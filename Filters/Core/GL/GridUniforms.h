@@ -22,7 +22,9 @@ void SetGridUniforms(const GLFunctions& gl,
 
 /// `source` with its //DF::SampleGrid line replaced by the declarations, and its
 /// //DF::TriangleDistance line by Shaders/TriangleDistance.glsl (the exact point-to-
-/// triangle distance that the voxelizer and the proximity searches share).
+/// triangle distance that the voxelizer and the proximity searches share), and its
+/// //DF::CorrectlyRounded line by Shaders/CorrectlyRounded.glsl (IEEE's double sqrt and
+/// division, for the passes that must branch as the CPU does).
 std::string WithSharedCode(const char* source);
 
 } // namespace vtkdf
