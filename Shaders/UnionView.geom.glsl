@@ -18,7 +18,9 @@ layout(std430, binding = 1) readonly buffer ContainsBlock
 
 in vec3 Relative[];
 flat in int Instance[];
-out vec3 FragRelative;
+// The triangle's plane in the view's frame, n . v = w (the fragment shader intersects
+// each pixel's ray with it).
+flat out vec4 FragPlane;
 flat out float FragFar;
 
 uniform mat3 Views[6]; // rows: right, up, back (= -forward)
@@ -57,12 +59,14 @@ void main()
       return;
     }
   }
+  const vec3 normal = cross(v[1] - v[0], v[2] - v[0]);
+  const vec4 plane = vec4(normal, dot(normal, v[0]));
   for (int k = 0; k < 3; ++k)
   {
     // The standard perspective (z only clips: the depth is written by the fragment shader).
     gl_Position =
       vec4(v[k].x, v[k].y, (-v[k].z * (far + near) - 2.0 * far * near) / (far - near), -v[k].z);
-    FragRelative = Relative[k];
+    FragPlane = plane;
     FragFar = far;
     gl_Layer = 6 * query + gl_InvocationID;
     EmitVertex();

@@ -252,6 +252,7 @@ void UnionViews::SetViewUniforms()
   this->ZeroLocation = gl.GetUniformLocation(program, "ZeroPass");
   this->PieceLocation = gl.GetUniformLocation(program, "Piece");
   gl.Uniform1i(gl.GetUniformLocation(program, "PieceCount"), static_cast<GLint>(this->Pieces));
+  gl.Uniform1f(gl.GetUniformLocation(program, "Pixels"), static_cast<float>(this->N));
   gl.Viewport(0, 0, this->N, this->N);
   gl.Enable(GL_DEPTH_TEST);
   gl.Enable(GL_STENCIL_TEST);
