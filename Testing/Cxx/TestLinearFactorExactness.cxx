@@ -433,6 +433,20 @@ int main(int argc, char* argv[])
   const std::string data = argv[1];
   Options base;
   base.Backend = argv[2];
+  if (base.Backend == "gpu")
+  {
+    // Every check below needs the GPU's field; without a context there is none to check.
+    vtkNew<vtkLinearFactorDistanceField> probe;
+    probe->SetInputData(testsupport::Triangle());
+    probe->SetBackendToGPU();
+    probe->SetResolution(4);
+    probe->Update();
+    if (std::string(probe->GetLastBackend()) != "gpu")
+    {
+      std::printf("FAIL: the field could not run on the GPU (see the error above)\n");
+      return 1;
+    }
+  }
   struct Case
   {
     std::string Name;
