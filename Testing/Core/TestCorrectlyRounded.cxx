@@ -4,7 +4,7 @@
 // an ulp or two off (NVIDIA's sqrt). Also prints how far the driver's own double sqrt and
 // division are from IEEE's (a reading of the GL, not a check).
 #include "CoreTest.h"
-#include "GL/HeadlessGL.h"
+#include "GLCoreTest.h"
 
 #include <cmath>
 #include <cstdint>
@@ -181,14 +181,11 @@ bool Run(HeadlessGL& context,
 
 int main()
 {
-  std::string error;
-  HeadlessGL* gl = HeadlessGL::Get(error);
+  HeadlessGL* gl = coretest::GLContext();
   if (!gl)
   {
-    std::printf("FAIL: no OpenGL 4.5 context: %s\n", error.c_str());
     return 1;
   }
-  std::printf("renderer: %s (%s)\n", gl->Renderer().c_str(), gl->Platform().c_str());
   const std::vector<double> pairs = Operands();
   const size_t count = pairs.size() / 2;
   const char* seedNames[3] = { "the driver's", "spoilt", "nudged" };

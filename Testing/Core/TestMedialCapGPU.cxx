@@ -5,7 +5,7 @@
 // a plane (beside a cylinder's axis), caps of every size and directions anywhere.
 #include "CoreTest.h"
 #include "GL/GLFunctions.h"
-#include "GL/HeadlessGL.h"
+#include "GLCoreTest.h"
 #include "Medial/MedialAxis.h"
 #include "MedialAxis_comp.h"
 
@@ -30,7 +30,7 @@ layout(std430, binding = 3) readonly buffer DirectionSets
 };
 layout(std430, binding = 4) writeonly buffer ProbeResults
 {
-  double probe[]; // 10 per set
+  double probe[]; // 7 per set, then 3 readings per set
 };
 uniform int Sets;
 void main()
@@ -215,14 +215,12 @@ void CPUSteps(const double u[8][3], double out[Outputs])
 
 int main()
 {
-  std::string error;
-  HeadlessGL* context = HeadlessGL::Get(error);
+  HeadlessGL* context = coretest::GLContext();
   if (!context)
   {
-    std::printf("FAIL: no OpenGL 4.5 context: %s\n", error.c_str());
     return 1;
   }
-  std::printf("renderer: %s (%s)\n", context->Renderer().c_str(), context->Platform().c_str());
+  std::string error;
   const std::vector<double> sets = DirectionSets(20000);
   const int count = static_cast<int>(sets.size() / 24);
   std::vector<double> gpu(size_t(count) * (Outputs + 3));

@@ -17,6 +17,7 @@
 // - with the argument gpu, all of it with the union query on the GPU, certified (and the
 //   tori's image-only depth never below the exact one).
 #include "CoreTest.h"
+#include "GLCoreTest.h"
 #include "RaySpans.h"
 #include "Union/ConvexHull.h"
 #include "Union/PenetrationDepth.h"
@@ -543,11 +544,9 @@ int main(int argc, char* argv[])
 {
   if (argc > 1 && std::string(argv[1]) == "gpu")
   {
-    std::string error;
-    GPU = HeadlessGL::Get(error);
+    GPU = coretest::GLContext();
     if (!GPU)
     {
-      std::printf("FAIL: no OpenGL 4.5 context: %s\n", error.c_str());
       return 1;
     }
   }

@@ -20,6 +20,7 @@
 #include "Segment/SegmentedField.h"
 
 #include "CoreTest.h"
+#include "GLCoreTest.h"
 #include "ThreadFor.h"
 
 #include <cstring>
@@ -413,11 +414,9 @@ int main(int argc, char* argv[])
   vtkdf::HeadlessGL* gl = nullptr;
   if (argc > 1 && std::string(argv[1]) == "gpu")
   {
-    std::string error;
-    gl = vtkdf::HeadlessGL::Get(error);
+    gl = coretest::GLContext();
     if (!gl)
     {
-      std::printf("FAIL: no GL context: %s\n", error.c_str());
       return 1;
     }
   }

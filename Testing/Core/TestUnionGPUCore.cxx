@@ -13,6 +13,7 @@
 //   pieces;
 // - the six images: every pixel's distance is a boundary point's (at least the answer).
 #include "CoreTest.h"
+#include "GLCoreTest.h"
 #include "Union/ConvexHull.h"
 #include "Union/UnionClosestPointGPU.h"
 
@@ -386,14 +387,11 @@ void HardCases(HeadlessGL& gl)
 
 int main()
 {
-  std::string error;
-  HeadlessGL* gl = HeadlessGL::Get(error);
+  HeadlessGL* gl = coretest::GLContext();
   if (!gl)
   {
-    std::printf("FAIL: no OpenGL 4.5 context: %s\n", error.c_str());
     return 1;
   }
-  std::printf("renderer: %s (%s)\n", gl->Renderer().c_str(), gl->Platform().c_str());
   HardCases(*gl);
   RandomUnions(*gl);
   std::printf("%d queries (%d inside): passes %.2f on average, at most %d; U above the answer "

@@ -13,6 +13,7 @@
 // - with the argument gpu: WindingSignsGPU against WindingSigns (CheckGPU).
 #include "CoreTest.h"
 #include "GL/HeadlessGL.h"
+#include "GLCoreTest.h"
 #include "ThreadFor.h"
 #include "Winding/WindingCrossings.h"
 #include "Winding/WindingNumber.h"
@@ -574,11 +575,9 @@ int main(int argc, char* argv[])
 {
   if (argc > 1 && std::string(argv[1]) == "gpu")
   {
-    std::string error;
-    HeadlessGL* gl = HeadlessGL::Get(error);
+    HeadlessGL* gl = coretest::GLContext();
     if (!gl)
     {
-      std::printf("FAIL: no OpenGL 4.5 context: %s\n", error.c_str());
       return 1;
     }
     const Mesh sphere = Sphere(3); // 512 triangles
