@@ -17,6 +17,10 @@ void main()
   // looking down -z): the points s (x, y, -1), s > 0.
   const vec3 ray = vec3(2.0 * gl_FragCoord.xy / Pixels - 1.0, -1.0);
   const float facing = dot(FragPlane.xyz, ray);
-  const float along = facing != 0.0 ? FragPlane.w / facing : 0.0;
-  gl_FragDepth = clamp(max(along, 0.0) * length(ray) / FragFar - Bias, 0.0, 1.0);
+  if (facing == 0.0)
+  {
+    discard; // a triangle seen edge-on (or without area) has no distance to give
+  }
+  const float along = max(FragPlane.w / facing, 0.0);
+  gl_FragDepth = clamp(along * length(ray) / FragFar - Bias, 0.0, 1.0);
 }
