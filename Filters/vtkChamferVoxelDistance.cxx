@@ -18,6 +18,7 @@
 #include "Voxels/VoxelFields.h"
 #include "vtkDistanceFieldArrays.h"
 #include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldRun.h"
 
 #include <algorithm>
 #include <utility>
@@ -107,113 +108,47 @@ int vtkChamferVoxelDistance::RequestUpdateExtent(vtkInformation* request,
   return 1;
 }
 
-namespace
+vtkdf::RunStatus vtkChamferVoxelDistance::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run)
 {
-/// The bits of `from` (over the box `box`) on the voxels of `part`, a box within it.
-vtkdf::BitVolume ExtractBits(const vtkdf::BitVolume& from,
-  const vtkdf::IndexBox& box,
-  const vtkdf::IndexBox& part)
-{
-  vtkdf::BitVolume to(part.Size(0), part.Size(1), part.Size(2));
-  const int dx = part.Lo[0] - box.Lo[0], dy = part.Lo[1] - box.Lo[1], dz = part.Lo[2] - box.Lo[2];
-  vtkdf::SMPFor(int64_t(part.Size(0)) * part.Size(1),
-    256,
-    [&](int64_t begin, int64_t end)
-    {
-      for (int64_t lane = begin; lane < end; ++lane)
-      {
-        const int x = static_cast<int>(lane % part.Size(0));
-        const int y = static_cast<int>(lane / part.Size(0));
-        // A word at a time: the part's lane is the source lane from voxel dz on.
-        uint64_t* words = to.Lane(x, y);
-        for (int w = 0; w < to.WordsPerLane(); ++w)
-        {
-          words[w] = from.Bits64(x + dx, y + dy, dz + 64 * w);
-        }
-        words[to.WordsPerLane() - 1] &= to.LastWordMask();
-      }
-    });
-  return to;
-}
-
-/// Whether every voxel of `piece` holds a distance of at most `layers` in `distance`
-/// (laid out over `box`).
-bool AllReached(vtkIntArray* distance,
-  const vtkdf::IndexBox& box,
-  const vtkdf::IndexBox& piece,
-  int layers)
-{
-  const int32_t* values = distance->GetPointer(0);
-  const int64_t nx = box.Size(0), ny = box.Size(1);
-  for (int k = piece.Lo[2]; k <= piece.Hi[2]; ++k)
-  {
-    for (int j = piece.Lo[1]; j <= piece.Hi[1]; ++j)
-    {
-      const int32_t* row =
-        values + ((k - box.Lo[2]) * ny + (j - box.Lo[1])) * nx + (piece.Lo[0] - box.Lo[0]);
-      for (int i = 0; i < piece.Size(0); ++i)
-      {
-        if (row[i] > layers || row[i] < -layers)
-        {
-          return false;
-        }
-      }
-    }
-  }
-  return true;
-}
-} // namespace
-
-int vtkChamferVoxelDistance::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  vtkdf::StageTimer timer;
+  this->LastLayers = 0;
   vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
   // The whole mesh, gathered when a distributed run partitioned it (vtkDistanceFieldPartitions.h).
   if (!this->InputMesh(mesh))
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
   vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  output->Initialize();
-  this->LastLayers = 0;
   // The grid of the masks: the input image's, or the whole grid for a mesh.
   vtkdf::ChamferRequest request;
   vtkdf::SampleGrid& grid = request.Grid;
   vtkdf::IndexBox piece;
-  if (image)
+  if (image && !GetImageGrid(image, grid))
   {
-    if (!GetImageGrid(image, grid))
-    {
-      vtkWarningMacro("The input image is empty: the output is an empty image.");
-      return 1;
-    }
+    return run.Empty("The input image is empty: the output is an empty image.");
   }
-  else if (!mesh || mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0 ||
-    !GetOutputGrid(outInfo, grid, piece))
+  if (!image &&
+    (!mesh || mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0 ||
+      !GetOutputGrid(outInfo, grid, piece)))
   {
-    vtkWarningMacro("The input mesh is empty: the output is an empty image.");
-    return 1;
+    return run.Empty("The input mesh is empty: the output is an empty image.");
   }
-  // The piece asked for (all of it in one process), and the voxels that decide it.
+  // The piece asked for (all of it in one process).
   vtkdf::SampleGrid whole;
   if (!GetOutputGrid(outInfo, whole, piece) || !grid.Whole.Contains(piece))
   {
     piece = grid.Whole;
   }
-  const vtkdf::IndexBox needed = this->PieceVoxels(piece, grid.Whole);
   request.Metric = static_cast<vtkdf::ChamferMetric>(this->Metric);
   request.MaximumLayers = this->MaximumLayers;
   request.Signed = this->Signed;
-  vtkdf::HeadlessGL* gl = nullptr;
   vtkdf::MeshInput input;
-  if (!this->CheckMemory(this->EstimateBytes(grid.Whole), grid.Whole) || !this->ChooseBackend(gl) ||
-    (mesh && !this->ReadMesh(mesh, grid, input)))
+  if (!this->CheckMemory(this->EstimateBytes(grid.Whole), grid.Whole) ||
+    !run.ResolveBackend(this->Backend) || (mesh && !this->ReadMesh(mesh, grid, input)))
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
 
   // The zero set, and the solid when a sign is wanted: read from the image, or
@@ -225,146 +160,143 @@ int vtkChamferVoxelDistance::RequestData(vtkInformation*,
   {
     if (!this->ReadMasks(image, boundary, solid, haveSolid))
     {
-      return 0;
+      return vtkdf::RunStatus::Failed;
     }
-    timer.End("masks");
+    run.Timer.End("masks");
   }
   std::string error;
   vtkdf::ChamferReport report;
-  const vtkdf::Execution execution = this->MakeExecution(timer);
   // The voxels computed: all of the masks' grid, or those that decide the piece.
-  vtkdf::SampleGrid computed = grid;
+  vtkdf::IndexBox computed = grid.Whole;
   vtkSmartPointer<vtkIntArray> distance;
-  bool ok = true;
-  // Alone: a piece smaller than the masks' grid whose deciding voxels are fewer too.
-  const bool alone = !(piece == grid.Whole) && !(this->MaximumLayers > 0 && needed == grid.Whole);
-  if (!alone)
-  {
-    distance = vtkdf::NewArray<vtkIntArray>("ChamferDistance", grid.Whole.Count());
-    ok = image ? vtkdf::ComputeChamferField(boundary,
-                   haveSolid ? &solid : nullptr,
-                   request,
-                   gl,
-                   distance->GetPointer(0),
-                   execution,
-                   report,
-                   error)
-               : vtkdf::ComputeChamferField(std::move(input),
-                   request,
-                   gl,
-                   distance->GetPointer(0),
-                   boundary,
-                   solid,
-                   this->OutputMasks,
-                   execution,
-                   report,
-                   error);
-  }
-  else
-  {
-    // A piece of the grid: the masks of the whole, then the propagation over the voxels
-    // that decide the piece.
-    if (mesh &&
-      !vtkdf::VoxelizeMesh(std::move(input),
-        grid,
-        gl,
-        &boundary,
-        this->Signed ? &solid : nullptr,
-        execution,
-        report.Voxels,
-        error))
-    {
-      vtkErrorMacro(<< error);
-      return 0;
-    }
-    if (this->MaximumLayers > 0)
-    {
-      ok = this->PropagatePiece(boundary,
-        haveSolid ? &solid : nullptr,
-        needed,
-        gl,
-        request,
-        execution,
-        distance,
-        report,
-        error);
-      computed.Whole = needed;
-    }
-    else
-    {
-      // Without a limit, the piece's farthest voxel says how many voxels around it
-      // decide it: propagate `margin` layers over the piece and `margin` voxels around
-      // it; when every voxel of the piece is reached, each is exact (see PieceVoxels);
-      // else double the margin. A box over a quarter of the grid is not tried: the
-      // whole grid then (without a limit), so that the tries cost at most half of it.
-      for (int margin = 16;; margin *= 2)
-      {
-        vtkdf::ChamferRequest bounded = request;
-        computed.Whole = piece.Grown(margin, grid.Whole);
-        if (computed.Whole.Count() > grid.Whole.Count() / 4)
-        {
-          computed.Whole = grid.Whole;
-        }
-        bounded.MaximumLayers = computed.Whole == grid.Whole ? 0 : margin;
-        ok = this->PropagatePiece(boundary,
-          haveSolid ? &solid : nullptr,
-          computed.Whole,
-          gl,
-          bounded,
-          execution,
-          distance,
-          report,
-          error);
-        if (!ok || report.Result.Aborted || bounded.MaximumLayers == 0 ||
-          AllReached(distance, computed.Whole, piece, margin))
-        {
-          break;
-        }
-      }
-    }
-  }
+  const bool ok = this->Propagate(mesh ? &input : nullptr,
+    boundary,
+    solid,
+    haveSolid,
+    request,
+    piece,
+    run,
+    distance,
+    computed,
+    report,
+    error);
   if (!ok)
   {
-    vtkErrorMacro(<< error);
-    return 0;
+    return run.Fail(error);
   }
   if (report.Result.Aborted)
   {
-    return 1; // an empty output
+    return run.Empty();
   }
   if (!report.Voxels.Warning.empty())
   {
     vtkWarningMacro(<< report.Voxels.Warning);
   }
+  this->WriteOutput(grid,
+    piece,
+    computed,
+    distance,
+    boundary,
+    haveSolid ? &solid : nullptr,
+    vtkImageData::GetData(outputVector, 0));
+  this->LastLayers = report.Result.Layers;
+  run.Timer.End("arrays");
+  return vtkdf::RunStatus::Done;
+}
+
+bool vtkChamferVoxelDistance::Propagate(vtkdf::MeshInput* mesh,
+  vtkdf::BitVolume& boundary,
+  vtkdf::BitVolume& solid,
+  bool haveSolid,
+  const vtkdf::ChamferRequest& request,
+  const vtkdf::IndexBox& piece,
+  vtkdf::FilterRun& run,
+  vtkSmartPointer<vtkIntArray>& distance,
+  vtkdf::IndexBox& computed,
+  vtkdf::ChamferReport& report,
+  std::string& error)
+{
+  const vtkdf::IndexBox& whole = request.Grid.Whole;
+  const vtkdf::BitVolume* inside = haveSolid ? &solid : nullptr;
+  vtkdf::HeadlessGL* gl = run.Context();
+  const vtkdf::Execution execution = run.MakeExecution();
+  const vtkdf::ChamferOutput output = [&distance](const vtkdf::IndexBox& box)
+  {
+    distance = vtkdf::NewArray<vtkIntArray>("ChamferDistance", box.Count());
+    return distance->GetPointer(0);
+  };
+  computed = whole;
+  if (!this->ComputesAlone(piece, whole))
+  {
+    return mesh ? vtkdf::ComputeChamferField(std::move(*mesh),
+                    request,
+                    gl,
+                    output(whole),
+                    boundary,
+                    solid,
+                    this->OutputMasks,
+                    execution,
+                    report,
+                    error)
+                : vtkdf::ComputeChamferField(
+                    boundary, inside, request, gl, output(whole), execution, report, error);
+  }
+  // A piece of the grid: the masks of the whole, then the propagation over the voxels
+  // that decide the piece.
+  return (!mesh ||
+           vtkdf::VoxelizeMesh(std::move(*mesh),
+             request.Grid,
+             gl,
+             &boundary,
+             this->Signed ? &solid : nullptr,
+             execution,
+             report.Voxels,
+             error)) &&
+    vtkdf::ComputeChamferPiece(
+      boundary, inside, piece, request, gl, output, computed, execution, report, error);
+}
+
+bool vtkChamferVoxelDistance::ComputesAlone(const vtkdf::IndexBox& piece,
+  const vtkdf::IndexBox& grid) const
+{
+  // A piece smaller than the masks' grid whose deciding voxels are fewer too.
+  return !(piece == grid) && !(this->MaximumLayers > 0 && this->PieceVoxels(piece, grid) == grid);
+}
+
+void vtkChamferVoxelDistance::WriteOutput(const vtkdf::SampleGrid& grid,
+  const vtkdf::IndexBox& piece,
+  const vtkdf::IndexBox& computed,
+  vtkIntArray* distance,
+  const vtkdf::BitVolume& boundary,
+  const vtkdf::BitVolume* solid,
+  vtkImageData* output) const
+{
   SetOutputExtent(output, grid, piece);
-  if (computed.Whole == piece)
+  if (computed == piece)
   {
     output->GetPointData()->SetScalars(distance);
   }
   else
   {
-    output->GetPointData()->SetScalars(vtkdf::CropArray(distance.Get(), computed.Whole, piece));
+    output->GetPointData()->SetScalars(vtkdf::CropArray(distance, computed, piece));
   }
   vtkNew<vtkIntArray> unreachedValue;
   unreachedValue->SetName("UnreachedValue");
+  vtkdf::ChamferRequest request;
+  request.MaximumLayers = this->MaximumLayers;
   unreachedValue->InsertNextValue(request.Unreached());
   output->GetFieldData()->AddArray(unreachedValue);
   if (this->OutputMasks)
   {
-    for (int m = 0; m < (haveSolid ? 2 : 1); ++m)
+    for (int m = 0; m < (solid ? 2 : 1); ++m)
     {
       auto mask =
         vtkdf::NewArray<vtkUnsignedCharArray>(m == 0 ? "Boundary" : "Solid", piece.Count());
       vtkdf::BitsToBytes(
-        m == 0 ? boundary : solid, grid, piece, mask->GetPointer(0), vtkdf::SMPFor);
+        m == 0 ? boundary : *solid, grid, piece, mask->GetPointer(0), vtkdf::SMPFor);
       output->GetPointData()->AddArray(mask);
     }
   }
-  this->LastLayers = report.Result.Layers;
-  timer.End("arrays");
-  this->FinishTiming(gl, timer);
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 vtkdf::IndexBox vtkChamferVoxelDistance::PieceVoxels(const vtkdf::IndexBox& piece,
@@ -375,62 +307,6 @@ vtkdf::IndexBox vtkChamferVoxelDistance::PieceVoxels(const vtkdf::IndexBox& piec
   // by at most one, and the steps of a path can be reordered to move monotonically), so
   // MaximumLayers voxels around the piece decide it; without a limit, all of them.
   return this->MaximumLayers > 0 ? piece.Grown(this->MaximumLayers, grid) : grid;
-}
-
-bool vtkChamferVoxelDistance::PropagatePiece(const vtkdf::BitVolume& boundary,
-  const vtkdf::BitVolume* solid,
-  const vtkdf::IndexBox& needed,
-  vtkdf::HeadlessGL* gl,
-  const vtkdf::ChamferRequest& request,
-  const vtkdf::Execution& execution,
-  vtkSmartPointer<vtkIntArray>& distance,
-  vtkdf::ChamferReport& report,
-  std::string& error)
-{
-  if (!boundary.Any())
-  {
-    error = "The zero set is empty: no Boundary voxel is set, so no distance can be propagated.";
-    return false;
-  }
-  const vtkdf::BitVolume partBoundary = ExtractBits(boundary, request.Grid.Whole, needed);
-  vtkdf::BitVolume partSolid;
-  if (solid)
-  {
-    partSolid = ExtractBits(*solid, request.Grid.Whole, needed);
-  }
-  distance = vtkdf::NewArray<vtkIntArray>("ChamferDistance", needed.Count());
-  vtkdf::ChamferRequest part = request;
-  part.Grid.Whole = needed;
-  if (partBoundary.Any())
-  {
-    const vtkdf::VoxelReport voxels = report.Voxels;
-    const bool ok = vtkdf::ComputeChamferField(partBoundary,
-      solid ? &partSolid : nullptr,
-      part,
-      gl,
-      distance->GetPointer(0),
-      execution,
-      report,
-      error);
-    report.Voxels = voxels;
-    return ok;
-  }
-  // No zero-set voxel within MaximumLayers of the piece: none is reached.
-  const int32_t unreached = request.Unreached();
-  int32_t* values = distance->GetPointer(0);
-  const int nx = needed.Size(0), ny = needed.Size(1), nz = needed.Size(2);
-  for (int z = 0; z < nz; ++z)
-  {
-    for (int y = 0; y < ny; ++y)
-    {
-      for (int x = 0; x < nx; ++x)
-      {
-        const bool inside = request.Signed && solid && partSolid.Get(x, y, z);
-        *values++ = inside ? -unreached : unreached;
-      }
-    }
-  }
-  return true;
 }
 
 double vtkChamferVoxelDistance::EstimateBytes(const vtkdf::IndexBox& voxels) const

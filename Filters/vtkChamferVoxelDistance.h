@@ -48,9 +48,10 @@ class HeadlessGL;
 struct ChamferRequest;
 struct ChamferReport;
 struct Execution;
+struct MeshInput;
 }
 #endif
-#include "vtkSmartPointer.h" // For PropagatePiece
+#include "vtkSmartPointer.h" // For Propagate
 
 class vtkIntArray;
 #include "vtkDistanceFieldsModule.h" // For export macro
@@ -103,24 +104,45 @@ protected:
   ~vtkChamferVoxelDistance() override = default;
 
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+#ifndef __VTK_WRAP__
+  vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) override;
+#endif
   bool CheckProperties() override;
 #ifndef __VTK_WRAP__
   /// The bytes a run on these voxels needs (lanes, bit planes of the layers, the field).
   double EstimateBytes(const vtkdf::IndexBox& voxels) const;
   /// The voxels of `grid` whose masks decide the voxels of `piece`.
   vtkdf::IndexBox PieceVoxels(const vtkdf::IndexBox& piece, const vtkdf::IndexBox& grid) const;
-  /// The propagation over `needed`, a box within the masks' grid (request.Grid), into
-  /// `distance` (needed's voxels); false with `error` when the zero set is empty.
-  bool PropagatePiece(const vtkdf::BitVolume& boundary,
-    const vtkdf::BitVolume* solid,
-    const vtkdf::IndexBox& needed,
-    vtkdf::HeadlessGL* gl,
+  /// The chamfer field of the masks' grid, or of the voxels that decide `piece` when it
+  /// is computed alone (ComputesAlone), into `distance`, which covers `computed`: from
+  /// the masks `boundary` and `solid` (unsigned without `haveSolid`) of an image input
+  /// (`mesh` null), or from the mesh voxelized into them. False with `error`.
+  bool Propagate(vtkdf::MeshInput* mesh,
+    vtkdf::BitVolume& boundary,
+    vtkdf::BitVolume& solid,
+    bool haveSolid,
     const vtkdf::ChamferRequest& request,
-    const vtkdf::Execution& execution,
+    const vtkdf::IndexBox& piece,
+    vtkdf::FilterRun& run,
     vtkSmartPointer<vtkIntArray>& distance,
+    vtkdf::IndexBox& computed,
     vtkdf::ChamferReport& report,
     std::string& error);
+  /// Whether `piece` is computed alone (ComputeChamferPiece) rather than cut from the
+  /// whole grid's field: a piece smaller than the masks' grid whose deciding voxels are
+  /// fewer too.
+  bool ComputesAlone(const vtkdf::IndexBox& piece, const vtkdf::IndexBox& grid) const;
+  /// The output: `piece` of `distance` (computed over `computed`), the UnreachedValue,
+  /// and the masks when OutputMasks is on (`solid` may be null).
+  void WriteOutput(const vtkdf::SampleGrid& grid,
+    const vtkdf::IndexBox& piece,
+    const vtkdf::IndexBox& computed,
+    vtkIntArray* distance,
+    const vtkdf::BitVolume& boundary,
+    const vtkdf::BitVolume* solid,
+    vtkImageData* output) const;
   /// The Boundary mask (required) and Solid mask (optional: `haveSolid`) of an image
   /// input as lanes; false with the error reported.
   bool ReadMasks(vtkImageData* image,

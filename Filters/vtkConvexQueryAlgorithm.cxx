@@ -11,6 +11,7 @@
 #include "vtkConvexPieces.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldPartitions.h"
+#include "vtkDistanceFieldRun.h"
 
 int vtkConvexQueryAlgorithm::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -18,17 +19,6 @@ int vtkConvexQueryAlgorithm::FillInputPortInformation(int, vtkInformation* info)
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
   return 1;
-}
-
-vtkTypeBool vtkConvexQueryAlgorithm::ProcessRequest(vtkInformation* request,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  return vtkdf::ProcessRequestOrEmpty(
-    this,
-    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()),
-    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); },
-    [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
 int vtkConvexQueryAlgorithm::RequestInformation(vtkInformation*,
@@ -48,17 +38,13 @@ bool vtkConvexQueryAlgorithm::CheckProperties()
   return true;
 }
 
-bool vtkConvexQueryAlgorithm::ChooseBackend(vtkdf::HeadlessGL*& gl)
+bool vtkConvexQueryAlgorithm::ChooseBackend(vtkdf::FilterRun& run)
 {
-  std::string error;
-  if (!vtkdf::ChooseContext(this->Backend, gl, error))
+  if (!run.ResolveBackend(this->Backend))
   {
-    vtkErrorMacro(<< error << ".");
     return false;
   }
-  this->LastBackend = gl ? BACKEND_GPU : BACKEND_CPU;
-  this->LastRenderer = gl ? gl->Renderer() : "cpu";
-  this->LastPlatform = gl ? gl->Platform() : "cpu";
+  this->LastBackend = run.Context() ? BACKEND_GPU : BACKEND_CPU;
   return true;
 }
 
@@ -139,8 +125,6 @@ void vtkConvexQueryAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ViewResolution: " << this->ViewResolution << "\n";
   os << indent << "Certify: " << this->Certify << "\n";
   os << indent << "LastBackend: " << this->LastBackend << "\n";
-  os << indent << "LastRenderer: " << this->LastRenderer << "\n";
-  os << indent << "LastPlatform: " << this->LastPlatform << "\n";
   os << indent << "LastPasses: " << this->LastPasses << "\n";
   os << indent << "LastFacesVisited: " << this->LastFacesVisited << "\n";
 }

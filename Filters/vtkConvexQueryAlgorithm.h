@@ -22,8 +22,8 @@
 #ifndef vtkConvexQueryAlgorithm_h
 #define vtkConvexQueryAlgorithm_h
 
+#include "vtkDistanceFieldPolyDataAlgorithm.h"
 #include "vtkDistanceFieldsModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
 
 #include <string> // For std::string
 
@@ -35,10 +35,10 @@ struct ConvexPieceInput;
 }
 #endif
 
-class VTKDISTANCEFIELDS_EXPORT vtkConvexQueryAlgorithm : public vtkPolyDataAlgorithm
+class VTKDISTANCEFIELDS_EXPORT vtkConvexQueryAlgorithm : public vtkDistanceFieldPolyDataAlgorithm
 {
 public:
-  vtkTypeMacro(vtkConvexQueryAlgorithm, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkConvexQueryAlgorithm, vtkDistanceFieldPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -91,21 +91,12 @@ public:
   vtkBooleanMacro(Certify, bool);
   ///@}
 
-  /// The backend the last run used (BACKEND_GPU or BACKEND_CPU), the GPU's renderer, its
-  /// rendering rounds (summed over the queries), and the faces the exact search visited.
+  /// The backend the last run used (BACKEND_GPU or BACKEND_CPU; its renderer and
+  /// platform: GetLastRenderer, GetLastPlatform), its rendering rounds (summed over the
+  /// queries), and the faces the exact search visited.
   vtkGetMacro(LastBackend, int);
-  const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
-  /// How the last GPU run got its context ("EGL device", "EGL surfaceless", "OSMesa"),
-  /// or "cpu".
-  const char* GetLastPlatform() const { return this->LastPlatform.c_str(); }
   vtkGetMacro(LastPasses, vtkTypeInt64);
   vtkGetMacro(LastFacesVisited, vtkTypeInt64);
-
-  /// Runs the request; a failure (a request returning 0, or an exception such as
-  /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
-  vtkTypeBool ProcessRequest(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
 
 protected:
   vtkConvexQueryAlgorithm() = default;
@@ -123,10 +114,9 @@ protected:
   virtual bool CheckProperties();
 
 #ifndef __VTK_WRAP__
-  /// The GL context to run on (null: the CPU), from Backend; false, with the error
-  /// reported, when the GPU is asked for and there is none. Sets LastBackend and
-  /// LastRenderer.
-  bool ChooseBackend(vtkdf::HeadlessGL*& gl);
+  /// Resolves Backend for `run` (FilterRun::ResolveBackend) and sets LastBackend; false,
+  /// with the error reported, when the GPU is asked for and there is none.
+  bool ChooseBackend(vtkdf::FilterRun& run);
 
   /// The pieces of `input` on `port` (checked, or replaced by their hulls with a
   /// warning); false with the error reported. `solid` ("P", "Q") names the input in the
@@ -144,8 +134,6 @@ protected:
   int ViewResolution = 256;
   bool Certify = true;
   int LastBackend = BACKEND_CPU;
-  std::string LastRenderer;
-  std::string LastPlatform;
   vtkTypeInt64 LastPasses = 0;
   vtkTypeInt64 LastFacesVisited = 0;
 

@@ -20,6 +20,7 @@
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldMeshInput.h"
 #include "vtkDistanceFieldPartitions.h"
+#include "vtkDistanceFieldRun.h"
 
 #include <vtksys/SystemInformation.hxx>
 
@@ -187,17 +188,6 @@ bool vtkDistanceFieldAlgorithm::ReadMesh(vtkPolyData* input,
     vtkWarningMacro(<< warning);
   }
   return true;
-}
-
-vtkTypeBool vtkDistanceFieldAlgorithm::ProcessRequest(vtkInformation* request,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  return vtkdf::ProcessRequestOrEmpty(
-    this,
-    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()),
-    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); },
-    [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
 bool vtkDistanceFieldAlgorithm::CheckEnum(const char* name,
@@ -410,44 +400,29 @@ int vtkDistanceFieldAlgorithm::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
-vtkdf::Execution vtkDistanceFieldAlgorithm::MakeExecution(vtkdf::StageTimer& timer,
-  double from,
-  double to)
+vtkdf::RunStatus vtkDistanceFieldAlgorithm::OpenMeshRun(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run,
+  vtkPolyData*& mesh,
+  vtkdf::SampleGrid& grid,
+  vtkdf::IndexBox& extent)
 {
-  vtkdf::Execution execution;
-  execution.For = vtkdf::SMPFor;
-  execution.Stages = &timer;
-  execution.Progress = [this, from, to](double fraction)
+  mesh = vtkPolyData::GetData(inputVector[0], 0);
+  // The whole mesh, gathered when a distributed run partitioned it (vtkDistanceFieldPartitions.h).
+  if (!this->InputMesh(mesh))
   {
-    this->UpdateProgress(from + (to - from) * fraction);
-    return !this->GetAbortExecute();
-  };
-  return execution;
-}
-
-void vtkDistanceFieldAlgorithm::FinishTiming(vtkdf::HeadlessGL* gl, const vtkdf::StageTimer& timer)
-{
-  this->LastTime = timer.Elapsed();
-  std::ostringstream text;
-  for (const auto& stage : timer.Times())
-  {
-    text << (text.tellp() > 0 ? "," : "") << stage.first << ":" << stage.second;
+    return vtkdf::RunStatus::Failed;
   }
-  this->LastStageTimes = text.str();
-  this->LastBackend = gl ? "gpu" : "cpu";
-  this->LastRenderer = gl ? gl->Renderer() : "cpu";
-  this->LastPlatform = gl ? gl->Platform() : "cpu";
-}
-
-bool vtkDistanceFieldAlgorithm::ChooseBackend(vtkdf::HeadlessGL*& gl)
-{
-  std::string error;
-  if (!vtkdf::ChooseContext(this->Backend, gl, error))
+  if (!mesh || mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0)
   {
-    vtkErrorMacro(<< error);
-    return false;
+    return run.Empty("The input mesh is empty: the output is an empty image.");
   }
-  return true;
+  // The grid (RequestInformation) and the part of it requested (streaming).
+  if (!GetOutputGrid(outputVector->GetInformationObject(0), grid, extent))
+  {
+    return run.Empty("The requested extent is empty: the output is an empty image.");
+  }
+  return vtkdf::RunStatus::Done;
 }
 
 bool vtkDistanceFieldAlgorithm::CheckMemory(double bytes, const vtkdf::IndexBox& grid)
@@ -687,9 +662,4 @@ void vtkDistanceFieldAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
      << " " << this->GridDimensions[2] << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit
      << (this->MemoryLimit > 0 ? "" : " (half of physical memory)") << "\n";
-  os << indent << "LastBackend: " << this->LastBackend << "\n";
-  os << indent << "LastRenderer: " << this->LastRenderer << "\n";
-  os << indent << "LastPlatform: " << this->LastPlatform << "\n";
-  os << indent << "LastTime: " << this->LastTime << "\n";
-  os << indent << "LastStageTimes: " << this->LastStageTimes << "\n";
 }

@@ -4,11 +4,12 @@
  *
  * Holds what every such filter shares: the output grid (the default grid of
  * docs/grid.md from Resolution and Padding, or an explicit origin, spacing and
- * dimensions), the Backend (Auto, GPU, CPU), the memory limit checked before
- * allocating, and what the last run used (backend, GL renderer, time). Subclasses are
- * adapters: they turn the input into the cores' types (ReadMesh), resolve the Backend
- * once (ChooseBackend), hand their arrays to one core entry point with the progress and
- * abort hooks of this filter (MakeExecution), and report.
+ * dimensions), the Backend (Auto, GPU, CPU) and the memory limit checked before
+ * allocating; what the last run used comes from vtkDistanceFieldImageAlgorithm, which
+ * runs each request. Subclasses are adapters: their Execute takes the whole mesh and the
+ * grid (OpenMeshRun), turns the input into the cores' types (ReadMesh), resolves the
+ * Backend once (FilterRun::ResolveBackend), hands their arrays to one core entry point
+ * with the run's progress and abort hooks (FilterRun::MakeExecution), and reports.
  *
  * The output honours UPDATE_EXTENT: a requested sub-extent is computed alone.
  *
@@ -20,9 +21,9 @@
 #ifndef vtkDistanceFieldAlgorithm_h
 #define vtkDistanceFieldAlgorithm_h
 
+#include "vtkDistanceFieldImageAlgorithm.h"
 #include "vtkDistanceFieldsModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
-#include "vtkSmartPointer.h" // For the whole mesh
+#include "vtkSmartPointer.h"         // For the whole mesh
 
 #include <initializer_list> // For enum names
 #include <string>           // For the renderer string
@@ -32,9 +33,6 @@ class vtkImageData;
 #ifndef __VTK_WRAP__
 namespace vtkdf
 {
-class HeadlessGL;
-class StageTimer;
-struct Execution;
 struct IndexBox;
 struct MeshInput;
 struct SampleGrid;
@@ -42,10 +40,10 @@ struct SampleGrid;
 #endif
 class vtkPolyData;
 
-class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldAlgorithm : public vtkImageAlgorithm
+class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldAlgorithm : public vtkDistanceFieldImageAlgorithm
 {
 public:
-  vtkTypeMacro(vtkDistanceFieldAlgorithm, vtkImageAlgorithm);
+  vtkTypeMacro(vtkDistanceFieldAlgorithm, vtkDistanceFieldImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// Where a filter runs (the values of vtkdf::BackendValue, vtkDistanceFieldExecution.h).
@@ -95,19 +93,6 @@ public:
   vtkGetMacro(MemoryLimit, double);
   ///@}
 
-  /// What the last run used: "gpu" or "cpu".
-  const char* GetLastBackend() const { return this->LastBackend.c_str(); }
-  /// GL_RENDERER of the last GPU run, or "cpu".
-  const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
-  /// How the last GPU run got its context ("EGL device", "EGL surfaceless", "OSMesa"),
-  /// or "cpu".
-  const char* GetLastPlatform() const { return this->LastPlatform.c_str(); }
-  /// Seconds the last run spent computing (input conversion and arrays included, no I/O).
-  vtkGetMacro(LastTime, double);
-  /// Seconds per stage of the last run, as "name:seconds,name:seconds,..." (the stages
-  /// are the filter's own, e.g. sites, culling, scan, finalize).
-  const char* GetLastStageTimes() const { return this->LastStageTimes.c_str(); }
-
   /// The default grid for these bounds (xmin, xmax, ...), as origin, spacing, dimensions.
   static void ComputeDefaultGrid(const double bounds[6],
     int resolution,
@@ -115,12 +100,6 @@ public:
     double origin[3],
     double spacing[3],
     int dimensions[3]);
-
-  /// Runs the request; a failure (a request returning 0, or an exception such as
-  /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
-  vtkTypeBool ProcessRequest(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
 
 protected:
   vtkDistanceFieldAlgorithm();
@@ -162,23 +141,22 @@ protected:
   virtual std::string PointCloudRefusal();
 
 #ifndef __VTK_WRAP__
-  /// The GL context to run on (null: the CPU), from Backend; false, with the error
-  /// reported, when the GPU is asked for and there is none.
-  bool ChooseBackend(vtkdf::HeadlessGL*& gl);
+  /// The opening of a mesh filter's Execute: `mesh`, the whole mesh of input port 0
+  /// (gathered in a distributed run, InputMesh), and the output grid with the extent
+  /// requested of it. Done when there is something to compute; Empty, with a warning,
+  /// for an empty mesh or extent; Failed with the error reported.
+  vtkdf::RunStatus OpenMeshRun(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run,
+    vtkPolyData*& mesh,
+    vtkdf::SampleGrid& grid,
+    vtkdf::IndexBox& extent);
 
   /// `input` as the cores take it (MeshInput, world coordinates, with its bounds) for
   /// fields on `grid`; cells it cannot use are reported in a warning. False, with the
   /// error reported, on invalid input.
   bool ReadMesh(vtkPolyData* input, const vtkdf::SampleGrid& grid, vtkdf::MeshInput& mesh);
 
-  /// The hooks a core runs with: vtkSMPTools, this filter's progress (the core's fraction
-  /// mapped onto [from, to]) and abort, and `timer` for the stage times.
-  vtkdf::Execution MakeExecution(vtkdf::StageTimer& timer, double from = 0, double to = 1);
-
-  /// The end of a complete run: LastTime and LastStageTimes from `timer` (the stage
-  /// times as "name:seconds", comma separated), LastBackend and LastRenderer from `gl`
-  /// (null for the CPU).
-  void FinishTiming(vtkdf::HeadlessGL* gl, const vtkdf::StageTimer& timer);
 #endif
 
   /// Filters that also take a vtkImageData (a field or masks on a grid) set this; the
@@ -224,12 +202,6 @@ protected:
   double GridSpacing[3] = { 1, 1, 1 };
   int GridDimensions[3] = { 64, 64, 64 };
   double MemoryLimit = 0;
-
-  std::string LastBackend = "none";
-  std::string LastRenderer = "none";
-  std::string LastPlatform = "none";
-  double LastTime = 0;
-  std::string LastStageTimes;
 
 private:
   // MeshBounds' last answer, and what it was for.

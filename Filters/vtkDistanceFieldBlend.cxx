@@ -18,6 +18,7 @@
 #include "vtkDistanceFieldArrays.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldPartitions.h"
+#include "vtkDistanceFieldRun.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,7 +29,6 @@ vtkStandardNewMacro(vtkDistanceFieldBlend);
 
 namespace
 {
-/// The whole of field data array `name` as doubles; empty when absent.
 /// `array` itself when it is a vtkFloatArray (`type` VTK_FLOAT) or a vtkIntArray (VTK_INT),
 /// else a copy of its values as one (e.g. read from a file); read only.
 vtkSmartPointer<vtkDataArray> OfType(vtkDataArray* array, int type)
@@ -52,6 +52,7 @@ bool Distributed()
   return controller && controller->GetNumberOfProcesses() > 1;
 }
 
+/// The whole of field data array `name` as doubles; empty when absent.
 std::vector<double> FieldValues(vtkImageData* image, const char* name)
 {
   std::vector<double> values;
@@ -61,6 +62,40 @@ std::vector<double> FieldValues(vtkImageData* image, const char* name)
     values.push_back(a->GetVariantValue(i).ToDouble());
   }
   return values;
+}
+
+/// The samples of `box` (within the image's extent) of point array `name`, as a
+/// vtkFloatArray (`type` VTK_FLOAT) or a vtkIntArray (VTK_INT).
+vtkSmartPointer<vtkDataArray> PieceSamples(vtkImageData* image,
+  const char* name,
+  int type,
+  const vtkdf::IndexBox& box)
+{
+  int e[6];
+  image->GetExtent(e);
+  const vtkdf::IndexBox given{ { { e[0], e[2], e[4] } }, { { e[1], e[3], e[5] } } };
+  const vtkSmartPointer<vtkDataArray> copy = OfType(image->GetPointData()->GetArray(name), type);
+  if (given == box)
+  {
+    return copy;
+  }
+  vtkSmartPointer<vtkDataArray> cropped;
+  if (type == VTK_FLOAT)
+  {
+    cropped = vtkdf::CropArray(vtkFloatArray::SafeDownCast(copy), given, box).GetPointer();
+  }
+  else
+  {
+    cropped = vtkdf::CropArray(vtkIntArray::SafeDownCast(copy), given, box).GetPointer();
+  }
+  return cropped;
+}
+
+/// The 32-bit values of a vtkIntArray.
+const int32_t* Ints(vtkDataArray* array)
+{
+  static_assert(sizeof(int) == sizeof(int32_t), "int is 32 bits");
+  return reinterpret_cast<const int32_t*>(vtkIntArray::SafeDownCast(array)->GetPointer(0));
 }
 
 /// Whether `image` has what a segmented field has; if not, `error` names what is missing.
@@ -143,17 +178,6 @@ int vtkDistanceFieldBlend::RequestUpdateExtent(vtkInformation*,
   return 1;
 }
 
-vtkTypeBool vtkDistanceFieldBlend::ProcessRequest(vtkInformation* request,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  return vtkdf::ProcessRequestOrEmpty(
-    this,
-    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()),
-    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); },
-    [this](unsigned long code) { this->SetErrorCode(code); });
-}
-
 bool vtkDistanceFieldBlend::CheckInputs(vtkImageData* first, vtkImageData* second)
 {
   if (!(this->T >= 0 && this->T <= 1))
@@ -204,14 +228,12 @@ bool vtkDistanceFieldBlend::CheckInputs(vtkImageData* first, vtkImageData* secon
   return true;
 }
 
-int vtkDistanceFieldBlend::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+vtkdf::RunStatus vtkDistanceFieldBlend::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run)
 {
   vtkImageData* first = vtkImageData::GetData(inputVector[0], 0);
   vtkImageData* second = vtkImageData::GetData(inputVector[1], 0);
-  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  output->Initialize();
   // The piece asked for, within the whole grid.
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int whole[6], piece[6];
@@ -238,113 +260,105 @@ int vtkDistanceFieldBlend::RequestData(vtkInformation*,
     {
       if (!vtkdf::GatherWholeImage(inputs[f], whole, { "RegionIndex" }, regions[f], error, true))
       {
-        vtkErrorMacro(
-          "The fields' regions could not be shared between the ranks: " << error << ".");
-        return 0;
+        return run.Fail(
+          "The fields' regions could not be shared between the ranks: " + error + ".");
       }
     }
   }
   if (!inputsOk)
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
   if (piece[1] < piece[0] || piece[3] < piece[2] || piece[5] < piece[4])
   {
-    return 1; // an empty piece
+    return run.Empty(); // an empty piece
   }
-  int extent[2][6];
-  first->GetExtent(extent[0]);
-  second->GetExtent(extent[1]);
   const vtkdf::IndexBox box =
     vtkdf::IndexBox{ { { piece[0], piece[2], piece[4] } }, { { piece[1], piece[3], piece[5] } } };
   for (int f = 0; f < 2; ++f)
   {
-    const vtkdf::IndexBox given{ { { extent[f][0], extent[f][2], extent[f][4] } },
-      { { extent[f][1], extent[f][3], extent[f][5] } } };
+    int e[6];
+    (f == 0 ? first : second)->GetExtent(e);
+    const vtkdf::IndexBox given{ { { e[0], e[2], e[4] } }, { { e[1], e[3], e[5] } } };
     if (!given.Contains(box))
     {
-      vtkErrorMacro("The " << (f == 0 ? "first" : "second") << " field covers less than the "
-                           << "piece asked for.");
-      return 0;
+      return run.Fail(std::string("The ") + (f == 0 ? "first" : "second") +
+        " field covers less than the piece asked for.");
     }
   }
-  // The piece's samples, as plain float and int arrays.
-  auto samples = [&box](vtkImageData* image, const char* name, int type)
-  {
-    int e[6];
-    image->GetExtent(e);
-    const vtkdf::IndexBox given{ { { e[0], e[2], e[4] } }, { { e[1], e[3], e[5] } } };
-    const vtkSmartPointer<vtkDataArray> copy = OfType(image->GetPointData()->GetArray(name), type);
-    if (given == box)
-    {
-      return copy;
-    }
-    vtkSmartPointer<vtkDataArray> cropped;
-    if (type == VTK_FLOAT)
-    {
-      cropped = vtkdf::CropArray(vtkFloatArray::SafeDownCast(copy), given, box).GetPointer();
-    }
-    else
-    {
-      cropped = vtkdf::CropArray(vtkIntArray::SafeDownCast(copy), given, box).GetPointer();
-    }
-    return cropped;
-  };
-  const vtkSmartPointer<vtkDataArray> daHold = samples(first, "Distance", VTK_FLOAT);
-  const vtkSmartPointer<vtkDataArray> dbHold = samples(second, "Distance", VTK_FLOAT);
-  const vtkSmartPointer<vtkDataArray> raHold = samples(first, "RegionIndex", VTK_INT);
-  const vtkSmartPointer<vtkDataArray> rbHold = samples(second, "RegionIndex", VTK_INT);
-  vtkFloatArray* da = vtkFloatArray::SafeDownCast(daHold);
-  vtkFloatArray* db = vtkFloatArray::SafeDownCast(dbHold);
   // The whole grid's regions: the inputs themselves in one process.
-  vtkSmartPointer<vtkDataArray> wholeRegions[2];
+  vtkImageData* wholeRegions[2] = { regions[0] ? regions[0].Get() : first,
+    regions[1] ? regions[1].Get() : second };
+  if (!this->Blend(first, second, wholeRegions, whole, box, run))
+  {
+    return run.Empty(); // aborted
+  }
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  output->SetExtent(piece);
+  output->SetOrigin(first->GetOrigin());
+  output->SetSpacing(first->GetSpacing());
+  output->GetFieldData()->ShallowCopy(first->GetFieldData());
+  return vtkdf::RunStatus::Done;
+}
+
+bool vtkDistanceFieldBlend::Blend(vtkImageData* first,
+  vtkImageData* second,
+  vtkImageData* const wholeRegions[2],
+  const int whole[6],
+  const vtkdf::IndexBox& box,
+  vtkdf::FilterRun& run)
+{
+  // The piece's samples, as plain float and int arrays.
+  const vtkSmartPointer<vtkDataArray> da = PieceSamples(first, "Distance", VTK_FLOAT, box);
+  const vtkSmartPointer<vtkDataArray> db = PieceSamples(second, "Distance", VTK_FLOAT, box);
+  const vtkSmartPointer<vtkDataArray> ra = PieceSamples(first, "RegionIndex", VTK_INT, box);
+  const vtkSmartPointer<vtkDataArray> rb = PieceSamples(second, "RegionIndex", VTK_INT, box);
+  vtkSmartPointer<vtkDataArray> regions[2];
   for (int f = 0; f < 2; ++f)
   {
-    vtkImageData* image = regions[f] ? regions[f].Get() : (f == 0 ? first : second);
-    wholeRegions[f] = OfType(image->GetPointData()->GetArray("RegionIndex"), VTK_INT);
+    regions[f] = OfType(wholeRegions[f]->GetPointData()->GetArray("RegionIndex"), VTK_INT);
   }
   const vtkIdType n = static_cast<vtkIdType>(box.Count());
   auto distance = vtkdf::NewArray<vtkFloatArray>("Distance", n);
   auto segmented = vtkdf::NewArray<vtkFloatArray>("SegmentedDistance", n);
   auto region = vtkdf::NewArray<vtkIntArray>("RegionIndex", n);
-  static_assert(sizeof(int) == sizeof(int32_t), "int is 32 bits");
-  auto ints = [](vtkDataArray* array)
-  { return reinterpret_cast<const int32_t*>(vtkIntArray::SafeDownCast(array)->GetPointer(0)); };
   vtkdf::SegmentedSamples a, b;
-  a.Distance = da->GetPointer(0);
-  a.Region = ints(raHold);
-  b.Distance = db->GetPointer(0);
-  b.Region = ints(rbHold);
+  a.Distance = vtkFloatArray::SafeDownCast(da)->GetPointer(0);
+  a.Region = Ints(ra);
+  b.Distance = vtkFloatArray::SafeDownCast(db)->GetPointer(0);
+  b.Region = Ints(rb);
   vtkdf::BlendGrid grid;
   vtkdf::BlendBox blendBox;
   for (int c = 0; c < 3; ++c)
   {
     grid.Dims[c] = whole[2 * c + 1] - whole[2 * c] + 1;
     grid.Spacing[c] = std::abs(first->GetSpacing()[c]);
-    blendBox.Lo[c] = piece[2 * c] - whole[2 * c];
-    blendBox.Hi[c] = piece[2 * c + 1] - whole[2 * c];
+    blendBox.Lo[c] = box.Lo[c] - whole[2 * c];
+    blendBox.Hi[c] = box.Hi[c] - whole[2 * c];
   }
-  vtkdf::BlendSegmentedFields(a,
-    b,
-    ints(wholeRegions[0]),
-    ints(wholeRegions[1]),
-    blendBox,
-    this->T,
-    grid,
-    FieldValues(first, "Delta")[0],
-    FieldValues(first, "RegionOffset")[0],
-    distance->GetPointer(0),
-    reinterpret_cast<int32_t*>(region->GetPointer(0)),
-    segmented->GetPointer(0),
-    vtkdf::SMPFor);
-  output->SetExtent(piece);
-  output->SetOrigin(first->GetOrigin());
-  output->SetSpacing(first->GetSpacing());
+  run.Timer.End("read");
+  if (!vtkdf::BlendSegmentedFields(a,
+        b,
+        Ints(regions[0]),
+        Ints(regions[1]),
+        blendBox,
+        this->T,
+        grid,
+        FieldValues(first, "Delta")[0],
+        FieldValues(first, "RegionOffset")[0],
+        distance->GetPointer(0),
+        reinterpret_cast<int32_t*>(region->GetPointer(0)),
+        segmented->GetPointer(0),
+        run.MakeExecution()))
+  {
+    return false;
+  }
+  run.Timer.End("blend");
+  vtkImageData* output = vtkImageData::GetData(this->GetOutputInformation(0));
   output->GetPointData()->SetScalars(segmented);
   output->GetPointData()->AddArray(region);
   output->GetPointData()->AddArray(distance);
-  output->GetFieldData()->ShallowCopy(first->GetFieldData());
-  return 1;
+  return true;
 }
 
 void vtkDistanceFieldBlend::PrintSelf(ostream& os, vtkIndent indent)

@@ -23,21 +23,22 @@
 #ifndef vtkDistanceFieldBlend_h
 #define vtkDistanceFieldBlend_h
 
+#include "vtkDistanceFieldImageAlgorithm.h"
 #include "vtkDistanceFieldsModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
 
-class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldBlend : public vtkImageAlgorithm
+#ifndef __VTK_WRAP__
+namespace vtkdf
+{
+struct IndexBox;
+}
+#endif
+
+class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldBlend : public vtkDistanceFieldImageAlgorithm
 {
 public:
   static vtkDistanceFieldBlend* New();
-  vtkTypeMacro(vtkDistanceFieldBlend, vtkImageAlgorithm);
+  vtkTypeMacro(vtkDistanceFieldBlend, vtkDistanceFieldImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  /// Runs the request; a failure (a request returning 0, or an exception such as
-  /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
-  vtkTypeBool ProcessRequest(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
 
   /// The blend parameter: 0 gives the first field, 1 the second (default 0.5).
   vtkSetMacro(T, double);
@@ -50,7 +51,19 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+#ifndef __VTK_WRAP__
+  vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) override;
+  /// The blend of `box` (of the `whole` extent) into the output's point data, from the
+  /// fields' samples there and the whole grid's regions; false when aborted.
+  bool Blend(vtkImageData* first,
+    vtkImageData* second,
+    vtkImageData* const wholeRegions[2],
+    const int whole[6],
+    const vtkdf::IndexBox& box,
+    vtkdf::FilterRun& run);
+#endif
   /// Whether T and the inputs can be blended (two segmented fields on one grid with the
   /// same regions); else false with the error reported.
   bool CheckInputs(vtkImageData* first, vtkImageData* second);

@@ -21,8 +21,8 @@
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldMeshInput.h"
 #include "vtkDistanceFieldPartitions.h"
+#include "vtkDistanceFieldRun.h"
 
-#include <chrono>
 #include <cmath>
 
 vtkStandardNewMacro(vtkDistanceFieldProximity);
@@ -41,17 +41,6 @@ int vtkDistanceFieldProximity::FillInputPortInformation(int, vtkInformation* inf
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
   return 1;
-}
-
-vtkTypeBool vtkDistanceFieldProximity::ProcessRequest(vtkInformation* request,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  return vtkdf::ProcessRequestOrEmpty(
-    this,
-    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()),
-    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); },
-    [this](unsigned long code) { this->SetErrorCode(code); });
 }
 
 bool vtkDistanceFieldProximity::CheckProperties()
@@ -145,16 +134,16 @@ bool vtkDistanceFieldProximity::LoadModel(vtkPolyData* input,
   return true;
 }
 
-int vtkDistanceFieldProximity::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+vtkdf::RunStatus vtkDistanceFieldProximity::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run)
 {
-  const auto start = std::chrono::steady_clock::now();
   vtkPolyData* a = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* b = vtkPolyData::GetData(inputVector[1]);
+  this->LastBackend = "none";
   if (!this->CheckProperties())
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
   // A distributed run: every rank holds both models whole (collective); each takes its
   // share of the face samples, and rank 0 puts the shares together and answers.
@@ -166,24 +155,23 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
   {
     if (inputs[port] && !vtkdf::SameMeshOnEveryRank(inputs[port]))
     {
-      vtkErrorMacro("Model " << (port == 0 ? "A" : "B") << " (input " << port
-                             << ") differs between the ranks of this distributed run (it was "
-                                "partitioned upstream): every rank needs both models whole.");
-      return 0;
+      return run.Fail(std::string("Model ") + (port == 0 ? "A" : "B") + " (input " +
+        std::to_string(port) +
+        ") differs between the ranks of this distributed run (it was partitioned upstream): "
+        "every rank needs both models whole.");
     }
   }
   if (!this->LoadModel(a, 0, *this->ModelA) || !this->LoadModel(b, 1, *this->ModelB))
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
-  this->UpdateProgress(0.05);
-  vtkdf::HeadlessGL* gl = nullptr;
-  std::string error;
-  if (!vtkdf::ChooseContext(this->Backend, gl, error))
+  run.Progress(0.05);
+  run.Timer.End("models");
+  if (!run.ResolveBackend(this->Backend))
   {
-    vtkErrorMacro(<< error << ".");
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
+  vtkdf::HeadlessGL* gl = run.Context();
   this->LastBackend = gl ? "gpu" : "cpu";
   if (gl && (!this->Device || &this->Device->Context() != gl))
   {
@@ -201,15 +189,11 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
   request.MaximumSamples = this->MaximumSamples;
   request.Share = rank;
   request.Shares = ranks;
-  vtkdf::Execution execution;
-  execution.For = vtkdf::SMPFor;
-  execution.Progress = [this, ranks](double fraction)
-  {
-    this->UpdateProgress(0.05 + 0.9 * fraction);
-    // A rank that stopped alone would leave the others waiting in the gather.
-    return ranks > 1 || !this->GetAbortExecute();
-  };
+  // A rank that stopped alone would leave the others waiting in the gather: only one
+  // process aborts.
+  const vtkdf::Execution execution = run.MakeExecution(0.05, 0.95, ranks == 1);
   vtkdf::ProximityReport report;
+  std::string error;
   const bool computed =
     vtkdf::ComputeProximity(*this->ModelA, *this->ModelB, request, report, execution, error);
   if (!computed)
@@ -217,34 +201,58 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
     vtkErrorMacro(<< (error == "aborted" ? std::string("Aborted") : "No answer: " + error) << ".");
     if (ranks == 1)
     {
-      return 0;
+      return vtkdf::RunStatus::Failed;
     }
   }
   if (ranks > 1)
   {
-    // A rank that failed sends nothing: rank 0 then misses a share and fails too, and
-    // no rank waits for one that stopped.
-    std::vector<double> mine = computed ? vtkdf::PackProximityShare(report) : std::vector<double>();
-    vtkNew<vtkDoubleArray> send, received;
-    send->SetArray(mine.data(), static_cast<vtkIdType>(mine.size()), 1);
-    controller->GatherV(send, received, 0);
-    if (rank != 0 || !computed)
+    const vtkdf::RunStatus gathered = this->GatherShares(computed, report, run);
+    if (gathered != vtkdf::RunStatus::Done)
     {
-      return computed ? 1 : 0; // rank 0 answers for all
+      return gathered;
     }
-    std::vector<vtkdf::ProximityReport> shares;
-    if (!vtkdf::UnpackProximityShares(received->GetPointer(0),
-          static_cast<size_t>(received->GetNumberOfValues()),
-          report,
-          shares) ||
-      shares.size() != static_cast<size_t>(ranks))
-    {
-      vtkErrorMacro("The ranks' shares of the answer could not be read back.");
-      return 0;
-    }
-    vtkdf::MergeProximityShares(shares, report);
   }
+  run.Timer.End("proximity");
+  this->WriteOutputs(report, inputs, outputVector);
+  this->LastSeconds = run.Timer.Elapsed();
+  return vtkdf::RunStatus::Done;
+}
 
+vtkdf::RunStatus vtkDistanceFieldProximity::GatherShares(bool computed,
+  vtkdf::ProximityReport& report,
+  vtkdf::FilterRun& run)
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const int ranks = controller->GetNumberOfProcesses();
+  const int rank = controller->GetLocalProcessId();
+  // A rank that failed sends nothing: rank 0 then misses a share and fails too, and
+  // no rank waits for one that stopped.
+  std::vector<double> mine = computed ? vtkdf::PackProximityShare(report) : std::vector<double>();
+  vtkNew<vtkDoubleArray> send, received;
+  send->SetArray(mine.data(), static_cast<vtkIdType>(mine.size()), 1);
+  controller->GatherV(send, received, 0);
+  if (rank != 0 || !computed)
+  {
+    // rank 0 answers for all
+    return computed ? vtkdf::RunStatus::Empty : vtkdf::RunStatus::Failed;
+  }
+  std::vector<vtkdf::ProximityReport> shares;
+  if (!vtkdf::UnpackProximityShares(received->GetPointer(0),
+        static_cast<size_t>(received->GetNumberOfValues()),
+        report,
+        shares) ||
+    shares.size() != static_cast<size_t>(ranks))
+  {
+    return run.Fail("The ranks' shares of the answer could not be read back.");
+  }
+  vtkdf::MergeProximityShares(shares, report);
+  return vtkdf::RunStatus::Done;
+}
+
+void vtkDistanceFieldProximity::WriteOutputs(const vtkdf::ProximityReport& report,
+  vtkPolyData* const inputs[2],
+  vtkInformationVector* outputVector)
+{
   this->LastColliding = report.Contact.Colliding;
   this->LastSeparationDistance = report.Contact.Separation;
   this->LastPenetrationAB = report.AInB.Depth;
@@ -270,10 +278,6 @@ int vtkDistanceFieldProximity::RequestData(vtkInformation*,
   }
   this->WriteContacts(report, vtkPolyData::GetData(outputVector, 1));
   this->WriteAnswers(report, vtkPolyData::GetData(outputVector, 0));
-  this->LastSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 void vtkDistanceFieldProximity::WriteAnswers(const vtkdf::ProximityReport& report,

@@ -63,8 +63,8 @@
 #ifndef vtkDistanceFieldProximity_h
 #define vtkDistanceFieldProximity_h
 
+#include "vtkDistanceFieldPolyDataAlgorithm.h"
 #include "vtkDistanceFieldsModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
@@ -80,11 +80,11 @@ struct ProximityReport;
 
 class vtkPolyData;
 
-class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldProximity : public vtkPolyDataAlgorithm
+class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldProximity : public vtkDistanceFieldPolyDataAlgorithm
 {
 public:
   static vtkDistanceFieldProximity* New();
-  vtkTypeMacro(vtkDistanceFieldProximity, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkDistanceFieldProximity, vtkDistanceFieldPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// The two models: A on input 0, B on input 1.
@@ -177,12 +177,6 @@ public:
   vtkGetMacro(LastBytesFromDevice, vtkTypeInt64);
   ///@}
 
-  /// Runs the request; a failure (a request returning 0, or an exception such as
-  /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
-  vtkTypeBool ProcessRequest(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-
 protected:
   vtkDistanceFieldProximity();
   ~vtkDistanceFieldProximity() override;
@@ -190,7 +184,11 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+#ifndef __VTK_WRAP__
+  vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) override;
+#endif
 
   int Backend = BACKEND_AUTO;
   int SignMode = WINDING_NUMBER;
@@ -218,6 +216,16 @@ private:
 #ifndef __VTK_WRAP__
   bool CheckProperties();
   bool LoadModel(vtkPolyData* input, int port, vtkdf::ProximityModel& model);
+  /// A distributed run's answer: every rank's share of `report` gathered on rank 0 and
+  /// merged there into `report`. Done on rank 0 with the answer; Empty on the other
+  /// ranks; Failed (reported) when a share is missing.
+  vtkdf::RunStatus GatherShares(bool computed,
+    vtkdf::ProximityReport& report,
+    vtkdf::FilterRun& run);
+  /// The Last* reports and the four outputs from `report`.
+  void WriteOutputs(const vtkdf::ProximityReport& report,
+    vtkPolyData* const inputs[2],
+    vtkInformationVector* outputVector);
   void WriteAnswers(const vtkdf::ProximityReport& report, vtkPolyData* output) const;
   void WriteContacts(const vtkdf::ProximityReport& report, vtkPolyData* output) const;
 

@@ -16,6 +16,7 @@
 #include "Winding/WindingCrossings.h"
 #include "vtkDistanceFieldArrays.h"
 #include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldRun.h"
 
 #include <cmath>
 #include <utility>
@@ -24,35 +25,21 @@ vtkStandardNewMacro(vtkLinearFactorDistanceField);
 
 vtkLinearFactorDistanceField::vtkLinearFactorDistanceField() = default;
 
-int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+vtkdf::RunStatus vtkLinearFactorDistanceField::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run)
 {
-  vtkdf::StageTimer timer;
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
-  // The whole mesh, gathered when a distributed run partitioned it (vtkDistanceFieldPartitions.h).
-  if (!this->InputMesh(input))
-  {
-    return 0;
-  }
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  output->Initialize();
   this->LastEvaluations = 0;
   this->LastCullingFactor = 0;
   this->LastRoute = "none";
-  if (!input || input->GetNumberOfCells() == 0 || input->GetNumberOfPoints() == 0)
-  {
-    vtkWarningMacro("The input mesh is empty: the output is an empty image.");
-    return 1;
-  }
-
-  // The grid (RequestInformation) and the part of it requested (streaming).
+  this->LastSignBackend = "none";
+  vtkPolyData* input = nullptr;
   vtkdf::LinearFactorRequest request;
-  if (!GetOutputGrid(outInfo, request.Grid, request.Extent))
+  const vtkdf::RunStatus opened =
+    this->OpenMeshRun(inputVector, outputVector, run, input, request.Grid, request.Extent);
+  if (opened != vtkdf::RunStatus::Done)
   {
-    vtkWarningMacro("The requested extent is empty: the output is an empty image.");
-    return 1;
+    return opened;
   }
   const vtkIdType n = static_cast<vtkIdType>(request.Extent.Count());
   const bool winding = this->SignMode == WINDING_NUMBER || this->ComputeWindingNumber;
@@ -60,14 +47,13 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   const double bytesPerSample = 8.0 /* nearest-site buffer */ + (this->ComputeDistance ? 4 : 0) +
     (this->ComputeClosestCellId ? sizeof(vtkIdType) : 0) + (this->ComputeClosestFeature ? 1 : 0) +
     (this->ComputeClosestPoint ? 12 : 0) + (this->ComputeWindingNumber ? 4 : 0) + (winding ? 1 : 0);
-  vtkdf::HeadlessGL* gl = nullptr;
   vtkdf::MeshInput mesh;
-  if (!this->CheckMemory(double(n) * bytesPerSample, request.Extent) || !this->ChooseBackend(gl) ||
-    !this->ReadMesh(input, request.Grid, mesh))
+  if (!this->CheckMemory(double(n) * bytesPerSample, request.Extent) ||
+    !run.ResolveBackend(this->Backend) || !this->ReadMesh(input, request.Grid, mesh))
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
-  this->LastSignBackend = "none";
+  vtkdf::HeadlessGL* gl = run.Context();
   if (winding && !gl && this->Backend == BACKEND_AUTO)
   {
     // Signs alone where the crossings decide them: on the CPU, in less than a GPU pass.
@@ -81,8 +67,39 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
   request.Sign = static_cast<vtkdf::SignMode>(this->SignMode);
   request.MaximumDistance = this->MaximumDistance;
 
-  // The arrays, in world units, on the requested extent.
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   SetOutputExtent(output, request.Grid, request.Extent);
+  const vtkdf::LinearFactorArrays arrays = this->AddArrays(output, n);
+  vtkdf::LinearFactorReport report;
+  std::string error;
+  if (!vtkdf::ComputeLinearFactorField(
+        std::move(mesh), request, gl, arrays, run.MakeExecution(), report, error))
+  {
+    return run.Fail(error);
+  }
+  if (report.NoUsableCell)
+  {
+    return run.Empty("The input has no usable cell: the output is an empty image.");
+  }
+  if (report.Aborted)
+  {
+    return run.Empty();
+  }
+  this->LastRoute =
+    report.Route == vtkdf::FieldRoute::SampleQueries ? "sample queries" : "site scan";
+  this->LastEvaluations = report.Evaluations;
+  this->LastCullingFactor = report.Evaluations >= 0 ? double(report.Evaluations) / n : -1.0;
+  this->LastWindingBlockSamples = report.WindingBlockSamples;
+  this->LastWindingLineSamples = report.WindingLineSamples;
+  this->LastWindingExactSamples = report.WindingExactSamples;
+  this->LastSignBackend = !winding ? "none" : (report.WindingOnGPU ? "gpu" : "cpu");
+  return vtkdf::RunStatus::Done;
+}
+
+vtkdf::LinearFactorArrays vtkLinearFactorDistanceField::AddArrays(vtkImageData* output,
+  vtkIdType n) const
+{
+  // The arrays, in world units, on the requested extent.
   vtkPointData* pd = output->GetPointData();
   vtkdf::LinearFactorArrays arrays;
   if (this->ComputeDistance)
@@ -116,35 +133,7 @@ int vtkLinearFactorDistanceField::RequestData(vtkInformation*,
     arrays.WindingNumber = a->GetPointer(0);
     pd->AddArray(a);
   }
-
-  vtkdf::LinearFactorReport report;
-  std::string error;
-  if (!vtkdf::ComputeLinearFactorField(
-        std::move(mesh), request, gl, arrays, this->MakeExecution(timer), report, error))
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
-  if (report.NoUsableCell || report.Aborted)
-  {
-    if (report.NoUsableCell)
-    {
-      vtkWarningMacro("The input has no usable cell: the output is an empty image.");
-    }
-    output->Initialize();
-    return 1;
-  }
-  this->LastRoute =
-    report.Route == vtkdf::FieldRoute::SampleQueries ? "sample queries" : "site scan";
-  this->LastEvaluations = report.Evaluations;
-  this->LastCullingFactor = report.Evaluations >= 0 ? double(report.Evaluations) / n : -1.0;
-  this->LastWindingBlockSamples = report.WindingBlockSamples;
-  this->LastWindingLineSamples = report.WindingLineSamples;
-  this->LastWindingExactSamples = report.WindingExactSamples;
-  this->LastSignBackend = !winding ? "none" : (report.WindingOnGPU ? "gpu" : "cpu");
-  this->UpdateProgress(1.0);
-  this->FinishTiming(gl, timer);
-  return 1;
+  return arrays;
 }
 
 std::string vtkLinearFactorDistanceField::PointCloudRefusal()

@@ -36,6 +36,14 @@
 #include "vtkDistanceFieldAlgorithm.h"
 #include "vtkDistanceFieldsModule.h" // For export macro
 
+class vtkImageData;
+#ifndef __VTK_WRAP__
+namespace vtkdf
+{
+struct LinearFactorArrays;
+}
+#endif
+
 class VTKDISTANCEFIELDS_EXPORT vtkLinearFactorDistanceField : public vtkDistanceFieldAlgorithm
 {
 public:
@@ -150,7 +158,13 @@ protected:
   vtkLinearFactorDistanceField();
   ~vtkLinearFactorDistanceField() override = default;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+#ifndef __VTK_WRAP__
+  vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) override;
+  /// The requested output arrays on `output`'s point data, `n` samples each.
+  vtkdf::LinearFactorArrays AddArrays(vtkImageData* output, vtkIdType n) const;
+#endif
   bool CheckProperties() override;
   std::string PointCloudRefusal() override;
 

@@ -23,6 +23,7 @@
 #include "Winding/WindingCrossings.h"
 #include "vtkDistanceFieldArrays.h"
 #include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldRun.h"
 
 #include <algorithm>
 #include <array>
@@ -99,23 +100,20 @@ int vtkMedialAxisFilter::RequestUpdateExtent(vtkInformation* request,
   return 1;
 }
 
-int vtkMedialAxisFilter::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+vtkdf::RunStatus vtkMedialAxisFilter::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run)
 {
-  vtkdf::StageTimer timer;
   vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
   // The whole mesh, gathered when a distributed run partitioned it (vtkDistanceFieldPartitions.h).
   if (!this->InputMesh(mesh))
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
   vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   vtkPolyData* points = vtkPolyData::GetData(outputVector, 1);
-  output->Initialize();
-  points->Initialize();
   this->LastMedialCount = 0;
   // Nothing to compute: an empty input or grid, or an empty piece (more ranks than the
   // grid has slabs). Every rank goes on to the gather all the same (a rank leaving early
@@ -143,11 +141,7 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
   // This piece of the grid (all of it in one process) and the voxels that decide it.
   MedialPart part;
   part.Ok =
-    nothing || this->ComputePart(mesh, image, whole, piece.Grown(1, whole.Whole), timer, part);
-  if (part.Ok && !nothing)
-  {
-    this->FinishTiming(part.GL, timer);
-  }
+    nothing || this->ComputePart(mesh, image, whole, piece.Grown(1, whole.Whole), run, part);
   if (part.Ok && !part.Aborted && !nothing)
   {
     // Port 0: this piece of the grid with Medial, SeparationAngle and Radius.
@@ -185,29 +179,34 @@ int vtkMedialAxisFilter::RequestData(vtkInformation*,
     this->OwnedMedialVoxels(part, piece, whole.Whole, owned);
     this->LastMedialCount = static_cast<vtkIdType>(owned.size() / 3);
   }
-  if (!this->GatherMedialVoxels(part.Ok && !part.Aborted, owned))
+  const bool gathered = this->GatherMedialVoxels(part.Ok && !part.Aborted, owned);
+  if (!part.Ok)
   {
-    return part.Ok ? 1 : 0; // not rank 0, or a rank failed: no points
+    return vtkdf::RunStatus::Failed;
   }
-  if (empty)
+  if (empty || part.Aborted)
   {
-    return 1;
+    return vtkdf::RunStatus::Empty;
   }
-  this->WriteMedialPoints(whole, owned, points);
-  return 1;
+  if (gathered) // rank 0 (the only one in one process): every rank's medial points
+  {
+    this->WriteMedialPoints(whole, owned, points);
+  }
+  return vtkdf::RunStatus::Done;
 }
 
 bool vtkMedialAxisFilter::ComputePart(vtkPolyData* mesh,
   vtkImageData* image,
   const vtkdf::SampleGrid& whole,
   const vtkdf::IndexBox& needed,
-  vtkdf::StageTimer& timer,
+  vtkdf::FilterRun& run,
   MedialPart& part)
 {
-  if (!this->ChooseBackend(part.GL))
+  if (!run.ResolveBackend(this->Backend))
   {
     return false;
   }
+  part.GL = run.Context();
   vtkdf::MedialInput field;
   field.SeparationAngle = this->SeparationAngle;
   field.Region = static_cast<vtkdf::MedialRegion>(this->Region);
@@ -246,7 +245,7 @@ bool vtkMedialAxisFilter::ComputePart(vtkPolyData* mesh,
   arrays.Medial = part.Medial->GetPointer(0);
   arrays.SeparationAngle = part.Angle->GetPointer(0);
   arrays.Radius = part.Radius->GetPointer(0);
-  const vtkdf::Execution execution = this->MakeExecution(timer);
+  const vtkdf::Execution execution = run.MakeExecution();
   // Auto beside a hardware GPU: the winding sign there, as the linear factorization does.
   vtkdf::HeadlessGL* signContext =
     mesh && !part.GL && this->SignMode == WINDING_NUMBER && this->Backend == BACKEND_AUTO

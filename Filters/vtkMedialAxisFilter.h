@@ -111,7 +111,11 @@ protected:
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+#ifndef __VTK_WRAP__
+  vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) override;
+#endif
   bool CheckProperties() override;
 
 #ifndef __VTK_WRAP__
@@ -123,7 +127,7 @@ protected:
     vtkImageData* image,
     const vtkdf::SampleGrid& whole,
     const vtkdf::IndexBox& needed,
-    vtkdf::StageTimer& timer,
+    vtkdf::FilterRun& run,
     MedialPart& part);
   /// The medial voxels that `piece` owns (pieces share boundary planes: a plane belongs
   /// to the piece below it), as (index in `whole`, angle, radius) triples.

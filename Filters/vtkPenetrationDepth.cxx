@@ -17,6 +17,7 @@
 #include "Union/PenetrationDepth.h"
 #include "vtkConvexPieces.h"
 #include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldRun.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,12 +29,11 @@ vtkPenetrationDepth::vtkPenetrationDepth()
   this->SetNumberOfInputPorts(2);
 }
 
-int vtkPenetrationDepth::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+vtkdf::RunStatus vtkPenetrationDepth::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  output->Initialize();
   this->LastPenetrationDepth = this->LastSeparationDistance = 0;
   this->LastDirection[0] = this->LastDirection[1] = this->LastDirection[2] = 0;
   this->LastIntersecting = false;
@@ -41,7 +41,6 @@ int vtkPenetrationDepth::RequestData(vtkInformation*,
   this->LastPasses = 0;
   this->LastPairsTotal = this->LastPairsKept = this->LastPairsBuilt = this->LastFacesVisited = 0;
   vtkdf::ConvexPieceInput solids[2];
-  vtkdf::HeadlessGL* gl = nullptr;
   // A distributed run: every rank builds its block of the sums, rank 0 gathers them all
   // (in one process's order) and answers: only rank 0 needs a GPU, and chooses it after
   // the gather (a rank that left before it would leave the others waiting).
@@ -50,11 +49,11 @@ int vtkPenetrationDepth::RequestData(vtkInformation*,
   const int rank = controller ? controller->GetLocalProcessId() : 0;
   if (!this->ReadPieces(vtkDataObject::GetData(inputVector[0], 0), "P", 0, solids[0]) ||
     !this->ReadPieces(vtkDataObject::GetData(inputVector[1], 0), "Q", 1, solids[1]) ||
-    (ranks == 1 && !this->ChooseBackend(gl)))
+    (ranks == 1 && !this->ChooseBackend(run)))
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
-  this->UpdateProgress(0.1);
+  run.Progress(0.1);
 
   vtkdf::PenetrationDepth depth;
   depth.Tolerance = 1e-9 * (solids[0].Diagonal + solids[1].Diagonal);
@@ -78,7 +77,7 @@ int vtkPenetrationDepth::RequestData(vtkInformation*,
     controller->GatherV(send, received, 0);
     if (rank != 0)
     {
-      return 1; // rank 0 answers for all
+      return vtkdf::RunStatus::Done; // rank 0 answers for all
     }
     sums.Pieces.clear();
     pairs.clear();
@@ -89,20 +88,19 @@ int vtkPenetrationDepth::RequestData(vtkInformation*,
           pairs,
           error))
     {
-      vtkErrorMacro("No Minkowski sum: " << error << ".");
-      return 0;
+      return run.Fail("No Minkowski sum: " + error + ".");
     }
-    if (!this->ChooseBackend(gl))
+    if (!this->ChooseBackend(run))
     {
-      return 0;
+      return vtkdf::RunStatus::Failed;
     }
   }
   else if (!built)
   {
-    vtkErrorMacro("No Minkowski sum: " << error << ".");
-    return 0;
+    return run.Fail("No Minkowski sum: " + error + ".");
   }
-  this->UpdateProgress(0.5);
+  run.Progress(0.5);
+  vtkdf::HeadlessGL* gl = run.Context();
 
   vtkdf::PenetrationAnswer answer;
   vtkdf::UnionGPUSettings settings;
@@ -110,13 +108,11 @@ int vtkPenetrationDepth::RequestData(vtkInformation*,
   settings.Certify = this->Certify;
   if (!depth.Query(sums, pairs, total, origin, answer, error, gl, settings))
   {
-    vtkErrorMacro(<< (gl ? "The GPU query failed: " : "No answer: ") << error << ".");
-    return 0;
+    return run.Fail((gl ? "The GPU query failed: " : "No answer: ") + error + ".");
   }
-  this->UpdateProgress(0.9);
+  run.Progress(0.9);
   this->WriteAnswer(answer, solids[1], output);
-  this->UpdateProgress(1.0);
-  return 1;
+  return vtkdf::RunStatus::Done;
 }
 
 void vtkPenetrationDepth::WriteAnswer(const vtkdf::PenetrationAnswer& answer,

@@ -84,7 +84,11 @@ protected:
   vtkPenetrationDepth();
   ~vtkPenetrationDepth() override = default;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+#ifndef __VTK_WRAP__
+  vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) override;
+#endif
 #ifndef __VTK_WRAP__
   /// The output: the translation as a line, the answer as field data.
   void WriteAnswer(const vtkdf::PenetrationAnswer& answer,

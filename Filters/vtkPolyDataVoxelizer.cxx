@@ -14,6 +14,7 @@
 #include "Voxels/VoxelFields.h"
 #include "vtkDistanceFieldArrays.h"
 #include "vtkDistanceFieldExecution.h"
+#include "vtkDistanceFieldRun.h"
 
 #include <utility>
 
@@ -21,66 +22,54 @@ vtkStandardNewMacro(vtkPolyDataVoxelizer);
 
 vtkPolyDataVoxelizer::vtkPolyDataVoxelizer() = default;
 
-int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+vtkdf::RunStatus vtkPolyDataVoxelizer::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run)
 {
-  vtkdf::StageTimer timer;
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
-  // The whole mesh, gathered when a distributed run partitioned it (vtkDistanceFieldPartitions.h).
-  if (!this->InputMesh(input))
-  {
-    return 0;
-  }
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  output->Initialize();
-  if (!input || input->GetNumberOfCells() == 0 || input->GetNumberOfPoints() == 0)
-  {
-    vtkWarningMacro("The input mesh is empty: the output is an empty image.");
-    return 1;
-  }
-
+  vtkPolyData* input = nullptr;
   vtkdf::SampleGrid grid;
   vtkdf::IndexBox extent;
-  if (!this->GetOutputGrid(outInfo, grid, extent))
+  const vtkdf::RunStatus opened =
+    this->OpenMeshRun(inputVector, outputVector, run, input, grid, extent);
+  if (opened != vtkdf::RunStatus::Done)
   {
-    vtkWarningMacro("The requested extent is empty: the output is an empty image.");
-    return 1;
+    return opened;
   }
   const bool wantBoundary = this->Mode != SOLID, wantSolid = this->Mode != BOUNDARY;
   // Lanes of three views (front and back for a solid), the combined masks, the arrays.
   const double voxels = double(grid.Whole.Count());
   const double bytes = voxels * ((wantSolid ? 6 : 3) / 8.0 + 2 / 8.0) +
     double(extent.Count()) * (wantBoundary + wantSolid);
-  vtkdf::HeadlessGL* gl = nullptr;
   vtkdf::MeshInput mesh;
-  if (!this->CheckMemory(bytes, grid.Whole) || !this->ChooseBackend(gl) ||
+  if (!this->CheckMemory(bytes, grid.Whole) || !run.ResolveBackend(this->Backend) ||
     !this->ReadMesh(input, grid, mesh))
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
   vtkdf::BitVolume boundary, solid;
   vtkdf::VoxelReport report;
   std::string error;
   if (!vtkdf::VoxelizeMesh(std::move(mesh),
         grid,
-        gl,
+        run.Context(),
         wantBoundary ? &boundary : nullptr,
         wantSolid ? &solid : nullptr,
-        this->MakeExecution(timer),
+        run.MakeExecution(0, 0.8),
         report,
         error))
   {
-    vtkErrorMacro(<< error);
-    return 0;
+    return run.Fail(error);
   }
   if (!report.Warning.empty())
   {
     vtkWarningMacro(<< report.Warning);
   }
-  this->UpdateProgress(0.8);
+  if (run.AbortRequested())
+  {
+    return run.Empty();
+  }
 
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   this->SetOutputExtent(output, grid, extent);
   for (int mask = 0; mask < 2; ++mask)
   {
@@ -95,10 +84,8 @@ int vtkPolyDataVoxelizer::RequestData(vtkInformation*,
     output->GetPointData()->AddArray(array);
   }
   output->GetPointData()->SetActiveScalars(wantBoundary ? "Boundary" : "Solid");
-  timer.End("voxelize");
-  this->FinishTiming(gl, timer);
-  this->UpdateProgress(1.0);
-  return 1;
+  run.Timer.End("voxelize");
+  return vtkdf::RunStatus::Done;
 }
 
 bool vtkPolyDataVoxelizer::CheckProperties()

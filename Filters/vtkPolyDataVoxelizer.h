@@ -50,7 +50,11 @@ protected:
   vtkPolyDataVoxelizer();
   ~vtkPolyDataVoxelizer() override = default;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+#ifndef __VTK_WRAP__
+  vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) override;
+#endif
   bool CheckProperties() override;
 
   int Mode = BOTH;

@@ -22,8 +22,10 @@
 #include "vtkDistanceFieldArrays.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldPartitions.h"
+#include "vtkDistanceFieldRun.h"
 
 #include <cmath>
+#include <sstream>
 #include <vector>
 
 vtkStandardNewMacro(vtkSegmentedDistanceContour);
@@ -34,29 +36,16 @@ int vtkSegmentedDistanceContour::FillInputPortInformation(int, vtkInformation* i
   return 1;
 }
 
-vtkTypeBool vtkSegmentedDistanceContour::ProcessRequest(vtkInformation* request,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+vtkdf::RunStatus vtkSegmentedDistanceContour::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run)
 {
-  return vtkdf::ProcessRequestOrEmpty(
-    this,
-    request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()),
-    [&] { return this->Superclass::ProcessRequest(request, inputVector, outputVector); },
-    [this](unsigned long code) { this->SetErrorCode(code); });
-}
-
-int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  vtkImageData* field = vtkImageData::GetData(inputVector[0], 0);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  output->Initialize();
   this->LastMarchingCells = this->LastFeatureCells = this->LastOtherCells = 0;
   if (!(this->FeatureAngle > 0 && this->FeatureAngle <= 180))
   {
-    vtkErrorMacro("FeatureAngle must be in (0, 180] degrees; it is " << this->FeatureAngle << ".");
-    return 0;
+    std::ostringstream text;
+    text << "FeatureAngle must be in (0, 180] degrees; it is " << this->FeatureAngle << ".";
+    return run.Fail(text.str());
   }
   // A distributed field comes in pieces: rank 0 gathers the whole field and outputs the
   // surface, once (a cell's triangles depend on the regions around it, and one process's
@@ -66,34 +55,73 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
   inputVector[0]->GetInformationObject(0)->Get(
     vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
   vtkSmartPointer<vtkImageData> whole;
-  if (!vtkdf::GatherWholeImage(
-        field, wholeExtent, { "SegmentedDistance", "ClosestPoint" }, whole, error))
+  if (!vtkdf::GatherWholeImage(vtkImageData::GetData(inputVector[0], 0),
+        wholeExtent,
+        { "SegmentedDistance", "ClosestPoint" },
+        whole,
+        error))
   {
-    vtkErrorMacro("The segmented field could not be gathered: " << error << ".");
-    return 0;
+    return run.Fail("The segmented field could not be gathered: " + error + ".");
   }
   if (!vtkdf::IsFirstRank())
   {
-    return 1;
+    return vtkdf::RunStatus::Done;
   }
-  field = whole;
+  vtkdf::ContourInput input;
+  std::vector<float> distance;
+  std::vector<int32_t> region;
+  std::vector<double> closest;
+  if (!this->ReadField(whole, input, distance, region, closest))
+  {
+    return vtkdf::RunStatus::Failed;
+  }
+  run.Timer.End("read");
+  // VTK's marching cubes table, as plain rows.
+  std::vector<int> table(256 * 16);
+  vtkMarchingCubesTriangleCases* cases = vtkMarchingCubesTriangleCases::GetCases();
+  for (int c = 0; c < 256; ++c)
+  {
+    std::copy(cases[c].edges, cases[c].edges + 16, table.begin() + 16 * c);
+  }
+  input.Cases = reinterpret_cast<const int(*)[16]>(table.data());
+  vtkdf::ContourResult result;
+  if (!vtkdf::ContourSegmented(input, result, run.MakeExecution(0.1, 0.9)))
+  {
+    return run.Empty(); // aborted
+  }
+  run.Timer.End("contour");
+  this->LastMarchingCells = result.MarchingCells;
+  this->LastOtherCells = result.OtherCells;
+  this->LastFeatureCells = result.FeatureCells;
+  WriteSurface(result, vtkPolyData::GetData(outputVector, 0));
+  run.Timer.End("arrays");
+  return vtkdf::RunStatus::Done;
+}
+
+bool vtkSegmentedDistanceContour::ReadField(vtkImageData* field,
+  vtkdf::ContourInput& input,
+  std::vector<float>& distance,
+  std::vector<int32_t>& region,
+  std::vector<double>& closest)
+{
+  std::string error;
   vtkDataArray* values = vtkdf::SampleArray(field, "SegmentedDistance", 1, error);
   vtkDataArray* offsetArray = field ? field->GetFieldData()->GetArray("RegionOffset") : nullptr;
   if (!values)
   {
     vtkErrorMacro(<< error << " (vtkSegmentedDistanceField makes it).");
-    return 0;
+    return false;
   }
   const double offset = offsetArray ? offsetArray->GetTuple1(0) : 0;
   if (!(offset > 0 && std::isfinite(offset)))
   {
     vtkErrorMacro("The input has no positive field-data RegionOffset: it is not the output of "
                   "vtkSegmentedDistanceField.");
-    return 0;
+    return false;
   }
   const vtkIdType n = field->GetNumberOfPoints();
-  std::vector<float> distance(n);
-  std::vector<int32_t> region(n);
+  distance.resize(n);
+  region.resize(n);
   for (vtkIdType v = 0; v < n; ++v)
   {
     const double f = values->GetTuple1(v);
@@ -101,16 +129,13 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
     {
       vtkErrorMacro("SegmentedDistance holds " << f << " at sample " << v
                                                << ": a segmented field is finite and >= 0.");
-      return 0;
+      return false;
     }
     const double r = std::floor(f / offset);
     region[v] = static_cast<int32_t>(r);
     distance[v] = static_cast<float>(f - offset * r);
   }
-
-  vtkdf::ContourInput input;
-  int dims[3], extent[6];
-  field->GetDimensions(dims);
+  int extent[6];
   field->GetExtent(extent);
   for (int a = 0; a < 3; ++a)
   {
@@ -122,7 +147,6 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
   input.Distance = distance.data();
   input.Region = region.data();
   // The closest points, when there and wanted, in double.
-  std::vector<double> closest;
   vtkDataArray* closestArray = field->GetPointData()->GetArray("ClosestPoint");
   if (this->UseClosestPoints && closestArray)
   {
@@ -131,7 +155,7 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
       vtkErrorMacro("ClosestPoint must have 3 components per sample; it has "
         << closestArray->GetNumberOfComponents() << " and " << closestArray->GetNumberOfTuples()
         << " tuples for " << n << " samples.");
-      return 0;
+      return false;
     }
     closest.resize(3 * static_cast<size_t>(n));
     for (vtkIdType v = 0; v < n; ++v)
@@ -141,20 +165,12 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
     input.ClosestPoint = closest.data();
     input.FeatureAngle = this->FeatureAngle;
   }
-  // VTK's marching cubes table, as plain rows.
-  std::vector<int> table(256 * 16);
-  vtkMarchingCubesTriangleCases* cases = vtkMarchingCubesTriangleCases::GetCases();
-  for (int c = 0; c < 256; ++c)
-  {
-    std::copy(cases[c].edges, cases[c].edges + 16, table.begin() + 16 * c);
-  }
-  input.Cases = reinterpret_cast<const int(*)[16]>(table.data());
-  vtkdf::ContourResult result;
-  vtkdf::ContourSegmented(input, result);
-  this->LastMarchingCells = result.MarchingCells;
-  this->LastOtherCells = result.OtherCells;
-  this->LastFeatureCells = result.FeatureCells;
+  return true;
+}
 
+void vtkSegmentedDistanceContour::WriteSurface(const vtkdf::ContourResult& result,
+  vtkPolyData* output)
+{
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(result.Points.size() / 3));
@@ -181,7 +197,6 @@ int vtkSegmentedDistanceContour::RequestData(vtkInformation*,
   output->SetPoints(points);
   output->SetPolys(triangles);
   output->GetCellData()->AddArray(pairs);
-  return 1;
 }
 
 void vtkSegmentedDistanceContour::PrintSelf(ostream& os, vtkIndent indent)

@@ -31,21 +31,27 @@
 #ifndef vtkSegmentedDistanceContour_h
 #define vtkSegmentedDistanceContour_h
 
+#include "vtkDistanceFieldPolyDataAlgorithm.h"
 #include "vtkDistanceFieldsModule.h" // For export macro
-#include "vtkPolyDataAlgorithm.h"
 
-class VTKDISTANCEFIELDS_EXPORT vtkSegmentedDistanceContour : public vtkPolyDataAlgorithm
+#include <vector> // For the field's samples
+
+class vtkImageData;
+#ifndef __VTK_WRAP__
+namespace vtkdf
+{
+struct ContourInput;
+struct ContourResult;
+}
+#endif
+
+class VTKDISTANCEFIELDS_EXPORT vtkSegmentedDistanceContour
+  : public vtkDistanceFieldPolyDataAlgorithm
 {
 public:
   static vtkSegmentedDistanceContour* New();
-  vtkTypeMacro(vtkSegmentedDistanceContour, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkSegmentedDistanceContour, vtkDistanceFieldPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  /// Runs the request; a failure (a request returning 0, or an exception such as
-  /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
-  vtkTypeBool ProcessRequest(vtkInformation* request,
-    vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
 
   ///@{
   /// Vertices from the input's ClosestPoint array when it has one (default on), and the
@@ -69,7 +75,22 @@ protected:
   ~vtkSegmentedDistanceContour() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+#ifndef __VTK_WRAP__
+  vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) override;
+  /// The samples of the (whole) segmented field `field` as the core takes them: its grid,
+  /// distances and regions (held in `distance` and `region`), and its closest points
+  /// (held in `closest`) when UseClosestPoints is on and it has them. False with the
+  /// error reported.
+  bool ReadField(vtkImageData* field,
+    vtkdf::ContourInput& input,
+    std::vector<float>& distance,
+    std::vector<int32_t>& region,
+    std::vector<double>& closest);
+  /// The surface as the output: points, triangles, the Regions pair of each triangle.
+  static void WriteSurface(const vtkdf::ContourResult& result, vtkPolyData* output);
+#endif
 
   bool UseClosestPoints = true;
   double FeatureAngle = 30;

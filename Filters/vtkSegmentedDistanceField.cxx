@@ -19,6 +19,7 @@
 #include "GL/HeadlessGL.h"
 #include "Segment/SegmentedField.h"
 #include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldRun.h"
 
 #include <algorithm>
 #include <cmath>
@@ -103,20 +104,18 @@ bool ShareEvidence(vtkMultiProcessController* controller,
 
 vtkSegmentedDistanceField::vtkSegmentedDistanceField() = default;
 
-int vtkSegmentedDistanceField::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+vtkdf::RunStatus vtkSegmentedDistanceField::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run)
 {
-  vtkdf::StageTimer timer;
   vtkPolyData* mesh = vtkPolyData::GetData(inputVector[0], 0);
   // The whole mesh, gathered when a distributed run partitioned it (vtkDistanceFieldPartitions.h).
   if (!this->InputMesh(mesh))
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  output->Initialize();
   this->LastRegionCount = 0;
   this->LastPatchCount = this->LastCutEdges = this->LastRefusedMerges = 0;
   this->LastCrossedTriangles = 0;
@@ -125,8 +124,7 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
   // The same on every rank (the mesh and the grid are): no rank goes on alone.
   if (!mesh || mesh->GetNumberOfCells() == 0 || mesh->GetNumberOfPoints() == 0)
   {
-    vtkWarningMacro("The input mesh is empty: the output is empty.");
-    return 1;
+    return run.Empty("The input mesh is empty: the output is empty.");
   }
   vtkdf::SegmentedFieldRequest request;
   vtkdf::IndexBox piece;
@@ -134,8 +132,7 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
   const vtkdf::IndexBox& whole = request.Grid.Whole;
   if (whole.Empty())
   {
-    vtkWarningMacro("The grid is empty: the output is empty.");
-    return 1;
+    return run.Empty("The grid is empty: the output is empty.");
   }
   // The regions are global. In a distributed run whose pieces tile the grid, each rank
   // computes its piece and one sample around it, counts the region evidence of the
@@ -155,8 +152,7 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
   }
   if (!hasPiece && !split)
   {
-    vtkWarningMacro("The requested extent is empty: the output is empty.");
-    return 1;
+    return run.Empty("The requested extent is empty: the output is empty.");
   }
   bool shared = false;
   if (split)
@@ -167,41 +163,39 @@ int vtkSegmentedDistanceField::RequestData(vtkInformation*,
       return ShareEvidence(controller, &evidence, error);
     };
   }
-  bool ok = true;
+  vtkdf::RunStatus status = vtkdf::RunStatus::Done;
   if (split && !hasPiece)
   {
     // A rank with no samples (more ranks than the grid has slabs) adds no evidence.
     vtkdf::RegionEvidence none;
     std::string error;
-    ok = request.Combine(none, error);
-    if (!ok)
+    if (!request.Combine(none, error))
     {
-      vtkErrorMacro("The regions could not be merged across the pieces: " << error << ".");
+      status = run.Fail("The regions could not be merged across the pieces: " + error + ".");
     }
   }
   else
   {
     request.Extent = split ? piece.Grown(1, whole) : whole;
-    ok = this->ComputePiece(mesh, request, piece, output, timer);
+    status = this->ComputePiece(mesh, request, piece, output, run);
   }
   if (split && !shared)
   {
     std::string ignored; // this rank failed before its evidence: the others fail with it
     ShareEvidence(controller, nullptr, ignored);
   }
-  return ok ? 1 : 0;
+  return status;
 }
 
-bool vtkSegmentedDistanceField::ComputePiece(vtkPolyData* mesh,
+vtkdf::RunStatus vtkSegmentedDistanceField::ComputePiece(vtkPolyData* mesh,
   const vtkdf::SegmentedFieldRequest& grid,
   const vtkdf::IndexBox& piece,
   vtkImageData* output,
-  vtkdf::StageTimer& timer)
+  vtkdf::FilterRun& run)
 {
-  vtkdf::HeadlessGL* gl = nullptr;
-  if (!this->ChooseBackend(gl))
+  if (!run.ResolveBackend(this->Backend))
   {
-    return false;
+    return vtkdf::RunStatus::Failed;
   }
   vtkdf::SegmentedFieldRequest request = grid;
   request.Delta = this->Delta;
@@ -213,7 +207,7 @@ bool vtkSegmentedDistanceField::ComputePiece(vtkPolyData* mesh,
   if (!this->CheckMemory(double(n) * (4 + 8 + 1 + 12 + 24 + 8 + 4 + 4 + 4 + 4 + 8), box) ||
     !this->ReadMesh(mesh, request.Grid, input))
   {
-    return false;
+    return vtkdf::RunStatus::Failed;
   }
 
   auto segmented = vtkdf::NewArray<vtkFloatArray>("SegmentedDistance", n);
@@ -234,7 +228,7 @@ bool vtkSegmentedDistanceField::ComputePiece(vtkPolyData* mesh,
   vtkdf::SegmentedFieldReport report;
   std::string error;
   const bool ok = vtkdf::ComputeSegmentedField(
-    std::move(input), request, gl, arrays, this->MakeExecution(timer), report, error);
+    std::move(input), request, run.Context(), arrays, run.MakeExecution(), report, error);
   for (const std::string& warning : report.Warnings)
   {
     vtkWarningMacro(<< warning);
@@ -244,12 +238,11 @@ bool vtkSegmentedDistanceField::ComputePiece(vtkPolyData* mesh,
   this->LastCutEdges = report.CutEdges;
   if (!ok)
   {
-    vtkErrorMacro(<< error);
-    return false;
+    return run.Fail(error);
   }
   if (report.Aborted)
   {
-    return true; // the output stays empty
+    return vtkdf::RunStatus::Empty;
   }
   this->LastRegionCount = report.RegionCount;
   this->LastRefusedMerges = report.RefusedMerges;
@@ -284,9 +277,7 @@ bool vtkSegmentedDistanceField::ComputePiece(vtkPolyData* mesh,
     }
   }
   this->WriteFieldData(report, output->GetFieldData());
-  this->UpdateProgress(1.0);
-  this->FinishTiming(gl, timer);
-  return true;
+  return vtkdf::RunStatus::Done;
 }
 
 void vtkSegmentedDistanceField::WriteFieldData(const vtkdf::SegmentedFieldReport& report,

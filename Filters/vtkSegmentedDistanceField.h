@@ -51,7 +51,6 @@ namespace vtkdf
 struct IndexBox;
 struct SegmentedFieldReport;
 struct SegmentedFieldRequest;
-class StageTimer;
 }
 #endif
 #include "vtkDistanceFieldsModule.h" // For export macro
@@ -112,19 +111,23 @@ protected:
   vtkSegmentedDistanceField();
   ~vtkSegmentedDistanceField() override = default;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+#ifndef __VTK_WRAP__
+  vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) override;
+#endif
   bool CheckProperties() override;
 #ifndef __VTK_WRAP__
   /// Delta, RegionOffset, RegionCount and RegionSides, as the run used and found them.
   static void WriteFieldData(const vtkdf::SegmentedFieldReport& report, vtkFieldData* fd);
   /// Computes request.Extent (the grid and, in a distributed run, the pieces and the
-  /// evidence's Combine are set) and outputs `piece` of it; false with the error
-  /// reported.
-  bool ComputePiece(vtkPolyData* mesh,
+  /// evidence's Combine are set) and outputs `piece` of it (Failed with the error
+  /// reported, Empty when aborted).
+  vtkdf::RunStatus ComputePiece(vtkPolyData* mesh,
     const vtkdf::SegmentedFieldRequest& request,
     const vtkdf::IndexBox& piece,
     vtkImageData* output,
-    vtkdf::StageTimer& timer);
+    vtkdf::FilterRun& run);
 #endif
 
   double Delta = 0;

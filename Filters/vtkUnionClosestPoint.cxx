@@ -24,6 +24,7 @@
 #include "vtkConvexPieces.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldPartitions.h"
+#include "vtkDistanceFieldRun.h"
 
 #include <algorithm>
 #include <cmath>
@@ -127,31 +128,26 @@ bool vtkUnionClosestPoint::ReadQueries(vtkInformationVector* queryInput,
   return true;
 }
 
-int vtkUnionClosestPoint::RequestData(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+vtkdf::RunStatus vtkUnionClosestPoint::Execute(vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector,
+  vtkdf::FilterRun& run)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  output->Initialize();
   this->LastPieceCount = 0;
   this->LastFacesVisited = 0;
   this->LastPasses = 0;
-  if (auto* views = vtkPartitionedDataSet::GetData(outputVector, 1))
-  {
-    views->Initialize();
-  }
   vtkdf::ConvexPieceInput pieces;
   std::vector<double> o;
-  vtkdf::HeadlessGL* gl = nullptr;
   if (!this->ReadPieces(vtkDataObject::GetData(inputVector[0], 0), nullptr, 0, pieces) ||
-    !this->ReadQueries(inputVector[1], o) || !this->ChooseBackend(gl))
+    !this->ReadQueries(inputVector[1], o) || !this->ChooseBackend(run))
   {
-    return 0;
+    return vtkdf::RunStatus::Failed;
   }
   if (!vtkPointSet::GetData(inputVector[1], 0) && !vtkdf::IsFirstRank())
   {
-    return 1; // QueryPoint in a distributed run: rank 0 answers it, once
+    return vtkdf::RunStatus::Done; // QueryPoint in a distributed run: rank 0 answers it, once
   }
+  vtkdf::HeadlessGL* gl = run.Context();
   vtkdf::UnionClosestPoint query;
   query.Tolerance = pieces.Tolerance;
   query.Pieces = std::move(pieces.Pieces);
@@ -163,7 +159,7 @@ int vtkUnionClosestPoint::RequestData(vtkInformation*,
       << (this->Backend == BACKEND_CPU ? "CPU" : "Auto without a hardware GPU")
       << "): output 1 is empty.");
   }
-  this->UpdateProgress(0.1);
+  run.Progress(0.1);
   vtkdf::UnionQueryOptions options;
   options.ViewResolution = this->ViewResolution;
   options.Certify = this->Certify;
@@ -175,24 +171,16 @@ int vtkUnionClosestPoint::RequestData(vtkInformation*,
     options.Images = &images;
     options.Frames = &frames;
   }
-  vtkdf::Execution execution;
-  execution.For = vtkdf::SMPFor;
-  execution.Progress = [this](double fraction)
-  {
-    this->UpdateProgress(fraction);
-    return !this->GetAbortExecute();
-  };
   std::vector<vtkdf::UnionGPUAnswer> answers;
   bool aborted = false;
   std::string error;
-  if (!vtkdf::QueryUnion(query, o, gl, options, execution, answers, aborted, error))
+  if (!vtkdf::QueryUnion(query, o, gl, options, run.MakeExecution(), answers, aborted, error))
   {
-    vtkErrorMacro("The GPU query failed: " << error << ".");
-    return 0;
+    return run.Fail("The GPU query failed: " + error + ".");
   }
   if (aborted)
   {
-    return 1; // an empty output, no error
+    return run.Empty();
   }
   for (const auto& answer : answers)
   {
@@ -202,10 +190,9 @@ int vtkUnionClosestPoint::RequestData(vtkInformation*,
   {
     this->WriteViewImages(images, frames, &o[o.size() - 3], outputVector);
   }
-  this->UpdateProgress(0.9);
+  run.Progress(0.9);
   this->WriteAnswers(o, answers, output);
-  this->UpdateProgress(1.0);
-  return 1;
+  return vtkdf::RunStatus::Done;
 }
 
 void vtkUnionClosestPoint::WriteAnswers(const std::vector<double>& o,

@@ -85,7 +85,11 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   bool IsQueryPort(int port) override { return port == 1; }
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+#ifndef __VTK_WRAP__
+  vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) override;
+#endif
   /// The query points: input 1's points, or QueryPoint; false with the error reported
   /// when one is not finite.
   bool ReadQueries(vtkInformationVector* queryInput, std::vector<double>& queries);

@@ -1,6 +1,8 @@
 # The module's sources (included from the generated module directory, see CMakeLists.txt).
 set(df_root "${CMAKE_SOURCE_DIR}")
 set(classes
+  "${df_root}/Filters/vtkDistanceFieldImageAlgorithm"
+  "${df_root}/Filters/vtkDistanceFieldPolyDataAlgorithm"
   "${df_root}/Filters/vtkDistanceFieldAlgorithm"
   "${df_root}/Filters/vtkLinearFactorDistanceField"
   "${df_root}/Filters/vtkPolyDataVoxelizer"
@@ -18,11 +20,13 @@ vtk_module_add_module(DistanceFields::vtkDistanceFields
   SOURCES "${df_root}/Filters/vtkDistanceFieldMeshInput.cxx"
     "${df_root}/Filters/vtkDistanceFieldArrays.cxx"
     "${df_root}/Filters/vtkDistanceFieldExecution.cxx"
+    "${df_root}/Filters/vtkDistanceFieldRun.cxx"
     "${df_root}/Filters/vtkConvexPieces.cxx"
     "${df_root}/Filters/vtkDistanceFieldPartitions.cxx"
   PRIVATE_HEADERS "${df_root}/Filters/vtkDistanceFieldMeshInput.h"
     "${df_root}/Filters/vtkDistanceFieldArrays.h"
     "${df_root}/Filters/vtkDistanceFieldExecution.h"
+    "${df_root}/Filters/vtkDistanceFieldRun.h"
     "${df_root}/Filters/vtkConvexPieces.h"
     "${df_root}/Filters/vtkDistanceFieldPartitions.h")
 vtk_module_include(DistanceFields::vtkDistanceFields

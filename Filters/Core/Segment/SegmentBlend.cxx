@@ -179,7 +179,7 @@ void RegionDistance(const int32_t* regions,
 namespace
 {
 /// BlendSegmentedFields without the segmented values.
-void BlendPiece(const SegmentedSamples& first,
+bool BlendPiece(const SegmentedSamples& first,
   const SegmentedSamples& second,
   const int32_t* firstRegions,
   const int32_t* secondRegions,
@@ -188,8 +188,9 @@ void BlendPiece(const SegmentedSamples& first,
   const BlendGrid& grid,
   float* distance,
   int32_t* region,
-  const ParallelFor& parallelFor)
+  const Execution& execution)
 {
+  const ParallelFor& parallelFor = execution.For;
   const int64_t count = box.Count();
   // The ends exactly (the formulas below round at t = 0 and 1 otherwise).
   if (t == 0 || t == 1)
@@ -197,7 +198,7 @@ void BlendPiece(const SegmentedSamples& first,
     const SegmentedSamples& end = t == 0 ? first : second;
     std::copy(end.Distance, end.Distance + count, distance);
     std::copy(end.Region, end.Region + count, region);
-    return;
+    return true;
   }
   // The regions whose distance transforms the differing samples need: in the first
   // field the second's region there, and the other way round.
@@ -221,8 +222,15 @@ void BlendPiece(const SegmentedSamples& first,
   // a voxel of the other region nearer than the nearest surface lies in the sample's
   // empty ball, so the two regions touch there without a sheet between them.
   std::vector<uint8_t> seam(static_cast<size_t>(count), 0);
+  // Progress and abort by the regions' distance transforms, the bulk of the work.
+  const double transforms = double(inFirst.size() + inSecond.size()) + 1;
+  double done = 0;
   for (const int32_t r : inFirst)
   {
+    if (!execution.Report(done++ / transforms))
+    {
+      return false;
+    }
     RegionDistance(firstRegions, r, grid, box, scratch.data(), parallelFor);
     for (int64_t v = 0; v < count; ++v)
     {
@@ -236,6 +244,10 @@ void BlendPiece(const SegmentedSamples& first,
   }
   for (const int32_t r : inSecond)
   {
+    if (!execution.Report(done++ / transforms))
+    {
+      return false;
+    }
     RegionDistance(secondRegions, r, grid, box, scratch.data(), parallelFor);
     for (int64_t v = 0; v < count; ++v)
     {
@@ -272,11 +284,12 @@ void BlendPiece(const SegmentedSamples& first,
         }
       }
     });
+  return execution.Report(done / transforms);
 }
 
 } // namespace
 
-void BlendSegmentedFields(const SegmentedSamples& first,
+bool BlendSegmentedFields(const SegmentedSamples& first,
   const SegmentedSamples& second,
   const int32_t* firstRegions,
   const int32_t* secondRegions,
@@ -288,12 +301,16 @@ void BlendSegmentedFields(const SegmentedSamples& first,
   float* distance,
   int32_t* region,
   float* segmented,
-  const ParallelFor& parallelFor)
+  const Execution& execution)
 {
-  BlendPiece(
-    first, second, firstRegions, secondRegions, box, t, grid, distance, region, parallelFor);
+  if (!BlendPiece(
+        first, second, firstRegions, secondRegions, box, t, grid, distance, region, execution))
+  {
+    return false;
+  }
   const int64_t count = box.Count();
-  parallelFor(count,
+  Run(execution.For,
+    count,
     4096,
     [&](int64_t begin, int64_t end)
     {
@@ -303,6 +320,7 @@ void BlendSegmentedFields(const SegmentedSamples& first,
           static_cast<float>(std::min(double(distance[v]), delta) + offset * region[v]);
       }
     });
+  return execution.Report(1.0);
 }
 
 } // namespace vtkdf

@@ -78,8 +78,9 @@ struct BlendBox
 /// of `grid` (the whole grid, or a distributed run's piece): `first` and `second` hold
 /// the samples of `box` (x fastest), `firstRegions` and `secondRegions` the whole grid's
 /// regions of each field (a sample's distance to a region may be decided by any voxel).
-/// A piece's values are the whole grid's there, bit for bit.
-void BlendSegmentedFields(const SegmentedSamples& first,
+/// A piece's values are the whole grid's there, bit for bit. Progress by the regions'
+/// distance transforms; false when `execution` aborts (the arrays are then incomplete).
+bool BlendSegmentedFields(const SegmentedSamples& first,
   const SegmentedSamples& second,
   const int32_t* firstRegions,
   const int32_t* secondRegions,
@@ -91,7 +92,7 @@ void BlendSegmentedFields(const SegmentedSamples& first,
   float* distance,
   int32_t* region,
   float* segmented,
-  const ParallelFor& parallelFor);
+  const Execution& execution);
 
 /// The exact Euclidean distance from every sample of `box` to the nearest sample of the
 /// grid whose region is `which` (infinity when there is none), into `out` (the box's

@@ -611,13 +611,18 @@ struct Builder
 };
 } // namespace
 
-void ContourSegmented(const ContourInput& input, ContourResult& result)
+bool ContourSegmented(const ContourInput& input, ContourResult& result, const Execution& execution)
 {
   result = ContourResult();
   Builder builder(input, result);
   const int* n = builder.N;
   for (int k = 0; k + 1 < n[2]; ++k)
   {
+    if (!execution.Report(double(k) / (n[2] - 1)))
+    {
+      result = ContourResult();
+      return false;
+    }
     for (int j = 0; j + 1 < n[1]; ++j)
     {
       for (int i = 0; i + 1 < n[0]; ++i)
@@ -626,6 +631,12 @@ void ContourSegmented(const ContourInput& input, ContourResult& result)
       }
     }
   }
+  if (!execution.Report(1.0))
+  {
+    result = ContourResult();
+    return false;
+  }
+  return true;
 }
 
 } // namespace vtkdf

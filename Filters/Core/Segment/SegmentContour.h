@@ -33,6 +33,7 @@
 #ifndef vtkdf_SegmentContour_h
 #define vtkdf_SegmentContour_h
 
+#include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
 
 #include <cstdint>
@@ -68,7 +69,9 @@ struct ContourResult
   int64_t FeatureCells = 0;       // marching-cubes cells fanned around a feature point
 };
 
-void ContourSegmented(const ContourInput& input, ContourResult& result);
+/// The surface of the segmented field `input`, cell by cell. Progress by slices of
+/// cells; false when `execution` aborts (`result` is then empty).
+bool ContourSegmented(const ContourInput& input, ContourResult& result, const Execution& execution);
 
 } // namespace vtkdf
 

@@ -50,6 +50,104 @@ void ReportFarTriangles(const VoxelizeStatistics& statistics, VoxelReport& repor
 
 const char* const EmptyZeroSet =
   "The zero set is empty: no Boundary voxel is set, so no distance can be propagated.";
+
+/// The bits of `from` (over the box `box`) on the voxels of `part`, a box within it.
+BitVolume ExtractBits(const BitVolume& from,
+  const IndexBox& box,
+  const IndexBox& part,
+  const ParallelFor& parallelFor)
+{
+  BitVolume to(part.Size(0), part.Size(1), part.Size(2));
+  const int dx = part.Lo[0] - box.Lo[0], dy = part.Lo[1] - box.Lo[1], dz = part.Lo[2] - box.Lo[2];
+  auto lanes = [&](int64_t begin, int64_t end)
+  {
+    for (int64_t lane = begin; lane < end; ++lane)
+    {
+      const int x = static_cast<int>(lane % part.Size(0));
+      const int y = static_cast<int>(lane / part.Size(0));
+      // A word at a time: the part's lane is the source lane from voxel dz on.
+      uint64_t* words = to.Lane(x, y);
+      for (int w = 0; w < to.WordsPerLane(); ++w)
+      {
+        words[w] = from.Bits64(x + dx, y + dy, dz + 64 * w);
+      }
+      words[to.WordsPerLane() - 1] &= to.LastWordMask();
+    }
+  };
+  const int64_t count = int64_t(part.Size(0)) * part.Size(1);
+  parallelFor ? parallelFor(count, 256, lanes) : lanes(0, count);
+  return to;
+}
+
+/// Whether every voxel of `piece` holds a distance of at most `layers` in `values`
+/// (laid out over `box`).
+bool AllReached(const int32_t* values, const IndexBox& box, const IndexBox& piece, int layers)
+{
+  const int64_t nx = box.Size(0), ny = box.Size(1);
+  for (int k = piece.Lo[2]; k <= piece.Hi[2]; ++k)
+  {
+    for (int j = piece.Lo[1]; j <= piece.Hi[1]; ++j)
+    {
+      const int32_t* row =
+        values + ((k - box.Lo[2]) * ny + (j - box.Lo[1])) * nx + (piece.Lo[0] - box.Lo[0]);
+      for (int i = 0; i < piece.Size(0); ++i)
+      {
+        if (row[i] > layers || row[i] < -layers)
+        {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+/// The chamfer field on the voxels of `needed` (a box of the masks' grid) from the masks
+/// there, with request.MaximumLayers layers, into `output(needed)`.
+bool PropagateBox(const BitVolume& boundary,
+  const BitVolume* solid,
+  const IndexBox& needed,
+  const ChamferRequest& request,
+  HeadlessGL* gl,
+  const ChamferOutput& output,
+  const Execution& execution,
+  ChamferReport& report,
+  std::string& error)
+{
+  const BitVolume partBoundary = ExtractBits(boundary, request.Grid.Whole, needed, execution.For);
+  BitVolume partSolid;
+  if (solid)
+  {
+    partSolid = ExtractBits(*solid, request.Grid.Whole, needed, execution.For);
+  }
+  int32_t* values = output(needed);
+  ChamferRequest part = request;
+  part.Grid.Whole = needed;
+  if (partBoundary.Any())
+  {
+    const VoxelReport voxels = report.Voxels;
+    const bool ok = ComputeChamferField(
+      partBoundary, solid ? &partSolid : nullptr, part, gl, values, execution, report, error);
+    report.Voxels = voxels;
+    return ok;
+  }
+  // No zero-set voxel within MaximumLayers of the piece: none is reached.
+  report.Result = ChamferResult();
+  const int32_t unreached = request.Unreached();
+  const int nx = needed.Size(0), ny = needed.Size(1), nz = needed.Size(2);
+  for (int z = 0; z < nz; ++z)
+  {
+    for (int y = 0; y < ny; ++y)
+    {
+      for (int x = 0; x < nx; ++x)
+      {
+        const bool inside = request.Signed && solid && partSolid.Get(x, y, z);
+        *values++ = inside ? -unreached : unreached;
+      }
+    }
+  }
+  return true;
+}
 } // namespace
 
 bool VoxelizeMesh(MeshInput mesh,
@@ -229,6 +327,53 @@ bool ComputeChamferField(const BitVolume& boundary,
     execution.EndStage("propagate");
   }
   return true;
+}
+
+bool ComputeChamferPiece(const BitVolume& boundary,
+  const BitVolume* solid,
+  const IndexBox& piece,
+  const ChamferRequest& request,
+  HeadlessGL* gl,
+  const ChamferOutput& output,
+  IndexBox& computed,
+  const Execution& execution,
+  ChamferReport& report,
+  std::string& error)
+{
+  if (!boundary.Any())
+  {
+    error = EmptyZeroSet;
+    return false;
+  }
+  const IndexBox& whole = request.Grid.Whole;
+  if (request.MaximumLayers > 0)
+  {
+    computed = piece.Grown(request.MaximumLayers, whole);
+    return PropagateBox(boundary, solid, computed, request, gl, output, execution, report, error);
+  }
+  for (int margin = 16;; margin *= 2)
+  {
+    ChamferRequest bounded = request;
+    computed = piece.Grown(margin, whole);
+    if (computed.Count() > whole.Count() / 4)
+    {
+      computed = whole;
+    }
+    bounded.MaximumLayers = computed == whole ? 0 : margin;
+    // The box's values live where `output` put them: remember where, to check them.
+    int32_t* values = nullptr;
+    const ChamferOutput remember = [&output, &values](const IndexBox& box)
+    { return values = output(box); };
+    if (!PropagateBox(boundary, solid, computed, bounded, gl, remember, execution, report, error))
+    {
+      return false;
+    }
+    if (report.Result.Aborted || bounded.MaximumLayers == 0 ||
+      AllReached(values, computed, piece, margin))
+    {
+      return true;
+    }
+  }
 }
 
 } // namespace vtkdf

@@ -13,6 +13,7 @@
 #include "Voxels/ChamferTransform.h"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace vtkdf
@@ -81,6 +82,33 @@ bool ComputeChamferField(const BitVolume& boundary,
   const ChamferRequest& request,
   HeadlessGL* gl,
   int32_t* distance,
+  const Execution& execution,
+  ChamferReport& report,
+  std::string& error);
+
+/// Where ComputeChamferPiece writes: called with each box of voxels it computes (a
+/// later call replaces an earlier one's values), returns room for the box's voxels, x
+/// fastest.
+using ChamferOutput = std::function<int32_t*(const IndexBox& box)>;
+
+/// The chamfer field on `piece` alone, from the masks of the whole grid
+/// (request.Grid.Whole), equal there to the whole grid's field: a voxel at distance
+/// d <= MaximumLayers from the zero set has a shortest path to it inside the box its
+/// distance spans (every step of every metric moves each coordinate by at most one, and
+/// the steps of a path can be reordered to move monotonically), so MaximumLayers voxels
+/// around the piece decide it. Without a limit, the piece and a margin of 16 voxels are
+/// propagated with that many layers, and the margin doubled until every voxel of the
+/// piece is reached; a box over a quarter of the grid is not tried (the whole grid then,
+/// so that the tries cost at most half of it). `computed` is the box of the last call to
+/// `output`, which holds the piece. report.Result is the last propagation's;
+/// report.Voxels is left as it is. False and `error` on an empty zero set or a GPU failure.
+bool ComputeChamferPiece(const BitVolume& boundary,
+  const BitVolume* solid,
+  const IndexBox& piece,
+  const ChamferRequest& request,
+  HeadlessGL* gl,
+  const ChamferOutput& output,
+  IndexBox& computed,
   const Execution& execution,
   ChamferReport& report,
   std::string& error);

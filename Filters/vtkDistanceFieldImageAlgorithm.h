@@ -1,0 +1,84 @@
+/**
+ * @class   vtkDistanceFieldImageAlgorithm
+ * @brief   Base of the module's filters whose first output is a vtkImageData: the run that
+ * every filter shares.
+ *
+ * Its subclasses are vtkDistanceFieldAlgorithm (the fields of a mesh on a grid) and
+ * vtkDistanceFieldBlend. This class runs each request the same way (vtkDistanceFieldRun.h):
+ * ProcessRequest catches every exception (std::bad_alloc as out of memory) and leaves empty outputs
+ * and a non-zero GetErrorCode() after any failure; RequestData empties the outputs, calls the
+ * subclass's Execute (which maps the inputs onto one core entry point and the result back), reports
+ * progress and honours abort, and records what the run used and took (GetLastTime() and friends).
+ *
+ * VTK's wrappers follow only the vtkObjectBase chain, so the module has one such base
+ * per output type rather than a mix-in; both call the same functions.
+ */
+#ifndef vtkDistanceFieldImageAlgorithm_h
+#define vtkDistanceFieldImageAlgorithm_h
+
+#include "vtkDistanceFieldsModule.h" // For export macro
+#include "vtkImageAlgorithm.h"
+
+#include <string> // For the record's strings
+
+#ifndef __VTK_WRAP__
+namespace vtkdf
+{
+class FilterRun;
+enum class RunStatus;
+}
+#endif
+
+class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldImageAlgorithm : public vtkImageAlgorithm
+{
+public:
+  vtkTypeMacro(vtkDistanceFieldImageAlgorithm, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// What the last complete run used: "gpu" or "cpu" ("none" before one).
+  const char* GetLastBackend() const { return this->LastBackend.c_str(); }
+  /// GL_RENDERER of the last GPU run, "cpu" after a CPU run, "none" before a complete one.
+  const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
+  /// How the last GPU run got its context ("EGL device", "EGL surfaceless", "OSMesa"),
+  /// "cpu" after a CPU run, "none" before a complete one.
+  const char* GetLastPlatform() const { return this->LastPlatform.c_str(); }
+  /// Seconds the last complete run spent computing (input conversion and arrays
+  /// included, no I/O).
+  double GetLastTime() const { return this->LastTime; }
+  /// Seconds per stage of the last complete run, as "name:seconds,name:seconds,..." (the
+  /// stages are the filter's own, e.g. sites, culling, scan, finalize).
+  const char* GetLastStageTimes() const { return this->LastStageTimes.c_str(); }
+
+  /// Runs the request; a failure (a request returning 0, or an exception such as
+  /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+protected:
+  vtkDistanceFieldImageAlgorithm() = default;
+  ~vtkDistanceFieldImageAlgorithm() override = default;
+
+  /// The shared run around Execute.
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+#ifndef __VTK_WRAP__
+  /// The filter's own work: the inputs onto one core entry point, its result onto the
+  /// outputs (which RequestData has emptied); errors and empty results through `run`.
+  virtual vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) = 0;
+#endif
+
+  std::string LastBackend = "none";
+  std::string LastRenderer = "none";
+  std::string LastPlatform = "none";
+  double LastTime = 0;
+  std::string LastStageTimes;
+
+private:
+  vtkDistanceFieldImageAlgorithm(const vtkDistanceFieldImageAlgorithm&) = delete;
+  void operator=(const vtkDistanceFieldImageAlgorithm&) = delete;
+};
+
+#endif

@@ -1,0 +1,81 @@
+/**
+ * @class   vtkDistanceFieldPolyDataAlgorithm
+ * @brief   Base of the module's filters whose first output is a vtkPolyData: the run that
+ * every filter shares.
+ *
+ * Its subclasses are vtkConvexQueryAlgorithm (the convex queries), vtkSegmentedDistanceContour and
+ * vtkDistanceFieldProximity. This class runs each request the same way (vtkDistanceFieldRun.h):
+ * ProcessRequest catches every exception (std::bad_alloc as out of memory) and leaves empty outputs
+ * and a non-zero GetErrorCode() after any failure; RequestData empties the outputs, calls the
+ * subclass's Execute (which maps the inputs onto one core entry point and the result back), reports
+ * progress and honours abort, and records what the run used and took (GetLastTime() and friends).
+ *
+ * VTK's wrappers follow only the vtkObjectBase chain, so the module has one such base
+ * per output type rather than a mix-in; both call the same functions.
+ */
+#ifndef vtkDistanceFieldPolyDataAlgorithm_h
+#define vtkDistanceFieldPolyDataAlgorithm_h
+
+#include "vtkDistanceFieldsModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string> // For the record's strings
+
+#ifndef __VTK_WRAP__
+namespace vtkdf
+{
+class FilterRun;
+enum class RunStatus;
+}
+#endif
+
+class VTKDISTANCEFIELDS_EXPORT vtkDistanceFieldPolyDataAlgorithm : public vtkPolyDataAlgorithm
+{
+public:
+  vtkTypeMacro(vtkDistanceFieldPolyDataAlgorithm, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// GL_RENDERER of the last GPU run, "cpu" after a CPU run, "none" before a complete one.
+  const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
+  /// How the last GPU run got its context ("EGL device", "EGL surfaceless", "OSMesa"),
+  /// "cpu" after a CPU run, "none" before a complete one.
+  const char* GetLastPlatform() const { return this->LastPlatform.c_str(); }
+  /// Seconds the last complete run spent computing (input conversion and arrays
+  /// included, no I/O).
+  double GetLastTime() const { return this->LastTime; }
+  /// Seconds per stage of the last complete run, as "name:seconds,name:seconds,..." (the
+  /// stages are the filter's own, e.g. sites, culling, scan, finalize).
+  const char* GetLastStageTimes() const { return this->LastStageTimes.c_str(); }
+
+  /// Runs the request; a failure (a request returning 0, or an exception such as
+  /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+protected:
+  vtkDistanceFieldPolyDataAlgorithm() = default;
+  ~vtkDistanceFieldPolyDataAlgorithm() override = default;
+
+  /// The shared run around Execute.
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+#ifndef __VTK_WRAP__
+  /// The filter's own work: the inputs onto one core entry point, its result onto the
+  /// outputs (which RequestData has emptied); errors and empty results through `run`.
+  virtual vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector,
+    vtkdf::FilterRun& run) = 0;
+#endif
+
+  std::string LastRenderer = "none";
+  std::string LastPlatform = "none";
+  double LastTime = 0;
+  std::string LastStageTimes;
+
+private:
+  vtkDistanceFieldPolyDataAlgorithm(const vtkDistanceFieldPolyDataAlgorithm&) = delete;
+  void operator=(const vtkDistanceFieldPolyDataAlgorithm&) = delete;
+};
+
+#endif
