@@ -2,7 +2,8 @@
 # vtkdf end to end on bundled data: every subcommand, chained as a user would (linfac's
 # field into medial and render, voxelize's masks into chamfer, segment's field into
 # blend and render), the --timing line's format, the
-# files written, and the failures that must give a non-zero exit status.
+# files written, the values of the outputs (check_cli_values.py), and the failures that
+# must give a non-zero exit status.
 # usage: TestCli.sh VTKDF DATA_DIR OUT_DIR
 set -u
 vtkdf=$1
@@ -36,6 +37,7 @@ run() {
     return
   fi
   echo "$line"
+  echo "$line" >>"$out/timing.log"
   grep -Eq "$regex" <<<"$line" || fail "$name: no timing line matching $regex"
   for f in "${files[@]}"; do
     [ -s "$f" ] || fail "$name: $f not written"
@@ -175,6 +177,10 @@ grep -q "needs an X server" "$out/renderdisplay.out" || fail "render without DIS
 "$vtkdf" union "$data/hubo_ankle_convex4.vtp" -o "$out/union-hulls.vtp" --query 0 0.01 0.01 \
   --convex-hulls 2>"$out/union-hulls.err" || fail "union --convex-hulls: exit status $?"
 grep -q "convex hulls" "$out/union-hulls.err" && fail "union --convex-hulls warned on convex pieces"
+
+# The outputs' values: fields against what they must hold (check_cli_values.py).
+/usr/bin/python3 "$(dirname "$0")/check_cli_values.py" "$out" "$data" "$out/timing.log" ||
+  fail "the outputs' values"
 
 # --help (alone or after a subcommand): the usage on stdout, status 0.
 for args in "--help" "-h" "medial --help"; do
