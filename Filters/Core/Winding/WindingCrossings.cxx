@@ -271,30 +271,15 @@ struct Event
 
 namespace
 {
-/// The crossings of every line of `extent`: for each sample, inside[v] = (N != 0), or
-/// counts[v] = N (CountUnknown where |N| >= 127); the samples on the surface are left
-/// (0, or CountUnknown) and returned as (i, j, k).
-std::vector<std::array<int, 3>> CrossingPass(const std::vector<double>& points,
+/// Each triangle's orientation in projection along x and the lines its box covers.
+std::vector<Footprint> Footprints(const std::vector<double>& points,
   const std::vector<int64_t>& triangleIds,
   const SampleGrid& grid,
   const IndexBox& extent,
-  uint8_t* inside,
-  int8_t* counts,
-  const ParallelFor& parallelFor,
-  int64_t& decidedSamples)
+  const ParallelFor& parallelFor)
 {
-  std::vector<std::array<int, 3>> surface; // samples on the surface (i, j, k)
-  decidedSamples = 0;
-  if (extent.Empty())
-  {
-    return surface;
-  }
   const int64_t triangles = static_cast<int64_t>(triangleIds.size() / 3);
   auto corner = [&](int64_t t, int c) { return &points[3 * triangleIds[3 * t + c]]; };
-  const int nx = extent.Size(0), ny = extent.Size(1), nz = extent.Size(2);
-  const int tilesY = (ny + TileLines - 1) / TileLines, tilesZ = (nz + TileLines - 1) / TileLines;
-
-  // Each triangle's orientation in projection and the lines its box covers.
   std::vector<Footprint> footprints(static_cast<size_t>(triangles));
   parallelFor(triangles,
     1024,
@@ -323,10 +308,19 @@ std::vector<std::array<int, 3>> CrossingPass(const std::vector<double>& points,
           f.K1);
       }
     });
+  return footprints;
+}
 
-  // The triangles of each tile of lines (compressed rows).
-  const int64_t tiles = int64_t(tilesY) * tilesZ;
-  std::vector<int64_t> start(static_cast<size_t>(tiles + 1), 0);
+/// The triangles of each tile of TileLines x TileLines lines (tile = tz * tilesY + ty),
+/// as compressed rows: the triangles of tile t are members[start[t] .. start[t + 1]).
+void TileMembers(const std::vector<Footprint>& footprints,
+  const IndexBox& extent,
+  int tilesY,
+  int64_t tiles,
+  std::vector<int64_t>& start,
+  std::vector<int64_t>& members)
+{
+  start.assign(static_cast<size_t>(tiles + 1), 0);
   auto forTiles = [&](const Footprint& f, auto&& visit)
   {
     if (f.J0 > f.J1 || f.K0 > f.K1)
@@ -350,17 +344,208 @@ std::vector<std::array<int, 3>> CrossingPass(const std::vector<double>& points,
   {
     start[static_cast<size_t>(tile + 1)] += start[static_cast<size_t>(tile)];
   }
-  std::vector<int64_t> members(static_cast<size_t>(start.back()));
+  members.assign(static_cast<size_t>(start.back()), 0);
+  std::vector<int64_t> next(start.begin(), start.end() - 1);
+  for (int64_t t = 0; t < static_cast<int64_t>(footprints.size()); ++t)
   {
-    std::vector<int64_t> next(start.begin(), start.end() - 1);
-    for (int64_t t = 0; t < triangles; ++t)
+    forTiles(footprints[static_cast<size_t>(t)],
+      [&](int64_t tile) { members[static_cast<size_t>(next[static_cast<size_t>(tile)]++)] = t; });
+  }
+}
+
+/// The first sample index i of the line through q (q[1], q[2] set) whose point lies
+/// beyond the plane of (a, b, c), o * Orient3D > 0 (x above the crossing's), within
+/// [extent.Lo[0], extent.Hi[0] + 1]: from an estimate of the crossing, then by halving.
+/// `beyond(i)` is that sign at sample i.
+template<typename Beyond>
+int FirstBeyond(const double* a,
+  const double* b,
+  const double* c,
+  const double* q,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  const Beyond& beyond)
+{
+  const double n[3] = { (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+    (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) };
+  const double crossing = a[0] - (n[1] * (q[1] - a[1]) + n[2] * (q[2] - a[2])) / n[0];
+  const double guess = std::ceil((crossing - grid.Origin[0]) / grid.Spacing[0]);
+  int lo = extent.Lo[0], hi = extent.Hi[0] + 1; // the answer lies in [lo, hi]
+  if (std::isfinite(guess) && guess > lo && guess <= hi)
+  {
+    const int g = static_cast<int>(guess);
+    if (beyond(g - 1) <= 0)
     {
-      forTiles(footprints[static_cast<size_t>(t)],
-        [&](int64_t tile) { members[static_cast<size_t>(next[static_cast<size_t>(tile)]++)] = t; });
+      lo = g;
+      hi = g <= extent.Hi[0] && beyond(g) > 0 ? g : hi;
+    }
+    else
+    {
+      hi = g - 1;
     }
   }
+  while (lo < hi)
+  {
+    const int middle = lo + (hi - lo) / 2;
+    if (beyond(middle) > 0)
+    {
+      hi = middle;
+    }
+    else
+    {
+      lo = middle + 1;
+    }
+  }
+  return lo;
+}
 
-  const int64_t strideY = nx, strideZ = int64_t(nx) * ny;
+/// What triangle (a, b, c), of footprint f, does to line `line` of the tile, through
+/// (y_j, z_k): a crossing event, and the samples of the line that lie on the triangle
+/// (as (line, i) in `onSurface`).
+void CrossLine(const double* a,
+  const double* b,
+  const double* c,
+  const Footprint& f,
+  int j,
+  int k,
+  int line,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  std::vector<Event>& events,
+  std::vector<std::array<int, 2>>& onSurface)
+{
+  double q[3] = { 0, grid.Coordinate(1, j), grid.Coordinate(2, k) };
+  const int side[3] = { Orient2D(q, a, b, 1, 2), Orient2D(q, b, c, 1, 2), Orient2D(q, c, a, 1, 2) };
+  if (f.Orientation == 0)
+  {
+    // Seen edge-on from x: the line crosses it nowhere, but where it runs through its
+    // projection (a segment: collinear with it, within its box) its samples may lie on
+    // it, on the surface: they are decided alone.
+    if (side[0] == 0 && side[1] == 0 && side[2] == 0)
+    {
+      int i0 = 0, i1 = -1;
+      IndexRange(
+        grid, extent, 0, std::min({ a[0], b[0], c[0] }), std::max({ a[0], b[0], c[0] }), i0, i1);
+      for (int i = i0; i <= i1; ++i)
+      {
+        onSurface.push_back({ { line, i } });
+      }
+    }
+    return;
+  }
+  // The line's point in the closed projection, and the moved point p' inside.
+  bool closed = true, moved = true;
+  const double* from[3] = { a, b, c };
+  const double* to[3] = { b, c, a };
+  for (int e = 0; e < 3; ++e)
+  {
+    closed = closed && (side[e] == f.Orientation || side[e] == 0);
+    moved = moved && (side[e] != 0 ? side[e] : PerturbedSide(from[e], to[e])) == f.Orientation;
+  }
+  if (!closed)
+  {
+    return;
+  }
+  auto beyond = [&](int i)
+  {
+    q[0] = grid.Coordinate(0, i);
+    return f.Orientation * Orient3D(a, b, c, q);
+  };
+  const int lo = FirstBeyond(a, b, c, q, grid, extent, beyond);
+  // w counts crossings entering the side the normal points away from. A line through
+  // the projection's boundary that the moved line misses only meets the triangle: a
+  // sample there is on the surface.
+  if (moved)
+  {
+    events.push_back({ line, lo, -f.Orientation });
+  }
+  if (lo > extent.Lo[0] && beyond(lo - 1) == 0)
+  {
+    onSurface.push_back({ { line, lo - 1 } });
+  }
+}
+
+/// Each line of the tile (j0..j1, k0..k1) sample by sample: the crossings' contributions
+/// summed into counts (N, or CountUnknown where |N| >= 127) or, without counts, inside
+/// (N != 0). `events` is sorted by line here; `w` is scratch of nx + 1 values.
+void WriteLines(std::vector<Event>& events,
+  int j0,
+  int j1,
+  int k0,
+  int k1,
+  const IndexBox& extent,
+  uint8_t* inside,
+  int8_t* counts,
+  std::vector<int>& w)
+{
+  std::sort(
+    events.begin(), events.end(), [](const Event& x, const Event& y) { return x.Line < y.Line; });
+  const int nx = extent.Size(0);
+  const int64_t strideY = nx, strideZ = int64_t(nx) * extent.Size(1);
+  size_t e = 0;
+  for (int k = k0; k <= k1; ++k)
+  {
+    for (int j = j0; j <= j1; ++j)
+    {
+      const int line = (k - k0) * TileLines + (j - j0);
+      std::fill(w.begin(), w.end(), 0);
+      for (; e < events.size() && events[e].Line == line; ++e)
+      {
+        w[static_cast<size_t>(events[e].First - extent.Lo[0])] += events[e].Delta;
+      }
+      const int64_t rowStart = (j - extent.Lo[1]) * strideY + (k - extent.Lo[2]) * strideZ;
+      int sum = 0;
+      if (counts)
+      {
+        int8_t* row = counts + rowStart;
+        for (int i = 0; i < nx; ++i)
+        {
+          sum += w[static_cast<size_t>(i)];
+          row[i] = sum > -127 && sum < 127 ? static_cast<int8_t>(sum) : CountUnknown;
+        }
+      }
+      else
+      {
+        uint8_t* row = inside + rowStart;
+        for (int i = 0; i < nx; ++i)
+        {
+          sum += w[static_cast<size_t>(i)];
+          row[i] = sum != 0 ? 1 : 0;
+        }
+      }
+    }
+  }
+}
+
+/// The crossings of every line of `extent`: for each sample, inside[v] = (N != 0), or
+/// counts[v] = N (CountUnknown where |N| >= 127); the samples on the surface are left
+/// (0, or CountUnknown) and returned as (i, j, k). The lines go by tiles of
+/// TileLines x TileLines, each with the triangles whose boxes reach it.
+std::vector<std::array<int, 3>> CrossingPass(const std::vector<double>& points,
+  const std::vector<int64_t>& triangleIds,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* inside,
+  int8_t* counts,
+  const ParallelFor& parallelFor,
+  int64_t& decidedSamples)
+{
+  std::vector<std::array<int, 3>> surface; // samples on the surface (i, j, k)
+  decidedSamples = 0;
+  if (extent.Empty())
+  {
+    return surface;
+  }
+  auto corner = [&](int64_t t, int c) { return &points[3 * triangleIds[3 * t + c]]; };
+  const int nx = extent.Size(0), ny = extent.Size(1), nz = extent.Size(2);
+  const int tilesY = (ny + TileLines - 1) / TileLines, tilesZ = (nz + TileLines - 1) / TileLines;
+  const std::vector<Footprint> footprints =
+    Footprints(points, triangleIds, grid, extent, parallelFor);
+  const int64_t tiles = int64_t(tilesY) * tilesZ;
+  std::vector<int64_t> start, members;
+  TileMembers(footprints, extent, tilesY, tiles, start, members);
+
   std::atomic<int64_t> lineSamples{ 0 };
   std::mutex lock;
   parallelFor(tiles,
@@ -385,144 +570,26 @@ std::vector<std::array<int, 3>> CrossingPass(const std::vector<double>& points,
         {
           const int64_t t = members[static_cast<size_t>(m)];
           const Footprint& f = footprints[static_cast<size_t>(t)];
-          const double* a = corner(t, 0);
-          const double* b = corner(t, 1);
-          const double* c = corner(t, 2);
           for (int k = std::max(k0, f.K0); k <= std::min(k1, f.K1); ++k)
           {
             for (int j = std::max(j0, f.J0); j <= std::min(j1, f.J1); ++j)
             {
-              double q[3] = { 0, grid.Coordinate(1, j), grid.Coordinate(2, k) };
-              const int line = (k - k0) * TileLines + (j - j0);
-              const int side[3] = {
-                Orient2D(q, a, b, 1, 2), Orient2D(q, b, c, 1, 2), Orient2D(q, c, a, 1, 2)
-              };
-              if (f.Orientation == 0)
-              {
-                // Seen edge-on from x: the line crosses it nowhere, but where it runs
-                // through its projection (a segment: collinear with it, within its box)
-                // its samples may lie on it, on the surface: they are decided alone.
-                if (side[0] == 0 && side[1] == 0 && side[2] == 0)
-                {
-                  int i0 = 0, i1 = -1;
-                  IndexRange(grid,
-                    extent,
-                    0,
-                    std::min({ a[0], b[0], c[0] }),
-                    std::max({ a[0], b[0], c[0] }),
-                    i0,
-                    i1);
-                  for (int i = i0; i <= i1; ++i)
-                  {
-                    onSurface.push_back({ { line, i } });
-                  }
-                }
-                continue;
-              }
-              // The line's point in the closed projection, and the moved point p' inside.
-              bool closed = true, moved = true;
-              const double* from[3] = { a, b, c };
-              const double* to[3] = { b, c, a };
-              for (int e = 0; e < 3; ++e)
-              {
-                closed = closed && (side[e] == f.Orientation || side[e] == 0);
-                moved = moved &&
-                  (side[e] != 0 ? side[e] : PerturbedSide(from[e], to[e])) == f.Orientation;
-              }
-              if (!closed)
-              {
-                continue;
-              }
-              // The first sample beyond the plane (o * Orient3D > 0: x above the
-              // crossing's), from an estimate of the crossing, then by halving.
-              auto beyond = [&](int i)
-              {
-                q[0] = grid.Coordinate(0, i);
-                return f.Orientation * Orient3D(a, b, c, q);
-              };
-              const double n[3] = { (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
-                (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
-                (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) };
-              const double crossing = a[0] - (n[1] * (q[1] - a[1]) + n[2] * (q[2] - a[2])) / n[0];
-              const double guess = std::ceil((crossing - grid.Origin[0]) / grid.Spacing[0]);
-              int lo = extent.Lo[0], hi = extent.Hi[0] + 1; // the answer lies in [lo, hi]
-              if (std::isfinite(guess) && guess > lo && guess <= hi)
-              {
-                const int g = static_cast<int>(guess);
-                if (beyond(g - 1) <= 0)
-                {
-                  lo = g;
-                  hi = g <= extent.Hi[0] && beyond(g) > 0 ? g : hi;
-                }
-                else
-                {
-                  hi = g - 1;
-                }
-              }
-              while (lo < hi)
-              {
-                const int middle = lo + (hi - lo) / 2;
-                if (beyond(middle) > 0)
-                {
-                  hi = middle;
-                }
-                else
-                {
-                  lo = middle + 1;
-                }
-              }
-              // w counts crossings entering the side the normal points away from. A line
-              // through the projection's boundary that the moved line misses only meets
-              // the triangle: a sample there is on the surface.
-              if (moved)
-              {
-                events.push_back({ line, lo, -f.Orientation });
-              }
-              if (lo > extent.Lo[0] && beyond(lo - 1) == 0)
-              {
-                onSurface.push_back({ { line, lo - 1 } });
-              }
+              CrossLine(corner(t, 0),
+                corner(t, 1),
+                corner(t, 2),
+                f,
+                j,
+                k,
+                (k - k0) * TileLines + (j - j0),
+                grid,
+                extent,
+                events,
+                onSurface);
             }
           }
         }
-        // Each line's w, sample by sample: the crossings' contributions summed.
-        std::sort(events.begin(),
-          events.end(),
-          [](const Event& x, const Event& y) { return x.Line < y.Line; });
-        size_t e = 0;
-        for (int k = k0; k <= k1; ++k)
-        {
-          for (int j = j0; j <= j1; ++j)
-          {
-            const int line = (k - k0) * TileLines + (j - j0);
-            std::fill(w.begin(), w.end(), 0);
-            for (; e < events.size() && events[e].Line == line; ++e)
-            {
-              w[static_cast<size_t>(events[e].First - extent.Lo[0])] += events[e].Delta;
-            }
-            const int64_t rowStart = (j - extent.Lo[1]) * strideY + (k - extent.Lo[2]) * strideZ;
-            int sum = 0;
-            if (counts)
-            {
-              int8_t* row = counts + rowStart;
-              for (int i = 0; i < nx; ++i)
-              {
-                sum += w[static_cast<size_t>(i)];
-                row[i] = sum > -127 && sum < 127 ? static_cast<int8_t>(sum) : CountUnknown;
-              }
-            }
-            else
-            {
-              uint8_t* row = inside + rowStart;
-              for (int i = 0; i < nx; ++i)
-              {
-                sum += w[static_cast<size_t>(i)];
-                row[i] = sum != 0 ? 1 : 0;
-              }
-            }
-            decided += nx;
-          }
-        }
+        WriteLines(events, j0, j1, k0, k1, extent, inside, counts, w);
+        decided += int64_t(nx) * (j1 - j0 + 1) * (k1 - k0 + 1);
         // Samples on the surface, once each (a sample on an edge is on two planes).
         std::sort(onSurface.begin(), onSurface.end());
         onSurface.erase(std::unique(onSurface.begin(), onSurface.end()), onSurface.end());
@@ -537,6 +604,7 @@ std::vector<std::array<int, 3>> CrossingPass(const std::vector<double>& points,
       surface.insert(surface.end(), found.begin(), found.end());
     });
   decidedSamples = lineSamples.load();
+  const int64_t strideY = nx, strideZ = int64_t(nx) * ny;
   for (const auto& [i, j, k] : surface)
   {
     if (counts)
