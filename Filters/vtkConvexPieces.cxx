@@ -182,20 +182,14 @@ double FacesDiagonal(const std::vector<double>& points,
                        : std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
                            (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
 }
-} // namespace
 
-bool ConvexPieceInput::Read(vtkDataObject* input,
+/// The pieces' cells: the connected components of one mesh (or its cells by piece id,
+/// `pieceArray`), or the leaves of a composite. False with `error`.
+bool ReadPieceCells(vtkDataObject* input,
   const std::string& pieceArray,
-  bool useHulls,
+  std::vector<PieceCells>& cells,
   std::string& error)
 {
-  this->Pieces.clear();
-  this->Diagonal = 0;
-  this->Tolerance = 0;
-  this->ConvexityTolerance = 0;
-  this->Hulls = 0;
-  // The pieces: connected components of one mesh, or the leaves of a composite.
-  std::vector<PieceCells> cells;
   if (auto* mesh = vtkPolyData::SafeDownCast(input))
   {
     double bounds[6];
@@ -257,7 +251,49 @@ bool ConvexPieceInput::Read(vtkDataObject* input,
       : std::string("The input has no polygons: there is no union of convex pieces.");
     return false;
   }
+  return true;
+}
 
+/// The convex hull (qhull) of the points that `faces` use, as `piece`; false with `error`.
+bool BuildHull(const std::vector<double>& points,
+  const std::vector<std::vector<int64_t>>& faces,
+  double tolerance,
+  ConvexPiece& piece,
+  std::string& error)
+{
+  std::vector<int64_t> used;
+  for (const auto& face : faces)
+  {
+    used.insert(used.end(), face.begin(), face.end());
+  }
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  std::vector<double> corners;
+  for (const int64_t id : used)
+  {
+    corners.insert(corners.end(), &points[3 * id], &points[3 * id] + 3);
+  }
+  std::vector<std::vector<int64_t>> hull;
+  int64_t onHull = 0;
+  return ConvexHull(corners, hull, onHull, error) && piece.Build(corners, hull, tolerance, error);
+}
+} // namespace
+
+bool ConvexPieceInput::Read(vtkDataObject* input,
+  const std::string& pieceArray,
+  bool useHulls,
+  std::string& error)
+{
+  this->Pieces.clear();
+  this->Diagonal = 0;
+  this->Tolerance = 0;
+  this->ConvexityTolerance = 0;
+  this->Hulls = 0;
+  std::vector<PieceCells> cells;
+  if (!ReadPieceCells(input, pieceArray, cells, error))
+  {
+    return false;
+  }
   // Coordinates checked, and the tolerance from the pieces' size.
   double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
   std::vector<std::vector<double>> points(cells.size());
@@ -313,23 +349,8 @@ bool ConvexPieceInput::Read(vtkDataObject* input,
       return false;
     }
     // Its convex hull instead: of the points its polygons use.
-    std::vector<int64_t> used;
-    for (const auto& face : cells[p].Faces)
-    {
-      used.insert(used.end(), face.begin(), face.end());
-    }
-    std::sort(used.begin(), used.end());
-    used.erase(std::unique(used.begin(), used.end()), used.end());
-    std::vector<double> corners;
-    for (const int64_t id : used)
-    {
-      corners.insert(corners.end(), &points[p][3 * id], &points[p][3 * id] + 3);
-    }
-    std::vector<std::vector<int64_t>> hull;
-    int64_t onHull = 0;
     std::string hullError;
-    if (!ConvexHull(corners, hull, onHull, hullError) ||
-      !piece.Build(corners, hull, this->ConvexityTolerance, hullError))
+    if (!BuildHull(points[p], cells[p].Faces, this->ConvexityTolerance, piece, hullError))
     {
       error = "Piece " + std::to_string(p) + " is not a closed convex polytope (" + why +
         ") and has no convex hull: " + hullError + ".";

@@ -288,6 +288,140 @@ bool AssembleWholeMesh(vtkPolyData* input, WholeMesh& whole, std::string& error)
   return true;
 }
 
+namespace
+{
+/// A piece of an image as it travels between ranks: the named arrays only, its extent
+/// and its grid (origin, spacing) in binary field data (an image is sent as dimensions
+/// and origin, from extent 0; as text the grid would be rounded).
+vtkSmartPointer<vtkImageData> PieceToSend(vtkImageData* piece,
+  const std::vector<std::string>& arrays)
+{
+  vtkNew<vtkImageData> send;
+  if (!piece)
+  {
+    return send.Get();
+  }
+  send->SetExtent(piece->GetExtent());
+  send->SetOrigin(piece->GetOrigin());
+  send->SetSpacing(piece->GetSpacing());
+  send->GetFieldData()->ShallowCopy(piece->GetFieldData());
+  vtkNew<vtkIntArray> extent;
+  extent->SetName(PieceExtentName);
+  extent->SetNumberOfValues(6);
+  for (int a = 0; a < 6; ++a)
+  {
+    extent->SetValue(a, piece->GetExtent()[a]);
+  }
+  send->GetFieldData()->AddArray(extent);
+  vtkNew<vtkDoubleArray> grid;
+  grid->SetName(PieceGridName);
+  grid->SetNumberOfValues(6);
+  for (int a = 0; a < 3; ++a)
+  {
+    grid->SetValue(a, piece->GetOrigin()[a]);
+    grid->SetValue(3 + a, piece->GetSpacing()[a]);
+  }
+  send->GetFieldData()->AddArray(grid);
+  for (const std::string& name : arrays)
+  {
+    if (vtkDataArray* array = piece->GetPointData()->GetArray(name.c_str()))
+    {
+      send->GetPointData()->AddArray(array);
+    }
+  }
+  return send.Get();
+}
+
+/// The extent `e` and grid (origin, spacing) a received piece came with; false with
+/// `error` when it lacks them or lies outside `wholeExtent`.
+bool ReceivedExtent(vtkImageData* part,
+  const int wholeExtent[6],
+  int e[6],
+  vtkDoubleArray*& grid,
+  std::string& error)
+{
+  vtkIntArray* extent = vtkIntArray::SafeDownCast(part->GetFieldData()->GetArray(PieceExtentName));
+  if (!extent || extent->GetNumberOfValues() != 6)
+  {
+    error = "a rank's piece of the image came without its extent";
+    return false;
+  }
+  for (int a = 0; a < 6; ++a)
+  {
+    e[a] = extent->GetValue(a);
+  }
+  grid = vtkDoubleArray::SafeDownCast(part->GetFieldData()->GetArray(PieceGridName));
+  if (!grid || grid->GetNumberOfValues() != 6)
+  {
+    error = "a rank's piece of the image came without its grid";
+    return false;
+  }
+  if (e[0] < wholeExtent[0] || e[1] > wholeExtent[1] || e[2] < wholeExtent[2] ||
+    e[3] > wholeExtent[3] || e[4] < wholeExtent[4] || e[5] > wholeExtent[5])
+  {
+    error = "a rank's piece of the image lies outside its whole extent";
+    return false;
+  }
+  return true;
+}
+
+/// The point arrays of `part` (extent `e`) copied into `image` (extent `wholeExtent`),
+/// row by row, the arrays made at their first piece; `filled` marks the samples written.
+void CopyPiece(vtkImageData* part,
+  const int e[6],
+  const int wholeExtent[6],
+  vtkImageData* image,
+  std::vector<uint8_t>& filled)
+{
+  const vtkIdType n = image->GetNumberOfPoints();
+  const int nx = wholeExtent[1] - wholeExtent[0] + 1, ny = wholeExtent[3] - wholeExtent[2] + 1;
+  vtkPointData* from = part->GetPointData();
+  for (int a = 0; a < from->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* source = from->GetArray(a);
+    vtkDataArray* target = image->GetPointData()->GetArray(source->GetName());
+    if (!target)
+    {
+      vtkSmartPointer<vtkDataArray> created;
+      created.TakeReference(source->NewInstance());
+      created->SetName(source->GetName());
+      created->SetNumberOfComponents(source->GetNumberOfComponents());
+      created->SetNumberOfTuples(n);
+      image->GetPointData()->AddArray(created);
+      target = created;
+    }
+    const bool sameType = target->GetDataType() == source->GetDataType() &&
+      target->GetNumberOfComponents() == source->GetNumberOfComponents();
+    const int row = e[1] - e[0] + 1;
+    const size_t rowBytes = static_cast<size_t>(row) * source->GetNumberOfComponents() *
+      static_cast<size_t>(source->GetDataTypeSize());
+    vtkIdType at = 0;
+    for (int k = e[4]; k <= e[5]; ++k)
+    {
+      for (int j = e[2]; j <= e[3]; ++j, at += row)
+      {
+        const vtkIdType v = (vtkIdType(k - wholeExtent[4]) * ny + (j - wholeExtent[2])) * nx +
+          (e[0] - wholeExtent[0]);
+        if (sameType)
+        {
+          std::memcpy(target->GetVoidPointer(v * target->GetNumberOfComponents()),
+            source->GetVoidPointer(at * source->GetNumberOfComponents()),
+            rowBytes);
+        }
+        else
+        {
+          for (int i = 0; i < row; ++i)
+          {
+            target->SetTuple(v + i, at + i, source);
+          }
+        }
+        std::fill(filled.begin() + v, filled.begin() + v + row, uint8_t(1));
+      }
+    }
+  }
+}
+} // namespace
+
 bool GatherWholeImage(vtkImageData* piece,
   const int wholeExtent[6],
   const std::vector<std::string>& arrays,
@@ -302,40 +436,7 @@ bool GatherWholeImage(vtkImageData* piece,
     return true;
   }
   // Only the named arrays travel.
-  vtkNew<vtkImageData> send;
-  if (piece)
-  {
-    send->SetExtent(piece->GetExtent());
-    send->SetOrigin(piece->GetOrigin());
-    send->SetSpacing(piece->GetSpacing());
-    send->GetFieldData()->ShallowCopy(piece->GetFieldData());
-    // The extent itself: an image is sent as dimensions and origin, from extent 0.
-    vtkNew<vtkIntArray> extent;
-    extent->SetName(PieceExtentName);
-    extent->SetNumberOfValues(6);
-    for (int a = 0; a < 6; ++a)
-    {
-      extent->SetValue(a, piece->GetExtent()[a]);
-    }
-    send->GetFieldData()->AddArray(extent);
-    // And the grid's origin and spacing in binary (as text they would be rounded).
-    vtkNew<vtkDoubleArray> grid;
-    grid->SetName(PieceGridName);
-    grid->SetNumberOfValues(6);
-    for (int a = 0; a < 3; ++a)
-    {
-      grid->SetValue(a, piece->GetOrigin()[a]);
-      grid->SetValue(3 + a, piece->GetSpacing()[a]);
-    }
-    send->GetFieldData()->AddArray(grid);
-    for (const std::string& name : arrays)
-    {
-      if (vtkDataArray* array = piece->GetPointData()->GetArray(name.c_str()))
-      {
-        send->GetPointData()->AddArray(array);
-      }
-    }
-  }
+  const vtkSmartPointer<vtkImageData> send = PieceToSend(piece, arrays);
   std::vector<vtkSmartPointer<vtkDataObject>> received;
   if (everyRank)
   {
@@ -353,9 +454,7 @@ bool GatherWholeImage(vtkImageData* piece,
   vtkNew<vtkImageData> image;
   image->SetExtent(const_cast<int*>(wholeExtent));
   bool described = false; // origin, spacing and field data from the first piece
-  const vtkIdType n = image->GetNumberOfPoints();
-  const int nx = wholeExtent[1] - wholeExtent[0] + 1, ny = wholeExtent[3] - wholeExtent[2] + 1;
-  std::vector<uint8_t> filled(static_cast<size_t>(n), 0);
+  std::vector<uint8_t> filled(static_cast<size_t>(image->GetNumberOfPoints()), 0);
   for (const auto& object : received)
   {
     vtkImageData* part = vtkImageData::SafeDownCast(object);
@@ -363,23 +462,10 @@ bool GatherWholeImage(vtkImageData* piece,
     {
       continue;
     }
-    vtkIntArray* extent =
-      vtkIntArray::SafeDownCast(part->GetFieldData()->GetArray(PieceExtentName));
-    if (!extent || extent->GetNumberOfValues() != 6)
-    {
-      error = "a rank's piece of the image came without its extent";
-      return false;
-    }
     int e[6];
-    for (int a = 0; a < 6; ++a)
+    vtkDoubleArray* grid = nullptr;
+    if (!ReceivedExtent(part, wholeExtent, e, grid, error))
     {
-      e[a] = extent->GetValue(a);
-    }
-    vtkDoubleArray* grid =
-      vtkDoubleArray::SafeDownCast(part->GetFieldData()->GetArray(PieceGridName));
-    if (!grid || grid->GetNumberOfValues() != 6)
-    {
-      error = "a rank's piece of the image came without its grid";
       return false;
     }
     if (!described)
@@ -391,56 +477,7 @@ bool GatherWholeImage(vtkImageData* piece,
       image->GetFieldData()->RemoveArray(PieceGridName);
       described = true;
     }
-    if (e[0] < wholeExtent[0] || e[1] > wholeExtent[1] || e[2] < wholeExtent[2] ||
-      e[3] > wholeExtent[3] || e[4] < wholeExtent[4] || e[5] > wholeExtent[5])
-    {
-      error = "a rank's piece of the image lies outside its whole extent";
-      return false;
-    }
-    vtkPointData* from = part->GetPointData();
-    for (int a = 0; a < from->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* source = from->GetArray(a);
-      vtkDataArray* target = image->GetPointData()->GetArray(source->GetName());
-      if (!target)
-      {
-        vtkSmartPointer<vtkDataArray> created;
-        created.TakeReference(source->NewInstance());
-        created->SetName(source->GetName());
-        created->SetNumberOfComponents(source->GetNumberOfComponents());
-        created->SetNumberOfTuples(n);
-        image->GetPointData()->AddArray(created);
-        target = created;
-      }
-      const bool sameType = target->GetDataType() == source->GetDataType() &&
-        target->GetNumberOfComponents() == source->GetNumberOfComponents();
-      const int row = e[1] - e[0] + 1;
-      const size_t rowBytes = static_cast<size_t>(row) * source->GetNumberOfComponents() *
-        static_cast<size_t>(source->GetDataTypeSize());
-      vtkIdType at = 0;
-      for (int k = e[4]; k <= e[5]; ++k)
-      {
-        for (int j = e[2]; j <= e[3]; ++j, at += row)
-        {
-          const vtkIdType v = (vtkIdType(k - wholeExtent[4]) * ny + (j - wholeExtent[2])) * nx +
-            (e[0] - wholeExtent[0]);
-          if (sameType)
-          {
-            std::memcpy(target->GetVoidPointer(v * target->GetNumberOfComponents()),
-              source->GetVoidPointer(at * source->GetNumberOfComponents()),
-              rowBytes);
-          }
-          else
-          {
-            for (int i = 0; i < row; ++i)
-            {
-              target->SetTuple(v + i, at + i, source);
-            }
-          }
-          std::fill(filled.begin() + v, filled.begin() + v + row, uint8_t(1));
-        }
-      }
-    }
+    CopyPiece(part, e, wholeExtent, image, filled);
   }
   if (std::find(filled.begin(), filled.end(), 0) != filled.end())
   {

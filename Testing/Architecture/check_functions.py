@@ -34,10 +34,6 @@ LONG = {
         "the Morton order, the leaves, the inner nodes",
     "Filters/Core/LinearFactor/NearestTriangleQueries.cxx:QueryNearestTriangles":
         "the samples' order, the queries, the write-back",
-    "Filters/vtkDistanceFieldPartitions.cxx:GatherWholeImage":
-        "the extents' exchange, the pieces' gather, the assembly",
-    "Filters/vtkConvexPieces.cxx:Read":
-        "the pieces' ids, the hull checks, the replacement by hulls",
 }
 
 CONTROL = re.compile(r"^(if|for|while|switch|else|do|try|catch|return)\b")
