@@ -30,10 +30,6 @@ LONG = {
         "the broad phase, the separation, both penetrations, the per-point distances",
     "Filters/Core/Segment/SegmentContour.cxx:Cell":
         "the marching-cubes case, the junction cells, the boundary cells",
-    "Filters/Core/LinearFactor/NearestTriangleQueries.cxx:Build":
-        "the Morton order, the leaves, the inner nodes",
-    "Filters/Core/LinearFactor/NearestTriangleQueries.cxx:QueryNearestTriangles":
-        "the samples' order, the queries, the write-back",
 }
 
 CONTROL = re.compile(r"^(if|for|while|switch|else|do|try|catch|return)\b")

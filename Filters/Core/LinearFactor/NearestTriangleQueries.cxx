@@ -116,9 +116,147 @@ void UniteChildren(std::vector<Node>& nodes, int32_t slot)
   }
 }
 
+/// The corner ids and input cell of primitive i of a mesh: a triangle's, a segment's
+/// (a, b, b), a point's (a, a, a), in that order.
+struct PrimitiveCorners
+{
+  const MeshInput& Mesh;
+  int64_t Triangles, Segments;
+
+  explicit PrimitiveCorners(const MeshInput& mesh)
+    : Mesh(mesh)
+    , Triangles(static_cast<int64_t>(mesh.Triangles.size() / 3))
+    , Segments(static_cast<int64_t>(mesh.Segments.size() / 2))
+  {
+  }
+  int64_t Count() const
+  {
+    return this->Triangles + this->Segments + int64_t(this->Mesh.Vertices.size());
+  }
+  void operator()(int64_t i, int64_t c[3], int64_t& cell) const
+  {
+    const int64_t nt = this->Triangles, ns = this->Segments;
+    if (i < nt)
+    {
+      c[0] = this->Mesh.Triangles[3 * i], c[1] = this->Mesh.Triangles[3 * i + 1];
+      c[2] = this->Mesh.Triangles[3 * i + 2];
+      cell = this->Mesh.TriangleCells[i];
+    }
+    else if (i < nt + ns)
+    {
+      const int64_t s = i - nt;
+      c[0] = this->Mesh.Segments[2 * s], c[1] = c[2] = this->Mesh.Segments[2 * s + 1];
+      cell = this->Mesh.SegmentCells[s];
+    }
+    else
+    {
+      c[0] = c[1] = c[2] = this->Mesh.Vertices[i - nt - ns];
+      cell = this->Mesh.VertexCells[i - nt - ns];
+    }
+  }
+};
+
+/// Checks the primitives' corners (existing points, finite coordinates) and bounds them
+/// in lo, hi; false with `error`.
+bool BoundUsedPoints(const PrimitiveCorners& corners,
+  double lo[3],
+  double hi[3],
+  std::string& error)
+{
+  const MeshInput& mesh = corners.Mesh;
+  const int64_t numPoints = static_cast<int64_t>(mesh.Points.size() / 3);
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = HUGE_VAL;
+    hi[a] = -HUGE_VAL;
+  }
+  for (int64_t i = 0; i < corners.Count(); ++i)
+  {
+    int64_t c[3], cell;
+    corners(i, c, cell);
+    for (int k = 0; k < 3; ++k)
+    {
+      if (c[k] < 0 || c[k] >= numPoints)
+      {
+        error =
+          "a cell refers to point " + std::to_string(c[k]) + " of " + std::to_string(numPoints);
+        return false;
+      }
+      const double* x = &mesh.Points[3 * c[k]];
+      for (int a = 0; a < 3; ++a)
+      {
+        if (!std::isfinite(x[a]))
+        {
+          error = "point " + std::to_string(c[k]) + " has a NaN or infinite coordinate";
+          return false;
+        }
+        lo[a] = std::min(lo[a], x[a]);
+        hi[a] = std::max(hi[a], x[a]);
+      }
+    }
+  }
+  return true;
+}
+
+/// The primitives as keys (Morton code of the box's centre over the points' box lo..hi,
+/// in the high 32 bits; the index in the low ones), sorted by radix.
+LargeVector<uint64_t> SortedMortonKeys(const PrimitiveCorners& corners,
+  const double lo[3],
+  const double hi[3],
+  const ParallelFor& parallelFor)
+{
+  const MeshInput& mesh = corners.Mesh;
+  const int64_t n = corners.Count();
+  const double extent = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300 });
+  LargeVector<uint64_t> keys(n);
+  auto code = [&](int64_t begin, int64_t end)
+  {
+    for (int64_t i = begin; i < end; ++i)
+    {
+      int64_t c[3], cell;
+      corners(i, c, cell);
+      uint32_t morton = 0;
+      for (int a = 0; a < 3; ++a)
+      {
+        const double x0 = mesh.Points[3 * c[0] + a], x1 = mesh.Points[3 * c[1] + a],
+                     x2 = mesh.Points[3 * c[2] + a];
+        const double centre = 0.5 * (std::min({ x0, x1, x2 }) + std::max({ x0, x1, x2 }));
+        const double cellIndex = std::floor((centre - lo[a]) / extent * 1024);
+        morton |= SpreadBits(static_cast<uint32_t>(std::min(1023.0, std::max(0.0, cellIndex))))
+          << (2 - a);
+      }
+      keys[i] = (uint64_t(morton) << 32) | uint64_t(i);
+    }
+  };
+  parallelFor ? parallelFor(n, 8192, code) : code(0, n);
+  LargeVector<uint64_t> sorted(n);
+  for (int pass = 0; pass < 3; ++pass)
+  {
+    const int shift = 32 + 10 * pass;
+    std::vector<int64_t> start(1025, 0);
+    for (const uint64_t k : keys)
+    {
+      ++start[((k >> shift) & 1023) + 1];
+    }
+    for (int b = 0; b < 1024; ++b)
+    {
+      start[b + 1] += start[b];
+    }
+    for (const uint64_t k : keys)
+    {
+      sorted[start[(k >> shift) & 1023]++] = k;
+    }
+    keys.swap(sorted);
+  }
+  return keys;
+}
+
 class QueryTree
 {
 public:
+  /// The tree of the mesh's primitives: checked and bounded (BoundUsedPoints), in Morton
+  /// order (SortedMortonKeys), copied (GatherPrimitives), oriented (FacesVolume), then
+  /// the nodes built, widened and their leaves framed.
   bool Build(const MeshInput& mesh, const ParallelFor& parallelFor, std::string& error);
 
   /// The nearest primitive to p: its index, squared distance, closest point and feature
@@ -160,6 +298,13 @@ public:
   double Tolerance2 = 0; // absolute slack on squared distances (coordinates' rounding)
 
 private:
+  /// The primitives, cells, face flags and codes in the order of the sorted `keys`.
+  void GatherPrimitives(const PrimitiveCorners& corners,
+    const LargeVector<uint64_t>& keys,
+    const ParallelFor& parallelFor);
+  /// The faces' signed volume (times 6) seen from `lo`, in a fixed order (the same sum on
+  /// any thread count).
+  double FacesVolume(const double lo[3]) const;
   void BuildNodes(int32_t n, const ParallelFor& parallelFor);
   void Widen();
   void FrameLeaves(const ParallelFor& parallelFor);
@@ -180,63 +325,17 @@ private:
 
 bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std::string& error)
 {
-  const int64_t numPoints = static_cast<int64_t>(mesh.Points.size() / 3);
-  const int64_t nt = static_cast<int64_t>(mesh.Triangles.size() / 3);
-  const int64_t ns = static_cast<int64_t>(mesh.Segments.size() / 2);
-  const int64_t nv = static_cast<int64_t>(mesh.Vertices.size());
-  const int64_t n = nt + ns + nv;
+  const PrimitiveCorners corners(mesh);
+  const int64_t n = corners.Count();
   if (n >= std::numeric_limits<int32_t>::max())
   {
     error = "the mesh has " + std::to_string(n) + " cells, more than 2^31 - 1";
     return false;
   }
-  // Corner ids of primitive i: a triangle's, a segment's (a, b, b), a point's (a, a, a).
-  auto corners = [&](int64_t i, int64_t c[3], int64_t& cell)
+  double lo[3], hi[3];
+  if (!BoundUsedPoints(corners, lo, hi, error))
   {
-    if (i < nt)
-    {
-      c[0] = mesh.Triangles[3 * i], c[1] = mesh.Triangles[3 * i + 1];
-      c[2] = mesh.Triangles[3 * i + 2];
-      cell = mesh.TriangleCells[i];
-    }
-    else if (i < nt + ns)
-    {
-      const int64_t s = i - nt;
-      c[0] = mesh.Segments[2 * s], c[1] = c[2] = mesh.Segments[2 * s + 1];
-      cell = mesh.SegmentCells[s];
-    }
-    else
-    {
-      c[0] = c[1] = c[2] = mesh.Vertices[i - nt - ns];
-      cell = mesh.VertexCells[i - nt - ns];
-    }
-  };
-  // Validate, and bound the used points.
-  double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
-  for (int64_t i = 0; i < n; ++i)
-  {
-    int64_t c[3], cell;
-    corners(i, c, cell);
-    for (int k = 0; k < 3; ++k)
-    {
-      if (c[k] < 0 || c[k] >= numPoints)
-      {
-        error =
-          "a cell refers to point " + std::to_string(c[k]) + " of " + std::to_string(numPoints);
-        return false;
-      }
-      const double* x = &mesh.Points[3 * c[k]];
-      for (int a = 0; a < 3; ++a)
-      {
-        if (!std::isfinite(x[a]))
-        {
-          error = "point " + std::to_string(c[k]) + " has a NaN or infinite coordinate";
-          return false;
-        }
-        lo[a] = std::min(lo[a], x[a]);
-        hi[a] = std::max(hi[a], x[a]);
-      }
-    }
+    return false;
   }
   if (n == 0)
   {
@@ -253,51 +352,22 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
   // Squared distances computed from coordinates of this size are off by about
   // (magnitude * 2^-52)^2 near zero: a thousand times that is slack enough.
   this->Tolerance2 = std::pow(1e3 * std::numeric_limits<double>::epsilon() * (1 + magnitude), 2);
+  this->GatherPrimitives(corners, SortedMortonKeys(corners, lo, hi, parallelFor), parallelFor);
+  this->Orientation = this->FacesVolume(lo) < 0 ? -1.0 : 1.0;
+  this->BuildNodes(static_cast<int32_t>(n), parallelFor);
+  this->Codes = LargeVector<uint32_t>(); // only the build needs them
+  this->Widen();
+  this->Margin = 1e-12 * (1 + magnitude);
+  this->FrameLeaves(parallelFor);
+  return true;
+}
 
-  // Morton codes of the boxes' centres over the points' box, sorted by radix.
-  const double extent = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300 });
-  LargeVector<uint64_t> keys(n);
-  auto code = [&](int64_t begin, int64_t end)
-  {
-    for (int64_t i = begin; i < end; ++i)
-    {
-      int64_t c[3], cell;
-      corners(i, c, cell);
-      uint32_t morton = 0;
-      for (int a = 0; a < 3; ++a)
-      {
-        const double x0 = mesh.Points[3 * c[0] + a], x1 = mesh.Points[3 * c[1] + a],
-                     x2 = mesh.Points[3 * c[2] + a];
-        const double centre = 0.5 * (std::min({ x0, x1, x2 }) + std::max({ x0, x1, x2 }));
-        const double cellIndex = std::floor((centre - lo[a]) / extent * 1024);
-        morton |= SpreadBits(static_cast<uint32_t>(std::min(1023.0, std::max(0.0, cellIndex))))
-          << (2 - a);
-      }
-      keys[i] = (uint64_t(morton) << 32) | uint64_t(i);
-    }
-  };
-  parallelFor ? parallelFor(n, 8192, code) : code(0, n);
-  {
-    LargeVector<uint64_t> sorted(n);
-    for (int pass = 0; pass < 3; ++pass)
-    {
-      const int shift = 32 + 10 * pass;
-      std::vector<int64_t> start(1025, 0);
-      for (const uint64_t k : keys)
-      {
-        ++start[((k >> shift) & 1023) + 1];
-      }
-      for (int b = 0; b < 1024; ++b)
-      {
-        start[b + 1] += start[b];
-      }
-      for (const uint64_t k : keys)
-      {
-        sorted[start[(k >> shift) & 1023]++] = k;
-      }
-      keys.swap(sorted);
-    }
-  }
+void QueryTree::GatherPrimitives(const PrimitiveCorners& corners,
+  const LargeVector<uint64_t>& keys,
+  const ParallelFor& parallelFor)
+{
+  const MeshInput& mesh = corners.Mesh;
+  const int64_t n = corners.Count();
   this->Primitives.resize(n);
   this->Cells.resize(n);
   this->Faces.resize(n);
@@ -313,16 +383,19 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
       {
         std::copy(&mesh.Points[3 * c[k]], &mesh.Points[3 * c[k]] + 3, p.X + 3 * k);
       }
-      const bool triangle = static_cast<int64_t>(keys[i] & 0xffffffffu) < nt;
+      const bool triangle = static_cast<int64_t>(keys[i] & 0xffffffffu) < corners.Triangles;
       double normal[3];
       this->Faces[i] = triangle && FaceNormal(p.X, this->Degenerate, normal);
       this->Codes[i] = static_cast<uint32_t>(keys[i] >> 32);
     }
   };
   parallelFor ? parallelFor(n, 8192, gather) : gather(0, n);
-  // The faces' signed volume, in a fixed order (the same sum on any thread count).
+}
+
+double QueryTree::FacesVolume(const double lo[3]) const
+{
   double volume = 0;
-  for (int64_t i = 0; i < n; ++i)
+  for (int64_t i = 0; i < static_cast<int64_t>(this->Primitives.size()); ++i)
   {
     const Primitive& p = this->Primitives[i];
     if (this->Faces[i])
@@ -336,13 +409,7 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
       volume += Dot(a, bc);
     }
   }
-  this->Orientation = volume < 0 ? -1.0 : 1.0;
-  this->BuildNodes(static_cast<int32_t>(n), parallelFor);
-  this->Codes = LargeVector<uint32_t>(); // only the build needs them
-  this->Widen();
-  this->Margin = 1e-12 * (1 + magnitude);
-  this->FrameLeaves(parallelFor);
-  return true;
+  return volume;
 }
 
 /// Where a range of codes splits: where the highest bit in which they differ turns on
@@ -873,6 +940,99 @@ bool PreferSampleQueries(const MeshInput& mesh, const SampleGrid& wholeGrid, dou
     SampleQueriesCellsPerSample * QueriedSamples(mesh, wholeGrid, maximumDistance);
 }
 
+namespace
+{
+/// What a sample's query writes into the arrays (local frame in, world units out).
+struct SampleWriter
+{
+  const QueryTree& Tree;
+  const FieldArrays& Arrays;
+  bool WantFeature;          // the closest cell or the sign needs the feature's cell
+  std::vector<int8_t>& Side; // a narrow band's sides (empty: none kept)
+  float WorldCap;            // the band's distance in world units
+
+  /// A sample beyond the band: the cap, no closest feature.
+  void Beyond(int64_t at) const
+  {
+    const FieldArrays& arrays = this->Arrays;
+    if (arrays.Distance)
+    {
+      arrays.Distance[at] = this->WorldCap;
+    }
+    if (arrays.ClosestCellId)
+    {
+      arrays.ClosestCellId[at] = -1;
+    }
+    if (arrays.ClosestFeature)
+    {
+      arrays.ClosestFeature[at] = 255;
+    }
+    if (arrays.ClosestPoint)
+    {
+      std::fill(arrays.ClosestPoint + 3 * at, arrays.ClosestPoint + 3 * at + 3, NAN);
+    }
+  }
+
+  /// Sample `at` (at x) whose nearest primitive is `index`, at squared distance best2,
+  /// closest point `closest` on its `feature`.
+  void Answer(int64_t at,
+    const double x[3],
+    int64_t index,
+    double best2,
+    const double closest[3],
+    int feature) const
+  {
+    const FieldArrays& arrays = this->Arrays;
+    const Primitive& t = this->Tree.Get(index);
+    // The feature: 0 vertex, 1 edge, 2 face (the site types).
+    const uint8_t type = feature == InFace ? 2 : (feature >= OnEdgeAB ? 1 : 0);
+    int64_t cell = this->Tree.Cell(index);
+    double normal[3] = { 0, 0, 0 };
+    if (this->WantFeature && type != 2)
+    {
+      const int first = feature >= OnEdgeAB ? feature - OnEdgeAB : feature;
+      const double* a = t.X + 3 * first;
+      const double* b = type == 1 ? t.X + 3 * ((first + 1) % 3) : nullptr;
+      this->Tree.FeatureCellAndNormal(a, b, cell, normal);
+    }
+    if (arrays.Distance)
+    {
+      float value = static_cast<float>(std::sqrt(best2) * arrays.Frame.Scale);
+      if (arrays.Signed)
+      {
+        if (type == 2)
+        {
+          this->Tree.FaceNormalOf(index, normal);
+        }
+        const double d[3] = { closest[0] - x[0], closest[1] - x[1], closest[2] - x[2] };
+        const double s = d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2];
+        value = s > 0 ? -value : value;
+        if (!this->Side.empty())
+        {
+          this->Side[at] = s > 0 ? -1 : 1;
+        }
+      }
+      arrays.Distance[at] = value;
+    }
+    if (arrays.ClosestCellId)
+    {
+      arrays.ClosestCellId[at] = cell;
+    }
+    if (arrays.ClosestFeature)
+    {
+      arrays.ClosestFeature[at] = type;
+    }
+    if (arrays.ClosestPoint)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        arrays.ClosestPoint[3 * at + a] = static_cast<float>(arrays.Frame.ToWorld(a, closest[a]));
+      }
+    }
+  }
+};
+} // namespace
+
 bool QueryNearestTriangles(const MeshInput& mesh,
   const FieldRequest& request,
   const FieldArrays& arrays,
@@ -899,6 +1059,7 @@ bool QueryNearestTriangles(const MeshInput& mesh,
   const double capBound2 = banded ? cap * cap * (1 + 1e-9) + tree.Tolerance2 : HUGE_VAL;
   const float worldCap = banded ? static_cast<float>(cap * frame.Scale) : 0.0f;
   std::vector<int8_t> side(banded && arrays.Signed && arrays.Distance ? stats.Samples : 0, 0);
+  const SampleWriter writer{ tree, arrays, wantFeature, side, worldCap };
   std::atomic<int64_t> evaluations{ 0 };
   // Rows are independent: each is walked in x, every sample seeded with the previous
   // sample's closest point (the distance to it bounds the next one's). Seeds change the
@@ -938,76 +1099,12 @@ bool QueryNearestTriangles(const MeshInput& mesh,
         {
           // Beyond the band (the previous seed, a point of the mesh, still bounds the next
           // sample's distance).
-          if (arrays.Distance)
-          {
-            arrays.Distance[at] = worldCap;
-          }
-          if (arrays.ClosestCellId)
-          {
-            arrays.ClosestCellId[at] = -1;
-          }
-          if (arrays.ClosestFeature)
-          {
-            arrays.ClosestFeature[at] = 255;
-          }
-          if (arrays.ClosestPoint)
-          {
-            std::fill(arrays.ClosestPoint + 3 * at, arrays.ClosestPoint + 3 * at + 3, NAN);
-          }
+          writer.Beyond(at);
           continue;
         }
         std::copy(closest, closest + 3, previous);
         seeded = true;
-        const Primitive& t = tree.Get(index);
-        // The feature: 0 vertex, 1 edge, 2 face (the site types).
-        const uint8_t type = feature == InFace ? 2 : (feature >= OnEdgeAB ? 1 : 0);
-        int64_t cell = tree.Cell(index);
-        double normal[3] = { 0, 0, 0 };
-        if (wantFeature && type != 2)
-        {
-          const int first = feature >= OnEdgeAB ? feature - OnEdgeAB : feature;
-          const double* a = t.X + 3 * first;
-          const double* b = type == 1 ? t.X + 3 * ((first + 1) % 3) : nullptr;
-          tree.FeatureCellAndNormal(a, b, cell, normal);
-        }
-        double d[3];
-        for (int a = 0; a < 3; ++a)
-        {
-          d[a] = closest[a] - x[a];
-        }
-        if (arrays.Distance)
-        {
-          float value = static_cast<float>(std::sqrt(best2) * frame.Scale);
-          if (arrays.Signed)
-          {
-            if (type == 2)
-            {
-              tree.FaceNormalOf(index, normal);
-            }
-            const double s = d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2];
-            value = s > 0 ? -value : value;
-            if (!side.empty())
-            {
-              side[at] = s > 0 ? -1 : 1;
-            }
-          }
-          arrays.Distance[at] = value;
-        }
-        if (arrays.ClosestCellId)
-        {
-          arrays.ClosestCellId[at] = cell;
-        }
-        if (arrays.ClosestFeature)
-        {
-          arrays.ClosestFeature[at] = type;
-        }
-        if (arrays.ClosestPoint)
-        {
-          for (int a = 0; a < 3; ++a)
-          {
-            arrays.ClosestPoint[3 * at + a] = static_cast<float>(frame.ToWorld(a, closest[a]));
-          }
-        }
+        writer.Answer(at, x, index, best2, closest, feature);
       }
     }
     evaluations += count;
