@@ -28,8 +28,6 @@ LONG = {
         "sampling, the inside tests, the deepest samples' searches, the contacts",
     "Filters/Core/Proximity/ProximityQuery.cxx:ComputeProximity":
         "the broad phase, the separation, both penetrations, the per-point distances",
-    "Filters/Core/Segment/SegmentContour.cxx:Cell":
-        "the marching-cubes case, the junction cells, the boundary cells",
 }
 
 CONTROL = re.compile(r"^(if|for|while|switch|else|do|try|catch|return)\b")

@@ -52,6 +52,17 @@ double Length(const double* p, const double* q)
 // The volume spanned by three unit normals above which a feature is a corner.
 constexpr double CornerSpread = 0.1;
 
+/// A cell's corners (sample indices), their regions, and its edges: axis, first corner
+/// and whether an interface crosses it.
+struct CellCorners
+{
+  int64_t Corner[8];
+  int32_t Region[8];
+  bool Interface[12];
+  int Axis[12];
+  int64_t Start[12];
+};
+
 struct Builder
 {
   const ContourInput& In;
@@ -425,26 +436,28 @@ struct Builder
     return true;
   }
 
+  /// The surface in the cell whose first corner is sample v0: none within one region;
+  /// the case table's triangles where the cell has two regions and every edge between
+  /// them holds an interface (MarchingCell); else a cell vertex and its fan (JunctionCell).
   void Cell(int64_t v0)
   {
-    int64_t corner[8];
-    int32_t region[8];
+    CellCorners cell;
     for (int c = 0; c < 8; ++c)
     {
-      corner[c] = v0 + CornerOffset[c][0] * this->Stride[0] + CornerOffset[c][1] * this->Stride[1] +
-        CornerOffset[c][2] * this->Stride[2];
-      region[c] = this->In.Region[corner[c]];
+      cell.Corner[c] = v0 + CornerOffset[c][0] * this->Stride[0] +
+        CornerOffset[c][1] * this->Stride[1] + CornerOffset[c][2] * this->Stride[2];
+      cell.Region[c] = this->In.Region[cell.Corner[c]];
     }
-    int32_t lo = region[0], hi = region[0];
+    int32_t lo = cell.Region[0], hi = cell.Region[0];
     bool twoRegions = true;
     for (int c = 1; c < 8; ++c)
     {
-      if (region[c] != lo && region[c] != hi)
+      if (cell.Region[c] != lo && cell.Region[c] != hi)
       {
         if (lo == hi)
         {
-          lo = std::min(lo, region[c]);
-          hi = std::max(hi, region[c]);
+          lo = std::min(lo, cell.Region[c]);
+          hi = std::max(hi, cell.Region[c]);
         }
         else
         {
@@ -458,21 +471,18 @@ struct Builder
     }
     // Which edges hold an interface, and whether every edge between the two regions
     // does (then the case table applies).
-    bool interface[12];
-    int axis[12];
-    int64_t start[12];
     bool complete = twoRegions;
     bool any = false;
     for (int e = 0; e < 12; ++e)
     {
       const int a = EdgeCorners[e][0], b = EdgeCorners[e][1];
-      axis[e] = CornerOffset[a][0] != CornerOffset[b][0]
+      cell.Axis[e] = CornerOffset[a][0] != CornerOffset[b][0]
         ? 0
         : (CornerOffset[a][1] != CornerOffset[b][1] ? 1 : 2);
-      start[e] = corner[a];
-      interface[e] = this->IsInterface(corner[a], axis[e]);
-      complete = complete && (region[a] == region[b] || interface[e]);
-      any = any || interface[e];
+      cell.Start[e] = cell.Corner[a];
+      cell.Interface[e] = this->IsInterface(cell.Corner[a], cell.Axis[e]);
+      complete = complete && (cell.Region[a] == cell.Region[b] || cell.Interface[e]);
+      any = any || cell.Interface[e];
     }
     if (!any)
     {
@@ -480,31 +490,52 @@ struct Builder
     }
     if (complete)
     {
-      int index = 0;
-      for (int c = 0; c < 8; ++c)
-      {
-        index |= region[c] == lo ? (1 << c) : 0;
-      }
-      const int* edges = this->In.Cases[index];
-      ++this->Out.MarchingCells;
-      if (this->In.ClosestPoint && this->FeatureFan(corner, region, lo, hi, edges, start, axis, v0))
-      {
-        return;
-      }
-      for (int i = 0; edges[i] >= 0 && i < 15; i += 3)
-      {
-        const int64_t p = this->EdgePoint(start[edges[i]], axis[edges[i]]);
-        const int64_t q = this->EdgePoint(start[edges[i + 1]], axis[edges[i + 1]]);
-        const int64_t r = this->EdgePoint(start[edges[i + 2]], axis[edges[i + 2]]);
-        if (p != q && q != r && p != r)
-        {
-          this->AddTriangle(p, q, r, lo, hi);
-        }
-      }
+      this->MarchingCell(cell, lo, hi, v0);
+    }
+    else
+    {
+      this->JunctionCell(cell, v0);
+    }
+  }
+
+  /// A cell of two regions whose interface crosses every edge between them: the case
+  /// table's triangles, or a fan around a feature point (FeatureFan).
+  void MarchingCell(const CellCorners& cell, int32_t lo, int32_t hi, int64_t v0)
+  {
+    int index = 0;
+    for (int c = 0; c < 8; ++c)
+    {
+      index |= cell.Region[c] == lo ? (1 << c) : 0;
+    }
+    const int* edges = this->In.Cases[index];
+    ++this->Out.MarchingCells;
+    if (this->In.ClosestPoint &&
+      this->FeatureFan(cell.Corner, cell.Region, lo, hi, edges, cell.Start, cell.Axis, v0))
+    {
       return;
     }
+    for (int i = 0; edges[i] >= 0 && i < 15; i += 3)
+    {
+      const int64_t p = this->EdgePoint(cell.Start[edges[i]], cell.Axis[edges[i]]);
+      const int64_t q = this->EdgePoint(cell.Start[edges[i + 1]], cell.Axis[edges[i + 1]]);
+      const int64_t r = this->EdgePoint(cell.Start[edges[i + 2]], cell.Axis[edges[i + 2]]);
+      if (p != q && q != r && p != r)
+      {
+        this->AddTriangle(p, q, r, lo, hi);
+      }
+    }
+  }
 
-    // Junction or boundary: a cell vertex, face segments, and their triangles.
+  /// A junction or boundary cell: a cell vertex (on the junction line or the open rim
+  /// that the tangent planes meet at, with closest points), the interface's points on
+  /// the faces, and the triangles joining them, each facing its pair's higher region.
+  void JunctionCell(const CellCorners& cell, int64_t v0)
+  {
+    const int64_t* corner = cell.Corner;
+    const int32_t* region = cell.Region;
+    const bool* interface = cell.Interface;
+    const int* axis = cell.Axis;
+    const int64_t* start = cell.Start;
     double centre[3] = { 0, 0, 0 };
     int count = 0;
     int64_t point[12];
