@@ -494,26 +494,14 @@ bool PointDistances(const ProximityModel::Data& self,
 /// How many of the samples evaluated last in a triangle stay known points.
 constexpr size_t RecentSamples = 4;
 
-/// The penetration of `self` into `other`: its vertices (from their queries) and face
-/// samples in `region` inside `other`. False with `error` when the GPU fails.
-bool Penetrate(const ProximityModel::Data& self,
-  const ProximityModel::Data& other,
-  const OnDevice& gpu,
+/// The vertices of `self` in `region` inside `other` (from their queries), into `side`.
+void VertexPenetration(const ProximityModel::Data& self,
   const std::vector<PointQuery>& vertexQueries,
   const std::array<double, 6>& region,
-  double step,
   bool keepContacts,
-  int share,
-  int shares,
-  const Execution& execution,
-  PenetrationSide& side,
-  int64_t& queries,
-  int64_t& windings,
-  std::string& error)
+  PenetrationSide& side)
 {
-  side = PenetrationSide();
-  // The vertices are the first share's; the blocks of triangles are split in order.
-  for (size_t i = 0; share == 0 && i < self.Model.Points.size(); ++i)
+  for (size_t i = 0; i < self.Model.Points.size(); ++i)
   {
     const double* x = self.Model.Points[i].data();
     if (!self.Used[i] || !InRegion(region, x))
@@ -533,6 +521,267 @@ bool Penetrate(const ProximityModel::Data& self,
       }
     }
   }
+}
+
+/// A block's results, merged in order into the side (the report does not depend on the
+/// threads).
+struct BlockResult
+{
+  PenetrationSide Side;
+  int64_t Queries = 0;  // exact nearest-triangle queries on the CPU
+  int64_t Windings = 0; // winding-number evaluations
+};
+
+/// The face samples of `self`'s triangles (corners excluded) against `other`: which lie
+/// inside, how deep, and the contacts. One instance per Penetrate; Triangle is called
+/// from many threads, each with its own scratch.
+struct FaceSampler
+{
+  const ProximityModel::Data& Self;
+  const ProximityModel::Data& Other;
+  const OnDevice& GPU;
+  const NearestAnswers& Answers;           // the batch's nearest triangles (GPU)
+  const std::vector<int64_t>& FirstSample; // each triangle's first answer in the batch
+  const std::vector<PointQuery>& VertexQueries;
+  const std::array<double, 6>& Region;
+  double Step;
+  bool KeepContacts;
+  bool Chain; // the winding-number rule on a closed model: sides chained between samples
+
+  /// The points whose side and distance are known: the corners, then the samples
+  /// evaluated last (their coordinates in Recent).
+  struct Scratch
+  {
+    std::vector<KnownPoint> Known;
+    std::array<std::array<double, 3>, RecentSamples> Recent;
+    size_t RecentNext = 0;
+  };
+
+  /// Triangle t's samples (batchTriangle: the batch's first triangle, for the answers).
+  void Triangle(int64_t t, int64_t batchTriangle, BlockResult& result, Scratch& scratch) const
+  {
+    if (!BoxMeetsRegion(this->Self.Tree->Boxes()[static_cast<size_t>(t)], this->Region))
+    {
+      return;
+    }
+    double p[9];
+    this->Self.Model.Corners(static_cast<size_t>(t), p);
+    const int64_t n = Divisions(p, this->Step);
+    // The corners are known points; the samples evaluated last join them.
+    std::vector<KnownPoint>& known = scratch.Known;
+    known.clear();
+    for (const size_t id : this->Self.Model.Triangles[static_cast<size_t>(t)])
+    {
+      const PointQuery& corner = this->VertexQueries[id];
+      known.push_back(
+        { this->Self.Model.Points[id].data(), corner.D2, corner.Inside, corner.Triangle });
+    }
+    int64_t hint = known[0].Triangle;
+    // The triangle's samples in the GPU's answers, in the lattice's order.
+    size_t answer = this->GPU.Device
+      ? static_cast<size_t>(this->FirstSample[static_cast<size_t>(t - batchTriangle)])
+      : 0;
+    for (int64_t i = 0; i <= n; ++i)
+    {
+      for (int64_t j = 0; i + j <= n; ++j)
+      {
+        if ((i == 0 && j == 0) || i == n || j == n)
+        {
+          continue; // a corner: a vertex, already counted
+        }
+        const size_t answerIndex = answer++;
+        const double u = double(i) / n, v = double(j) / n;
+        const double x[3] = { p[0] + u * (p[3] - p[0]) + v * (p[6] - p[0]),
+          p[1] + u * (p[4] - p[1]) + v * (p[7] - p[1]),
+          p[2] + u * (p[5] - p[2]) + v * (p[8] - p[2]) };
+        if (!InRegion(this->Region, x))
+        {
+          continue;
+        }
+        ++result.Side.Samples;
+        PointQuery query;
+        const bool decided = this->Chain
+          ? this->ChainedQuery(x, answerIndex, result, scratch, query)
+          : this->FreshQuery(x, answerIndex, result, scratch, hint, query);
+        if (decided || !query.Inside)
+        {
+          continue;
+        }
+        ++result.Side.SamplesInside;
+        const ContactSample sample = MakeSample(x, query, t, -1);
+        Keep(result.Side, sample, query.Closest, query.Triangle);
+        if (this->KeepContacts)
+        {
+          result.Side.Contacts.push_back(sample);
+        }
+      }
+    }
+  }
+
+  /// Without the contacts' list only the deepest matters: an inside sample whose distance
+  /// cannot exceed the deepest so far (by the triangle inequality from a known point,
+  /// d(x) <= d(y) + |x - y|) needs no exact distance.
+  bool CannotDeepen(const double x[3], const PenetrationSide& part, const Scratch& scratch) const
+  {
+    if (this->KeepContacts || part.TriangleOfOther < 0)
+    {
+      return false;
+    }
+    double bound = HUGE_VAL;
+    for (const KnownPoint& y : scratch.Known)
+    {
+      const double gap2 = (x[0] - y.X[0]) * (x[0] - y.X[0]) + (x[1] - y.X[1]) * (x[1] - y.X[1]) +
+        (x[2] - y.X[2]) * (x[2] - y.X[2]);
+      bound = std::min(bound, std::sqrt(y.D2) + std::sqrt(gap2));
+    }
+    return bound * (1 + 1e-12) <= part.Depth;
+  }
+
+  /// A closed chain: the side from a known point joined by a ball free of the surface,
+  /// else the winding number; the distance only when needed. True when the sample is
+  /// settled without a query (outside, or inside but no deeper); else `query` holds it.
+  bool ChainedQuery(const double x[3],
+    size_t answerIndex,
+    BlockResult& result,
+    Scratch& scratch,
+    PointQuery& query) const
+  {
+    std::vector<KnownPoint>& known = scratch.Known;
+    const KnownPoint* same = SameSide(known, x, 0);
+    if (same && !same->Inside)
+    {
+      return true;
+    }
+    if (same && this->CannotDeepen(x, result.Side, scratch))
+    {
+      ++result.Side.SamplesInside;
+      return true;
+    }
+    query = this->GPU.Device ? PointQuery(this->Answers, answerIndex)
+                             : PointQuery(this->Other, x, known.back().Triangle);
+    result.Queries += this->GPU.Device ? 0 : 1;
+    same = same ? same : SameSide(known, x, query.D2);
+    if (same)
+    {
+      query.Inside = same->Inside;
+    }
+    else
+    {
+      query.Inside = this->Other.Winding.Inside(x);
+      ++result.Windings;
+    }
+    if (known.size() == 3 + RecentSamples)
+    {
+      known.erase(known.begin() + 3); // the corners stay
+    }
+    known.push_back({ nullptr, query.D2, query.Inside, query.Triangle });
+    std::copy(x, x + 3, scratch.Recent[scratch.RecentNext].data());
+    known.back().X = scratch.Recent[scratch.RecentNext].data();
+    scratch.RecentNext = (scratch.RecentNext + 1) % scratch.Recent.size();
+    return false;
+  }
+
+  /// Each sample alone: the winding number decides before the distance is needed; the
+  /// pseudonormal rule after it. True when settled without a query, as ChainedQuery.
+  bool FreshQuery(const double x[3],
+    size_t answerIndex,
+    BlockResult& result,
+    const Scratch& scratch,
+    int64_t& hint,
+    PointQuery& query) const
+  {
+    const bool winding = this->Other.Rule == InsideRule::WindingNumber;
+    if (winding)
+    {
+      ++result.Windings;
+      if (!this->Other.Winding.Inside(x))
+      {
+        return true;
+      }
+      if (this->CannotDeepen(x, result.Side, scratch))
+      {
+        ++result.Side.SamplesInside;
+        return true;
+      }
+    }
+    query =
+      this->GPU.Device ? PointQuery(this->Answers, answerIndex) : PointQuery(this->Other, x, hint);
+    result.Queries += this->GPU.Device ? 0 : 1;
+    hint = query.Triangle;
+    query.Inside = winding || this->Other.Inside(x, query.Closest, query.Triangle, query.D2);
+    return false;
+  }
+};
+/// The GPU's batch from block batchBegin on: blocks (of blockSize triangles from block
+/// firstBlock) up to `budget` samples and one block more, with each triangle's first
+/// sample in `firstSample`. Returns the block after the batch.
+int64_t DeviceBatch(const ProximityModel::Data& self,
+  const std::array<double, 6>& region,
+  double step,
+  int64_t firstBlock,
+  int64_t blockSize,
+  int64_t batchBegin,
+  int64_t blocks,
+  int64_t budget,
+  SampleBatch& batch,
+  std::vector<int64_t>& firstSample)
+{
+  const int64_t triangles = static_cast<int64_t>(self.Model.Triangles.size());
+  batch.Items.clear();
+  batch.Samples = 0;
+  firstSample.clear();
+  int64_t batchEnd = batchBegin;
+  for (; batchEnd < blocks && (batchEnd == batchBegin || batch.Samples < budget); ++batchEnd)
+  {
+    const int64_t end = std::min(triangles, (firstBlock + batchEnd + 1) * blockSize);
+    for (int64_t t = (firstBlock + batchEnd) * blockSize; t < end; ++t)
+    {
+      firstSample.push_back(batch.Samples);
+      if (!BoxMeetsRegion(self.Tree->Boxes()[static_cast<size_t>(t)], region))
+      {
+        continue;
+      }
+      double p[9];
+      self.Model.Corners(static_cast<size_t>(t), p);
+      const int64_t n = Divisions(p, step);
+      const int64_t count = (n + 1) * (n + 2) / 2 - 3;
+      if (count > 0)
+      {
+        batch.Items.insert(batch.Items.end(),
+          { static_cast<int32_t>(t),
+            static_cast<int32_t>(batch.Samples),
+            static_cast<int32_t>(n),
+            0 });
+        batch.Samples += count;
+      }
+    }
+  }
+  return batchEnd;
+}
+
+/// The penetration of `self` into `other`: its vertices (from their queries) and face
+/// samples in `region` inside `other`. False with `error` when the GPU fails.
+bool Penetrate(const ProximityModel::Data& self,
+  const ProximityModel::Data& other,
+  const OnDevice& gpu,
+  const std::vector<PointQuery>& vertexQueries,
+  const std::array<double, 6>& region,
+  double step,
+  bool keepContacts,
+  int share,
+  int shares,
+  const Execution& execution,
+  PenetrationSide& side,
+  int64_t& queries,
+  int64_t& windings,
+  std::string& error)
+{
+  side = PenetrationSide();
+  // The vertices are the first share's; the blocks of triangles are split in order.
+  if (share == 0)
+  {
+    VertexPenetration(self, vertexQueries, region, keepContacts, side);
+  }
   // The face samples other than the corners, in blocks of triangles whose results are
   // merged in order: the report does not depend on the threads.
   const int64_t triangles = static_cast<int64_t>(self.Model.Triangles.size());
@@ -540,16 +789,23 @@ bool Penetrate(const ProximityModel::Data& self,
   const int64_t allBlocks = (triangles + blockSize - 1) / blockSize;
   const int64_t firstBlock = allBlocks * share / shares;
   const int64_t blocks = allBlocks * (share + 1) / shares - firstBlock;
-  std::vector<PenetrationSide> parts(static_cast<size_t>(blocks));
-  std::vector<int64_t> partQueries(static_cast<size_t>(blocks), 0);
-  std::vector<int64_t> partWinding(static_cast<size_t>(blocks), 0);
-  const bool chain = other.Rule == InsideRule::WindingNumber && other.Closed;
+  std::vector<BlockResult> results(static_cast<size_t>(blocks));
   // On the CPU, every block at once, each sample's nearest triangle searched when it is
   // needed. On the GPU, batches of blocks: the nearest triangles of all the batch's
   // samples first (FirstSample: each triangle's first in the answers), then the blocks.
   SampleBatch batch;
   NearestAnswers answers;
   std::vector<int64_t> firstSample;
+  const FaceSampler sampler{ self,
+    other,
+    gpu,
+    answers,
+    firstSample,
+    vertexQueries,
+    region,
+    step,
+    keepContacts,
+    other.Rule == InsideRule::WindingNumber && other.Closed };
   // A batch holds blocks up to DeviceBatchSamples (and one block more).
   const int64_t batchBudget = gpu.Device ? DeviceBatchSamples(*gpu.Device) : 0;
   for (int64_t batchBegin = 0, batchEnd = 0; batchBegin < blocks; batchBegin = batchEnd)
@@ -558,36 +814,16 @@ bool Penetrate(const ProximityModel::Data& self,
     const int64_t batchTriangle = (firstBlock + batchBegin) * blockSize;
     if (gpu.Device)
     {
-      batch.Items.clear();
-      batch.Samples = 0;
-      firstSample.clear();
-      for (batchEnd = batchBegin;
-           batchEnd < blocks && (batchEnd == batchBegin || batch.Samples < batchBudget);
-           ++batchEnd)
-      {
-        const int64_t end = std::min(triangles, (firstBlock + batchEnd + 1) * blockSize);
-        for (int64_t t = (firstBlock + batchEnd) * blockSize; t < end; ++t)
-        {
-          firstSample.push_back(batch.Samples);
-          if (!BoxMeetsRegion(self.Tree->Boxes()[static_cast<size_t>(t)], region))
-          {
-            continue;
-          }
-          double p[9];
-          self.Model.Corners(static_cast<size_t>(t), p);
-          const int64_t n = Divisions(p, step);
-          const int64_t count = (n + 1) * (n + 2) / 2 - 3;
-          if (count > 0)
-          {
-            batch.Items.insert(batch.Items.end(),
-              { static_cast<int32_t>(t),
-                static_cast<int32_t>(batch.Samples),
-                static_cast<int32_t>(n),
-                0 });
-            batch.Samples += count;
-          }
-        }
-      }
+      batchEnd = DeviceBatch(self,
+        region,
+        step,
+        firstBlock,
+        blockSize,
+        batchBegin,
+        blocks,
+        batchBudget,
+        batch,
+        firstSample);
       if (batch.Samples > 0 &&
         !DeviceNearestToSamples(*gpu.Device, gpu.Self, gpu.Other, batch, answers, error))
       {
@@ -600,157 +836,25 @@ bool Penetrate(const ProximityModel::Data& self,
       1,
       [&, batchBegin](int64_t first, int64_t last)
       {
-        std::vector<KnownPoint> known;
-        known.reserve(3 + RecentSamples);
-        std::array<std::array<double, 3>, RecentSamples> recent;
-        size_t recentNext = 0;
+        FaceSampler::Scratch scratch;
+        scratch.Known.reserve(3 + RecentSamples);
         for (int64_t block = batchBegin + first; block < batchBegin + last; ++block)
         {
-          PenetrationSide& part = parts[static_cast<size_t>(block)];
           const int64_t end = std::min(triangles, (firstBlock + block + 1) * blockSize);
           for (int64_t t = (firstBlock + block) * blockSize; t < end; ++t)
           {
-            if (!BoxMeetsRegion(self.Tree->Boxes()[static_cast<size_t>(t)], region))
-            {
-              continue;
-            }
-            double p[9];
-            self.Model.Corners(static_cast<size_t>(t), p);
-            const int64_t n = Divisions(p, step);
-            // The corners are known points; the samples evaluated last join them.
-            known.clear();
-            for (const size_t id : self.Model.Triangles[static_cast<size_t>(t)])
-            {
-              const PointQuery& corner = vertexQueries[id];
-              known.push_back(
-                { self.Model.Points[id].data(), corner.D2, corner.Inside, corner.Triangle });
-            }
-            int64_t hint = known[0].Triangle;
-            // The triangle's samples in the GPU's answers, in the lattice's order.
-            size_t answer = gpu.Device
-              ? static_cast<size_t>(firstSample[static_cast<size_t>(t - batchTriangle)])
-              : 0;
-            // Without the contacts' list only the deepest matters: an inside sample whose
-            // distance cannot exceed the deepest so far (by the triangle inequality from a
-            // known point, d(x) <= d(y) + |x - y|) needs no exact distance.
-            auto cannotDeepen = [&](const double x[3])
-            {
-              if (keepContacts || part.TriangleOfOther < 0)
-              {
-                return false;
-              }
-              double bound = HUGE_VAL;
-              for (const KnownPoint& y : known)
-              {
-                const double gap2 = (x[0] - y.X[0]) * (x[0] - y.X[0]) +
-                  (x[1] - y.X[1]) * (x[1] - y.X[1]) + (x[2] - y.X[2]) * (x[2] - y.X[2]);
-                bound = std::min(bound, std::sqrt(y.D2) + std::sqrt(gap2));
-              }
-              return bound * (1 + 1e-12) <= part.Depth;
-            };
-            for (int64_t i = 0; i <= n; ++i)
-            {
-              for (int64_t j = 0; i + j <= n; ++j)
-              {
-                if ((i == 0 && j == 0) || i == n || j == n)
-                {
-                  continue; // a corner: a vertex, already counted
-                }
-                const size_t answerIndex = answer++;
-                const double u = double(i) / n, v = double(j) / n;
-                const double x[3] = { p[0] + u * (p[3] - p[0]) + v * (p[6] - p[0]),
-                  p[1] + u * (p[4] - p[1]) + v * (p[7] - p[1]),
-                  p[2] + u * (p[5] - p[2]) + v * (p[8] - p[2]) };
-                if (!InRegion(region, x))
-                {
-                  continue;
-                }
-                ++part.Samples;
-                PointQuery query;
-                if (chain)
-                {
-                  // A closed chain: the side from a known point joined by a ball free of
-                  // the surface, else the winding number; the distance only when needed.
-                  const KnownPoint* same = SameSide(known, x, 0);
-                  if (same && !same->Inside)
-                  {
-                    continue;
-                  }
-                  if (same && cannotDeepen(x))
-                  {
-                    ++part.SamplesInside;
-                    continue;
-                  }
-                  query = gpu.Device ? PointQuery(answers, answerIndex)
-                                     : PointQuery(other, x, known.back().Triangle);
-                  partQueries[static_cast<size_t>(block)] += gpu.Device ? 0 : 1;
-                  same = same ? same : SameSide(known, x, query.D2);
-                  if (same)
-                  {
-                    query.Inside = same->Inside;
-                  }
-                  else
-                  {
-                    query.Inside = other.Winding.Inside(x);
-                    ++partWinding[static_cast<size_t>(block)];
-                  }
-                  if (known.size() == 3 + RecentSamples)
-                  {
-                    known.erase(known.begin() + 3); // the corners stay
-                  }
-                  known.push_back({ nullptr, query.D2, query.Inside, query.Triangle });
-                  std::copy(x, x + 3, recent[recentNext].data());
-                  known.back().X = recent[recentNext].data();
-                  recentNext = (recentNext + 1) % recent.size();
-                }
-                else
-                {
-                  // The winding number decides before the distance is needed.
-                  const bool winding = other.Rule == InsideRule::WindingNumber;
-                  if (winding)
-                  {
-                    ++partWinding[static_cast<size_t>(block)];
-                    if (!other.Winding.Inside(x))
-                    {
-                      continue;
-                    }
-                    if (cannotDeepen(x))
-                    {
-                      ++part.SamplesInside;
-                      continue;
-                    }
-                  }
-                  query =
-                    gpu.Device ? PointQuery(answers, answerIndex) : PointQuery(other, x, hint);
-                  partQueries[static_cast<size_t>(block)] += gpu.Device ? 0 : 1;
-                  hint = query.Triangle;
-                  query.Inside =
-                    winding || other.Inside(x, query.Closest, query.Triangle, query.D2);
-                }
-                if (!query.Inside)
-                {
-                  continue;
-                }
-                ++part.SamplesInside;
-                const ContactSample sample = MakeSample(x, query, t, -1);
-                Keep(part, sample, query.Closest, query.Triangle);
-                if (keepContacts)
-                {
-                  part.Contacts.push_back(sample);
-                }
-              }
-            }
+            sampler.Triangle(t, batchTriangle, results[static_cast<size_t>(block)], scratch);
           }
         }
       });
   }
-  for (size_t block = 0; block < parts.size(); ++block)
+  for (const BlockResult& result : results)
   {
-    const PenetrationSide& part = parts[block];
+    const PenetrationSide& part = result.Side;
     side.Samples += part.Samples;
     side.SamplesInside += part.SamplesInside;
-    queries += partQueries[block];
-    windings += partWinding[block];
+    queries += result.Queries;
+    windings += result.Windings;
     if (part.TriangleOfOther >= 0 && (part.Depth > side.Depth || side.TriangleOfOther < 0))
     {
       side.Depth = part.Depth;
@@ -784,16 +888,14 @@ double CountFaceSamples(const ProximityModel::Data& self,
 }
 } // namespace
 
-bool ComputeProximity(const ProximityModel& modelA,
-  const ProximityModel& modelB,
+namespace
+{
+/// Whether the request can be answered for these models; false with `error`.
+bool CheckRequest(const ProximityModel::Data& a,
+  const ProximityModel::Data& b,
   const ProximityRequest& request,
-  ProximityReport& report,
-  const Execution& execution,
   std::string& error)
 {
-  report = ProximityReport();
-  const ProximityModel::Data& a = modelA.Get();
-  const ProximityModel::Data& b = modelB.Get();
   if (!a.Loaded || !b.Loaded)
   {
     error = "both models must be loaded before a query";
@@ -827,11 +929,22 @@ bool ComputeProximity(const ProximityModel& modelA,
     error = "the resolution must be 1 to 65536; it is " + std::to_string(request.Resolution);
     return false;
   }
+  return true;
+}
 
-  // The interaction region, and the step from it.
+/// The interaction region (the boxes' overlap grown by the margin; empty: `empty`) and
+/// the step from it, into the report; false with `error` when the face samples would
+/// exceed the request's limit.
+bool InteractionRegion(const ProximityModel::Data& a,
+  const ProximityModel::Data& b,
+  const ProximityRequest& request,
+  ProximityReport& report,
+  bool& empty,
+  std::string& error)
+{
   std::array<double, 6> hull;
   double longest = 0, regionLongest = 0;
-  bool empty = false;
+  empty = false;
   for (int k = 0; k < 3; ++k)
   {
     const double m = request.ContactMargin;
@@ -867,6 +980,77 @@ bool ComputeProximity(const ProximityModel& modelA,
       return false;
     }
   }
+  return true;
+}
+
+/// Contact: the first pair of triangles, one of each model, with a point in common.
+void FindContactPair(const ProximityModel::Data& a,
+  const ProximityModel::Data& b,
+  ProximityResult& contact)
+{
+  a.Tree->ForEachOverlappingPair(*b.Tree,
+    [&](size_t s, size_t t)
+    {
+      Point3 p[3], q[3];
+      a.Model.Corners(s, p);
+      b.Model.Corners(t, q);
+      ++contact.ContactTests;
+      if (ClosedTrianglesIntersect(p, q))
+      {
+        contact.ContactA = static_cast<int64_t>(s);
+        contact.ContactB = static_cast<int64_t>(t);
+        return false;
+      }
+      return true;
+    });
+}
+
+/// Apart: the separation and its pair, from the least of the points' distances as the
+/// bound (searched again without one should rounding leave the bound short).
+void FindSeparation(const ProximityModel::Data& a,
+  const ProximityModel::Data& b,
+  ProximityReport& report)
+{
+  double bound = HUGE_VAL;
+  for (const auto* distances : { &report.DistanceA, &report.DistanceB })
+  {
+    for (const double d : *distances)
+    {
+      bound = std::isnan(d) ? bound : std::min(bound, std::fabs(d));
+    }
+  }
+  if (!NearestPair(a.Model, *a.Tree, b.Model, *b.Tree, bound * bound, report.Contact))
+  {
+    NearestPair(a.Model, *a.Tree, b.Model, *b.Tree, HUGE_VAL, report.Contact);
+  }
+}
+} // namespace
+
+bool ComputeProximity(const ProximityModel& modelA,
+  const ProximityModel& modelB,
+  const ProximityRequest& request,
+  ProximityReport& report,
+  const Execution& execution,
+  std::string& error)
+{
+  report = ProximityReport();
+  const ProximityModel::Data& a = modelA.Get();
+  const ProximityModel::Data& b = modelB.Get();
+  bool empty = false;
+  if (!CheckRequest(a, b, request, error) ||
+    !InteractionRegion(a, b, request, report, empty, error))
+  {
+    return false;
+  }
+  auto aborted = [&](double fraction)
+  {
+    if (execution.Report(fraction))
+    {
+      return false;
+    }
+    error = "aborted";
+    return true;
+  };
 
   // On the GPU: both models there (their coordinates; their topology when it is new).
   ProximityDevice* device = request.Device;
@@ -882,31 +1066,16 @@ bool ComputeProximity(const ProximityModel& modelA,
   }
   const OnDevice gpuAB{ device, 0, 1 }, gpuBA{ device, 1, 0 };
 
-  // Contact: a pair of triangles with a point in common. The merged report takes the
-  // contact pair and the separation from the first share: the others skip both.
+  // The merged report takes the contact pair and the separation from the first share:
+  // the others skip both.
   ProximityResult& contact = report.Contact;
   const bool first = request.Share == 0;
   if (first)
   {
-    a.Tree->ForEachOverlappingPair(*b.Tree,
-      [&](size_t s, size_t t)
-      {
-        Point3 p[3], q[3];
-        a.Model.Corners(s, p);
-        b.Model.Corners(t, q);
-        ++contact.ContactTests;
-        if (ClosedTrianglesIntersect(p, q))
-        {
-          contact.ContactA = static_cast<int64_t>(s);
-          contact.ContactB = static_cast<int64_t>(t);
-          return false;
-        }
-        return true;
-      });
+    FindContactPair(a, b, contact);
   }
-  if (!execution.Report(0.1))
+  if (aborted(0.1))
   {
-    error = "aborted";
     return false;
   }
 
@@ -923,54 +1092,38 @@ bool ComputeProximity(const ProximityModel& modelA,
       std::count(b.Used.begin(), b.Used.end(), true));
   }
   execution.EndStage("point distances");
-  if (!execution.Report(0.3))
+  if (aborted(0.3))
   {
-    error = "aborted";
     return false;
   }
 
   // Penetration, both ways, over the region's samples.
-  if (!empty)
+  auto penetrate = [&](const ProximityModel::Data& self,
+                     const ProximityModel::Data& other,
+                     const OnDevice& gpu,
+                     const std::vector<PointQuery>& queries,
+                     PenetrationSide& side)
   {
-    if (!Penetrate(a,
-          b,
-          gpuAB,
-          queriesA,
-          report.Region,
-          report.Step,
-          request.Contacts,
-          request.Share,
-          request.Shares,
-          execution,
-          report.AInB,
-          report.PointQueries,
-          report.InsideEvaluations,
-          error))
-    {
-      return false;
-    }
-    if (!execution.Report(0.6))
-    {
-      error = "aborted";
-      return false;
-    }
-    if (!Penetrate(b,
-          a,
-          gpuBA,
-          queriesB,
-          report.Region,
-          report.Step,
-          request.Contacts,
-          request.Share,
-          request.Shares,
-          execution,
-          report.BInA,
-          report.PointQueries,
-          report.InsideEvaluations,
-          error))
-    {
-      return false;
-    }
+    return Penetrate(self,
+      other,
+      gpu,
+      queries,
+      report.Region,
+      report.Step,
+      request.Contacts,
+      request.Share,
+      request.Shares,
+      execution,
+      side,
+      report.PointQueries,
+      report.InsideEvaluations,
+      error);
+  };
+  if (!empty &&
+    (!penetrate(a, b, gpuAB, queriesA, report.AInB) || aborted(0.6) ||
+      !penetrate(b, a, gpuBA, queriesB, report.BInA)))
+  {
+    return false;
   }
   execution.EndStage("penetration");
   if (device)
@@ -986,27 +1139,10 @@ bool ComputeProximity(const ProximityModel& modelA,
   }
   else
   {
-    // Apart: the separation, from the least of the points' distances as the bound.
-    double bound = HUGE_VAL;
-    for (const auto* distances : { &report.DistanceA, &report.DistanceB })
-    {
-      for (const double d : *distances)
-      {
-        bound = std::isnan(d) ? bound : std::min(bound, std::fabs(d));
-      }
-    }
-    if (!NearestPair(a.Model, *a.Tree, b.Model, *b.Tree, bound * bound, contact))
-    {
-      NearestPair(a.Model, *a.Tree, b.Model, *b.Tree, HUGE_VAL, contact);
-    }
+    FindSeparation(a, b, report);
     execution.EndStage("separation");
   }
-  if (!execution.Report(1.0))
-  {
-    error = "aborted";
-    return false;
-  }
-  return true;
+  return !aborted(1.0);
 }
 
 void MergeProximityShares(std::vector<ProximityReport>& shares, ProximityReport& merged)
