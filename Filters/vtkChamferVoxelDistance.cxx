@@ -17,6 +17,7 @@
 #include "GL/HeadlessGL.h"
 #include "Voxels/VoxelFields.h"
 #include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldRun.h"
 
@@ -349,8 +350,7 @@ bool vtkChamferVoxelDistance::ReadMasks(vtkImageData* image,
 
 bool vtkChamferVoxelDistance::CheckProperties()
 {
-  if (!this->Superclass::CheckProperties() ||
-    !this->CheckEnum("Metric", this->Metric, { "Manhattan", "Chessboard18", "Chessboard26" }))
+  if (!this->Superclass::CheckProperties() || !this->CheckEnum(this->Metric, vtkdf::enums::Metric))
   {
     return false;
   }
@@ -366,9 +366,7 @@ bool vtkChamferVoxelDistance::CheckProperties()
 void vtkChamferVoxelDistance::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent
-     << "Metric: " << EnumName(this->Metric, { "Manhattan", "Chessboard18", "Chessboard26" })
-     << "\n";
+  os << indent << "Metric: " << vtkdf::enums::Metric.Name(this->Metric) << "\n";
   os << indent << "MaximumLayers: " << this->MaximumLayers << "\n";
   os << indent << "Signed: " << this->Signed << "\n";
   os << indent << "OutputMasks: " << this->OutputMasks << "\n";

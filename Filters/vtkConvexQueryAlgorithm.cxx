@@ -9,6 +9,7 @@
 
 #include "GL/HeadlessGL.h"
 #include "vtkConvexPieces.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldPartitions.h"
 #include "vtkDistanceFieldRun.h"
@@ -30,9 +31,10 @@ int vtkConvexQueryAlgorithm::RequestInformation(vtkInformation*,
 
 bool vtkConvexQueryAlgorithm::CheckProperties()
 {
-  if (this->Backend < BACKEND_AUTO || this->Backend > BACKEND_CPU)
+  std::string error;
+  if (!vtkdf::enums::Backend.Check(this->Backend, error))
   {
-    vtkErrorMacro("Backend must be 0 (Auto), 1 (GPU) or 2 (CPU); it is " << this->Backend << ".");
+    vtkErrorMacro(<< error);
     return false;
   }
   return true;
@@ -121,7 +123,7 @@ void vtkConvexQueryAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PieceArray: " << (this->PieceArray.empty() ? "(none)" : this->PieceArray)
      << "\n";
   os << indent << "UseConvexHulls: " << this->UseConvexHulls << "\n";
-  os << indent << "Backend: " << this->Backend << "\n";
+  os << indent << "Backend: " << vtkdf::enums::Backend.Name(this->Backend) << "\n";
   os << indent << "ViewResolution: " << this->ViewResolution << "\n";
   os << indent << "Certify: " << this->Certify << "\n";
   os << indent << "LastBackend: " << this->LastBackend << "\n";

@@ -17,6 +17,7 @@
 #include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
 #include "GL/HeadlessGL.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldMeshInput.h"
 #include "vtkDistanceFieldPartitions.h"
@@ -190,34 +191,20 @@ bool vtkDistanceFieldAlgorithm::ReadMesh(vtkPolyData* input,
   return true;
 }
 
-bool vtkDistanceFieldAlgorithm::CheckEnum(const char* name,
-  int value,
-  std::initializer_list<const char*> names)
+bool vtkDistanceFieldAlgorithm::CheckEnum(int value, const vtkdf::EnumTable& table)
 {
-  if (value >= 0 && value < static_cast<int>(names.size()))
+  std::string error;
+  if (!table.Check(value, error))
   {
-    return true;
+    vtkErrorMacro(<< error);
+    return false;
   }
-  std::ostringstream text;
-  int index = 0;
-  for (const char* n : names)
-  {
-    text << (index == 0 ? "" : (index + 1 == static_cast<int>(names.size()) ? " or " : ", "))
-         << index << " (" << n << ")";
-    ++index;
-  }
-  vtkErrorMacro(<< name << " must be " << text.str() << "; it is " << value << ".");
-  return false;
-}
-
-const char* vtkDistanceFieldAlgorithm::EnumName(int value, std::initializer_list<const char*> names)
-{
-  return value >= 0 && value < static_cast<int>(names.size()) ? names.begin()[value] : "(invalid)";
+  return true;
 }
 
 bool vtkDistanceFieldAlgorithm::CheckProperties()
 {
-  if (!this->CheckEnum("Backend", this->Backend, { "Auto", "GPU", "CPU" }))
+  if (!this->CheckEnum(this->Backend, vtkdf::enums::Backend))
   {
     return false;
   }
@@ -650,7 +637,7 @@ double vtkDistanceFieldAlgorithm::EffectiveMemoryLimit(std::string* source) cons
 void vtkDistanceFieldAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Backend: " << EnumName(this->Backend, { "Auto", "GPU", "CPU" }) << "\n";
+  os << indent << "Backend: " << vtkdf::enums::Backend.Name(this->Backend) << "\n";
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "Padding: " << this->Padding << "\n";
   os << indent << "ExplicitGrid: " << (this->ExplicitGrid ? "On" : "Off") << "\n";

@@ -25,14 +25,14 @@
 #include "vtkDistanceFieldsModule.h" // For export macro
 #include "vtkSmartPointer.h"         // For the whole mesh
 
-#include <initializer_list> // For enum names
-#include <string>           // For the renderer string
-#include <vector>           // For the whole mesh's cell ids
+#include <string> // For the renderer string
+#include <vector> // For the whole mesh's cell ids
 
 class vtkImageData;
 #ifndef __VTK_WRAP__
 namespace vtkdf
 {
+class EnumTable;
 struct IndexBox;
 struct MeshInput;
 struct SampleGrid;
@@ -109,11 +109,11 @@ protected:
   /// vtkErrorMacro) and returns false. Subclasses add their own and call this one.
   virtual bool CheckProperties();
 
-  /// Whether the enum property `name` holds one of `names` (0, 1, ...); if not, reports
-  /// the values it may take.
-  bool CheckEnum(const char* name, int value, std::initializer_list<const char*> names);
-  /// names[value], or "(invalid)" (for PrintSelf, which may run before the check).
-  static const char* EnumName(int value, std::initializer_list<const char*> names);
+#ifndef __VTK_WRAP__
+  /// Whether an enumeration property holds one of its table's values
+  /// (vtkDistanceFieldEnums.h); if not, reports the values it may take.
+  bool CheckEnum(int value, const vtkdf::EnumTable& table);
+#endif
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;

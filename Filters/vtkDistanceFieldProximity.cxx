@@ -18,6 +18,7 @@
 
 #include "GL/HeadlessGL.h"
 #include "Proximity/ProximityQuery.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldMeshInput.h"
 #include "vtkDistanceFieldPartitions.h"
@@ -45,15 +46,11 @@ int vtkDistanceFieldProximity::FillInputPortInformation(int, vtkInformation* inf
 
 bool vtkDistanceFieldProximity::CheckProperties()
 {
-  if (this->Backend != BACKEND_AUTO && this->Backend != BACKEND_GPU && this->Backend != BACKEND_CPU)
+  std::string error;
+  if (!vtkdf::enums::Backend.Check(this->Backend, error) ||
+    !vtkdf::enums::ProximitySign.Check(this->SignMode, error))
   {
-    vtkErrorMacro("Backend must be 0 (Auto), 1 (GPU) or 2 (CPU); it is " << this->Backend << ".");
-    return false;
-  }
-  if (this->SignMode != PSEUDO_NORMAL && this->SignMode != WINDING_NUMBER)
-  {
-    vtkErrorMacro(
-      "SignMode must be 1 (PseudoNormal) or 2 (WindingNumber); it is " << this->SignMode << ".");
+    vtkErrorMacro(<< error);
     return false;
   }
   if (this->Resolution < 1 || this->Resolution > 65536)
@@ -374,8 +371,8 @@ void vtkDistanceFieldProximity::WriteContacts(const vtkdf::ProximityReport& repo
 void vtkDistanceFieldProximity::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Backend: " << this->Backend << "\n";
-  os << indent << "SignMode: " << this->SignMode << "\n";
+  os << indent << "Backend: " << vtkdf::enums::Backend.Name(this->Backend) << "\n";
+  os << indent << "SignMode: " << vtkdf::enums::ProximitySign.Name(this->SignMode) << "\n";
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "Spacing: " << this->Spacing << "\n";
   os << indent << "ContactMargin: " << this->ContactMargin << "\n";

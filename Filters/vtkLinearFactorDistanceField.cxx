@@ -15,6 +15,7 @@
 #include "LinearFactor/LinearFactorField.h"
 #include "Winding/WindingCrossings.h"
 #include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldRun.h"
 
@@ -149,9 +150,9 @@ std::string vtkLinearFactorDistanceField::PointCloudRefusal()
 bool vtkLinearFactorDistanceField::CheckProperties()
 {
   if (!this->Superclass::CheckProperties() ||
-    !this->CheckEnum("SignMode", this->SignMode, { "Unsigned", "PseudoNormal", "WindingNumber" }) ||
-    !this->CheckEnum("Culling", this->Culling, { "Auto", "NonManifold", "Manifold" }) ||
-    !this->CheckEnum("Route", this->Route, { "Auto", "SiteScan", "SampleQueries" }))
+    !this->CheckEnum(this->SignMode, vtkdf::enums::LinearFactorSign) ||
+    !this->CheckEnum(this->Culling, vtkdf::enums::Culling) ||
+    !this->CheckEnum(this->Route, vtkdf::enums::Route))
   {
     return false;
   }
@@ -167,13 +168,9 @@ bool vtkLinearFactorDistanceField::CheckProperties()
 void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent
-     << "SignMode: " << EnumName(this->SignMode, { "Unsigned", "PseudoNormal", "WindingNumber" })
-     << "\n";
-  os << indent << "Culling: " << EnumName(this->Culling, { "Auto", "NonManifold", "Manifold" })
-     << "\n";
-  os << indent << "Route: " << EnumName(this->Route, { "Auto", "SiteScan", "SampleQueries" })
-     << "\n";
+  os << indent << "SignMode: " << vtkdf::enums::LinearFactorSign.Name(this->SignMode) << "\n";
+  os << indent << "Culling: " << vtkdf::enums::Culling.Name(this->Culling) << "\n";
+  os << indent << "Route: " << vtkdf::enums::Route.Name(this->Route) << "\n";
   os << indent << "LastRoute: " << this->LastRoute << "\n";
   os << indent << "MaximumDistance: " << this->MaximumDistance << "\n";
   os << indent << "ComputeDistance: " << this->ComputeDistance << "\n";

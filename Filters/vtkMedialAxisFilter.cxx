@@ -22,6 +22,7 @@
 #include "Medial/MedialAxisField.h"
 #include "Winding/WindingCrossings.h"
 #include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldRun.h"
 
@@ -425,8 +426,8 @@ void vtkMedialAxisFilter::WriteMedialPoints(const vtkdf::SampleGrid& grid,
 bool vtkMedialAxisFilter::CheckProperties()
 {
   if (!this->Superclass::CheckProperties() ||
-    !this->CheckEnum("Region", this->Region, { "Inside", "Outside", "Both" }) ||
-    !this->CheckEnum("SignMode", this->SignMode, { "PseudoNormal", "WindingNumber" }))
+    !this->CheckEnum(this->Region, vtkdf::enums::MedialRegion) ||
+    !this->CheckEnum(this->SignMode, vtkdf::enums::MedialSign))
   {
     return false;
   }
@@ -443,8 +444,7 @@ void vtkMedialAxisFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SeparationAngle: " << this->SeparationAngle << "\n";
-  os << indent << "Region: " << EnumName(this->Region, { "Inside", "Outside", "Both" }) << "\n";
-  os << indent << "SignMode: " << EnumName(this->SignMode, { "PseudoNormal", "WindingNumber" })
-     << "\n";
+  os << indent << "Region: " << vtkdf::enums::MedialRegion.Name(this->Region) << "\n";
+  os << indent << "SignMode: " << vtkdf::enums::MedialSign.Name(this->SignMode) << "\n";
   os << indent << "LastMedialCount: " << this->LastMedialCount << "\n";
 }

@@ -13,6 +13,7 @@
 #include "GL/HeadlessGL.h"
 #include "Voxels/VoxelFields.h"
 #include "vtkDistanceFieldArrays.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkDistanceFieldExecution.h"
 #include "vtkDistanceFieldRun.h"
 
@@ -91,11 +92,11 @@ vtkdf::RunStatus vtkPolyDataVoxelizer::Execute(vtkInformationVector** inputVecto
 bool vtkPolyDataVoxelizer::CheckProperties()
 {
   return this->Superclass::CheckProperties() &&
-    this->CheckEnum("Mode", this->Mode, { "Boundary", "Solid", "Both" });
+    this->CheckEnum(this->Mode, vtkdf::enums::VoxelMode);
 }
 
 void vtkPolyDataVoxelizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Mode: " << EnumName(this->Mode, { "Boundary", "Solid", "Both" }) << "\n";
+  os << indent << "Mode: " << vtkdf::enums::VoxelMode.Name(this->Mode) << "\n";
 }

@@ -21,12 +21,14 @@ vtk_module_add_module(DistanceFields::vtkDistanceFields
     "${df_root}/Filters/vtkDistanceFieldArrays.cxx"
     "${df_root}/Filters/vtkDistanceFieldExecution.cxx"
     "${df_root}/Filters/vtkDistanceFieldRun.cxx"
+    "${df_root}/Filters/vtkDistanceFieldEnums.cxx"
     "${df_root}/Filters/vtkConvexPieces.cxx"
     "${df_root}/Filters/vtkDistanceFieldPartitions.cxx"
   PRIVATE_HEADERS "${df_root}/Filters/vtkDistanceFieldMeshInput.h"
     "${df_root}/Filters/vtkDistanceFieldArrays.h"
     "${df_root}/Filters/vtkDistanceFieldExecution.h"
     "${df_root}/Filters/vtkDistanceFieldRun.h"
+    "${df_root}/Filters/vtkDistanceFieldEnums.h"
     "${df_root}/Filters/vtkConvexPieces.h"
     "${df_root}/Filters/vtkDistanceFieldPartitions.h")
 vtk_module_include(DistanceFields::vtkDistanceFields

@@ -4,6 +4,7 @@
 #include "Options.h"
 #include "SlicePictures.h"
 #include "vtkChamferVoxelDistance.h"
+#include "vtkDistanceFieldEnums.h"
 
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -26,18 +27,7 @@ int Chamfer(int argc, char* argv[])
   vtkNew<vtkChamferVoxelDistance> filter;
   filter->SetInputData(ReadMeshOrImageOrExit(argv[2]));
   Configure(filter, common);
-  if (metric == "manhattan")
-  {
-    filter->SetMetricToManhattan();
-  }
-  else if (metric == "chessboard26")
-  {
-    filter->SetMetricToChessboard26();
-  }
-  else if (metric != "chessboard18")
-  {
-    return Usage("--metric takes manhattan, chessboard18 or chessboard26");
-  }
+  filter->SetMetric(EnumWord("--metric", metric, vtkdf::enums::Metric));
   if (layers < 0)
   {
     return Usage("--layers takes a count >= 0");

@@ -3,6 +3,7 @@
 #include "Files.h"
 #include "Options.h"
 #include "SlicePictures.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkLinearFactorDistanceField.h"
 
 #include "vtkImageData.h"
@@ -32,42 +33,13 @@ int Linfac(int argc, char* argv[])
   vtkNew<vtkLinearFactorDistanceField> filter;
   filter->SetInputData(ReadMeshOrExit(argv[2]));
   Configure(filter, common);
-  if (culling == "nonmanifold")
-  {
-    filter->SetCullingToNonManifold();
-  }
-  else if (culling == "manifold")
-  {
-    filter->SetCullingToManifold();
-  }
-  else if (culling != "auto")
-  {
-    return Usage("--culling takes auto, nonmanifold or manifold");
-  }
-  if (route == "scan")
-  {
-    filter->SetRouteToSiteScan();
-  }
-  else if (route == "queries")
-  {
-    filter->SetRouteToSampleQueries();
-  }
-  else if (route != "auto")
-  {
-    return Usage("--route takes auto, scan or queries");
-  }
+  filter->SetCulling(EnumWord("--culling", culling, vtkdf::enums::Culling));
+  filter->SetRoute(EnumWord("--route", route, vtkdf::enums::Route));
   // --sign implies --signed; --signed alone is the pseudonormal sign.
-  if (sign == "winding")
+  if (!sign.empty() || signedField)
   {
-    filter->SetSignModeToWindingNumber();
-  }
-  else if (sign == "pseudonormal" || (sign.empty() && signedField))
-  {
-    filter->SetSignModeToPseudoNormal();
-  }
-  else if (!sign.empty())
-  {
-    return Usage("--sign takes pseudonormal or winding");
+    filter->SetSignMode(
+      EnumWord("--sign", sign.empty() ? "pseudonormal" : sign, vtkdf::enums::LinearFactorSign));
   }
   filter->SetComputeWindingNumber(arrays.find("winding") != std::string::npos);
   filter->SetMaximumDistance(maxDistance);

@@ -3,6 +3,7 @@
 #include "Files.h"
 #include "Options.h"
 #include "SlicePictures.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkMedialAxisFilter.h"
 
 #include "vtkImageData.h"
@@ -31,26 +32,8 @@ int Medial(int argc, char* argv[])
   filter->SetInputData(ReadMeshOrImageOrExit(argv[2]));
   Configure(filter, common);
   filter->SetSeparationAngle(angle);
-  if (region == "outside")
-  {
-    filter->SetRegionToOutside();
-  }
-  else if (region == "both")
-  {
-    filter->SetRegionToBoth();
-  }
-  else if (region != "inside")
-  {
-    return Usage("--region takes inside, outside or both");
-  }
-  if (sign == "winding")
-  {
-    filter->SetSignModeToWindingNumber();
-  }
-  else if (sign != "pseudonormal")
-  {
-    return Usage("--sign takes pseudonormal or winding");
-  }
+  filter->SetRegion(EnumWord("--region", region, vtkdf::enums::MedialRegion));
+  filter->SetSignMode(EnumWord("--sign", sign, vtkdf::enums::MedialSign));
   int code = Finish("medial",
     filter,
     common,

@@ -2,6 +2,7 @@
 
 #include "Files.h"
 #include "vtkDistanceFieldAlgorithm.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkImageData.h"
 #include "vtkXMLImageDataWriter.h"
 
@@ -10,41 +11,44 @@
 #include <climits>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 
 namespace vtkdfcli
 {
 
 void PrintUsage(FILE* out)
 {
-  std::fprintf(out,
-    "usage: vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--sign pseudonormal|winding]\n"
-    "             [--backend auto|gpu|cpu] [--culling auto|nonmanifold|manifold]\n"
-    "             [--route auto|scan|queries]\n"
+  // The enumerations' words come from their tables (vtkDistanceFieldEnums.h), which the
+  // options are parsed with too.
+  std::string text =
+    "usage: vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--sign {linfac-sign}]\n"
+    "             [--backend {backend}] [--culling {culling}]\n"
+    "             [--route {route}]\n"
     "             [--arrays distance,cellid,feature,point,winding] [--max-distance D]\n"
     "             [--png SLICE.png] [--timing]\n"
-    "       vtkdf voxelize MESH -o OUT.vti [--mode boundary|solid|both] [grid]\n"
-    "             [--backend auto|gpu|cpu] [--timing]\n"
-    "       vtkdf chamfer INPUT -o OUT.vti [--metric manhattan|chessboard18|chessboard26]\n"
-    "             [--layers M] [--signed] [grid] [--backend auto|gpu|cpu] [--timing]\n"
-    "       vtkdf medial INPUT -o OUT.vti [--angle THETA] [--region inside|outside|both]\n"
-    "             [--sign pseudonormal|winding] [grid] [--backend auto|gpu|cpu]\n"
+    "       vtkdf voxelize MESH -o OUT.vti [--mode {mode}] [grid]\n"
+    "             [--backend {backend}] [--timing]\n"
+    "       vtkdf chamfer INPUT -o OUT.vti [--metric {metric}]\n"
+    "             [--layers M] [--signed] [grid] [--backend {backend}] [--timing]\n"
+    "       vtkdf medial INPUT -o OUT.vti [--angle THETA] [--region {region}]\n"
+    "             [--sign {medial-sign}] [grid] [--backend {backend}]\n"
     "             [--points OUT.vtp] [--png SLICE.png] [--timing]\n"
     "       vtkdf segment MESH -o OUT.vti [grid] [--delta D] [--region-offset D]\n"
-    "             [--uncut] [--backend auto|gpu|cpu] [--surface OUT.vtp [--feature-angle A]\n"
+    "             [--uncut] [--backend {backend}] [--surface OUT.vtp [--feature-angle A]\n"
     "             [--paper-vertices]] [--png SLICE.png] [--timing]\n"
     "       vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]\n"
     "             (A and B from vtkdf segment on the same grid; T in [0, 1])\n"
     "       vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS]\n"
-    "             [--piece-array NAME] [--convex-hulls] [--backend auto|gpu|cpu]\n"
+    "             [--piece-array NAME] [--convex-hulls] [--backend {backend}]\n"
     "             [--pixels N] [--uncertified] [--timing]\n"
     "             (POLYTOPES: a mesh whose connected components are convex pieces, or a\n"
     "             .vtm of them; POINTS: a mesh whose points are the queries)\n"
     "       vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls]\n"
-    "             [--backend auto|gpu|cpu] [--pixels N] [--uncertified] [--timing]\n"
+    "             [--backend {backend}] [--pixels N] [--uncertified] [--timing]\n"
     "             (penetration depth of two solids, each convex pieces as for union;\n"
     "             prints the depth and the direction to translate Q)\n"
     "       vtkdf proximity A B -o OUT.vtp [--contacts OUT.vtp] [--models A.vtp B.vtp]\n"
-    "             [--resolution N | --spacing H] [--margin M] [--sign winding|pseudonormal]\n"
+    "             [--resolution N | --spacing H] [--margin M] [--sign {proximity-sign}]\n"
     "             [--no-contacts] [--backend ...] [--timing]\n"
     "             (collision, separation, penetration and contacts of two meshes)\n"
     "       vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H]\n"
@@ -56,7 +60,36 @@ void PrintUsage(FILE* out)
     "MESH:  .vtp .vtk .ply .stl .obj; chamfer's INPUT may also be a .vti with a Boundary mask,\n"
     "       medial's a .vti with Distance and ClosestPoint (vtkdf linfac --signed --arrays\n"
     "       distance,point)\n"
-    "       vtkdf --help: this text\n");
+    "       vtkdf --help: this text\n";
+  const std::pair<const char*, const vtkdf::EnumTable*> words[] = {
+    { "{backend}", &vtkdf::enums::Backend },
+    { "{linfac-sign}", &vtkdf::enums::LinearFactorSign },
+    { "{culling}", &vtkdf::enums::Culling },
+    { "{route}", &vtkdf::enums::Route },
+    { "{mode}", &vtkdf::enums::VoxelMode },
+    { "{metric}", &vtkdf::enums::Metric },
+    { "{region}", &vtkdf::enums::MedialRegion },
+    { "{medial-sign}", &vtkdf::enums::MedialSign },
+    { "{proximity-sign}", &vtkdf::enums::ProximitySign },
+  };
+  for (const auto& [token, table] : words)
+  {
+    for (size_t at = text.find(token); at != std::string::npos; at = text.find(token, at))
+    {
+      text.replace(at, std::strlen(token), table->Words());
+    }
+  }
+  std::fputs(text.c_str(), out);
+}
+
+int EnumWord(const char* option, const std::string& word, const vtkdf::EnumTable& table)
+{
+  int value = 0;
+  if (!table.FromWord(word, value))
+  {
+    std::exit(Usage((std::string(option) + " takes " + table.WordList()).c_str()));
+  }
+  return value;
 }
 
 /// A usage error: the message and the usage on stderr; the exit status 2.
@@ -215,18 +248,7 @@ void Configure(vtkDistanceFieldAlgorithm* filter, CommonOptions& common)
     filter->SetGridSpacing(common.Spacing);
     filter->SetGridDimensions(common.Dims);
   }
-  if (common.Backend == "gpu")
-  {
-    filter->SetBackendToGPU();
-  }
-  else if (common.Backend == "cpu")
-  {
-    filter->SetBackendToCPU();
-  }
-  else if (common.Backend != "auto")
-  {
-    std::exit(Usage("--backend takes auto, gpu or cpu"));
-  }
+  filter->SetBackend(EnumWord("--backend", common.Backend, vtkdf::enums::Backend));
 }
 
 /// Runs the filter (once: a second Update() of a failed filter runs it again and prints

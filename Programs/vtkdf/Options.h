@@ -10,6 +10,10 @@
 #include <vector>
 
 class vtkDistanceFieldAlgorithm;
+namespace vtkdf
+{
+class EnumTable;
+}
 
 namespace vtkdfcli
 {
@@ -20,6 +24,10 @@ void PrintUsage(FILE* out);
 int Usage(const char* message = nullptr);
 
 bool EndsWith(const std::string& s, const char* suffix);
+
+/// The value of `table` (vtkDistanceFieldEnums.h) that `word`, given to `option`, names;
+/// exits with a usage error listing the table's words when it names none.
+int EnumWord(const char* option, const std::string& word, const vtkdf::EnumTable& table);
 
 /// The options every subcommand shares: output, grid, backend, timing.
 struct CommonOptions

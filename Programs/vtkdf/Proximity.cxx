@@ -2,6 +2,7 @@
 
 #include "Files.h"
 #include "Options.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkDistanceFieldProximity.h"
 
 #include "vtkFieldData.h"
@@ -68,18 +69,12 @@ int Proximity(int argc, char* argv[])
     else if (option == "--sign" && valued)
     {
       sign = argv[++a];
-      if (sign != "winding" && sign != "pseudonormal")
-      {
-        return Usage("--sign takes winding or pseudonormal");
-      }
+      EnumWord("--sign", sign, vtkdf::enums::ProximitySign);
     }
     else if (option == "--backend" && valued)
     {
       backend = argv[++a];
-      if (backend != "auto" && backend != "gpu" && backend != "cpu")
-      {
-        return Usage("--backend takes auto, gpu or cpu");
-      }
+      EnumWord("--backend", backend, vtkdf::enums::Backend);
     }
     else
     {
@@ -100,13 +95,8 @@ int Proximity(int argc, char* argv[])
   filter->SetSpacing(spacing);
   filter->SetContactMargin(margin);
   filter->SetContactPoints(contacts);
-  filter->SetBackend(backend == "gpu" ? vtkDistanceFieldProximity::BACKEND_GPU
-      : backend == "cpu"              ? vtkDistanceFieldProximity::BACKEND_CPU
-                                      : vtkDistanceFieldProximity::BACKEND_AUTO);
-  if (sign == "pseudonormal")
-  {
-    filter->SetSignModeToPseudoNormal();
-  }
+  filter->SetBackend(EnumWord("--backend", backend, vtkdf::enums::Backend));
+  filter->SetSignMode(EnumWord("--sign", sign, vtkdf::enums::ProximitySign));
   filter->Update();
   vtkPolyData* answers = filter->GetOutput(0);
   if (filter->GetErrorCode() || !answers->GetFieldData()->GetArray("Colliding"))

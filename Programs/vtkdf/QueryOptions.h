@@ -3,6 +3,7 @@
 #define vtkdf_QueryOptions_h
 
 #include "Options.h"
+#include "vtkDistanceFieldEnums.h"
 
 #include <cstdlib>
 #include <string>
@@ -68,18 +69,7 @@ struct QueryOptions
   template<typename Filter>
   void Apply(Filter* filter) const
   {
-    if (this->Backend == "gpu")
-    {
-      filter->SetBackendToGPU();
-    }
-    else if (this->Backend == "cpu")
-    {
-      filter->SetBackendToCPU();
-    }
-    else if (this->Backend != "auto")
-    {
-      std::exit(Usage("--backend takes auto, gpu or cpu"));
-    }
+    filter->SetBackend(EnumWord("--backend", this->Backend, vtkdf::enums::Backend));
     filter->SetViewResolution(this->Pixels);
     filter->SetCertify(!this->Uncertified);
     filter->SetPieceArray(this->PieceArray.c_str());

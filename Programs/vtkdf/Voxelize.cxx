@@ -3,6 +3,7 @@
 #include "Files.h"
 #include "Options.h"
 #include "SlicePictures.h"
+#include "vtkDistanceFieldEnums.h"
 #include "vtkPolyDataVoxelizer.h"
 
 #include "vtkImageData.h"
@@ -20,18 +21,7 @@ int Voxelize(int argc, char* argv[])
   vtkNew<vtkPolyDataVoxelizer> filter;
   filter->SetInputData(ReadMeshOrExit(argv[2]));
   Configure(filter, common);
-  if (mode == "boundary")
-  {
-    filter->SetModeToBoundary();
-  }
-  else if (mode == "solid")
-  {
-    filter->SetModeToSolid();
-  }
-  else if (mode != "both")
-  {
-    return Usage("--mode takes boundary, solid or both");
-  }
+  filter->SetMode(EnumWord("--mode", mode, vtkdf::enums::VoxelMode));
   return Finish("voxelize", filter, common);
 }
 
