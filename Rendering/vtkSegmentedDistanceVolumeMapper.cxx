@@ -260,7 +260,7 @@ bool UploadTable(vtkTextureObject* texture,
 /// The leap texture's last brick per axis, for the shader's clamp.
 void SetLastBrick(vtkShaderProgram* program, const int dims[3])
 {
-  const std::array<int, 3> counts = dfrender::BrickCounts(dims, BrickSize);
+  const std::array<int, 3> counts = vtkdf::render::BrickCounts(dims, BrickSize);
   const float last[3] = { counts[0] - 1.0f, counts[1] - 1.0f, counts[2] - 1.0f };
   program->SetUniform3f("lastBrick", last);
 }
@@ -327,12 +327,12 @@ std::vector<short> PackedWithGradients(const std::vector<float>& values,
   return texels;
 }
 
-/// Uploads per-brick leap distances (dfrender::LeapDistances) as an R8 texture.
+/// Uploads per-brick leap distances (vtkdf::render::LeapDistances) as an R8 texture.
 bool UploadLeaps(vtkTextureObject* texture,
   const std::vector<unsigned char>& occupied,
   const std::array<int, 3>& bricks)
 {
-  const std::vector<unsigned char> leaps = dfrender::LeapDistances(occupied, bricks);
+  const std::vector<unsigned char> leaps = vtkdf::render::LeapDistances(occupied, bricks);
   PrepareTexture(texture, vtkTextureObject::Nearest, GL_R8, GL_RED, GL_UNSIGNED_BYTE);
   return texture->Create3DFromRaw(static_cast<unsigned int>(bricks[0]),
     static_cast<unsigned int>(bricks[1]),
@@ -644,8 +644,8 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
   }
   // Where interfaces may lie, by bricks: the rays leap over the others.
   if (!UploadLeaps(impl.SurfaceLeaps,
-        dfrender::MixedBricks(texels.data(), dims, BrickSize),
-        dfrender::BrickCounts(dims, BrickSize)))
+        vtkdf::render::MixedBricks(texels.data(), dims, BrickSize),
+        vtkdf::render::BrickCounts(dims, BrickSize)))
   {
     vtkErrorMacro("Could not make the bricks' 3D texture");
     return false;
@@ -735,7 +735,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateScalars(vtkImageData* image, bool s
   {
     range[1] = range[0] + 1.0;
   }
-  impl.BrickRanges = dfrender::BrickValueRanges(values.data(), dims, BrickSize);
+  impl.BrickRanges = vtkdf::render::BrickValueRanges(values.data(), dims, BrickSize);
   bool made = false;
   if (gradient)
   {
@@ -796,8 +796,8 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateTable(vtkVolumeProperty* property)
     return false;
   }
   // Sample the transfer functions; opacity per unit distance becomes extinction.
-  const int count = dfrender::PreIntegrationSamples(size);
-  dfrender::TransferSamples samples;
+  const int count = vtkdf::render::PreIntegrationSamples(size);
+  vtkdf::render::TransferSamples samples;
   samples.Low = impl.ScalarRange[0];
   samples.High = impl.ScalarRange[1];
   std::vector<double> alpha(count), rgb(3 * static_cast<size_t>(count));
@@ -824,7 +824,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateTable(vtkVolumeProperty* property)
     samples.Extinction[m] = -std::log1p(-a) / unit;
     samples.Colour[m] = { rgb[3 * m], rgb[3 * m + 1], rgb[3 * m + 2] };
   }
-  std::vector<float> table = dfrender::BuildPreIntegrationTable(samples, size);
+  std::vector<float> table = vtkdf::render::BuildPreIntegrationTable(samples, size);
   // Full floats: the averages are extinctions per world unit, of any scale.
   if (!UploadTable(impl.Table, table, size, GL_RGBA32F))
   {
@@ -851,7 +851,7 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateStepTable(double length)
   // 11 significant bits (8-bit output needs 8); and a GPU filters the 64-bit texels faster
   // than 128-bit ones, once a step (an H100, 1920x1080, 256 planes: 132 -> 214 fps).
   if (!UploadTable(impl.StepTable,
-        dfrender::StepTable(impl.Averages, length),
+        vtkdf::render::StepTable(impl.Averages, length),
         this->PreIntegrationTableSize,
         GL_RGBA16F))
   {
@@ -876,9 +876,9 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateCompositeLeaps()
   // widened by a table step.
   const double step =
     (impl.ScalarRange[1] - impl.ScalarRange[0]) / (this->PreIntegrationTableSize - 1);
-  const std::vector<unsigned char> occupied = dfrender::OpaqueBricks(
+  const std::vector<unsigned char> occupied = vtkdf::render::OpaqueBricks(
     impl.BrickRanges, impl.Extinction, impl.ScalarRange[0], impl.ScalarRange[1], step);
-  if (!UploadLeaps(impl.CompositeLeaps, occupied, dfrender::BrickCounts(impl.Dims, BrickSize)))
+  if (!UploadLeaps(impl.CompositeLeaps, occupied, vtkdf::render::BrickCounts(impl.Dims, BrickSize)))
   {
     vtkErrorMacro("Could not make the bricks' 3D texture");
     return false;

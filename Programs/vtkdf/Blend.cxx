@@ -13,7 +13,7 @@
 
 #include <cmath>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 /// vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]
@@ -81,4 +81,4 @@ int Blend(int argc, char* argv[])
   return 0;
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

@@ -11,7 +11,7 @@
 
 #include <string>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 int Chamfer(int argc, char* argv[])
@@ -41,4 +41,4 @@ int Chamfer(int argc, char* argv[])
     [&]() { return " layers=" + std::to_string(filter->GetLastLayers()); });
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

@@ -14,7 +14,7 @@
 
 #include <cstdlib>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path)
@@ -100,4 +100,4 @@ vtkSmartPointer<vtkDataObject> ReadMeshOrImageOrExit(const std::string& input)
   return reader->GetOutput();
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

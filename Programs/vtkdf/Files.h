@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <string>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& path);
@@ -41,6 +41,6 @@ bool WriteXML(vtkDataObject* data, const std::string& path)
   return true;
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli
 
 #endif

@@ -11,7 +11,7 @@
 
 #include <cstdio>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 int Linfac(int argc, char* argv[])
@@ -81,4 +81,4 @@ int Linfac(int argc, char* argv[])
   return code;
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

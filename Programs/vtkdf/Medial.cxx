@@ -12,7 +12,7 @@
 
 #include <string>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 int Medial(int argc, char* argv[])
@@ -50,4 +50,4 @@ int Medial(int argc, char* argv[])
   return code;
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

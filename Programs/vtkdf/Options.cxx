@@ -13,7 +13,7 @@
 #include <cstring>
 #include <utility>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 void PrintUsage(FILE* out)
@@ -291,4 +291,4 @@ int Finish(const char* subcommand,
   return 0;
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

@@ -15,7 +15,7 @@ namespace vtkdf
 class EnumTable;
 }
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 void PrintUsage(FILE* out);
@@ -83,6 +83,6 @@ int Finish(const char* subcommand,
   const std::function<std::string()>& extra = std::function<std::string()>(),
   const std::function<bool()>& then = std::function<bool()>());
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli
 
 #endif

@@ -12,7 +12,7 @@
 #include <chrono>
 #include <cstdio>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 /// vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls] [--timing]
@@ -73,4 +73,4 @@ int PenetrationDepth(int argc, char* argv[])
   return WriteXML<vtkXMLPolyDataWriter>(filter->GetOutput(), where.Output) ? 0 : 1;
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

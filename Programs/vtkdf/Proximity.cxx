@@ -13,7 +13,7 @@
 #include <cstdio>
 #include <string>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 /// vtkdf proximity A B -o OUT.vtp [--contacts CONTACTS.vtp] [--models A.vtp B.vtp]
@@ -135,4 +135,4 @@ int Proximity(int argc, char* argv[])
   return written ? 0 : 1;
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 /// The options vtkdf union and vtkdf pd share: the output, the pieces, where the union
@@ -77,6 +77,6 @@ struct QueryOptions
   }
 };
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli
 
 #endif

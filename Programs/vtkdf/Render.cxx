@@ -23,7 +23,7 @@
 #include <cmath>
 #include <cstdlib>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 namespace
@@ -302,4 +302,4 @@ int Render(int argc, char* argv[])
   return 0;
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

@@ -16,7 +16,7 @@
 #include <cstdio>
 #include <string>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 int Segment(int argc, char* argv[])
@@ -95,4 +95,4 @@ int Segment(int argc, char* argv[])
   return code;
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

@@ -16,7 +16,7 @@
 #include <functional>
 #include <vector>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 /// An RGB image of w x h pixels to paint a slice on.
@@ -440,4 +440,4 @@ bool WriteRegionPNG(vtkImageData* field, double delta, const std::string& path)
   return WritePNG(WithLegend(image, legend), path);
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

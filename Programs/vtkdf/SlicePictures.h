@@ -10,7 +10,7 @@
 
 class vtkImageData;
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 /// An RGB image of w x h pixels to paint a slice on.
@@ -31,6 +31,6 @@ bool WriteMedialPNG(vtkImageData* field, const std::string& path);
 /// (adjacent samples whose distances sum to less than their spacing), magnified.
 bool WriteRegionPNG(vtkImageData* field, double delta, const std::string& path);
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli
 
 #endif

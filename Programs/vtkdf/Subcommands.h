@@ -3,7 +3,7 @@
 #ifndef vtkdf_Subcommands_h
 #define vtkdf_Subcommands_h
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 /// vtkdf linfac (vtkLinearFactorDistanceField).
 int Linfac(int argc, char* argv[]);
@@ -25,6 +25,6 @@ int PenetrationDepth(int argc, char* argv[]);
 int Proximity(int argc, char* argv[]);
 /// vtkdf render (vtkSegmentedDistanceVolumeMapper).
 int Render(int argc, char* argv[]);
-} // namespace vtkdfcli
+} // namespace vtkdf::cli
 
 #endif

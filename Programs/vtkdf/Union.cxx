@@ -13,7 +13,7 @@
 #include <chrono>
 #include <cstdio>
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 /// vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS]
@@ -82,4 +82,4 @@ int Union(int argc, char* argv[])
   return WriteXML<vtkXMLPolyDataWriter>(result, where.Output) ? 0 : 1;
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

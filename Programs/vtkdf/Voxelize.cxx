@@ -10,7 +10,7 @@
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 
-namespace vtkdfcli
+namespace vtkdf::cli
 {
 
 int Voxelize(int argc, char* argv[])
@@ -25,4 +25,4 @@ int Voxelize(int argc, char* argv[])
   return Finish("voxelize", filter, common);
 }
 
-} // namespace vtkdfcli
+} // namespace vtkdf::cli

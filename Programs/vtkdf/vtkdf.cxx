@@ -46,26 +46,26 @@ int main(int argc, char* argv[])
   {
     if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0)
     {
-      vtkdfcli::PrintUsage(stdout);
+      vtkdf::cli::PrintUsage(stdout);
       return 0;
     }
   }
   if (argc < 3)
   {
-    return vtkdfcli::Usage();
+    return vtkdf::cli::Usage();
   }
   const std::string subcommand = argv[1];
   const std::pair<const char*, int (*)(int, char*[])> subcommands[] = { { "linfac",
-                                                                          vtkdfcli::Linfac },
-    { "voxelize", vtkdfcli::Voxelize },
-    { "chamfer", vtkdfcli::Chamfer },
-    { "medial", vtkdfcli::Medial },
-    { "segment", vtkdfcli::Segment },
-    { "blend", vtkdfcli::Blend },
-    { "union", vtkdfcli::Union },
-    { "pd", vtkdfcli::PenetrationDepth },
-    { "proximity", vtkdfcli::Proximity },
-    { "render", vtkdfcli::Render } };
+                                                                          vtkdf::cli::Linfac },
+    { "voxelize", vtkdf::cli::Voxelize },
+    { "chamfer", vtkdf::cli::Chamfer },
+    { "medial", vtkdf::cli::Medial },
+    { "segment", vtkdf::cli::Segment },
+    { "blend", vtkdf::cli::Blend },
+    { "union", vtkdf::cli::Union },
+    { "pd", vtkdf::cli::PenetrationDepth },
+    { "proximity", vtkdf::cli::Proximity },
+    { "render", vtkdf::cli::Render } };
   for (const auto& entry : subcommands)
   {
     if (subcommand == entry.first)
@@ -73,5 +73,5 @@ int main(int argc, char* argv[])
       return entry.second(argc, argv);
     }
   }
-  return vtkdfcli::Usage(("unknown subcommand " + subcommand).c_str());
+  return vtkdf::cli::Usage(("unknown subcommand " + subcommand).c_str());
 }

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
-namespace dfrender
+namespace vtkdf::render
 {
 std::array<int, 3> BrickCounts(const int dims[3], int size)
 {
@@ -188,4 +188,4 @@ std::vector<unsigned char> LeapDistances(const std::vector<unsigned char>& occup
   }
   return leap;
 }
-} // namespace dfrender
+} // namespace vtkdf::render

@@ -14,7 +14,7 @@
 #include <array>
 #include <vector>
 
-namespace dfrender
+namespace vtkdf::render
 {
 /// Bricks a side of a grid of `dims` samples ((dims - 1) cells): ceil(cells / size).
 std::array<int, 3> BrickCounts(const int dims[3], int size);
@@ -43,6 +43,6 @@ std::vector<unsigned char> OpaqueBricks(const std::vector<std::array<float, 2>>&
 /// occupied one), capped at 255 (also where no brick is occupied).
 std::vector<unsigned char> LeapDistances(const std::vector<unsigned char>& occupied,
   const std::array<int, 3>& bricks);
-} // namespace dfrender
+} // namespace vtkdf::render
 
 #endif

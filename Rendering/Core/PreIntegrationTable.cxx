@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace dfrender
+namespace vtkdf::render
 {
 int PreIntegrationSamples(int size)
 {
@@ -86,4 +86,4 @@ std::vector<float> StepTable(const std::vector<float>& averages, double length)
   }
   return step;
 }
-} // namespace dfrender
+} // namespace vtkdf::render

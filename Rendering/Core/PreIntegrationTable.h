@@ -19,7 +19,7 @@
 #include <array>
 #include <vector>
 
-namespace dfrender
+namespace vtkdf::render
 {
 /// The transfer functions sampled at `count` evenly spaced scalar values over
 /// [Low, High] (both ends included): extinction per unit length (>= 0) and colour.
@@ -47,6 +47,6 @@ std::vector<float> BuildPreIntegrationTable(const TransferSamples& samples, int 
 /// so that a ray's loop reads a step's premultiplied colour and opacity without an
 /// exponential. Rebuilt when the step's length changes: size^2 exponentials.
 std::vector<float> StepTable(const std::vector<float>& averages, double length);
-} // namespace dfrender
+} // namespace vtkdf::render
 
 #endif

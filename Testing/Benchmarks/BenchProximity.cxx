@@ -126,7 +126,7 @@ int main(int argc, char* argv[])
   {
     backends.push_back(item);
   }
-  auto rest = testsupport::ReadUnitBoxMesh(std::string(argv[1]) + "/bunny_small.vtp");
+  auto rest = vtkdf::testing::ReadUnitBoxMesh(std::string(argv[1]) + "/bunny_small.vtp");
   std::printf("two bunny_small (%lld triangles each), %d frames, %d threads (%s)\n",
     static_cast<long long>(rest->GetNumberOfCells()),
     frames,

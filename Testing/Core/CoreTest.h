@@ -6,7 +6,7 @@
 #include <cstdarg>
 #include <cstdio>
 
-namespace coretest
+namespace vtkdf::coretest
 {
 inline int Failures = 0;
 
@@ -36,6 +36,6 @@ inline int Verdict()
   std::printf("%d failures\n", Failures);
   return Failures ? 1 : 0;
 }
-} // namespace coretest
+} // namespace vtkdf::coretest
 
 #endif

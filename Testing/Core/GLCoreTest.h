@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <string>
 
-namespace coretest
+namespace vtkdf::coretest
 {
 /// The headless context, its renderer printed; nullptr, with "FAIL: " and the reason
 /// printed, when none can be created (the test then ends with status 1).
@@ -23,6 +23,6 @@ inline vtkdf::HeadlessGL* GLContext()
   std::printf("renderer: %s (%s)\n", gl->Renderer().c_str(), gl->Platform().c_str());
   return gl;
 }
-} // namespace coretest
+} // namespace vtkdf::coretest
 
 #endif

@@ -181,7 +181,7 @@ bool Run(HeadlessGL& context,
 
 int main()
 {
-  HeadlessGL* gl = coretest::GLContext();
+  HeadlessGL* gl = vtkdf::coretest::GLContext();
   if (!gl)
   {
     return 1;
@@ -195,7 +195,7 @@ int main()
     std::vector<double> results;
     if (!Run(*gl, seeds, pairs, results))
     {
-      return coretest::Verdict();
+      return vtkdf::coretest::Verdict();
     }
     int64_t driverSqrt = 0, driverDiv = 0, worstSqrt = 0, worstDiv = 0, badSqrt = 0, badDiv = 0;
     for (size_t i = 0; i < count; ++i)
@@ -233,7 +233,7 @@ int main()
     if (spoil)
     {
       // Else the refinement would not be under test.
-      coretest::Check(driverSqrt > int64_t(count) / 2 && driverDiv > int64_t(count) / 2,
+      vtkdf::coretest::Check(driverSqrt > int64_t(count) / 2 && driverDiv > int64_t(count) / 2,
         "the %s seeds are IEEE's in too many cases (%lld and %lld of %zu differ)",
         seedNames[seeds],
         (long long)driverSqrt,
@@ -250,12 +250,12 @@ int main()
         (long long)driverDiv,
         (long long)worstDiv);
     }
-    coretest::Check(badSqrt == 0 && badDiv == 0,
+    vtkdf::coretest::Check(badSqrt == 0 && badDiv == 0,
       "%s seeds: SqrtRN differs from IEEE's in %lld of %zu, DivRN in %lld",
       seedNames[seeds],
       (long long)badSqrt,
       count,
       (long long)badDiv);
   }
-  return coretest::Verdict();
+  return vtkdf::coretest::Verdict();
 }

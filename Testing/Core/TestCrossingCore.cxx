@@ -29,8 +29,8 @@
 
 namespace
 {
-using coretest::Check;
 using vtkdf::Point3;
+using vtkdf::coretest::Check;
 using Int3 = std::array<int64_t, 3>;
 
 int Sign(__int128 x)
@@ -350,5 +350,5 @@ int main()
 #endif
   TestOverlappingPairs();
   TestCut();
-  return coretest::Verdict();
+  return vtkdf::coretest::Verdict();
 }

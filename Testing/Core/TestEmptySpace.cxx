@@ -15,7 +15,7 @@
 #include <random>
 #include <vector>
 
-using namespace coretest;
+using namespace vtkdf::coretest;
 
 namespace
 {
@@ -40,7 +40,7 @@ void TestLeapDistances(std::mt19937& random)
       {
         o = occupiedAt(random) ? 1 : 0;
       }
-      const std::vector<unsigned char> leaps = dfrender::LeapDistances(occupied, bricks);
+      const std::vector<unsigned char> leaps = vtkdf::render::LeapDistances(occupied, bricks);
       int wrong = 0;
       for (int k = 0; k < bricks[2]; ++k)
       {
@@ -96,10 +96,10 @@ void TestMixedAndRanges(std::mt19937& random)
       texels[2 * v + 1] = other(random) ? 2.0f : 0.0f;
       values[v] = value(random);
     }
-    const std::array<int, 3> bricks = dfrender::BrickCounts(dims.data(), size);
+    const std::array<int, 3> bricks = vtkdf::render::BrickCounts(dims.data(), size);
     const std::vector<unsigned char> mixed =
-      dfrender::MixedBricks(texels.data(), dims.data(), size);
-    const auto ranges = dfrender::BrickValueRanges(values.data(), dims.data(), size);
+      vtkdf::render::MixedBricks(texels.data(), dims.data(), size);
+    const auto ranges = vtkdf::render::BrickValueRanges(values.data(), dims.data(), size);
     int wrongMixed = 0, wrongRange = 0;
     for (int bk = 0; bk < bricks[2]; ++bk)
     {
@@ -178,7 +178,7 @@ void TestOpaque(std::mt19937& random)
   ranges.push_back({ static_cast<float>(low), static_cast<float>(low) });
   ranges.push_back({ static_cast<float>(high), static_cast<float>(high) });
   const std::vector<unsigned char> occupied =
-    dfrender::OpaqueBricks(ranges, samples, low, high, margin);
+    vtkdf::render::OpaqueBricks(ranges, samples, low, high, margin);
   int unsound = 0, loose = 0, opaque = 0;
   for (size_t b = 0; b < ranges.size(); ++b)
   {

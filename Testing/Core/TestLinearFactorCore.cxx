@@ -19,7 +19,7 @@
 #include <vector>
 
 using namespace vtkdf;
-using namespace coretest;
+using namespace vtkdf::coretest;
 
 namespace
 {

@@ -215,7 +215,7 @@ void CPUSteps(const double u[8][3], double out[Outputs])
 
 int main()
 {
-  HeadlessGL* context = coretest::GLContext();
+  HeadlessGL* context = vtkdf::coretest::GLContext();
   if (!context)
   {
     return 1;
@@ -234,10 +234,10 @@ int main()
     const GLFunctions& gl = context->GL();
     std::string source = MedialAxis_comp;
     const size_t at = source.find("void main()");
-    coretest::Check(at != std::string::npos, "the medial pass has no main()");
+    vtkdf::coretest::Check(at != std::string::npos, "the medial pass has no main()");
     if (at == std::string::npos)
     {
-      return coretest::Verdict();
+      return vtkdf::coretest::Verdict();
     }
     source.replace(at, 11, "void MedialPass()");
     source += ProbeMain;
@@ -322,8 +322,8 @@ int main()
   }
   for (int o = 0; o < Outputs; ++o)
   {
-    coretest::Check(
+    vtkdf::coretest::Check(
       differ[o] == 0, "%s differs from the CPU's in %d of %d sets", names[o], differ[o], count);
   }
-  return coretest::Verdict();
+  return vtkdf::coretest::Verdict();
 }

@@ -17,7 +17,7 @@
 #include <random>
 
 using namespace vtkdf;
-using namespace coretest;
+using namespace vtkdf::coretest;
 
 namespace
 {

@@ -31,7 +31,7 @@
 #include <vector>
 
 using namespace vtkdf;
-using namespace coretest;
+using namespace vtkdf::coretest;
 
 namespace
 {
@@ -544,7 +544,7 @@ int main(int argc, char* argv[])
 {
   if (argc > 1 && std::string(argv[1]) == "gpu")
   {
-    GPU = coretest::GLContext();
+    GPU = vtkdf::coretest::GLContext();
     if (!GPU)
     {
       return 1;

@@ -17,7 +17,7 @@
 
 namespace
 {
-using coretest::Check;
+using vtkdf::coretest::Check;
 using Point2 = std::array<double, 2>;
 
 /// A plane in space: corner (x, y) of a 2D polygon goes to origin + x u + y v (+ lift n).
@@ -426,5 +426,5 @@ int main()
     Check(done, "4000 corners: %s", cut.Problem().c_str());
     std::printf("4000 random star corners: %.3f s\n", seconds);
   }
-  return coretest::Verdict();
+  return vtkdf::coretest::Verdict();
 }

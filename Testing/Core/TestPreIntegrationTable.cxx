@@ -15,7 +15,7 @@
 #include <stdexcept>
 #include <vector>
 
-using namespace coretest;
+using namespace vtkdf::coretest;
 
 namespace
 {
@@ -76,8 +76,8 @@ void Integrate(double s0, double s1, double& T, double K[3])
 int main()
 {
   const int size = 64;
-  const int count = dfrender::PreIntegrationSamples(size);
-  dfrender::TransferSamples samples;
+  const int count = vtkdf::render::PreIntegrationSamples(size);
+  vtkdf::render::TransferSamples samples;
   samples.Low = 0;
   samples.High = 1;
   for (int m = 0; m < count; ++m)
@@ -87,7 +87,7 @@ int main()
     samples.Extinction.push_back(tau);
     samples.Colour.push_back({ rgb[0], rgb[1], rgb[2] });
   }
-  const std::vector<float> table = dfrender::BuildPreIntegrationTable(samples, size);
+  const std::vector<float> table = vtkdf::render::BuildPreIntegrationTable(samples, size);
   double worstTau = 0, worstColour = 0;
   for (int back = 0; back < size; back += 3)
   {
@@ -154,7 +154,7 @@ int main()
   // colour the average colour premultiplied by it (against the double-precision formula);
   // a length of zero is transparent, and a negative length is refused.
   const double length = 0.04;
-  const std::vector<float> step = dfrender::StepTable(table, length);
+  const std::vector<float> step = vtkdf::render::StepTable(table, length);
   double worstStep = 0;
   for (size_t e = 0; e < table.size(); e += 4)
   {
@@ -167,13 +167,13 @@ int main()
   }
   std::printf("step table against 1 - exp(-d * tauBar): within %.2e\n", worstStep);
   Check(step.size() == table.size() && worstStep < 1e-6, "step table off by %.2e", worstStep);
-  const std::vector<float> none = dfrender::StepTable(table, 0.0);
+  const std::vector<float> none = vtkdf::render::StepTable(table, 0.0);
   Check(std::all_of(none.begin(), none.end(), [](float v) { return v == 0.0f; }),
     "a step of length 0 is not transparent");
   bool refusedLength = false;
   try
   {
-    dfrender::StepTable(table, -1.0);
+    vtkdf::render::StepTable(table, -1.0);
   }
   catch (const std::invalid_argument&)
   {
@@ -186,7 +186,7 @@ int main()
   bool refused = false;
   try
   {
-    dfrender::BuildPreIntegrationTable(samples, size);
+    vtkdf::render::BuildPreIntegrationTable(samples, size);
   }
   catch (const std::invalid_argument&)
   {

@@ -32,7 +32,7 @@
 #include <vector>
 
 using namespace vtkdf;
-using namespace coretest;
+using namespace vtkdf::coretest;
 
 namespace
 {

@@ -30,8 +30,8 @@
 
 namespace
 {
-using coretest::Check;
 using vtkdf::IndexBox;
+using vtkdf::coretest::Check;
 
 vtkdf::MeshInput Scene()
 {
@@ -414,7 +414,7 @@ int main(int argc, char* argv[])
   vtkdf::HeadlessGL* gl = nullptr;
   if (argc > 1 && std::string(argv[1]) == "gpu")
   {
-    gl = coretest::GLContext();
+    gl = vtkdf::coretest::GLContext();
     if (!gl)
     {
       return 1;
@@ -444,5 +444,5 @@ int main(int argc, char* argv[])
     TestRefusals();
     TestOwnership();
   }
-  return coretest::Verdict();
+  return vtkdf::coretest::Verdict();
 }

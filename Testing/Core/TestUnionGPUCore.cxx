@@ -25,7 +25,7 @@
 #include <vector>
 
 using namespace vtkdf;
-using namespace coretest;
+using namespace vtkdf::coretest;
 
 namespace
 {
@@ -387,7 +387,7 @@ void HardCases(HeadlessGL& gl)
 
 int main()
 {
-  HeadlessGL* gl = coretest::GLContext();
+  HeadlessGL* gl = vtkdf::coretest::GLContext();
   if (!gl)
   {
     return 1;

@@ -29,7 +29,7 @@
 #include <vector>
 
 using namespace vtkdf;
-using namespace coretest;
+using namespace vtkdf::coretest;
 
 namespace
 {
@@ -575,7 +575,7 @@ int main(int argc, char* argv[])
 {
   if (argc > 1 && std::string(argv[1]) == "gpu")
   {
-    HeadlessGL* gl = coretest::GLContext();
+    HeadlessGL* gl = vtkdf::coretest::GLContext();
     if (!gl)
     {
       return 1;

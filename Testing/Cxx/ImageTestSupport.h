@@ -11,7 +11,7 @@
 #include "vtkProperty.h"
 #include "vtkSmartPointer.h"
 
-namespace testsupport
+namespace vtkdf::testing
 {
 /// The cut of `surface` by the plane z = `z`, drawn as lines of `rgb`, lifted by `lift`
 /// towards the camera so that it shows above an image slice at z.
@@ -36,6 +36,6 @@ inline vtkSmartPointer<vtkActor> SurfaceCut(vtkAlgorithmOutput* surface,
   actor->SetPosition(0, 0, lift);
   return actor;
 }
-} // namespace testsupport
+} // namespace vtkdf::testing
 
 #endif

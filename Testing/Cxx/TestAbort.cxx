@@ -66,7 +66,7 @@ vtkSmartPointer<vtkDistanceFieldAlgorithm> Make(const std::string& name,
   }
   filter->SetInputData(mesh);
   filter->SetResolution(80);
-  testsupport::UseBackend(filter.Get(), backend);
+  vtkdf::testing::UseBackend(filter.Get(), backend);
   return filter;
 }
 
@@ -90,7 +90,8 @@ double Difference(vtkImageData* a, vtkImageData* b)
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 3, "DATA_DIR linfac|linfac-queries|chamfer cpu|gpu"))
+  if (!vtkdf::testing::HasArguments(
+        argc, argv, 3, "DATA_DIR linfac|linfac-queries|chamfer cpu|gpu"))
   {
     return 2;
   }
@@ -155,5 +156,5 @@ int main(int argc, char* argv[])
   CHECK(filter->GetOutput()->GetNumberOfPoints() > 0 && difference == 0,
     "after the abort, the run differs from a fresh one by %g",
     difference);
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

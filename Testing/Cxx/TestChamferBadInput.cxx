@@ -51,7 +51,7 @@ int main(int argc, char* argv[])
   {
     filter = voxelizer;
   }
-  testsupport::MessageRecorder recorder(filter);
+  vtkdf::testing::MessageRecorder recorder(filter);
   filter->SetResolution(16);
   filter->SetBackendToCPU();
   std::string expectError, expectWarning;
@@ -100,20 +100,20 @@ int main(int argc, char* argv[])
   }
   else if (mode == "memory" || mode == "voxelize-memory")
   {
-    filter->SetInputData(testsupport::Triangle());
+    filter->SetInputData(vtkdf::testing::Triangle());
     filter->SetMemoryLimit(1000);
     expectError = "above MemoryLimit";
   }
   else if (mode == "voxelize-nan")
   {
-    filter->SetInputData(testsupport::Triangle(std::nan("")));
+    filter->SetInputData(vtkdf::testing::Triangle(std::nan("")));
     filter->ExplicitGridOn();
     expectError = "NaN";
   }
   else if (mode == "voxelize-lines")
   {
     vtkNew<vtkPolyData> mesh;
-    mesh->DeepCopy(testsupport::Triangle());
+    mesh->DeepCopy(vtkdf::testing::Triangle());
     vtkNew<vtkCellArray> lines;
     const vtkIdType segment[2] = { 0, 1 };
     lines->InsertNextCell(2, segment);

@@ -48,12 +48,12 @@ vtkSmartPointer<vtkImageData> Run(vtkDataObject* input,
   f->SetSigned(signedField);
   f->OutputMasksOn();
   f->SetResolution(40);
-  testsupport::UseBackend(f.GetPointer(), backend);
+  vtkdf::testing::UseBackend(f.GetPointer(), backend);
   f->Update();
   if (std::string(f->GetLastBackend()) != backend)
   {
     std::printf("FAIL: asked for %s, ran on %s\n", backend.c_str(), f->GetLastBackend());
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
   }
   auto out = vtkSmartPointer<vtkImageData>::New();
   out->DeepCopy(f->GetOutput());
@@ -76,14 +76,14 @@ void Compare(const std::string& name,
   if (!distance || !boundary || !unreachedArray || (signedField && !solid))
   {
     std::printf("FAIL: %s: missing output arrays\n", name.c_str());
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
     return;
   }
   const int unreached = unreachedArray->GetValue(0);
   if (layers > 0 && unreached != layers + 1)
   {
     std::printf("FAIL: %s: UnreachedValue %d, expected %d\n", name.c_str(), unreached, layers + 1);
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
   }
   const voxelref::Grid g(out);
   int layersRun = 0;
@@ -104,7 +104,7 @@ void Compare(const std::string& name,
     if (!other || differ)
     {
       std::printf("FAIL: %s: GPU and CPU differ on %lld voxels\n", name.c_str(), (long long)differ);
-      ++testsupport::Failures;
+      ++vtkdf::testing::Failures;
     }
   }
   std::vector<char> zero(g.Count());
@@ -148,12 +148,12 @@ void Compare(const std::string& name,
       (long long)first,
       distance->GetValue(first),
       expected[first]);
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
   }
   if (signedField && negative == 0)
   {
     std::printf("FAIL: %s: a signed field with no negative value\n", name.c_str());
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
   }
 }
 
@@ -188,7 +188,7 @@ vtkSmartPointer<vtkImageData> MaskImage(int nx,
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
   {
     return 2;
   }
@@ -253,5 +253,5 @@ int main(int argc, char* argv[])
       Compare(set.first + " " + size + " float", f32, 1, 0, false);
     }
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

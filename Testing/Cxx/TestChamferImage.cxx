@@ -33,7 +33,7 @@
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu -V BASELINE -T TMP"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu -V BASELINE -T TMP"))
   {
     return 2;
   }
@@ -48,7 +48,7 @@ int main(int argc, char* argv[])
   chamfer->SetMetricToChessboard18();
   chamfer->SetMaximumLayers(30);
   chamfer->SignedOn();
-  testsupport::UseBackend(chamfer.GetPointer(), backend);
+  vtkdf::testing::UseBackend(chamfer.GetPointer(), backend);
   chamfer->Update();
   vtkImageData* field = chamfer->GetOutput();
   int dims[3];
@@ -108,7 +108,7 @@ int main(int argc, char* argv[])
 
   const double white[3] = { 1, 1, 1 };
   auto cutActor =
-    testsupport::SurfaceCut(reader->GetOutputPort(), z, white, 0.5 * field->GetSpacing()[2]);
+    vtkdf::testing::SurfaceCut(reader->GetOutputPort(), z, white, 0.5 * field->GetSpacing()[2]);
 
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(1, 1, 1);

@@ -71,7 +71,7 @@ vtkSmartPointer<vtkImageData> Blend(vtkImageData* a,
   std::string* errors = nullptr)
 {
   vtkNew<vtkDistanceFieldBlend> blend;
-  testsupport::MessageRecorder recorder(blend);
+  vtkdf::testing::MessageRecorder recorder(blend);
   blend->SetInputData(0, a);
   blend->SetInputData(1, b);
   blend->SetT(t);
@@ -188,8 +188,8 @@ int main()
   }
 
   // A moving wall inside a closed box.
-  auto left = Segmented(testsupport::WalledBox(-0.3, false, 0.8), 0.05);
-  auto right = Segmented(testsupport::WalledBox(0.35, false, 0.8), 0.05);
+  auto left = Segmented(vtkdf::testing::WalledBox(-0.3, false, 0.8), 0.05);
+  auto right = Segmented(vtkdf::testing::WalledBox(0.35, false, 0.8), 0.05);
   for (const double t : { 0.25, 0.5, 0.75 })
   {
     auto b = Blend(left, right, t);
@@ -354,5 +354,5 @@ int main()
     CHECK(
       errors.find("T must lie in [0, 1]") != std::string::npos, "T = %g: %s", t, errors.c_str());
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

@@ -906,9 +906,9 @@ int main(int argc, char* argv[])
   const std::string data = argv[1];
   PseudoNormal = std::string(argv[2]) == "pseudonormal";
   GPU = argc > 3 && std::string(argv[3]) == "gpu";
-  auto bunny = testsupport::ReadUnitBoxMesh(data + "/bunny_small.vtp");
-  auto cow = testsupport::ReadUnitBoxMesh(data + "/cow.vtp");
-  auto teapot = testsupport::ReadUnitBoxMesh(data + "/teapot.vtp");
+  auto bunny = vtkdf::testing::ReadUnitBoxMesh(data + "/bunny_small.vtp");
+  auto cow = vtkdf::testing::ReadUnitBoxMesh(data + "/cow.vtp");
+  auto teapot = vtkdf::testing::ReadUnitBoxMesh(data + "/teapot.vtp");
 
   const double overlap[3] = { 0.35, 0.1, 0.05 };
   Compare("bunny / bunny overlapping", bunny, Posed(bunny, 0.7, overlap), 24);

@@ -169,10 +169,10 @@ vtkSmartPointer<vtkPolyData> Queries()
 vtkSmartPointer<vtkPolyData> Union(vtkPolyData* pieces, vtkPolyData* queries, std::string& errors)
 {
   vtkNew<vtkUnionClosestPoint> f;
-  testsupport::MessageRecorder recorder(f);
+  vtkdf::testing::MessageRecorder recorder(f);
   f->SetInputData(0, pieces);
   f->SetQueryData(queries);
-  testsupport::UseBackend(f.Get(), Backend);
+  vtkdf::testing::UseBackend(f.Get(), Backend);
   f->SetViewResolution(64);
   f->Update();
   errors = recorder.Errors;
@@ -215,10 +215,10 @@ struct Depth
 Depth Penetration(vtkPolyData* p, vtkPolyData* q)
 {
   vtkNew<vtkPenetrationDepth> f;
-  testsupport::MessageRecorder recorder(f);
+  vtkdf::testing::MessageRecorder recorder(f);
   f->SetSolidPData(p);
   f->SetSolidQData(q);
-  testsupport::UseBackend(f.Get(), Backend);
+  vtkdf::testing::UseBackend(f.Get(), Backend);
   f->SetViewResolution(64);
   f->Update();
   Depth d;
@@ -232,7 +232,7 @@ Depth Penetration(vtkPolyData* p, vtkPolyData* q)
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 1, "cpu|gpu"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 1, "cpu|gpu"))
   {
     return 2;
   }
@@ -309,5 +309,5 @@ int main(int argc, char* argv[])
       "a corner repeated 1e-3 of the diagonal apart is accepted: %s",
       errors.c_str());
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

@@ -23,7 +23,7 @@ int main(int argc, char* argv[])
     setenv("VTKDF_GL_PLATFORM", "none", 1); // no route: as on a machine without any GL
   }
   vtkNew<vtkLinearFactorDistanceField> filter;
-  testsupport::MessageRecorder recorder(filter);
+  vtkdf::testing::MessageRecorder recorder(filter);
   filter->SetResolution(16);
   filter->SetBackendToCPU();
   std::string expectError, expectWarning;
@@ -36,19 +36,19 @@ int main(int argc, char* argv[])
   }
   else if (mode == "nan")
   {
-    filter->SetInputData(testsupport::Triangle(std::nan("")));
+    filter->SetInputData(vtkdf::testing::Triangle(std::nan("")));
     filter->ExplicitGridOn(); // the default grid cannot be made from NaN bounds
     expectError = "NaN";
   }
   else if (mode == "memory")
   {
-    filter->SetInputData(testsupport::Triangle());
+    filter->SetInputData(vtkdf::testing::Triangle());
     filter->SetMemoryLimit(1000);
     expectError = "above MemoryLimit";
   }
   else if (mode == "overflow")
   {
-    filter->SetInputData(testsupport::Triangle());
+    filter->SetInputData(vtkdf::testing::Triangle());
     filter->ExplicitGridOn();
     filter->SetGridDimensions(2100000, 2100000, 2100000);
     expectError = "more than vtkIdType can index";
@@ -56,7 +56,7 @@ int main(int argc, char* argv[])
   else if (mode == "cells")
   {
     vtkNew<vtkPolyData> mesh;
-    mesh->DeepCopy(testsupport::Triangle());
+    mesh->DeepCopy(vtkdf::testing::Triangle());
     const vtkIdType two[2] = { 0, 1 };
     mesh->GetPolys()->InsertNextCell(2, two);
     filter->SetInputData(mesh);
@@ -65,7 +65,7 @@ int main(int argc, char* argv[])
   }
   else if (mode == "nogpu")
   {
-    filter->SetInputData(testsupport::Triangle());
+    filter->SetInputData(vtkdf::testing::Triangle());
     filter->SetBackendToGPU();
     expectError = "Backend is GPU but no OpenGL 4.5 core context could be created";
   }

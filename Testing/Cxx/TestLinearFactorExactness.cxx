@@ -426,7 +426,7 @@ void CompareBanded(const std::string& label,
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
   {
     return 2;
   }
@@ -437,7 +437,7 @@ int main(int argc, char* argv[])
   {
     // Every check below needs the GPU's field; without a context there is none to check.
     vtkNew<vtkLinearFactorDistanceField> probe;
-    probe->SetInputData(testsupport::Triangle());
+    probe->SetInputData(vtkdf::testing::Triangle());
     probe->SetBackendToGPU();
     probe->SetResolution(4);
     probe->Update();
@@ -598,5 +598,5 @@ int main(int argc, char* argv[])
         worst / spacing[0]);
     }
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

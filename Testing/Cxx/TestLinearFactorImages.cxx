@@ -55,7 +55,7 @@ void CellColour(vtkIdType id, unsigned char rgb[3])
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(
+  if (!vtkdf::testing::HasArguments(
         argc, argv, 3, "DATA_DIR distance|voronoi cpu|gpu -V BASELINE -T TMP"))
   {
     return 2;
@@ -90,7 +90,7 @@ int main(int argc, char* argv[])
   field->SetSignModeToPseudoNormal();
   field->SetComputeClosestPoint(false);
   field->SetComputeClosestFeature(false);
-  testsupport::UseBackend(field.GetPointer(), backend);
+  vtkdf::testing::UseBackend(field.GetPointer(), backend);
   field->Update();
   vtkImageData* slice = field->GetOutput();
   if (slice->GetNumberOfPoints() != vtkIdType(nx) * ny)
@@ -180,7 +180,7 @@ int main(int argc, char* argv[])
 
   // The surface's cross-section on the slice.
   const double cutColour[3] = { 0, 0, mode == "distance" ? 0.6 : 0.0 };
-  auto cutActor = testsupport::SurfaceCut(reader->GetOutputPort(), zSlice, cutColour, 0.02 * h);
+  auto cutActor = vtkdf::testing::SurfaceCut(reader->GetOutputPort(), zSlice, cutColour, 0.02 * h);
   renderer->AddActor(cutActor);
 
   vtkNew<vtkRenderWindow> window;

@@ -193,7 +193,7 @@ Result Medial(vtkImageData* field, double theta, bool inside, const std::string&
   {
     f->SetRegionToOutside();
   }
-  testsupport::UseBackend(f.GetPointer(), backend);
+  vtkdf::testing::UseBackend(f.GetPointer(), backend);
   f->Update();
   Result r;
   vtkImageData* out = f->GetOutput();
@@ -203,7 +203,7 @@ Result Medial(vtkImageData* field, double theta, bool inside, const std::string&
   if (!medial || std::string(f->GetLastBackend()) != backend)
   {
     std::printf("FAIL: no Medial array, or not run on %s\n", backend.c_str());
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
     return r;
   }
   r.Mask.resize(medial->GetNumberOfTuples());
@@ -299,7 +299,7 @@ void Check(const std::string& name,
         name.c_str(),
         e.Theta,
         tolerance);
-      ++testsupport::Failures;
+      ++vtkdf::testing::Failures;
     }
     if (e.CheckMay && !(stray <= tolerance))
     {
@@ -308,7 +308,7 @@ void Check(const std::string& name,
         name.c_str(),
         e.Theta,
         tolerance);
-      ++testsupport::Failures;
+      ++vtkdf::testing::Failures;
     }
     if (thin && thick > 0)
     {
@@ -316,7 +316,7 @@ void Check(const std::string& name,
         name.c_str(),
         e.Theta,
         (long long)thick);
-      ++testsupport::Failures;
+      ++vtkdf::testing::Failures;
     }
     if (r.Points != static_cast<vtkIdType>(r.Marked.size()))
     {
@@ -324,7 +324,7 @@ void Check(const std::string& name,
         name.c_str(),
         (long long)r.Points,
         r.Marked.size());
-      ++testsupport::Failures;
+      ++vtkdf::testing::Failures;
     }
     // Theta monotone: this (larger) theta keeps a subset of the previous one's voxels.
     if (!previous.empty() && e.Theta > previousTheta)
@@ -341,7 +341,7 @@ void Check(const std::string& name,
           (long long)outside,
           e.Theta,
           previousTheta);
-        ++testsupport::Failures;
+        ++vtkdf::testing::Failures;
       }
     }
     previous = r.Mask;
@@ -372,7 +372,7 @@ void Check(const std::string& name,
           int(cpu.Mask[first]),
           first < r.Angle.size() ? r.Angle[first] : -1.0f,
           first < cpu.Angle.size() ? cpu.Angle[first] : -1.0f);
-        ++testsupport::Failures;
+        ++vtkdf::testing::Failures;
       }
     }
   }
@@ -588,7 +588,7 @@ int main(int argc, char* argv[])
       f->SetInputData(mesh);
       f->SetResolution(48);
       f->SetSeparationAngle(150);
-      testsupport::UseBackend(f.GetPointer(), b == 0 ? Backend : "cpu");
+      vtkdf::testing::UseBackend(f.GetPointer(), b == 0 ? Backend : "cpu");
       f->Update();
       auto* medial =
         vtkUnsignedCharArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("Medial"));
@@ -615,7 +615,7 @@ int main(int argc, char* argv[])
           std::count(masks[b].begin(), masks[b].end(), 1) == 0)
         {
           std::printf("FAIL: the sphere's centre from the mesh\n");
-          ++testsupport::Failures;
+          ++vtkdf::testing::Failures;
         }
       }
     }
@@ -627,5 +627,5 @@ int main(int argc, char* argv[])
     std::printf(
       "sphere from the mesh, %s vs cpu: %lld voxels differ\n", Backend.c_str(), (long long)differ);
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

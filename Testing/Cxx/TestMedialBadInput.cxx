@@ -45,7 +45,7 @@ int main(int argc, char* argv[])
 {
   const std::string mode = argc > 1 ? argv[1] : "";
   vtkNew<vtkMedialAxisFilter> filter;
-  testsupport::MessageRecorder recorder(filter);
+  vtkdf::testing::MessageRecorder recorder(filter);
   filter->SetBackendToCPU();
   std::string expectError, expectWarning;
   if (mode == "noclosest")

@@ -86,7 +86,7 @@ double LargestComponentShare(vtkImageData* image)
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu -V BASELINE -T TMP"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu -V BASELINE -T TMP"))
   {
     return 2;
   }
@@ -99,7 +99,7 @@ int main(int argc, char* argv[])
   medial->SetResolution(64);
   medial->SetSeparationAngle(75);
   medial->SetRegionToInside();
-  testsupport::UseBackend(medial.GetPointer(), backend);
+  vtkdf::testing::UseBackend(medial.GetPointer(), backend);
   medial->Update();
   vtkPolyData* points = medial->GetMedialPoints();
   std::printf("%lld medial points (%s)\n",

@@ -77,7 +77,7 @@ Result Run(vtkDataObject* p,
   const std::function<void(vtkPenetrationDepth*)>& configure = {})
 {
   vtkNew<vtkPenetrationDepth> f;
-  testsupport::MessageRecorder recorder(f);
+  vtkdf::testing::MessageRecorder recorder(f);
   f->SetSolidPData(p);
   f->SetSolidQData(q);
   f->SetBackend(Backend);
@@ -109,7 +109,7 @@ double FieldValue(vtkPolyData* out, const char* name, int component = 0)
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
   {
     return 2;
   }
@@ -307,5 +307,5 @@ int main(int argc, char* argv[])
     f->Print(os);
     CHECK(os.str().find("LastPenetrationDepth") != std::string::npos, "PrintSelf");
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

@@ -40,14 +40,14 @@
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 1, "DATA_DIR -V BASELINE -T TMP"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 1, "DATA_DIR -V BASELINE -T TMP"))
   {
     return 2;
   }
   const std::string data = argv[1];
   const double atOrigin[3] = { 0, 0, 0 }, beside[3] = { 0.55, 0.05, 0.0 };
-  auto a = testsupport::ReadUnitBoxMesh(data + "/bunny_small.vtp", 0, atOrigin);
-  auto b = testsupport::ReadUnitBoxMesh(data + "/cow.vtp", 0.6, beside);
+  auto a = vtkdf::testing::ReadUnitBoxMesh(data + "/bunny_small.vtp", 0, atOrigin);
+  auto b = vtkdf::testing::ReadUnitBoxMesh(data + "/cow.vtp", 0.6, beside);
   vtkNew<vtkDistanceFieldProximity> proximity;
   proximity->SetModelAData(a);
   proximity->SetModelBData(b);
@@ -201,5 +201,5 @@ int main(int argc, char* argv[])
   witness->VisibilityOn();
   window->Render();
   const int result = vtkRegressionTestImage(window);
-  return result == vtkRegressionTester::PASSED && testsupport::Failures == 0 ? 0 : 1;
+  return result == vtkRegressionTester::PASSED && vtkdf::testing::Failures == 0 ? 0 : 1;
 }

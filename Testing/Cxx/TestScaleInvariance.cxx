@@ -87,7 +87,7 @@ void Configure(Filter* filter, vtkPolyData* mesh, const std::string& backend)
 {
   filter->SetInputData(mesh);
   filter->SetResolution(Resolution);
-  testsupport::UseBackend(filter, backend);
+  vtkdf::testing::UseBackend(filter, backend);
 }
 
 Output LinearFactor(vtkPolyData* mesh, const std::string& backend, bool queries)
@@ -164,7 +164,7 @@ void Position(vtkImageData* image, vtkIdType v, double x[3])
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(
+  if (!vtkdf::testing::HasArguments(
         argc, argv, 3, "DATA_DIR linfac|linfac-queries|voxelize|chamfer|medial cpu|gpu"))
   {
     return 2;
@@ -177,9 +177,9 @@ int main(int argc, char* argv[])
 
   const Output base = Run(name, mesh, backend);
   CHECK(base.Image->GetNumberOfPoints() > 0, "the unscaled run produced no output");
-  if (testsupport::Failures)
+  if (vtkdf::testing::Failures)
   {
-    return testsupport::Verdict();
+    return vtkdf::testing::Verdict();
   }
   const double h = base.Image->GetSpacing()[0];
   const vtkIdType n = base.Image->GetNumberOfPoints();
@@ -392,5 +392,5 @@ int main(int argc, char* argv[])
       static_cast<long long>(pointTies),
       exact ? " (power of two: bit for bit)" : "");
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

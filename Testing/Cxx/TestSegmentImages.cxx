@@ -95,12 +95,12 @@ std::map<int, double> Coverage(vtkRenderWindow* window,
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 1, "slice|surface -V BASELINE -T TMP"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 1, "slice|surface -V BASELINE -T TMP"))
   {
     return 2;
   }
   const std::string mode = argv[1];
-  auto mesh = testsupport::OpenWalledBox();
+  auto mesh = vtkdf::testing::OpenWalledBox();
   vtkNew<vtkSegmentedDistanceField> segment;
   segment->SetInputData(mesh);
   segment->SetResolution(48);
@@ -149,7 +149,7 @@ int main(int argc, char* argv[])
     slice->InterpolateOff();
     renderer->AddActor(slice);
     const double black[3] = { 0, 0, 0 };
-    renderer->AddActor(testsupport::SurfaceCut(
+    renderer->AddActor(vtkdf::testing::SurfaceCut(
       contour->GetOutputPort(), field->GetOrigin()[2] + k * field->GetSpacing()[2], black, 0.01));
     renderer->ResetCamera();
   }
@@ -208,5 +208,5 @@ int main(int argc, char* argv[])
   CHECK(!share.empty(), "nothing drawn");
   const int result = vtkRegressionTestImage(window);
   CHECK(result == vtkRegressionTester::PASSED, "the image differs from the baseline");
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

@@ -690,7 +690,7 @@ void WallThickness(vtkPolyData* mesh, double reach, double& share, double& media
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 1, "DATA_DIR"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 1, "DATA_DIR"))
   {
     return 2;
   }
@@ -714,7 +714,7 @@ int main(int argc, char* argv[])
       h,
       median,
       median / h);
-    return testsupport::Verdict();
+    return vtkdf::testing::Verdict();
   }
   CheckClosed("bunny_small", Read(data + "/bunny_small.vtp"), 28);
   CheckClosed("sphere", Sphere(), 20);
@@ -950,7 +950,7 @@ int main(int argc, char* argv[])
     vtkNew<vtkImageData> bare;
     bare->SetDimensions(4, 4, 4);
     vtkNew<vtkSegmentedDistanceContour> c;
-    testsupport::MessageRecorder recorder(c);
+    vtkdf::testing::MessageRecorder recorder(c);
     c->SetInputData(bare);
     c->Update();
     CHECK(recorder.Errors.find("SegmentedDistance") != std::string::npos,
@@ -996,5 +996,5 @@ int main(int argc, char* argv[])
         recorder.Errors.c_str());
     }
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

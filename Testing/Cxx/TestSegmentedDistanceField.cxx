@@ -228,7 +228,7 @@ Run Segment(vtkPolyData* mesh, double offset, const std::string& backend, bool c
   vtkNew<vtkSegmentedDistanceField> f;
   f->SetInputData(mesh);
   f->SetCutSelfIntersections(cut);
-  testsupport::UseBackend(f.GetPointer(), backend);
+  vtkdf::testing::UseBackend(f.GetPointer(), backend);
   // A generic grid: spacing 0.1 (0.11 along y), shifted by `offset` spacings.
   f->ExplicitGridOn();
   f->SetGridOrigin(-1.52 + 0.1 * offset, -1.49 + 0.11 * offset * 0.7, -1.47 + 0.1 * offset * 0.4);
@@ -385,7 +385,7 @@ void CheckRepeatable(const std::string& data, const std::string& name)
     vtkNew<vtkSegmentedDistanceField> f;
     f->SetInputData(reader->GetOutput());
     f->SetResolution(40);
-    testsupport::UseBackend(f.GetPointer(), Backend);
+    vtkdf::testing::UseBackend(f.GetPointer(), Backend);
     f->Update();
     crossed = f->GetLastCrossedTriangles();
     for (const char* array : { "RegionIndex", "PatchId" })
@@ -421,7 +421,7 @@ void CompareBackends(const std::string& data, const std::string& name)
     vtkNew<vtkSegmentedDistanceField> f;
     f->SetInputData(reader->GetOutput());
     f->SetResolution(40);
-    testsupport::UseBackend(f.GetPointer(), b == 0 ? "cpu" : "gpu");
+    vtkdf::testing::UseBackend(f.GetPointer(), b == 0 ? "cpu" : "gpu");
     f->Update();
     image[b] = f->GetOutput();
     regions[b] = f->GetLastRegionCount();
@@ -459,7 +459,7 @@ void CompareBackends(const std::string& data, const std::string& name)
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 1, "cpu|gpu [DATA_DIR]"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 1, "cpu|gpu [DATA_DIR]"))
   {
     return 2;
   }
@@ -545,10 +545,10 @@ int main(int argc, char* argv[])
       // Without CGAL the cut asked for is the uncut field, and a warning names the option.
       const Run asked = Segment(CrossedStrips(), 0.37, Backend, true);
       vtkNew<vtkSegmentedDistanceField> f;
-      testsupport::MessageRecorder messages(f);
+      vtkdf::testing::MessageRecorder messages(f);
       f->SetInputData(CrossedStrips());
       f->SetResolution(24);
-      testsupport::UseBackend(f.GetPointer(), Backend);
+      vtkdf::testing::UseBackend(f.GetPointer(), Backend);
       f->Update();
       std::printf("crossed strips, cut asked for without CGAL: %d regions, warning: %s\n",
         asked.Count,
@@ -578,7 +578,7 @@ int main(int argc, char* argv[])
     both->AddInputData(b.Mesh());
     both->Update();
     vtkNew<vtkSegmentedDistanceField> f;
-    testsupport::MessageRecorder messages(f);
+    vtkdf::testing::MessageRecorder messages(f);
     f->SetInputData(both->GetOutput());
     f->SetResolution(24);
     f->SetBackendToCPU();
@@ -607,5 +607,5 @@ int main(int argc, char* argv[])
       }
       return x < Wall ? 0 : 1;
     });
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

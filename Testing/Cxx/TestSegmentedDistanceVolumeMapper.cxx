@@ -305,7 +305,7 @@ int TestSigned(const std::string& data)
   vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
   mapper->SetInputData(field);
   auto volume = FieldVolume(mapper, false);
-  testsupport::MessageRecorder messages(mapper);
+  vtkdf::testing::MessageRecorder messages(mapper);
   for (const bool parallel : { false, true })
   {
     Scene scene(field->GetBounds(), parallel, 35, 20);
@@ -424,7 +424,7 @@ int TestSigned(const std::string& data)
 vtkSmartPointer<vtkImageData> WalledBoxField(int resolution, int* regions)
 {
   vtkNew<vtkSegmentedDistanceField> segment;
-  segment->SetInputData(testsupport::OpenWalledBox());
+  segment->SetInputData(vtkdf::testing::OpenWalledBox());
   segment->SetResolution(resolution);
   segment->SetBackendToCPU();
   segment->Update();
@@ -447,7 +447,7 @@ int TestSegmented()
   vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
   mapper->SetInputData(field);
   auto volume = FieldVolume(mapper, false);
-  testsupport::MessageRecorder messages(mapper);
+  vtkdf::testing::MessageRecorder messages(mapper);
   // Seen from above the open chamber: the outside, the closed chamber's lid and the open
   // chamber's floor and walls all show.
   Scene scene(field->GetBounds(), false, 30, 55);
@@ -691,7 +691,7 @@ int TestLifecycle(const std::string& data)
   vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
   mapper->SetInputData(field);
   auto volume = FieldVolume(mapper, true);
-  testsupport::MessageRecorder messages(mapper);
+  vtkdf::testing::MessageRecorder messages(mapper);
   Scene scene(field->GetBounds(), false, 35, 20);
   const Frame first = scene.Draw({ volume });
   auto coverage = [](const Frame& f)
@@ -801,7 +801,7 @@ int TestErrors()
   }
   for (const auto& c : cases)
   {
-    testsupport::MessageRecorder messages(mapper);
+    vtkdf::testing::MessageRecorder messages(mapper);
     mapper->SetInputData(c.Image);
     const Frame frame = scene.Draw({ volume });
     const bool drawn =
@@ -828,7 +828,7 @@ int TestLeaping(const std::string& data)
   auto box = WalledBoxField(48, &regions);
   vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
   auto volume = FieldVolume(mapper, true);
-  testsupport::MessageRecorder messages(mapper);
+  vtkdf::testing::MessageRecorder messages(mapper);
   const auto compare = [&](const char* what, vtkImageData* field)
   {
     Scene scene(field->GetBounds(), false, 35, 20);
@@ -928,7 +928,7 @@ int TestComposite()
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(property);
-  testsupport::MessageRecorder messages(mapper);
+  vtkdf::testing::MessageRecorder messages(mapper);
   // The plane z = 0.6 over x < 0.5, inside the volume.
   vtkNew<vtkPlaneSource> planeSource;
   planeSource->SetOrigin(-0.5, -0.5, 0.6);
@@ -1216,7 +1216,7 @@ int TestAccuracy(const std::string& data, const std::string& name, int resolutio
   vtkNew<vtkSegmentedDistanceVolumeMapper> mapper;
   mapper->SetInputData(field);
   auto volume = FieldVolume(mapper, false);
-  testsupport::MessageRecorder messages(mapper);
+  vtkdf::testing::MessageRecorder messages(mapper);
   Scene scene(field->GetBounds(), false, 35, 20, size);
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
   const Frame reference = scene.Draw({ meshActor });
@@ -1685,7 +1685,7 @@ int TestImage(const std::string& picture, int argc, char* argv[])
     opacity->AddPoint(1000, 0.12);
     opacity->AddPoint(1300, 0.12);
     auto volume = FieldVolume(mapper, true);
-    testsupport::MessageRecorder messages(mapper);
+    vtkdf::testing::MessageRecorder messages(mapper);
     volume->GetProperty()->SetColor(colour);
     volume->GetProperty()->SetScalarOpacity(opacity);
     volume->GetProperty()->SetScalarOpacityUnitDistance(phantom->GetSpacing()[0]);
@@ -1716,7 +1716,7 @@ int TestImage(const std::string& picture, int argc, char* argv[])
     for (const double wall : { -0.3, 0.35 })
     {
       vtkNew<vtkSegmentedDistanceField> segment;
-      segment->SetInputData(testsupport::WalledBox(wall, false, 1.0));
+      segment->SetInputData(vtkdf::testing::WalledBox(wall, false, 1.0));
       segment->ExplicitGridOn();
       segment->SetGridOrigin(-1.2, -1.2, -1.2);
       segment->SetGridSpacing(0.06, 0.06, 0.06);
@@ -1767,7 +1767,7 @@ int TestImage(const std::string& picture, int argc, char* argv[])
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc,
+  if (!vtkdf::testing::HasArguments(argc,
         argv,
         2,
         "signed|segmented|occlusion|translucent|composite|leaping|lighting|lifecycle|errors|"
@@ -1841,5 +1841,5 @@ int main(int argc, char* argv[])
     std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
     return 2;
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

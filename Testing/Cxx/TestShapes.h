@@ -11,7 +11,7 @@
 #include <array>
 #include <initializer_list>
 
-namespace testsupport
+namespace vtkdf::testing
 {
 /// The box [-width, width] x [-1, 1] x [-1, 1] with a wall at x = `wall`; the right
 /// chamber (x > wall) has no lid when `openRight`. Built alike for every wall and width,
@@ -58,6 +58,6 @@ inline vtkSmartPointer<vtkPolyData> OpenWalledBox()
   return WalledBox(0.13, true);
 }
 
-} // namespace testsupport
+} // namespace vtkdf::testing
 
 #endif

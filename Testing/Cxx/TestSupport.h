@@ -16,7 +16,7 @@
 #include <cstdio>
 #include <string>
 
-namespace testsupport
+namespace vtkdf::testing
 {
 inline int Failures = 0;
 
@@ -118,7 +118,7 @@ public:
 private:
   vtkNew<vtkCallbackCommand> Observer;
 };
-} // namespace testsupport
+} // namespace vtkdf::testing
 
 #define CHECK(cond, ...)                                                                           \
   do                                                                                               \
@@ -127,7 +127,7 @@ private:
     {                                                                                              \
       std::printf("FAIL: " __VA_ARGS__);                                                           \
       std::printf("\n");                                                                           \
-      ++testsupport::Failures;                                                                     \
+      ++vtkdf::testing::Failures;                                                                  \
     }                                                                                              \
   } while (0)
 

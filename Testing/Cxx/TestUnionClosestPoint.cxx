@@ -62,7 +62,7 @@ vtkSmartPointer<vtkPolyData> Run(vtkDataObject* pieces,
   std::string* warnings = nullptr)
 {
   vtkNew<vtkUnionClosestPoint> f;
-  testsupport::MessageRecorder recorder(f);
+  vtkdf::testing::MessageRecorder recorder(f);
   f->SetInputData(0, pieces);
   f->SetQueryData(queries);
   f->SetBackend(Backend);
@@ -178,7 +178,7 @@ void CheckAnswers(vtkPolyData* out, const char* name)
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 1, "cpu|gpu"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 1, "cpu|gpu"))
   {
     return 2;
   }
@@ -255,7 +255,7 @@ int main(int argc, char* argv[])
         }
       });
     f->AddObserver(vtkCommand::ProgressEvent, observer);
-    testsupport::MessageRecorder recorder(f);
+    vtkdf::testing::MessageRecorder recorder(f);
     f->Update();
     const double last = progress.Values.empty() ? -1 : progress.Values.back();
     std::printf("abort: %zu progress values, aborted at %.3f, last %.3f, %lld output points\n",
@@ -449,5 +449,5 @@ int main(int argc, char* argv[])
     Run(empty, queries, &errors);
     CHECK(errors.find("no polygons") != std::string::npos, "no polygons: %s", errors.c_str());
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

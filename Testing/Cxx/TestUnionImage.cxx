@@ -49,7 +49,7 @@ vtkSmartPointer<vtkActor> Ball(const double centre[3], double radius, double r, 
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu -V BASELINE -T TMP"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu -V BASELINE -T TMP"))
   {
     return 2;
   }
@@ -177,5 +177,5 @@ int main(int argc, char* argv[])
   CHECK(atClosest[0] > atClosest[1] + 0.2 && atClosest[0] > atClosest[2] + 0.2,
     "the closest point's pixel is not red");
   const int result = vtkRegressionTestImage(window);
-  return result == vtkRegressionTester::PASSED && testsupport::Failures == 0 ? 0 : 1;
+  return result == vtkRegressionTester::PASSED && vtkdf::testing::Failures == 0 ? 0 : 1;
 }

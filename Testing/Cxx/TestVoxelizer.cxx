@@ -75,7 +75,7 @@ vtkSmartPointer<vtkImageData> Voxelize(vtkPolyData* mesh,
   v->SetInputData(mesh);
   v->SetMode(mode);
   v->SetResolution(resolution);
-  testsupport::UseBackend(v.GetPointer(), backend);
+  vtkdf::testing::UseBackend(v.GetPointer(), backend);
   if (grid)
   {
     v->ExplicitGridOn();
@@ -89,7 +89,7 @@ vtkSmartPointer<vtkImageData> Voxelize(vtkPolyData* mesh,
   if (backend == "gpu" && std::string(v->GetLastBackend()) != "gpu")
   {
     std::printf("FAIL: the GPU backend did not run\n");
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
   }
   if (backend == "gpu" && Backend == "gpu")
   {
@@ -102,7 +102,7 @@ vtkSmartPointer<vtkImageData> Voxelize(vtkPolyData* mesh,
       if (!a != !b)
       {
         std::printf("FAIL: %s present on one backend only\n", name);
-        ++testsupport::Failures;
+        ++vtkdf::testing::Failures;
       }
       else if (a)
       {
@@ -115,7 +115,7 @@ vtkSmartPointer<vtkImageData> Voxelize(vtkPolyData* mesh,
         {
           std::printf(
             "FAIL: %s: %lld voxels differ between GPU and CPU\n", name, (long long)differ);
-          ++testsupport::Failures;
+          ++vtkdf::testing::Failures;
         }
         else
         {
@@ -261,7 +261,7 @@ vtkSmartPointer<vtkPolyData> PottedPlant(int sheet)
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
   {
     return 2;
   }
@@ -403,5 +403,5 @@ int main(int argc, char* argv[])
   {
     std::printf("%d masks identical on the GPU and the CPU\n", Identical);
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

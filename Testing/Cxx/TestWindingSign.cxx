@@ -133,7 +133,7 @@ Run Compute(vtkPolyData* mesh,
   f->SetSignMode(signMode);
   f->SetComputeWindingNumber(winding);
   f->SetComputeClosestCellId(false);
-  testsupport::UseBackend(f.GetPointer(), backend);
+  vtkdf::testing::UseBackend(f.GetPointer(), backend);
   if (extent)
   {
     f->UpdateExtent(extent);
@@ -147,7 +147,7 @@ Run Compute(vtkPolyData* mesh,
   if (std::string(f->GetLastBackend()) != backend)
   {
     std::printf("FAIL: not run on %s\n", backend.c_str());
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
   }
   vtkDataArray* d = r.Image->GetPointData()->GetArray("Distance");
   vtkDataArray* w = r.Image->GetPointData()->GetArray("WindingNumber");
@@ -162,7 +162,7 @@ Run Compute(vtkPolyData* mesh,
   if (r.Distance.empty() || (winding && r.Winding.size() != r.Distance.size()))
   {
     std::printf("FAIL: missing arrays\n");
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
   }
   return r;
 }
@@ -177,7 +177,7 @@ void CheckMesh(const std::string& name, vtkPolyData* mesh, bool closed)
   if (Backend != "cpu" && cpuAll.Winding.size() != all.Winding.size())
   {
     std::printf("FAIL: %s: the CPU run has another size\n", name.c_str());
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
     return;
   }
   const vtkIdType n = static_cast<vtkIdType>(all.Distance.size());
@@ -185,7 +185,7 @@ void CheckMesh(const std::string& name, vtkPolyData* mesh, bool closed)
     pseudo.Distance.size() != all.Distance.size())
   {
     std::printf("FAIL: %s: runs of different sizes\n", name.c_str());
-    ++testsupport::Failures;
+    ++vtkdf::testing::Failures;
     return;
   }
   // The exact reference on the CPU run; the GPU run is held to the CPU's values (and
@@ -298,7 +298,7 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& path)
 
 int main(int argc, char* argv[])
 {
-  if (!testsupport::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
+  if (!vtkdf::testing::HasArguments(argc, argv, 2, "DATA_DIR cpu|gpu"))
   {
     return 2;
   }
@@ -358,5 +358,5 @@ int main(int argc, char* argv[])
     open->SetPolys(polys);
     CheckMesh("open sphere", open, false);
   }
-  return testsupport::Verdict();
+  return vtkdf::testing::Verdict();
 }

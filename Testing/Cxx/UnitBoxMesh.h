@@ -15,7 +15,7 @@
 #include <cmath>
 #include <string>
 
-namespace testsupport
+namespace vtkdf::testing
 {
 /// The triangles of the .vtp file `path` (vertices and lines dropped) in the unit box
 /// centred at the origin (longest side 1), turned by `angle` about z, then moved by
@@ -53,6 +53,6 @@ inline vtkSmartPointer<vtkPolyData> ReadUnitBoxMesh(const std::string& path,
   mesh->SetPoints(points);
   return mesh;
 }
-} // namespace testsupport
+} // namespace vtkdf::testing
 
 #endif

@@ -20,7 +20,7 @@ namespace
 struct LocalSites
 {
   GridFrame Frame;
-  FieldRequest Request;
+  LocalFieldRequest Request;
   MeshSites Sites;
 };
 
@@ -144,11 +144,11 @@ bool WindingSign(const MeshInput& mesh,
 }
 
 /// Where the field's arrays go, as Finalize and the queries take them.
-FieldArrays ArraysInFrame(const LinearFactorArrays& arrays,
+LocalFieldArrays ArraysInFrame(const LinearFactorArrays& arrays,
   const LinearFactorRequest& request,
   const GridFrame& frame)
 {
-  FieldArrays field;
+  LocalFieldArrays field;
   field.Frame = frame;
   field.Distance = arrays.Distance;
   field.Signed = request.Sign == SignMode::PseudoNormal;

@@ -54,7 +54,7 @@ public:
   DomainScan(HeadlessGL& context,
     const MeshSites& sites,
     const RangeCulling& culling,
-    const FieldRequest& request,
+    const LocalFieldRequest& request,
     unsigned residentIds)
     : Context(context)
     , GL(context.GL())
@@ -480,7 +480,7 @@ void DomainScan::ReadBack(int k0, int count, NearestSiteBuffer& nearest)
 bool ScanSitesGPU(HeadlessGL& context,
   const MeshSites& sites,
   const RangeCulling& culling,
-  const FieldRequest& request,
+  const LocalFieldRequest& request,
   NearestSiteBuffer& nearest,
   const ProgressCallback& progress,
   ScanStatistics& stats,
@@ -551,7 +551,7 @@ bool ScanSitesGPU(HeadlessGL& context,
 
 bool FinalizeGPU(HeadlessGL& context,
   const MeshSites& sites,
-  const FieldRequest& request,
+  const LocalFieldRequest& request,
   unsigned residentIds,
   bool signedField,
   unsigned distanceBuffer,

@@ -96,7 +96,7 @@ public:
     const Site& site,
     uint32_t siteIndex,
     const RangeCulling& culling,
-    const FieldRequest& request,
+    const LocalFieldRequest& request,
     NearestSiteBuffer& nearest)
     : TheSite(site)
     , SiteIndex(siteIndex)
@@ -324,7 +324,7 @@ int64_t ScanSite(const MeshSites& sites,
   const Site& site,
   uint32_t siteIndex,
   const RangeCulling& culling,
-  const FieldRequest& request,
+  const LocalFieldRequest& request,
   NearestSiteBuffer& nearest)
 {
   return SiteScan(sites, site, siteIndex, culling, request, nearest).Run();
@@ -334,7 +334,7 @@ int64_t ScanSite(const MeshSites& sites,
 
 ScanStatistics ScanSitesCPU(const MeshSites& sites,
   const RangeCulling& culling,
-  const FieldRequest& request,
+  const LocalFieldRequest& request,
   NearestSiteBuffer& nearest,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress)
@@ -377,9 +377,9 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites,
 }
 
 void Finalize(const MeshSites& sites,
-  const FieldRequest& request,
+  const LocalFieldRequest& request,
   const NearestSiteBuffer& nearest,
-  const FieldArrays& arrays,
+  const LocalFieldArrays& arrays,
   const ParallelFor& parallelFor)
 {
   const IndexBox& ext = request.Extent;

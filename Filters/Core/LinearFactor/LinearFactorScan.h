@@ -81,17 +81,20 @@ private:
   int64_t Count = 0;
 };
 
-struct FieldRequest
+/// The request of the scan and the queries, in the grid's local frame (GridFrame: the
+/// world's LinearFactorRequest moved there by ComputeLinearFactorField).
+struct LocalFieldRequest
 {
   SampleGrid Grid;
   IndexBox Extent; // the samples to compute (a sub-extent of Grid.Whole when streaming)
   double MaximumDistance = HUGE_VAL;
 };
 
-/// Where Finalize writes; any pointer may be null. Arrays cover Extent, x fastest.
+/// Where Finalize writes (the world's LinearFactorArrays, with the local frame to map
+/// back from); any pointer may be null. Arrays cover Extent, x fastest.
 /// The sites and the request are in the local frame `Frame`; distances and closest
 /// points are written in world coordinates (mapped in double, then rounded to float).
-struct FieldArrays
+struct LocalFieldArrays
 {
   GridFrame Frame;
   float* Distance = nullptr;
@@ -119,7 +122,7 @@ int SiteIndexPlanes(const MeshSites& sites,
 /// The CPU scan conversion: every site's domain polygon, slice by slice, row by row.
 ScanStatistics ScanSitesCPU(const MeshSites& sites,
   const RangeCulling& culling,
-  const FieldRequest& request,
+  const LocalFieldRequest& request,
   NearestSiteBuffer& nearest,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress);
@@ -135,9 +138,9 @@ void FloodBandSides(const IndexBox& extent,
 
 /// Writes the arrays from the nearest site of every sample.
 void Finalize(const MeshSites& sites,
-  const FieldRequest& request,
+  const LocalFieldRequest& request,
   const NearestSiteBuffer& nearest,
-  const FieldArrays& arrays,
+  const LocalFieldArrays& arrays,
   const ParallelFor& parallelFor);
 
 } // namespace vtkdf

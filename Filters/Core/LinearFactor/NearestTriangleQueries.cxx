@@ -946,7 +946,7 @@ namespace
 struct SampleWriter
 {
   const QueryTree& Tree;
-  const FieldArrays& Arrays;
+  const LocalFieldArrays& Arrays;
   bool WantFeature;          // the closest cell or the sign needs the feature's cell
   std::vector<int8_t>& Side; // a narrow band's sides (empty: none kept)
   float WorldCap;            // the band's distance in world units
@@ -954,7 +954,7 @@ struct SampleWriter
   /// A sample beyond the band: the cap, no closest feature.
   void Beyond(int64_t at) const
   {
-    const FieldArrays& arrays = this->Arrays;
+    const LocalFieldArrays& arrays = this->Arrays;
     if (arrays.Distance)
     {
       arrays.Distance[at] = this->WorldCap;
@@ -982,7 +982,7 @@ struct SampleWriter
     const double closest[3],
     int feature) const
   {
-    const FieldArrays& arrays = this->Arrays;
+    const LocalFieldArrays& arrays = this->Arrays;
     const Primitive& t = this->Tree.Get(index);
     // The feature: 0 vertex, 1 edge, 2 face (the site types).
     const uint8_t type = feature == InFace ? 2 : (feature >= OnEdgeAB ? 1 : 0);
@@ -1034,8 +1034,8 @@ struct SampleWriter
 } // namespace
 
 bool QueryNearestTriangles(const MeshInput& mesh,
-  const FieldRequest& request,
-  const FieldArrays& arrays,
+  const LocalFieldRequest& request,
+  const LocalFieldArrays& arrays,
   const Execution& execution,
   ScanStatistics& stats,
   std::string& error)

@@ -55,8 +55,8 @@ bool PreferSampleQueries(const MeshInput& mesh,
 /// distances computed. False and `error` when the mesh is invalid (a cell's point id out of range,
 /// a non-finite coordinate).
 bool QueryNearestTriangles(const MeshInput& mesh,
-  const FieldRequest& request,
-  const FieldArrays& arrays,
+  const LocalFieldRequest& request,
+  const LocalFieldArrays& arrays,
   const Execution& execution,
   ScanStatistics& stats,
   std::string& error);
