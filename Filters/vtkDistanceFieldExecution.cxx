@@ -22,14 +22,25 @@
 namespace vtkdf
 {
 
-bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error)
+DeviceDescription DescribeDevice()
+{
+  DeviceDescription device;
+  const char* setting = std::getenv("VTKDF_AUTO_GPU_SIGN");
+  const std::string choice = setting ? setting : "";
+  device.AutoOnAnyDevice = choice == "1";
+  device.AutoNever = choice == "0";
+  device.Hardware = []
+  {
+    static const bool hardware = HeadlessGL::HasHardwareDevice();
+    return hardware;
+  };
+  return device;
+}
+
+bool FieldContext(const ExecutionPlan& plan, HeadlessGL*& gl, std::string& error)
 {
   gl = nullptr;
-  // Auto is the CPU: on the one hardware GPU measured (an NVIDIA H100 beside 16 CPU
-  // threads) the distance fields took 1.6-9 times longer on the GPU, the union queries
-  // 50-60 times, the certified penetration depth within 40 % either way
-  // (docs/benchmarks.md). The GPU runs when it is asked for.
-  if (backend != BackendGPU)
+  if (!plan.FieldOnGPU)
   {
     return true;
   }
@@ -43,22 +54,16 @@ bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error)
   return true;
 }
 
-HeadlessGL* AutoSignContext(int64_t samples, const std::function<bool()>& cpuIsFaster)
+HeadlessGL* SignContext(const ExecutionPlan& plan)
 {
-  const char* setting = std::getenv("VTKDF_AUTO_GPU_SIGN");
-  const std::string choice = setting ? setting : "";
-  if (choice == "0" || (choice != "1" && samples < (int64_t(1) << 22)))
+  if (!plan.SignOnGPU || plan.FieldOnGPU)
   {
     return nullptr;
   }
-  // No context is made where no hardware device is found (a CPU machine pays nothing),
-  // nor where the CPU has the faster route.
-  static const bool hardware = HeadlessGL::HasHardwareDevice();
-  if ((choice != "1" && !hardware) || (cpuIsFaster && cpuIsFaster()))
-  {
-    return nullptr;
-  }
-  static HeadlessGL* const chosen = [&choice]() -> HeadlessGL*
+  // The context is made once per process; a software rasterizer (llvmpipe, OSMesa) is
+  // not taken but under the tests' hook.
+  static const bool anyDevice = DescribeDevice().AutoOnAnyDevice;
+  static HeadlessGL* const chosen = []() -> HeadlessGL*
   {
     std::string why;
     HeadlessGL* gl = HeadlessGL::Get(why);
@@ -73,7 +78,7 @@ HeadlessGL* AutoSignContext(int64_t samples, const std::function<bool()>& cpuIsF
     {
       software = software || renderer.find(name) != std::string::npos;
     }
-    return !software || choice == "1" ? gl : nullptr;
+    return !software || anyDevice ? gl : nullptr;
   }();
   return chosen;
 }

@@ -7,6 +7,8 @@
 
 #include "vtkType.h"
 
+#include "Common/BackendPolicy.h"
+
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -22,29 +24,27 @@ class HeadlessGL;
 /// its BackendType, where VTK's wrapping finds them).
 enum BackendValue
 {
-  BackendAuto = 0, // where the filters were measured fastest: today the CPU for all
-  BackendGPU = 1,  // the GPU, even a software rasterizer; an error when there is none
-  BackendCPU = 2   // the CPU
+  BackendAuto = static_cast<int>(BackendChoice::Auto), // ChoosePlan's rule
+  BackendGPU = static_cast<int>(BackendChoice::GPU),   // even a software rasterizer
+  BackendCPU = static_cast<int>(BackendChoice::CPU)
 };
 
-/// The GPU context for a Backend: `gl` is the context (GPU: any, even a software
-/// rasterizer) or null for the CPU (CPU, Auto). False, with `error`, when Backend is GPU
-/// and there is no context.
-bool ChooseContext(int backend, HeadlessGL*& gl, std::string& error);
+/// The device as ChoosePlan (Common/BackendPolicy.h, where the rules are) sees it:
+/// HeadlessGL::HasHardwareDevice, looked for once per process and only when a plan asks;
+/// and the tests' hook, the environment variable VTKDF_AUTO_GPU_SIGN (1: Auto's GPU
+/// stages on any context, a software rasterizer included, at any size, which is how the
+/// tests run that path without a GPU; 0: never). A user needs neither.
+DeviceDescription DescribeDevice();
 
-/// The context on which Backend Auto runs the winding-number sign of `samples` samples
-/// while the field runs on the CPU: a hardware GPU's from 2^22 samples on, else null.
-/// On an NVIDIA H100 beside 16 CPU threads, the GPU's winding pass took half the time of
-/// the CPU's at 256^3 (the whole field 1.36-1.75 times faster), but its context and
-/// programs cost about 0.4 s once per process, which smaller grids do not repay
-/// (docs/benchmarks.md). The device is looked for once per process, without making a
-/// context where none is hardware; a software rasterizer (llvmpipe, OSMesa) is not
-/// taken. The environment variable VTKDF_AUTO_GPU_SIGN=1 takes any context at any size
-/// (how the tests run this path), VTKDF_AUTO_GPU_SIGN=0 none. `cpuIsFaster`, asked only
-/// where a context would be taken, may say the CPU has the faster route (the crossings
-/// along the grid lines, Winding/WindingCrossings.h): then none either.
-HeadlessGL* AutoSignContext(int64_t samples,
-  const std::function<bool()>& cpuIsFaster = std::function<bool()>());
+/// The context for a plan's field: the process's (any, even a software rasterizer) when
+/// plan.FieldOnGPU, else null (the CPU). False, with `error`, when the plan puts the
+/// field on the GPU and there is none.
+bool FieldContext(const ExecutionPlan& plan, HeadlessGL*& gl, std::string& error);
+
+/// The context for a plan's winding sign beside a field on the CPU: the process's when
+/// plan.SignOnGPU and it is no software rasterizer (any, under the tests' hook); else null
+/// (the CPU, with the same signs).
+HeadlessGL* SignContext(const ExecutionPlan& plan);
 
 /// vtkSMPTools::For behind the cores' ParallelFor hook. An exception thrown by `body`
 /// (std::bad_alloc) stops the remaining chunks and is rethrown here, on the calling

@@ -30,6 +30,7 @@ int vtkDistanceFieldImageAlgorithm::RequestData(vtkInformation*,
   this->LastPlatform = record.Platform;
   this->LastTime = record.Time;
   this->LastStageTimes = record.StageTimes;
+  this->LastBackendReason = record.Reason.empty() ? "none" : record.Reason;
   return done;
 }
 
@@ -41,4 +42,5 @@ void vtkDistanceFieldImageAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastPlatform: " << this->LastPlatform << "\n";
   os << indent << "LastTime: " << this->LastTime << "\n";
   os << indent << "LastStageTimes: " << this->LastStageTimes << "\n";
+  os << indent << "LastBackendReason: " << this->LastBackendReason << "\n";
 }

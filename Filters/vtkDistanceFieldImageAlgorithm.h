@@ -42,6 +42,8 @@ public:
   /// How the last GPU run got its context ("EGL device", "EGL surfaceless", "OSMesa"),
   /// "cpu" after a CPU run, "none" before a complete one.
   const char* GetLastPlatform() const { return this->LastPlatform.c_str(); }
+  /// Why the last complete run ran where it did (the Backend property, Auto's rule).
+  const char* GetLastBackendReason() const { return this->LastBackendReason.c_str(); }
   /// Seconds the last complete run spent computing (input conversion and arrays
   /// included, no I/O).
   double GetLastTime() const { return this->LastTime; }
@@ -75,6 +77,7 @@ protected:
   std::string LastPlatform = "none";
   double LastTime = 0;
   std::string LastStageTimes;
+  std::string LastBackendReason = "none";
 
 private:
   vtkDistanceFieldImageAlgorithm(const vtkDistanceFieldImageAlgorithm&) = delete;

@@ -29,6 +29,7 @@ int vtkDistanceFieldPolyDataAlgorithm::RequestData(vtkInformation*,
   this->LastPlatform = record.Platform;
   this->LastTime = record.Time;
   this->LastStageTimes = record.StageTimes;
+  this->LastBackendReason = record.Reason.empty() ? "none" : record.Reason;
   return done;
 }
 
@@ -39,4 +40,5 @@ void vtkDistanceFieldPolyDataAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastPlatform: " << this->LastPlatform << "\n";
   os << indent << "LastTime: " << this->LastTime << "\n";
   os << indent << "LastStageTimes: " << this->LastStageTimes << "\n";
+  os << indent << "LastBackendReason: " << this->LastBackendReason << "\n";
 }

@@ -12,15 +12,23 @@
 namespace vtkdf
 {
 
-bool FilterRun::ResolveBackend(int backend)
+bool FilterRun::Resolve(const WorkDescription& work)
 {
+  this->Chosen = ChoosePlan(work, DescribeDevice());
   std::string error;
-  if (!ChooseContext(backend, this->GL, error))
+  if (!FieldContext(this->Chosen, this->GL, error))
   {
     this->Fail(error);
     return false;
   }
   return true;
+}
+
+bool FilterRun::ResolveBackend(int backend)
+{
+  WorkDescription work;
+  work.Backend = static_cast<BackendChoice>(backend);
+  return this->Resolve(work);
 }
 
 Execution FilterRun::MakeExecution(double from, double to, bool abortable)
@@ -100,6 +108,7 @@ int RunRequestData(vtkAlgorithm* filter,
   record.Backend = gl ? "gpu" : "cpu";
   record.Renderer = gl ? gl->Renderer() : "cpu";
   record.Platform = gl ? gl->Platform() : "cpu";
+  record.Reason = run.Plan().Reason;
   filter->UpdateProgress(1.0);
   return 1;
 }

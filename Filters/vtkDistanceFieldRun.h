@@ -5,6 +5,7 @@
 #ifndef vtkDistanceFieldRun_h
 #define vtkDistanceFieldRun_h
 
+#include "Common/BackendPolicy.h"
 #include "Common/Parallel.h"
 
 #include <functional>
@@ -32,6 +33,7 @@ struct RunRecord
   std::string Platform = "none"; ///< how the GPU's context was made, "cpu"
   double Time = 0;               ///< seconds of the run, input conversion included
   std::string StageTimes;        ///< "name:seconds,name:seconds,..."
+  std::string Reason;            ///< why it ran where it did (ExecutionPlan::Reason)
 };
 
 /// One run of a filter: its stage timer, the hooks a core runs with (vtkSMPTools, the
@@ -47,10 +49,14 @@ public:
 
   StageTimer Timer;
 
-  /// The GL context a Backend property resolves to (null: the CPU; Auto is decided by
-  /// ChooseContext, vtkDistanceFieldExecution.h); false, with the error reported, when
-  /// the GPU is asked for and there is none. The record then names what ran.
+  /// The plan for `work` (ChoosePlan, Common/BackendPolicy.h, over this machine's
+  /// device) and the GL context of its field (null: the CPU); false, with the error
+  /// reported, when the plan puts the field on the GPU and there is none. The record
+  /// then says what ran, and why.
+  bool Resolve(const WorkDescription& work);
+  /// Resolve for a filter whose only choice is its Backend property.
   bool ResolveBackend(int backend);
+  const ExecutionPlan& Plan() const { return this->Chosen; }
   HeadlessGL* Context() const { return this->GL; }
 
   /// The hooks a core runs with: vtkSMPTools, the filter's progress (the core's
@@ -68,6 +74,7 @@ public:
 
 private:
   vtkAlgorithm* Filter;
+  ExecutionPlan Chosen;
   HeadlessGL* GL = nullptr;
 };
 

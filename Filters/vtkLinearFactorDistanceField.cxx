@@ -50,19 +50,24 @@ vtkdf::RunStatus vtkLinearFactorDistanceField::Execute(vtkInformationVector** in
     (this->ComputeClosestPoint ? 12 : 0) + (this->ComputeWindingNumber ? 4 : 0) + (winding ? 1 : 0);
   vtkdf::MeshInput mesh;
   if (!this->CheckMemory(double(n) * bytesPerSample, request.Extent) ||
-    !run.ResolveBackend(this->Backend) || !this->ReadMesh(input, request.Grid, mesh))
+    !this->ReadMesh(input, request.Grid, mesh))
+  {
+    return vtkdf::RunStatus::Failed;
+  }
+  // Where the field and the sign run (Common/BackendPolicy.h). Signs alone where the
+  // crossings decide them stay on the CPU, in less than a GPU pass.
+  vtkdf::WorkDescription work;
+  work.Backend = static_cast<vtkdf::BackendChoice>(this->Backend);
+  work.Samples = request.Extent.Count();
+  work.WindingSign = winding;
+  work.CrossingsDecide = [&]
+  { return !this->ComputeWindingNumber && vtkdf::CrossingsDecide(mesh.Points, mesh.Triangles); };
+  if (!run.Resolve(work))
   {
     return vtkdf::RunStatus::Failed;
   }
   vtkdf::HeadlessGL* gl = run.Context();
-  if (winding && !gl && this->Backend == BACKEND_AUTO)
-  {
-    // Signs alone where the crossings decide them: on the CPU, in less than a GPU pass.
-    request.SignContext = vtkdf::AutoSignContext(request.Extent.Count(),
-      [&] {
-        return !this->ComputeWindingNumber && vtkdf::CrossingsDecide(mesh.Points, mesh.Triangles);
-      });
-  }
+  request.SignContext = vtkdf::SignContext(run.Plan());
   request.Domains = static_cast<vtkdf::Culling>(this->Culling);
   request.Route = static_cast<vtkdf::FieldRoute>(this->Route);
   request.Sign = static_cast<vtkdf::SignMode>(this->SignMode);

@@ -203,11 +203,6 @@ bool vtkMedialAxisFilter::ComputePart(vtkPolyData* mesh,
   vtkdf::FilterRun& run,
   MedialPart& part)
 {
-  if (!run.ResolveBackend(this->Backend))
-  {
-    return false;
-  }
-  part.GL = run.Context();
   vtkdf::MedialInput field;
   field.SeparationAngle = this->SeparationAngle;
   field.Region = static_cast<vtkdf::MedialRegion>(this->Region);
@@ -237,6 +232,18 @@ bool vtkMedialAxisFilter::ComputePart(vtkPolyData* mesh,
   {
     part.Box = field.Grid.Whole; // what the input gives: at least `needed`
   }
+  // Where the field and a mesh's winding sign run (Common/BackendPolicy.h), as for the
+  // linear factorization.
+  vtkdf::WorkDescription work;
+  work.Backend = static_cast<vtkdf::BackendChoice>(this->Backend);
+  work.Samples = needed.Count();
+  work.WindingSign = mesh && this->SignMode == WINDING_NUMBER;
+  work.CrossingsDecide = [&] { return vtkdf::CrossingsDecide(input.Points, input.Triangles); };
+  if (!run.Resolve(work))
+  {
+    return false;
+  }
+  part.GL = run.Context();
   part.Grid = field.Grid;
   const vtkIdType n = static_cast<vtkIdType>(part.Box.Count());
   part.Medial = vtkdf::NewArray<vtkUnsignedCharArray>("Medial", n);
@@ -247,12 +254,7 @@ bool vtkMedialAxisFilter::ComputePart(vtkPolyData* mesh,
   arrays.SeparationAngle = part.Angle->GetPointer(0);
   arrays.Radius = part.Radius->GetPointer(0);
   const vtkdf::Execution execution = run.MakeExecution();
-  // Auto beside a hardware GPU: the winding sign there, as the linear factorization does.
-  vtkdf::HeadlessGL* signContext =
-    mesh && !part.GL && this->SignMode == WINDING_NUMBER && this->Backend == BACKEND_AUTO
-    ? vtkdf::AutoSignContext(
-        needed.Count(), [&] { return vtkdf::CrossingsDecide(input.Points, input.Triangles); })
-    : nullptr;
+  vtkdf::HeadlessGL* signContext = vtkdf::SignContext(run.Plan());
   const bool ok = mesh ? vtkdf::ComputeMedialAxis(std::move(input),
                            this->SignMode == WINDING_NUMBER ? vtkdf::SignMode::WindingNumber
                                                             : vtkdf::SignMode::PseudoNormal,

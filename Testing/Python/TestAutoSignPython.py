@@ -1,5 +1,5 @@
 """Backend Auto beside a GPU: the field on the CPU, the winding-number sign on the GPU
-(vtkDistanceFieldExecution.h, AutoSignContext). CI has no hardware GPU, so the test sets
+(Common/BackendPolicy.h, ChoosePlan; vtkDistanceFieldExecution.h, SignContext). CI has no hardware GPU, so the test sets
 VTKDF_AUTO_GPU_SIGN=1 (llvmpipe taken as if it were one) and checks, on an open and a
 closed mesh, that Auto signs every sample as the CPU backend does (the distances bit for
 bit), that the winding numbers agree within the evaluation's bound, and that the filter

@@ -1,5 +1,7 @@
 #include "LinearFactor/LinearFactorField.h"
 
+#include "Common/BackendPolicy.h"
+
 #include "GL/HeadlessGL.h"
 #include "LinearFactor/LinearFactorGPU.h"
 #include "LinearFactor/LinearFactorScan.h"
@@ -204,9 +206,13 @@ bool ComputeLinearFactorField(MeshInput mesh,
     error = "The sample-query route runs on the CPU only: use the site scan on the GPU.";
     return false;
   }
-  queries = queries ||
-    (request.Route == FieldRoute::Auto && !gl &&
-      PreferSampleQueries(mesh, request.Grid, request.MaximumDistance));
+  // The route of an Auto request, by the policy's rule (Common/BackendPolicy.h).
+  WorkDescription work;
+  work.Backend = gl ? BackendChoice::GPU : BackendChoice::CPU;
+  work.Route = static_cast<RouteChoice>(request.Route);
+  work.QueriesFaster = [&]
+  { return PreferSampleQueries(mesh, request.Grid, request.MaximumDistance); };
+  queries = ChoosePlan(work, DeviceDescription()).SampleQueries;
   LocalSites local;
   if (queries)
   {
