@@ -21,24 +21,13 @@ int vtkDistanceFieldPolyDataAlgorithm::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkdf::RunRecord record;
-  const int done = vtkdf::RunRequestData(this,
-    record,
+  return vtkdf::RunRequestData(this,
+    this->Record,
     [&](vtkdf::FilterRun& run) { return this->Execute(inputVector, outputVector, run); });
-  this->LastRenderer = record.Renderer;
-  this->LastPlatform = record.Platform;
-  this->LastTime = record.Time;
-  this->LastStageTimes = record.StageTimes;
-  this->LastBackendReason = record.Reason.empty() ? "none" : record.Reason;
-  return done;
 }
 
 void vtkDistanceFieldPolyDataAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "LastRenderer: " << this->LastRenderer << "\n";
-  os << indent << "LastPlatform: " << this->LastPlatform << "\n";
-  os << indent << "LastTime: " << this->LastTime << "\n";
-  os << indent << "LastStageTimes: " << this->LastStageTimes << "\n";
-  os << indent << "LastBackendReason: " << this->LastBackendReason << "\n";
+  this->Record.Print(os, indent, false);
 }

@@ -19,9 +19,9 @@
 #include "vtkDistanceFieldsModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
-#include <string> // For the record's strings
-
 #ifndef __VTK_WRAP__
+#include "vtkDistanceFieldRunRecord.h" // For the record
+
 namespace vtkdf
 {
 class FilterRun;
@@ -36,18 +36,18 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// GL_RENDERER of the last GPU run, "cpu" after a CPU run, "none" before a complete one.
-  const char* GetLastRenderer() const { return this->LastRenderer.c_str(); }
+  const char* GetLastRenderer() const { return this->Record.Renderer.c_str(); }
   /// How the last GPU run got its context ("EGL device", "EGL surfaceless", "OSMesa"),
   /// "cpu" after a CPU run, "none" before a complete one.
-  const char* GetLastPlatform() const { return this->LastPlatform.c_str(); }
+  const char* GetLastPlatform() const { return this->Record.Platform.c_str(); }
   /// Why the last complete run ran where it did (the Backend property, Auto's rule).
-  const char* GetLastBackendReason() const { return this->LastBackendReason.c_str(); }
+  const char* GetLastBackendReason() const { return this->Record.Reason.c_str(); }
   /// Seconds the last complete run spent computing (input conversion and arrays
   /// included, no I/O).
-  double GetLastTime() const { return this->LastTime; }
+  double GetLastTime() const { return this->Record.Time; }
   /// Seconds per stage of the last complete run, as "name:seconds,name:seconds,..." (the
   /// stages are the filter's own, e.g. sites, culling, scan, finalize).
-  const char* GetLastStageTimes() const { return this->LastStageTimes.c_str(); }
+  const char* GetLastStageTimes() const { return this->Record.StageTimes.c_str(); }
 
   /// Runs the request; a failure (a request returning 0, or an exception such as
   /// std::bad_alloc, which is caught here) leaves a non-zero error code and empty outputs.
@@ -70,11 +70,9 @@ protected:
     vtkdf::FilterRun& run) = 0;
 #endif
 
-  std::string LastRenderer = "none";
-  std::string LastPlatform = "none";
-  double LastTime = 0;
-  std::string LastStageTimes;
-  std::string LastBackendReason = "none";
+#ifndef __VTK_WRAP__
+  vtkdf::RunRecord Record;
+#endif
 
 private:
   vtkDistanceFieldPolyDataAlgorithm(const vtkDistanceFieldPolyDataAlgorithm&) = delete;

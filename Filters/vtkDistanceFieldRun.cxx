@@ -108,7 +108,7 @@ int RunRequestData(vtkAlgorithm* filter,
   record.Backend = gl ? "gpu" : "cpu";
   record.Renderer = gl ? gl->Renderer() : "cpu";
   record.Platform = gl ? gl->Platform() : "cpu";
-  record.Reason = run.Plan().Reason;
+  record.Reason = run.Plan().Reason.empty() ? "none" : run.Plan().Reason;
   filter->UpdateProgress(1.0);
   return 1;
 }

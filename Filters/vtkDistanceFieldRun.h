@@ -5,6 +5,8 @@
 #ifndef vtkDistanceFieldRun_h
 #define vtkDistanceFieldRun_h
 
+#include "vtkDistanceFieldRunRecord.h"
+
 #include "Common/BackendPolicy.h"
 #include "Common/Parallel.h"
 
@@ -23,17 +25,6 @@ enum class RunStatus
   Done,  ///< the outputs hold the result
   Empty, ///< nothing to compute (an empty input or extent) or aborted: empty outputs
   Failed ///< an error was reported: empty outputs and a non-zero error code
-};
-
-/// What every filter reports of its last run (GetLastTime() and friends).
-struct RunRecord
-{
-  std::string Backend = "none";  ///< "gpu", "cpu", or "none" before a complete run
-  std::string Renderer = "none"; ///< GL_RENDERER of a GPU run, "cpu"
-  std::string Platform = "none"; ///< how the GPU's context was made, "cpu"
-  double Time = 0;               ///< seconds of the run, input conversion included
-  std::string StageTimes;        ///< "name:seconds,name:seconds,..."
-  std::string Reason;            ///< why it ran where it did (ExecutionPlan::Reason)
 };
 
 /// One run of a filter: its stage timer, the hooks a core runs with (vtkSMPTools, the

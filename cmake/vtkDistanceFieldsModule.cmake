@@ -17,6 +17,7 @@ set(classes
   "${df_root}/Filters/vtkDistanceFieldProximity")
 vtk_module_add_module(DistanceFields::vtkDistanceFields
   CLASSES ${classes}
+  HEADERS "${df_root}/Filters/vtkDistanceFieldRunRecord.h"
   SOURCES "${df_root}/Filters/vtkDistanceFieldMeshInput.cxx"
     "${df_root}/Filters/vtkDistanceFieldArrays.cxx"
     "${df_root}/Filters/vtkDistanceFieldExecution.cxx"
