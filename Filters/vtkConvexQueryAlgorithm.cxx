@@ -14,6 +14,9 @@
 #include "vtkDistanceFieldPartitions.h"
 #include "vtkDistanceFieldRun.h"
 
+static_assert(vtkdf::SameBackendValues<vtkConvexQueryAlgorithm>(),
+  "Backend values differ from BackendChoice");
+
 int vtkConvexQueryAlgorithm::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());

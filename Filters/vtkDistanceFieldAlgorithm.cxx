@@ -34,6 +34,9 @@
 #include <sstream>
 #include <stdexcept>
 
+static_assert(vtkdf::SameBackendValues<vtkDistanceFieldAlgorithm>(),
+  "Backend values differ from BackendChoice");
+
 vtkDistanceFieldAlgorithm::vtkDistanceFieldAlgorithm()
 {
   this->SetNumberOfInputPorts(1);

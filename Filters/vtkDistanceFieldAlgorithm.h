@@ -46,7 +46,7 @@ public:
   vtkTypeMacro(vtkDistanceFieldAlgorithm, vtkDistanceFieldImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Where a filter runs (the values of vtkdf::BackendValue, vtkDistanceFieldExecution.h).
+  /// Where a filter runs (the values of vtkdf::BackendChoice, Common/BackendPolicy.h).
   enum BackendType
   {
     BACKEND_AUTO = 0, ///< the faster backend as measured: the CPU (docs/benchmarks.md)

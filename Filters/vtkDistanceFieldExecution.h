@@ -20,14 +20,15 @@ namespace vtkdf
 {
 class HeadlessGL;
 
-/// The values of every filter's Backend property (each base class re-declares them as
-/// its BackendType, where VTK's wrapping finds them).
-enum BackendValue
+/// Whether a filter's BackendType (re-declared by each wrapped class, where VTK's wrapping
+/// finds it) has the values of BackendChoice (Common/BackendPolicy.h), the one definition.
+template<typename Filter>
+constexpr bool SameBackendValues()
 {
-  BackendAuto = static_cast<int>(BackendChoice::Auto), // ChoosePlan's rule
-  BackendGPU = static_cast<int>(BackendChoice::GPU),   // even a software rasterizer
-  BackendCPU = static_cast<int>(BackendChoice::CPU)
-};
+  return Filter::BACKEND_AUTO == static_cast<int>(BackendChoice::Auto) &&
+    Filter::BACKEND_GPU == static_cast<int>(BackendChoice::GPU) &&
+    Filter::BACKEND_CPU == static_cast<int>(BackendChoice::CPU);
+}
 
 /// The device as ChoosePlan (Common/BackendPolicy.h, where the rules are) sees it:
 /// HeadlessGL::HasHardwareDevice, looked for once per process and only when a plan asks;

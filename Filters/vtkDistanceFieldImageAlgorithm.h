@@ -65,6 +65,8 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 #ifndef __VTK_WRAP__
+  // vtkImageAlgorithm's legacy Execute() stays visible beside this one.
+  using vtkImageAlgorithm::Execute;
   /// The filter's own work: the inputs onto one core entry point, its result onto the
   /// outputs (which RequestData has emptied); errors and empty results through `run`.
   virtual vtkdf::RunStatus Execute(vtkInformationVector** inputVector,

@@ -26,6 +26,9 @@
 
 #include <cmath>
 
+static_assert(vtkdf::SameBackendValues<vtkDistanceFieldProximity>(),
+  "Backend values differ from BackendChoice");
+
 vtkStandardNewMacro(vtkDistanceFieldProximity);
 
 vtkDistanceFieldProximity::vtkDistanceFieldProximity()
