@@ -11,6 +11,8 @@ usage: check_functions.py SOURCE_DIR
 - No function of Filters/, Rendering/ or Programs/ is over 150 lines, but for those
   listed in LONG below (none today), each with the passes it still has to be split
   into; a listed function that got shorter must leave the list, so that it only shrinks.
+- No source file (.cxx, .h) of Filters/, Rendering/, Programs/ or Testing/ is over 1,000
+  lines: a longer one holds more than one thing, and is split by what it holds.
 A function is counted from the first line of its signature to its closing brace (the
 sources are clang-formatted: a function's braces stand at the start of a line), lambdas
 inside it included. Exits 1 and prints every violation.
@@ -21,6 +23,7 @@ import sys
 
 ADAPTER_LIMIT = 120
 FUNCTION_LIMIT = 150
+FILE_LIMIT = 1000
 BASES = {"Filters/vtkDistanceFieldImageAlgorithm.cxx", "Filters/vtkDistanceFieldPolyDataAlgorithm.cxx"}
 # Functions still over the limit: "path:name" -> what they hold.
 LONG = {
@@ -65,11 +68,11 @@ def functions(path):
     return found
 
 
-def sources(root, folders):
+def sources(root, folders, suffixes=(".cxx",)):
     for folder in folders:
         for base, _, names in os.walk(os.path.join(root, folder)):
             for name in sorted(names):
-                if name.endswith(".cxx"):
+                if name.endswith(suffixes):
                     yield os.path.relpath(os.path.join(base, name), root)
 
 
@@ -96,6 +99,11 @@ def main():
                                     "driver" % (where, length, FUNCTION_LIMIT))
         if adapter and path not in BASES and re.search(r"\bProcessRequest\s*\(", text):
             problems.append("%s: calls or defines ProcessRequest; the bases own it" % path)
+    for path in sources(root, ("Filters", "Rendering", "Programs", "Testing"), (".cxx", ".h")):
+        count = open(os.path.join(root, path), encoding="utf-8").read().count("\n")
+        if count > FILE_LIMIT:
+            problems.append("%s: %d lines, over %d: split it by what it holds" %
+                            (path, count, FILE_LIMIT))
     for key in sorted(set(LONG) - seen_long):
         problems.append("%s: listed as over %d lines but it is not (any more): take it off "
                         "the list in %s" % (key, FUNCTION_LIMIT, os.path.basename(__file__)))

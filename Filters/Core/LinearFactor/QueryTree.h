@@ -1,0 +1,141 @@
+// QueryTree: the tree of a mesh's primitives (triangles, and the segments and points of
+// degenerate cells) that answers exact nearest-primitive queries with the tie rules of
+// the linear factorization (QueryTree.cxx). NearestTriangleQueries asks it for the
+// samples of a grid. Private to the linear-factorization family.
+#ifndef vtkdf_QueryTree_h
+#define vtkdf_QueryTree_h
+
+#include "Common/LargeVector.h"
+#include "Common/MeshInput.h"
+#include "Common/Parallel.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vtkdf
+{
+namespace nearest
+{
+constexpr int LeafSize = 8;
+constexpr int StackSize = 128; // see QueryTree::Nearest
+
+/// The corners a, b, c of a triangle, segment (b = c) or point (a = b = c) of the mesh.
+struct Primitive
+{
+  double X[9];
+};
+
+/// A node's box is rounded outward to float; a leaf holds primitives [First, First +
+/// Count), an inner node has its children at First and First + 1.
+struct Node
+{
+  float Lo[3], Hi[3];
+  int32_t First;
+  int32_t Count; // 0 for an inner node
+};
+
+/// The tree the queries descend: up to four children's boxes side by side (a binary
+/// node's grandchildren), so that one node's memory holds every box the next step tests.
+/// Child c is a wide node (Count[c] == 0, at First[c]), leaf First[c] (Count[c] > 0,
+/// its number of primitives), or absent (Count[c] < 0).
+struct WideNode
+{
+  float Lo[3][4], Hi[3][4];
+  int32_t First[4];
+  int32_t Count[4];
+};
+
+/// A leaf's primitives [First, First + Count) and the box that holds them in the frame
+/// of their mean normal: on a finely tessellated surface the axis-aligned boxes of
+/// neighbouring leaves overlap a sample's sphere of reach far more often than these
+/// thin ones do.
+struct Leaf
+{
+  float Centre[3];
+  float Axes[3][3]; // unit and orthogonal, up to float rounding
+  float Extent[3];
+  int32_t First, Count;
+};
+
+/// MeshSites' face test and unit normal: distinct corners, and twice the area above
+/// `degenerate` times the longest side.
+bool FaceNormal(const double* x, double degenerate, double normal[3]);
+
+struct PrimitiveCorners;
+
+class QueryTree
+{
+public:
+  /// The tree of the mesh's primitives: checked and bounded (BoundUsedPoints), in Morton
+  /// order (SortedMortonKeys), copied (GatherPrimitives), oriented (FacesVolume), then
+  /// the nodes built, widened and their leaves framed.
+  bool Build(const MeshInput& mesh, const ParallelFor& parallelFor, std::string& error);
+
+  /// The nearest primitive to p: its index, squared distance, closest point and feature
+  /// (TriangleFeature). Exact ties go to the smaller cell, then the smaller index, so the
+  /// answer does not depend on `bound2` (an upper bound on the squared distance, or
+  /// HUGE_VAL). Returns the number of primitives evaluated; index -1 when none lies
+  /// within the bound.
+  int64_t Nearest(const double p[3],
+    double bound2,
+    int64_t& index,
+    double& best2,
+    double closest[3],
+    int& feature) const;
+
+  /// The smallest cell among the primitives with a corner at `a` (and at `b` too, when
+  /// given), and the pseudonormal of that vertex or edge: the faces' unit normals, each
+  /// weighted by its angle at `a` for a vertex.
+  void FeatureCellAndNormal(const double* a,
+    const double* b,
+    int64_t& cell,
+    double normal[3]) const;
+
+  const Primitive& Get(int64_t i) const { return this->Primitives[i]; }
+  int64_t Cell(int64_t i) const { return this->Cells[i]; }
+  /// A face's pseudonormal: its unit normal, turned by the mesh's orientation.
+  void FaceNormalOf(int64_t i, double normal[3]) const
+  {
+    FaceNormal(this->Primitives[i].X, this->Degenerate, normal);
+    for (int k = 0; k < 3; ++k)
+    {
+      normal[k] *= this->Orientation;
+    }
+  }
+  // -1 when the faces' signed volume is negative. MeshSites measures it from another
+  // point: the same sign on a closed mesh; on an open one (where the pseudonormal sign is
+  // arbitrary anyway) the two may differ.
+  double Orientation = 1;
+  double Degenerate = 0;
+  double Tolerance2 = 0; // absolute slack on squared distances (coordinates' rounding)
+
+private:
+  /// The primitives, cells, face flags and codes in the order of the sorted `keys`.
+  void GatherPrimitives(const PrimitiveCorners& corners,
+    const LargeVector<uint64_t>& keys,
+    const ParallelFor& parallelFor);
+  /// The faces' signed volume (times 6) seen from `lo`, in a fixed order (the same sum on
+  /// any thread count).
+  double FacesVolume(const double lo[3]) const;
+  void BuildNodes(int32_t n, const ParallelFor& parallelFor);
+  void Widen();
+  void FrameLeaves(const ParallelFor& parallelFor);
+  double LeafDistance2(const Leaf& leaf, const double p[3]) const;
+
+  // Per primitive, in the tree's order: its corners, input cell, whether it is a proper
+  // triangle (MeshSites' rule; otherwise only its edges count) and, while the tree is
+  // built, its Morton code.
+  LargeVector<Primitive> Primitives;
+  LargeVector<int64_t> Cells;
+  LargeVector<uint8_t> Faces;
+  LargeVector<uint32_t> Codes;
+  std::vector<Node> Nodes; // the binary tree, widened into WideNodes
+  std::vector<WideNode> WideNodes;
+  std::vector<Leaf> Leaves;
+  double Margin = 0; // how far the leaves' frames are widened beyond rounding
+};
+} // namespace nearest
+} // namespace vtkdf
+
+#endif

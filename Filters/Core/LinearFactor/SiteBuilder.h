@@ -1,0 +1,312 @@
+// SiteBuilder: the passes of MeshSites::Build over what they share (the merged points,
+// the faces and edge records, the edge groups, the vertices' domains). They live in three
+// sources, in the order Build runs them: SiteTopology.cxx (points merged, faces and edges
+// collected), SiteClassification.cxx (pseudonormals, edge groups, vertex domains) and
+// MeshSites.cxx (the sites and their planes). Private to the linear-factorization family.
+#ifndef vtkdf_SiteBuilder_h
+#define vtkdf_SiteBuilder_h
+
+#include "LinearFactor/MeshSites.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vtkdf
+{
+namespace sites
+{
+using Vec = std::array<double, 3>;
+
+inline Vec Sub(const double* a, const double* b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+inline double Dot(const Vec& a, const Vec& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline Vec Cross(const Vec& a, const Vec& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+inline double Norm(const Vec& a)
+{
+  return std::sqrt(Dot(a, a));
+}
+inline Vec Scale(const Vec& a, double s)
+{
+  return { a[0] * s, a[1] * s, a[2] * s };
+}
+inline Vec Add(const Vec& a, const Vec& b)
+{
+  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+}
+
+struct EdgeRecord
+{
+  int64_t A, B; // canonical point ids, A < B
+  int64_t Face; // non-degenerate face index, or -1
+  int64_t Cell; // input cell
+};
+
+/// An edge at a vertex: its index, and +1 where its tangent points away from the vertex,
+/// -1 where it points towards it.
+struct VertexEdge
+{
+  int64_t Edge;
+  double Sign;
+};
+struct VertexEdgeSpan
+{
+  const VertexEdge* First = nullptr;
+  size_t Count = 0;
+  const VertexEdge* begin() const { return First; }
+  const VertexEdge* end() const { return First + Count; }
+  size_t size() const { return Count; }
+  bool empty() const { return Count == 0; }
+  const VertexEdge& operator[](size_t i) const { return First[i]; }
+};
+
+/// parallelFor when the caller gave one, else a plain loop.
+inline void Run(const ParallelFor& parallelFor,
+  int64_t n,
+  int64_t grain,
+  const std::function<void(int64_t, int64_t)>& body)
+{
+  if (n <= 0)
+  {
+    return;
+  }
+  if (parallelFor)
+  {
+    parallelFor(n, grain, body);
+  }
+  else
+  {
+    body(0, n);
+  }
+}
+
+struct FaceRecord
+{
+  int64_t P[3];
+  int64_t Cell;
+  Vec Normal;
+};
+
+/// The bits of x (21 of them) moved to every third position: one axis of a Morton code.
+inline uint64_t SpreadBits(uint64_t x)
+{
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffull;
+  x = (x | x << 16) & 0x1f0000ff0000ffull;
+  x = (x | x << 8) & 0x100f00f00f00f00full;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+
+/// Sorts each bucket [offsets[b], offsets[b + 1]) of `items` by `before`, in parallel.
+template<typename Items, typename Before>
+void SortBuckets(Items& items,
+  const std::vector<int64_t>& offsets,
+  const Before& before,
+  const ParallelFor& parallelFor)
+{
+  Run(parallelFor,
+    static_cast<int64_t>(offsets.size()) - 1,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t b = begin; b < end; ++b)
+      {
+        std::sort(items.begin() + offsets[b], items.begin() + offsets[b + 1], before);
+      }
+    });
+}
+
+/// A point's position on the Morton curve, and its input id.
+struct CurveKey
+{
+  uint64_t Code;
+  int64_t Id;
+};
+
+/// Sorts `items` by `before` (a strict total order: the result does not depend on the
+/// schedule): runs sorted in parallel, then merged pairwise, level by level.
+template<typename T, typename Before>
+void ParallelSort(std::vector<T>& items, const Before& before, const ParallelFor& parallelFor)
+{
+  const int64_t n = static_cast<int64_t>(items.size());
+  int64_t runs = 1;
+  while (parallelFor && runs < 16 && n / (2 * runs) >= 16384)
+  {
+    runs *= 2;
+  }
+  auto bound = [&](int64_t run) { return n * run / runs; };
+  Run(parallelFor,
+    runs,
+    1,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t r = begin; r < end; ++r)
+      {
+        std::sort(items.begin() + bound(r), items.begin() + bound(r + 1), before);
+      }
+    });
+  std::vector<T> merged(runs > 1 ? n : 0);
+  for (int64_t width = 1; width < runs; width *= 2)
+  {
+    Run(parallelFor,
+      runs / (2 * width),
+      1,
+      [&](int64_t begin, int64_t end)
+      {
+        for (int64_t pair = begin; pair < end; ++pair)
+        {
+          const int64_t lo = bound(2 * pair * width), mid = bound((2 * pair + 1) * width);
+          const int64_t hi = bound((2 * pair + 2) * width);
+          std::merge(items.begin() + lo,
+            items.begin() + mid,
+            items.begin() + mid,
+            items.begin() + hi,
+            merged.begin() + lo,
+            before);
+        }
+      });
+    items.swap(merged);
+  }
+}
+
+/// An edge of the mesh: a group of equal edge records.
+struct EdgeGroup
+{
+  int64_t First, Last; // records [First, Last)
+  int64_t Cell;        // smallest input cell
+  int Faces;           // incident non-degenerate faces
+  Vec Tangent;         // unit, from its first end to its second
+};
+
+/// What bounds a vertex's domain (Manifold needs the neighbourhood's shape).
+enum VertexDomain : uint8_t
+{
+  Unbounded,
+  Polar,  // (x - p) . u <= 0 for every edge direction u: otherwise the edge is closer
+  Pyramid // Theorem 1's square pyramid (hyperbolic vertex)
+};
+
+/// MeshSites::Build's passes, in the order Build runs them, over what they share. Each
+/// pass that runs in parallel numbers what it makes as a serial loop would, so the sites
+/// and planes are the same whatever the schedule.
+class SiteBuilder
+{
+public:
+  SiteBuilder(const MeshInput& input,
+    Culling culling,
+    double slack,
+    const ParallelFor& parallelFor,
+    MeshSites& sites)
+    : In(input)
+    , Mode(culling)
+    , Slack(slack)
+    , For(parallelFor)
+    , Out(sites)
+    , P(input.Points.data())
+    , NumPoints(static_cast<int64_t>(input.Points.size() / 3))
+  {
+  }
+
+  /// Points that cells use, merged when their coordinates are identical, so that polygon
+  /// soups and duplicated points still get their topology (and tight domains), in the
+  /// order of a Morton curve. False and `error` on a bad id or coordinate; `Empty()`
+  /// afterwards when no cell uses a point.
+  bool MergePoints(std::string& error);
+  bool Empty() const { return this->NumVertices == 0; }
+  /// Faces (non-degenerate triangles) and every edge occurrence, bucketed by its
+  /// smaller point; the smallest input cell of every vertex.
+  void CollectFacesAndEdges();
+  /// The orientation that makes the pseudonormals point outward for closed meshes, and
+  /// the vertices' angle-weighted pseudonormals.
+  void VertexNormals();
+  /// One edge per group of equal records (unless degenerate), and the edges of every
+  /// vertex.
+  void GroupEdges();
+  /// What bounds every vertex's domain.
+  void ClassifyVertices();
+  /// The sites and their planes, in place: faces, edges, then vertices. False and
+  /// `error` when the planes overflow their 32-bit indices.
+  bool WriteSites(std::string& error);
+  /// How many sites got which kind of domain.
+  void CountDomains();
+
+private:
+  const double* X(int64_t c) const { return this->Points + 3 * c; }
+  void SortAlongCurve(std::vector<int64_t>& order) const;
+  void OrderTriangles();
+  void CountFacesAndEdges(std::vector<int64_t>& chunkFaces);
+  void WriteFacesAndEdges(const std::vector<int64_t>& chunkFaces);
+  void Corners(int64_t i, int64_t c[3]) const;
+  bool FaceNormal(const int64_t c[3], Vec& normal) const;
+  void UseVertex(int64_t v, int64_t cell);
+  void AddEdge(int64_t a, int64_t b, int64_t face, int64_t cell);
+  template<typename Visit>
+  int64_t ForEachGroup(int64_t a, const Visit& visit) const;
+  int64_t EdgeFace(int64_t e, int which) const;
+  Vec Away(const VertexEdge& eu) const;
+  VertexEdgeSpan IncidentEdges(int64_t v) const;
+  uint8_t Classify(int64_t v);
+  bool ClosedFan(int64_t v, const VertexEdgeSpan& incident) const;
+  bool PyramidAround(int64_t v, const VertexEdgeSpan& incident);
+  int EdgePlanes(int64_t e) const;
+  int VertexPlanes(int64_t v) const;
+  void SetPlane(uint32_t at, const Vec& n, const double* through, const double* anchor);
+  Site& InitSite(int64_t index, uint8_t type, int64_t cell, const double* anchor);
+  void WriteFaceSites();
+  void WriteEdgeSites();
+  void WriteVertexSites();
+
+  const MeshInput& In;
+  const Culling Mode;
+  const double Slack;
+  const ParallelFor& For;
+  MeshSites& Out;
+  const double* P;
+  const int64_t NumPoints;
+  // The merged points.
+  std::vector<int64_t> Canonical; // input id -> merged index
+  int64_t NumVertices = 0;
+  const double* Points = nullptr; // Out.SitePoints
+  double Degenerate = 0;          // features below this size carry no direction
+  // Faces and edge records.
+  std::vector<int64_t> TriangleOrder;
+  std::vector<uint8_t> IsFace;
+  LargeVector<FaceRecord> Faces;
+  std::vector<int64_t> EdgeStart;
+  // Per point: first the records of its bucket, then the next free record.
+  std::vector<std::atomic<int64_t>> EdgeFill;
+  LargeVector<EdgeRecord> Edges;
+  std::vector<std::atomic<int64_t>> VertexCell;
+  double Orientation = 1;
+  std::vector<Vec> VertexNormal;
+  // Edges and the edges of every vertex.
+  std::vector<int64_t> GroupStart;
+  LargeVector<EdgeGroup> EdgeGroups;
+  LargeVector<std::array<int64_t, 2>> EdgeEnds;
+  std::vector<int64_t> VertexEdgeOffsets;
+  LargeVector<VertexEdge> VertexEdges;
+  std::vector<std::vector<int64_t>> VertexFaces;
+  // Domains.
+  std::vector<uint8_t> Domain;
+  std::vector<std::array<Vec, 4>> PyramidSides;
+  std::vector<uint32_t> PlaneBegin;
+  int64_t NumFaces = 0, NumEdges = 0;
+};
+} // namespace sites
+} // namespace vtkdf
+
+#endif

@@ -1,0 +1,365 @@
+#include "LinearFactor/SiteBuilder.h"
+
+namespace vtkdf
+{
+namespace sites
+{
+void SiteBuilder::VertexNormals()
+{
+  const LargeVector<FaceRecord>& faces = this->Faces;
+  double volume = 0;
+  for (const FaceRecord& f : faces)
+  {
+    const Vec a = Sub(this->X(f.P[0]), this->X(0)), b = Sub(this->X(f.P[1]), this->X(0)),
+              c = Sub(this->X(f.P[2]), this->X(0));
+    volume += Dot(a, Cross(b, c));
+  }
+  this->Orientation = volume < 0 ? -1.0 : 1.0;
+  this->NumFaces = static_cast<int64_t>(faces.size());
+  // The corner angles in parallel, then summed in face order (the same sums either way).
+  std::vector<double> cornerAngle(3 * this->NumFaces);
+  Run(this->For,
+    this->NumFaces,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t fi = begin; fi < end; ++fi)
+      {
+        const FaceRecord& f = faces[fi];
+        for (int k = 0; k < 3; ++k)
+        {
+          const Vec u = Sub(this->X(f.P[(k + 1) % 3]), this->X(f.P[k]));
+          const Vec w = Sub(this->X(f.P[(k + 2) % 3]), this->X(f.P[k]));
+          cornerAngle[3 * fi + k] = std::atan2(Norm(Cross(u, w)), Dot(u, w));
+        }
+      }
+    });
+  this->VertexNormal.assign(this->NumVertices, Vec{ 0, 0, 0 });
+  for (int64_t fi = 0; fi < this->NumFaces; ++fi)
+  {
+    const FaceRecord& f = faces[fi];
+    for (int k = 0; k < 3; ++k)
+    {
+      this->VertexNormal[f.P[k]] = Add(
+        this->VertexNormal[f.P[k]], Scale(f.Normal, cornerAngle[3 * fi + k] * this->Orientation));
+    }
+  }
+}
+
+/// Calls visit(first, last, b) for every group of bucket a (records [first, last), edge
+/// from a to b) that is not degenerate; returns how many were.
+template<typename Visit>
+int64_t SiteBuilder::ForEachGroup(int64_t a, const Visit& visit) const
+{
+  int64_t degenerateGroups = 0;
+  for (int64_t e0 = this->EdgeStart[a]; e0 < this->EdgeStart[a + 1];)
+  {
+    int64_t e1 = e0 + 1;
+    while (e1 < this->EdgeStart[a + 1] && this->Edges[e1].B == this->Edges[e0].B)
+    {
+      ++e1;
+    }
+    if (Norm(Sub(this->X(this->Edges[e0].B), this->X(a))) <= this->Degenerate)
+    {
+      ++degenerateGroups;
+    }
+    else
+    {
+      visit(e0, e1, this->Edges[e0].B);
+    }
+    e0 = e1;
+  }
+  return degenerateGroups;
+}
+
+// A group lies in one bucket (the records of one smaller point), so the buckets are
+// counted, then written, in parallel; edges are numbered in bucket order, as a serial
+// loop would.
+void SiteBuilder::GroupEdges()
+{
+  const int64_t nv = this->NumVertices;
+  this->GroupStart.assign(nv + 1, 0);
+  std::atomic<int64_t> degenerateEdges{ 0 };
+  Run(this->For,
+    nv,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      int64_t local = 0;
+      for (int64_t a = begin; a < end; ++a)
+      {
+        int64_t count = 0;
+        local += this->ForEachGroup(a, [&](int64_t, int64_t, int64_t) { ++count; });
+        this->GroupStart[a + 1] = count;
+      }
+      degenerateEdges += local;
+    });
+  this->Out.Statistics.DegenerateEdges = degenerateEdges.load();
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    this->GroupStart[v + 1] += this->GroupStart[v];
+  }
+  this->NumEdges = this->GroupStart[nv];
+  this->EdgeGroups.resize(this->NumEdges);
+  this->EdgeEnds.resize(this->NumEdges);
+  std::vector<std::atomic<int64_t>> vertexEdgeCount(nv + 1); // value-initialized: zeros
+  Run(this->For,
+    nv,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t a = begin; a < end; ++a)
+      {
+        int64_t e = this->GroupStart[a];
+        this->ForEachGroup(a,
+          [&](int64_t first, int64_t last, int64_t b)
+          {
+            EdgeGroup& group = this->EdgeGroups[e];
+            group.First = first;
+            group.Last = last;
+            group.Cell = INT64_MAX;
+            group.Faces = 0;
+            for (int64_t r = first; r < last; ++r)
+            {
+              group.Cell = std::min(group.Cell, this->Edges[r].Cell);
+              group.Faces += this->Edges[r].Face >= 0;
+            }
+            const Vec t = Sub(this->X(b), this->X(a));
+            group.Tangent = Scale(t, 1.0 / Norm(t));
+            this->EdgeEnds[e] = { a, b };
+            vertexEdgeCount[a + 1].fetch_add(1, std::memory_order_relaxed);
+            vertexEdgeCount[b + 1].fetch_add(1, std::memory_order_relaxed);
+            ++e;
+          });
+      }
+    });
+
+  // The edges of every vertex, contiguous per vertex, in edge order: (edge, direction
+  // away from it). Filled in parallel, then each vertex's few sorted.
+  this->VertexEdgeOffsets.assign(nv + 1, 0);
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    this->VertexEdgeOffsets[v + 1] =
+      this->VertexEdgeOffsets[v] + vertexEdgeCount[v + 1].load(std::memory_order_relaxed);
+  }
+  std::vector<std::atomic<int64_t>>& vertexEdgeFill = vertexEdgeCount; // the next free entry
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    vertexEdgeFill[v].store(this->VertexEdgeOffsets[v], std::memory_order_relaxed);
+  }
+  this->VertexEdges.resize(this->VertexEdgeOffsets[nv]);
+  Run(this->For,
+    this->NumEdges,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t e = begin; e < end; ++e)
+      {
+        for (int side = 0; side < 2; ++side)
+        {
+          const int64_t at =
+            vertexEdgeFill[this->EdgeEnds[e][side]].fetch_add(1, std::memory_order_relaxed);
+          this->VertexEdges[at] = { e, side == 0 ? 1.0 : -1.0 };
+        }
+      }
+    });
+  SortBuckets(
+    this->VertexEdges,
+    this->VertexEdgeOffsets,
+    [](const VertexEdge& x, const VertexEdge& y) { return x.Edge < y.Edge; },
+    this->For);
+}
+
+/// The faces of an edge (records with a face come last in a group: sorted by Face).
+int64_t SiteBuilder::EdgeFace(int64_t e, int which) const
+{
+  return this->Edges[this->EdgeGroups[e].Last - this->EdgeGroups[e].Faces + which].Face;
+}
+
+/// The unit direction of an edge away from the vertex it is seen from.
+Vec SiteBuilder::Away(const VertexEdge& eu) const
+{
+  return Scale(this->EdgeGroups[eu.Edge].Tangent, eu.Sign);
+}
+
+VertexEdgeSpan SiteBuilder::IncidentEdges(int64_t v) const
+{
+  return VertexEdgeSpan{ this->VertexEdges.data() + this->VertexEdgeOffsets[v],
+    static_cast<size_t>(this->VertexEdgeOffsets[v + 1] - this->VertexEdgeOffsets[v]) };
+}
+
+void SiteBuilder::ClassifyVertices()
+{
+  const int64_t nv = this->NumVertices;
+  if (this->Mode == Culling::Manifold)
+  {
+    this->VertexFaces.resize(nv);
+    for (size_t f = 0; f < this->Faces.size(); ++f)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        this->VertexFaces[this->Faces[f].P[k]].push_back(static_cast<int64_t>(f));
+      }
+    }
+    this->PyramidSides.resize(nv);
+  }
+  this->Domain.assign(nv, Unbounded);
+  Run(this->For,
+    nv,
+    1024,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t v = begin; v < end; ++v)
+      {
+        this->Domain[v] = this->Classify(v);
+      }
+    });
+}
+
+uint8_t SiteBuilder::Classify(int64_t v)
+{
+  const VertexEdgeSpan incident = this->IncidentEdges(v);
+  if (this->Mode != Culling::Manifold)
+  {
+    return this->Mode == Culling::Auto && !incident.empty() ? Polar : Unbounded;
+  }
+  // Manifold culling: only where the faces around v form one closed fan.
+  if (!this->ClosedFan(v, incident))
+  {
+    return Unbounded;
+  }
+  // Convex or concave vertex (every incident edge bends the same way): the polytope
+  // spanned by the face normals, i.e. the planes orthogonal to the edges.
+  int convex = 0, concave = 0;
+  for (const auto& eu : incident)
+  {
+    const FaceRecord& f0 = this->Faces[this->EdgeFace(eu.Edge, 0)];
+    const FaceRecord& f1 = this->Faces[this->EdgeFace(eu.Edge, 1)];
+    const int64_t a = this->EdgeEnds[eu.Edge][0], b = this->EdgeEnds[eu.Edge][1];
+    int64_t c1 = f1.P[0];
+    for (int k = 0; k < 3; ++k)
+    {
+      if (f1.P[k] != a && f1.P[k] != b)
+      {
+        c1 = f1.P[k];
+      }
+    }
+    const double bend = Dot(Scale(f0.Normal, this->Orientation), Sub(this->X(c1), this->X(a)));
+    convex += bend <= 0;
+    concave += bend >= 0;
+  }
+  if (convex == static_cast<int>(incident.size()) || concave == static_cast<int>(incident.size()))
+  {
+    return Polar;
+  }
+  return this->PyramidAround(v, incident) ? Pyramid : Unbounded;
+}
+
+/// Whether the faces around v form one closed fan: every incident edge has two faces, as
+/// many as the faces around v, and a walk around them visits each once.
+bool SiteBuilder::ClosedFan(int64_t v, const VertexEdgeSpan& incident) const
+{
+  const auto& fan = this->VertexFaces[v];
+  bool closed = !incident.empty() && fan.size() == incident.size();
+  for (const auto& eu : incident)
+  {
+    closed = closed && this->EdgeGroups[eu.Edge].Faces == 2;
+  }
+  if (!closed)
+  {
+    return false;
+  }
+  size_t steps = 0;
+  int64_t edge = incident[0].Edge, face = this->EdgeFace(edge, 0);
+  const int64_t startFace = face;
+  do
+  {
+    ++steps;
+    int64_t next = -1;
+    for (const auto& eu : incident)
+    {
+      if (eu.Edge != edge &&
+        (this->EdgeFace(eu.Edge, 0) == face || this->EdgeFace(eu.Edge, 1) == face))
+      {
+        next = eu.Edge;
+      }
+    }
+    if (next < 0)
+    {
+      return false;
+    }
+    edge = next;
+    face = this->EdgeFace(edge, 0) == face ? this->EdgeFace(edge, 1) : this->EdgeFace(edge, 0);
+  } while (face != startFace && steps <= fan.size());
+  return steps == fan.size();
+}
+
+/// A hyperbolic vertex (Theorem 1): the cone about the mean normal n_a whose half-angle
+/// is the largest angle between n_a and a face normal, circumscribed by a square pyramid
+/// (PyramidSides[v]); false when there is none or it does not hold the exact domain.
+bool SiteBuilder::PyramidAround(int64_t v, const VertexEdgeSpan& incident)
+{
+  const auto& fan = this->VertexFaces[v];
+  Vec na{ 0, 0, 0 };
+  for (int64_t f : fan)
+  {
+    na = Add(na, this->Faces[f].Normal);
+  }
+  const double nal = Norm(na);
+  double cosTheta = 1;
+  if (nal > 0)
+  {
+    na = Scale(na, 1.0 / nal);
+    for (int64_t f : fan)
+    {
+      cosTheta = std::min(cosTheta, Dot(na, this->Faces[f].Normal));
+    }
+  }
+  if (!(nal > 0 && cosTheta > 1e-6)) // theta >= pi/2: no pyramid
+  {
+    return false;
+  }
+  const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+  Vec b1 = std::fabs(na[0]) < 0.9 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
+  b1 = Sub(b1.data(), Scale(na, Dot(b1, na)).data());
+  b1 = Scale(b1, 1.0 / Norm(b1));
+  const Vec b2 = Cross(na, b1);
+  // The cone's tangent planes along +-b1, +-b2: a square pyramid containing the cone.
+  std::array<Vec, 4>& sides = this->PyramidSides[v];
+  const Vec directions[4] = { b1, Scale(b1, -1), b2, Scale(b2, -1) };
+  for (int i = 0; i < 4; ++i)
+  {
+    sides[i] = Sub(Scale(na, sinTheta).data(), Scale(directions[i], cosTheta).data());
+  }
+  // Theorem 1 is stated for saddles; check that the exact domain (the cone of
+  // directions y with y.u <= 0 for every edge u) really lies in the pyramid.
+  bool pyramid = true;
+  double rank = 0;
+  for (size_t i = 0; i < incident.size(); ++i)
+  {
+    for (size_t j = i + 1; j < incident.size(); ++j)
+    {
+      const Vec r = Cross(this->Away(incident[i]), this->Away(incident[j]));
+      for (const auto& eu : incident)
+      {
+        rank = std::max(rank, std::fabs(Dot(r, this->Away(eu))));
+      }
+      for (double sign : { 1.0, -1.0 })
+      {
+        const Vec ray = Scale(r, sign);
+        bool inDomain = Norm(ray) > 1e-12;
+        for (const auto& eu : incident)
+        {
+          inDomain = inDomain && Dot(ray, this->Away(eu)) <= 1e-12;
+        }
+        for (const Vec& w : sides)
+        {
+          pyramid = pyramid && (!inDomain || Dot(ray, w) >= -1e-12);
+        }
+      }
+    }
+  }
+  return pyramid && rank > 1e-9;
+}
+} // namespace sites
+} // namespace vtkdf

@@ -1,0 +1,378 @@
+#include "LinearFactor/SiteBuilder.h"
+
+#include "Common/FloatBounds.h"
+
+#include <numeric>
+
+namespace vtkdf
+{
+namespace sites
+{
+bool SiteBuilder::MergePoints(std::string& error)
+{
+  const double* P = this->P;
+  const int64_t numPoints = this->NumPoints;
+  std::vector<char> used(numPoints, 0);
+  auto markUsed = [&](const std::vector<int64_t>& ids) -> bool
+  {
+    for (int64_t id : ids)
+    {
+      if (id < 0 || id >= numPoints)
+      {
+        error = "a cell refers to point " + std::to_string(id) + " of " + std::to_string(numPoints);
+        return false;
+      }
+      used[id] = 1;
+    }
+    return true;
+  };
+  if (!markUsed(this->In.Triangles) || !markUsed(this->In.Segments) || !markUsed(this->In.Vertices))
+  {
+    return false;
+  }
+  std::vector<int64_t> order;
+  for (int64_t i = 0; i < numPoints; ++i)
+  {
+    if (used[i])
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        if (!std::isfinite(P[3 * i + a]))
+        {
+          error = "point " + std::to_string(i) + " has a NaN or infinite coordinate";
+          return false;
+        }
+      }
+      order.push_back(i);
+    }
+  }
+  if (order.empty())
+  {
+    return true;
+  }
+  this->SortAlongCurve(order);
+  this->Canonical.assign(numPoints, -1);
+  std::vector<int64_t> merged; // canonical index -> input point id
+  for (size_t k = 0; k < order.size(); ++k)
+  {
+    const int64_t id = order[k];
+    if (k > 0 && std::equal(P + 3 * id, P + 3 * id + 3, P + 3 * order[k - 1]))
+    {
+      this->Canonical[id] = this->Canonical[order[k - 1]];
+      ++this->Out.Statistics.MergedPoints;
+    }
+    else
+    {
+      this->Canonical[id] = static_cast<int64_t>(merged.size());
+      merged.push_back(id);
+    }
+  }
+  const int64_t nv = static_cast<int64_t>(merged.size());
+  this->NumVertices = nv;
+  // The merged points, contiguous in curve order: every later pass reads them there.
+  this->Out.SitePoints.resize(3 * nv);
+  for (int64_t c = 0; c < nv; ++c)
+  {
+    std::copy(P + 3 * merged[c], P + 3 * merged[c] + 3, &this->Out.SitePoints[3 * c]);
+  }
+  this->Points = this->Out.SitePoints.data();
+  double* bounds = this->Out.Bounds;
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = this->X(0)[a];
+    bounds[2 * a + 1] = this->X(0)[a];
+  }
+  for (int64_t c = 0; c < nv; ++c)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = std::min(bounds[2 * a], this->X(c)[a]);
+      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], this->X(c)[a]);
+    }
+  }
+  const double diagonal =
+    std::hypot(bounds[1] - bounds[0], std::hypot(bounds[3] - bounds[2], bounds[5] - bounds[4]));
+  this->Degenerate = 1e-10 * (diagonal > 0 ? diagonal : 1.0);
+  return true;
+}
+
+/// Sorts the points along a Morton curve (identical points stay adjacent, so they merge
+/// afterwards): sites, planes and every later pass then walk memory in space order, which
+/// matters for large polygon soups whose input order is arbitrary.
+void SiteBuilder::SortAlongCurve(std::vector<int64_t>& order) const
+{
+  const double* P = this->P;
+  double lo[3], hi[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = hi[a] = P[3 * order[0] + a];
+  }
+  for (int64_t id : order)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], P[3 * id + a]);
+      hi[a] = std::max(hi[a], P[3 * id + a]);
+    }
+  }
+  const double side = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
+  // 21 bits per axis. Points a denormal distance apart (side below 2^-1003) would
+  // overflow the scale: they take the division instead.
+  const double scale = side > 0 ? 2097151.0 / side : 0.0;
+  const bool finiteScale = std::isfinite(scale);
+  std::vector<CurveKey> keys(order.size());
+  Run(this->For,
+    static_cast<int64_t>(order.size()),
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t i = begin; i < end; ++i)
+      {
+        const double* x = P + 3 * order[i];
+        uint64_t code = 0;
+        for (int a = 0; a < 3; ++a)
+        {
+          const double cell =
+            finiteScale ? (x[a] - lo[a]) * scale : (x[a] - lo[a]) / side * 2097151.0;
+          code |= SpreadBits(static_cast<uint64_t>(std::min(cell, 2097151.0))) << a;
+        }
+        keys[i] = { code, order[i] };
+      }
+    });
+  // The curve, then the coordinates (identical points end up adjacent), then the id.
+  ParallelSort(
+    keys,
+    [P](const CurveKey& x, const CurveKey& y)
+    {
+      if (x.Code != y.Code)
+      {
+        return x.Code < y.Code;
+      }
+      const double *px = P + 3 * x.Id, *py = P + 3 * y.Id;
+      return std::lexicographical_compare(px, px + 3, py, py + 3) ||
+        (std::equal(px, px + 3, py) && x.Id < y.Id);
+    },
+    this->For);
+  for (size_t i = 0; i < keys.size(); ++i)
+  {
+    order[i] = keys[i].Id;
+  }
+}
+
+/// Triangles in the order of their first corner on the curve (a counting sort).
+void SiteBuilder::OrderTriangles()
+{
+  const std::vector<int64_t>& triangles = this->In.Triangles;
+  const int64_t numTriangles = static_cast<int64_t>(triangles.size() / 3);
+  this->TriangleOrder.resize(numTriangles);
+  std::vector<int64_t> start(this->NumVertices + 1, 0);
+  auto key = [&](int64_t t)
+  {
+    return std::min(this->Canonical[triangles[3 * t]],
+      std::min(this->Canonical[triangles[3 * t + 1]], this->Canonical[triangles[3 * t + 2]]));
+  };
+  for (int64_t t = 0; t < numTriangles; ++t)
+  {
+    ++start[key(t) + 1];
+  }
+  for (int64_t v = 0; v < this->NumVertices; ++v)
+  {
+    start[v + 1] += start[v];
+  }
+  for (int64_t t = 0; t < numTriangles; ++t)
+  {
+    this->TriangleOrder[start[key(t)]++] = t;
+  }
+}
+
+/// The merged corners of the triangle at position i of TriangleOrder.
+void SiteBuilder::Corners(int64_t i, int64_t c[3]) const
+{
+  const int64_t* ids = &this->In.Triangles[3 * this->TriangleOrder[i]];
+  c[0] = this->Canonical[ids[0]], c[1] = this->Canonical[ids[1]], c[2] = this->Canonical[ids[2]];
+}
+
+/// Whether corners c make a face, and then its unit normal.
+bool SiteBuilder::FaceNormal(const int64_t c[3], Vec& normal) const
+{
+  if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
+  {
+    return false;
+  }
+  const Vec e1 = Sub(this->X(c[1]), this->X(c[0])), e2 = Sub(this->X(c[2]), this->X(c[0]));
+  const Vec e3 = Sub(this->X(c[2]), this->X(c[1]));
+  const Vec n = Cross(e1, e2);
+  const double area2 = Norm(n);
+  const double longest = std::max(Norm(e1), std::max(Norm(e2), Norm(e3)));
+  if (!(area2 > this->Degenerate * longest))
+  {
+    return false;
+  }
+  normal = Scale(n, 1.0 / area2);
+  return true;
+}
+
+void SiteBuilder::UseVertex(int64_t v, int64_t cell)
+{
+  std::atomic<int64_t>& smallest = this->VertexCell[v];
+  int64_t old = smallest.load(std::memory_order_relaxed);
+  while (cell < old && !smallest.compare_exchange_weak(old, cell, std::memory_order_relaxed))
+  {
+  }
+}
+
+/// Appends an edge record to the bucket of its smaller point.
+void SiteBuilder::AddEdge(int64_t a, int64_t b, int64_t face, int64_t cell)
+{
+  if (a != b)
+  {
+    const int64_t at = this->EdgeFill[std::min(a, b)].fetch_add(1, std::memory_order_relaxed);
+    this->Edges[at] = { std::min(a, b), std::max(a, b), face, cell };
+  }
+}
+
+// Two passes over fixed chunks of TriangleOrder, so that faces are numbered as a serial
+// loop would number them whatever the schedule: count faces and edge records, then write
+// them. Edge records go straight into buckets by their smaller point (a counting sort);
+// sorting each small bucket by (B, Face) then orders them all by (A, B, Face), whatever
+// order the threads filled it in.
+constexpr int64_t Chunk = 4096;
+
+void SiteBuilder::CollectFacesAndEdges()
+{
+  const int64_t nv = this->NumVertices;
+  this->OrderTriangles();
+  const int64_t numTriangles = static_cast<int64_t>(this->TriangleOrder.size());
+  std::vector<int64_t> chunkFaces((numTriangles + Chunk - 1) / Chunk + 1, 0);
+  this->CountFacesAndEdges(chunkFaces);
+  const int64_t numChunks = static_cast<int64_t>(chunkFaces.size()) - 1;
+  this->EdgeStart.assign(nv + 1, 0);
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    this->EdgeStart[v + 1] =
+      this->EdgeStart[v] + this->EdgeFill[v + 1].load(std::memory_order_relaxed);
+  }
+  for (int64_t chunk = 0; chunk < numChunks; ++chunk)
+  {
+    chunkFaces[chunk + 1] += chunkFaces[chunk];
+  }
+  this->Faces.resize(chunkFaces[numChunks]);
+  this->Out.Statistics.DegenerateFaces = numTriangles - chunkFaces[numChunks];
+  this->Edges.resize(this->EdgeStart[nv]);
+  for (int64_t v = 0; v < nv; ++v)
+  {
+    this->EdgeFill[v].store(this->EdgeStart[v], std::memory_order_relaxed);
+  }
+  // The smallest input cell using each point (ClosestCellId of its vertex site).
+  this->VertexCell = std::vector<std::atomic<int64_t>>(nv);
+  for (auto& cell : this->VertexCell)
+  {
+    cell.store(INT64_MAX, std::memory_order_relaxed);
+  }
+  this->WriteFacesAndEdges(chunkFaces);
+  SortBuckets(
+    this->Edges,
+    this->EdgeStart,
+    [](const EdgeRecord& x, const EdgeRecord& y)
+    { return x.B != y.B ? x.B < y.B : x.Face < y.Face; },
+    this->For);
+}
+
+/// The faces of every chunk of TriangleOrder (chunkFaces[chunk + 1]) and the edge
+/// records of every bucket (EdgeFill[a + 1]).
+void SiteBuilder::CountFacesAndEdges(std::vector<int64_t>& chunkFaces)
+{
+  const int64_t numTriangles = static_cast<int64_t>(this->TriangleOrder.size());
+  const int64_t numChunks = static_cast<int64_t>(chunkFaces.size()) - 1;
+  this->EdgeFill = std::vector<std::atomic<int64_t>>(this->NumVertices + 1); // zeros
+  this->IsFace.resize(numTriangles);
+  Run(this->For,
+    numChunks,
+    1,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t chunk = begin; chunk < end; ++chunk)
+      {
+        int64_t count = 0;
+        for (int64_t i = chunk * Chunk; i < std::min(numTriangles, (chunk + 1) * Chunk); ++i)
+        {
+          int64_t c[3];
+          this->Corners(i, c);
+          Vec normal;
+          this->IsFace[i] = this->FaceNormal(c, normal);
+          count += this->IsFace[i];
+          for (int k = 0; k < 3; ++k)
+          {
+            const int64_t a = c[k], b = c[(k + 1) % 3];
+            if (a != b)
+            {
+              this->EdgeFill[std::min(a, b) + 1].fetch_add(1, std::memory_order_relaxed);
+            }
+          }
+        }
+        chunkFaces[chunk + 1] = count;
+      }
+    });
+  const std::vector<int64_t>& segments = this->In.Segments;
+  for (size_t s = 0; s < segments.size() / 2; ++s)
+  {
+    const int64_t a = this->Canonical[segments[2 * s]], b = this->Canonical[segments[2 * s + 1]];
+    this->EdgeFill[std::min(a, b) + 1] += a != b;
+  }
+}
+
+/// The faces (numbered from chunkFaces, the chunks' first faces), the edge records of
+/// triangles, segments and the vertices' smallest cells.
+void SiteBuilder::WriteFacesAndEdges(const std::vector<int64_t>& chunkFaces)
+{
+  const int64_t numTriangles = static_cast<int64_t>(this->TriangleOrder.size());
+  const int64_t numChunks = static_cast<int64_t>(chunkFaces.size()) - 1;
+  Run(this->For,
+    numChunks,
+    1,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t chunk = begin; chunk < end; ++chunk)
+      {
+        int64_t face = chunkFaces[chunk];
+        for (int64_t i = chunk * Chunk; i < std::min(numTriangles, (chunk + 1) * Chunk); ++i)
+        {
+          const int64_t cell = this->In.TriangleCells[this->TriangleOrder[i]];
+          int64_t c[3];
+          this->Corners(i, c);
+          for (int k = 0; k < 3; ++k)
+          {
+            this->UseVertex(c[k], cell);
+          }
+          int64_t id = -1;
+          if (this->IsFace[i])
+          {
+            id = face++;
+            FaceRecord& f = this->Faces[id];
+            this->FaceNormal(c, f.Normal);
+            std::copy(c, c + 3, f.P);
+            f.Cell = cell;
+          }
+          for (int k = 0; k < 3; ++k)
+          {
+            this->AddEdge(c[k], c[(k + 1) % 3], id, cell);
+          }
+        }
+      }
+    });
+  const std::vector<int64_t>& segments = this->In.Segments;
+  for (size_t s = 0; s < segments.size() / 2; ++s)
+  {
+    const int64_t a = this->Canonical[segments[2 * s]], b = this->Canonical[segments[2 * s + 1]];
+    const int64_t cell = this->In.SegmentCells[s];
+    this->UseVertex(a, cell);
+    this->UseVertex(b, cell);
+    this->AddEdge(a, b, -1, cell);
+  }
+  for (size_t v = 0; v < this->In.Vertices.size(); ++v)
+  {
+    this->UseVertex(this->Canonical[this->In.Vertices[v]], this->In.VertexCells[v]);
+  }
+}
+} // namespace sites
+} // namespace vtkdf
