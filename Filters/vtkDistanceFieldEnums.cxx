@@ -103,7 +103,7 @@ const EnumTable LinearFactorSign("SignMode",
   { { 0, "Unsigned", "unsigned" },
     { 1, "PseudoNormal", "pseudonormal" },
     { 2, "WindingNumber", "winding" } });
-const EnumTable Culling("Culling",
+const EnumTable DomainShape("DomainShape",
   { "LinearFactorDistanceField" },
   { { 0, "Auto", "auto" }, { 1, "NonManifold", "nonmanifold" }, { 2, "Manifold", "manifold" } });
 const EnumTable Route("Route",

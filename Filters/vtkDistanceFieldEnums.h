@@ -55,7 +55,7 @@ namespace enums
 {
 extern VTKDISTANCEFIELDS_EXPORT const EnumTable Backend;
 extern VTKDISTANCEFIELDS_EXPORT const EnumTable LinearFactorSign;
-extern VTKDISTANCEFIELDS_EXPORT const EnumTable Culling;
+extern VTKDISTANCEFIELDS_EXPORT const EnumTable DomainShape;
 extern VTKDISTANCEFIELDS_EXPORT const EnumTable Route;
 extern VTKDISTANCEFIELDS_EXPORT const EnumTable VoxelMode;
 extern VTKDISTANCEFIELDS_EXPORT const EnumTable Metric;

@@ -68,7 +68,7 @@ vtkdf::RunStatus vtkLinearFactorDistanceField::Execute(vtkInformationVector** in
   }
   vtkdf::HeadlessGL* gl = run.Context();
   request.SignContext = vtkdf::SignContext(run.Plan());
-  request.Domains = static_cast<vtkdf::Culling>(this->Culling);
+  request.Domains = static_cast<vtkdf::DomainShape>(this->DomainShape);
   request.Route = static_cast<vtkdf::FieldRoute>(this->Route);
   request.Sign = static_cast<vtkdf::SignMode>(this->SignMode);
   request.MaximumDistance = this->MaximumDistance;
@@ -156,7 +156,7 @@ bool vtkLinearFactorDistanceField::CheckProperties()
 {
   if (!this->Superclass::CheckProperties() ||
     !this->CheckEnum(this->SignMode, vtkdf::enums::LinearFactorSign) ||
-    !this->CheckEnum(this->Culling, vtkdf::enums::Culling) ||
+    !this->CheckEnum(this->DomainShape, vtkdf::enums::DomainShape) ||
     !this->CheckEnum(this->Route, vtkdf::enums::Route))
   {
     return false;
@@ -174,7 +174,7 @@ void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SignMode: " << vtkdf::enums::LinearFactorSign.Name(this->SignMode) << "\n";
-  os << indent << "Culling: " << vtkdf::enums::Culling.Name(this->Culling) << "\n";
+  os << indent << "DomainShape: " << vtkdf::enums::DomainShape.Name(this->DomainShape) << "\n";
   os << indent << "Route: " << vtkdf::enums::Route.Name(this->Route) << "\n";
   os << indent << "LastRoute: " << this->LastRoute << "\n";
   os << indent << "MaximumDistance: " << this->MaximumDistance << "\n";

@@ -18,7 +18,7 @@
  * `ClosestFeature` (uint8: 0 vertex, 1 edge, 2 face interior), `ClosestPoint` (float
  * x3), `WindingNumber` (float).
  *
- * Domains (Culling): Auto gives every site the tightest exact domain whatever the
+ * Domains (DomainShape): Auto gives every site the tightest exact domain whatever the
  * topology (edges bounded by all incident faces, vertices by the planes orthogonal to
  * all incident edges); NonManifold uses the triangle prism, the edge slab and the whole
  * slice for points; Manifold uses the paper's manifold domains (edge wedge,
@@ -33,6 +33,7 @@
 #ifndef vtkLinearFactorDistanceField_h
 #define vtkLinearFactorDistanceField_h
 
+#include "vtkDeprecation.h" // For VTK_DEPRECATION
 #include "vtkDistanceFieldAlgorithm.h"
 #include "vtkDistanceFieldsModule.h" // For export macro
 
@@ -71,17 +72,42 @@ public:
   void SetSignModeToPseudoNormal() { this->SetSignMode(PSEUDO_NORMAL); }
   void SetSignModeToWindingNumber() { this->SetSignMode(WINDING_NUMBER); }
 
+  /// The sites' domains (above): Auto (the default), NonManifold or Manifold.
+  enum DomainShapeType
+  {
+    DOMAIN_SHAPE_AUTO = 0,
+    DOMAIN_SHAPE_NON_MANIFOLD = 1,
+    DOMAIN_SHAPE_MANIFOLD = 2
+  };
+  vtkSetMacro(DomainShape, int);
+  vtkGetMacro(DomainShape, int);
+  void SetDomainShapeToAuto() { this->SetDomainShape(DOMAIN_SHAPE_AUTO); }
+  void SetDomainShapeToNonManifold() { this->SetDomainShape(DOMAIN_SHAPE_NON_MANIFOLD); }
+  void SetDomainShapeToManifold() { this->SetDomainShape(DOMAIN_SHAPE_MANIFOLD); }
+
+  ///@{
+  /**
+   * The earlier name of DomainShape, kept for existing code: it chooses the domains'
+   * shapes, while range culling is another step that always runs.
+   * @deprecated Use SetDomainShape()/GetDomainShape() and the DOMAIN_SHAPE_ values.
+   */
   enum CullingType
   {
-    CULLING_AUTO = 0,
-    CULLING_NON_MANIFOLD = 1,
-    CULLING_MANIFOLD = 2
+    CULLING_AUTO = DOMAIN_SHAPE_AUTO,
+    CULLING_NON_MANIFOLD = DOMAIN_SHAPE_NON_MANIFOLD,
+    CULLING_MANIFOLD = DOMAIN_SHAPE_MANIFOLD
   };
-  vtkSetMacro(Culling, int);
-  vtkGetMacro(Culling, int);
-  void SetCullingToAuto() { this->SetCulling(CULLING_AUTO); }
-  void SetCullingToNonManifold() { this->SetCulling(CULLING_NON_MANIFOLD); }
-  void SetCullingToManifold() { this->SetCulling(CULLING_MANIFOLD); }
+  VTK_DEPRECATION("Culling is now DomainShape: use SetDomainShape")
+  void SetCulling(int value) { this->SetDomainShape(value); }
+  VTK_DEPRECATION("Culling is now DomainShape: use GetDomainShape")
+  int GetCulling() { return this->GetDomainShape(); }
+  VTK_DEPRECATION("Culling is now DomainShape: use SetDomainShapeToAuto")
+  void SetCullingToAuto() { this->SetDomainShape(DOMAIN_SHAPE_AUTO); }
+  VTK_DEPRECATION("Culling is now DomainShape: use SetDomainShapeToNonManifold")
+  void SetCullingToNonManifold() { this->SetDomainShape(DOMAIN_SHAPE_NON_MANIFOLD); }
+  VTK_DEPRECATION("Culling is now DomainShape: use SetDomainShapeToManifold")
+  void SetCullingToManifold() { this->SetDomainShape(DOMAIN_SHAPE_MANIFOLD); }
+  ///@}
 
   /// How the CPU finds each sample's nearest feature. SiteScan: the linear factorization
   /// above. SampleQueries: one nearest-triangle query per sample through a bounding-volume
@@ -169,7 +195,7 @@ protected:
   std::string PointCloudRefusal() override;
 
   int SignMode = UNSIGNED;
-  int Culling = CULLING_AUTO;
+  int DomainShape = DOMAIN_SHAPE_AUTO;
   int Route = ROUTE_AUTO;
   double MaximumDistance = 0;
   bool ComputeDistance = true;

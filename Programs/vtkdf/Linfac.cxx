@@ -17,7 +17,7 @@ namespace vtkdf::cli
 int Linfac(int argc, char* argv[])
 {
   CommonOptions common;
-  std::string png, arrays = "distance,cellid", culling = "auto", route = "auto", sign;
+  std::string png, arrays = "distance,cellid", domains = "auto", culling, route = "auto", sign;
   double maxDistance = 0;
   bool signedField = false;
   ParseOptions(argc,
@@ -25,6 +25,7 @@ int Linfac(int argc, char* argv[])
     common,
     { Flag("--signed", signedField),
       Text("--sign", sign),
+      Text("--domains", domains),
       Text("--culling", culling),
       Text("--route", route),
       Text("--arrays", arrays),
@@ -33,7 +34,14 @@ int Linfac(int argc, char* argv[])
   vtkNew<vtkLinearFactorDistanceField> filter;
   filter->SetInputData(ReadMeshOrExit(argv[2]));
   Configure(filter, common);
-  filter->SetCulling(EnumWord("--culling", culling, vtkdf::enums::Culling));
+  // --culling: the earlier name of --domains, still read.
+  if (!culling.empty())
+  {
+    std::fprintf(stderr, "vtkdf: --culling is deprecated: use --domains\n");
+  }
+  filter->SetDomainShape(culling.empty()
+      ? EnumWord("--domains", domains, vtkdf::enums::DomainShape)
+      : EnumWord("--culling", culling, vtkdf::enums::DomainShape));
   filter->SetRoute(EnumWord("--route", route, vtkdf::enums::Route));
   // --sign implies --signed; --signed alone is the pseudonormal sign.
   if (!sign.empty() || signedField)

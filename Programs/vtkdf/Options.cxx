@@ -22,7 +22,7 @@ void PrintUsage(FILE* out)
   // options are parsed with too.
   std::string text =
     "usage: vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--sign {linfac-sign}]\n"
-    "             [--backend {backend}] [--culling {culling}]\n"
+    "             [--backend {backend}] [--domains {domains}]\n"
     "             [--route {route}]\n"
     "             [--arrays distance,cellid,feature,point,winding] [--max-distance D]\n"
     "             [--png SLICE.png] [--timing]\n"
@@ -64,7 +64,7 @@ void PrintUsage(FILE* out)
   const std::pair<const char*, const vtkdf::EnumTable*> words[] = {
     { "{backend}", &vtkdf::enums::Backend },
     { "{linfac-sign}", &vtkdf::enums::LinearFactorSign },
-    { "{culling}", &vtkdf::enums::Culling },
+    { "{domains}", &vtkdf::enums::DomainShape },
     { "{route}", &vtkdf::enums::Route },
     { "{mode}", &vtkdf::enums::VoxelMode },
     { "{metric}", &vtkdf::enums::Metric },

@@ -2,7 +2,7 @@
 // subcommands, one file each (Subcommands.h), over a shared option parser (Options.h).
 //
 //   vtkdf linfac MESH -o OUT.vti [grid] [--signed] [--sign pseudonormal|winding]
-//         [--backend auto|gpu|cpu] [--culling auto|nonmanifold|manifold]
+//         [--backend auto|gpu|cpu] [--domains auto|nonmanifold|manifold]
 //         [--route auto|scan|queries]
 //         [--arrays distance,cellid,feature,point,winding]
 //         [--max-distance D] [--png SLICE.png] [--timing]

@@ -70,7 +70,8 @@ def configure(f, sub, options, contour=None):
         value = words[i + 1] if i + 1 < len(words) else None
         i += 2
         enums = {"--backend": ("Backend", ["auto", "gpu", "cpu"]),
-                 "--culling": ("Culling", ["auto", "nonmanifold", "manifold"]),
+                 "--domains": ("DomainShape", ["auto", "nonmanifold", "manifold"]),
+                 "--culling": ("DomainShape", ["auto", "nonmanifold", "manifold"]),
                  "--route": ("Route", ["auto", "scan", "queries"]),
                  "--mode": ("Mode", ["boundary", "solid", "both"]),
                  "--metric": ("Metric", ["manhattan", "chessboard18", "chessboard26"]),

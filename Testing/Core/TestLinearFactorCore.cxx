@@ -144,7 +144,7 @@ void RunCase(const std::string& name, const MeshInput& input, int resolution)
 {
   MeshInput mesh = input;
   Check(UsedPointBounds(mesh, mesh.Bounds), "%s: no point used", name.c_str());
-  for (Culling culling : { Culling::Auto, Culling::NonManifold, Culling::Manifold })
+  for (DomainShape culling : { DomainShape::Auto, DomainShape::NonManifold, DomainShape::Manifold })
   {
     LinearFactorRequest request;
     request.Grid = SampleGrid::FromBounds(mesh.Bounds.data(), resolution, 0.25);
@@ -193,9 +193,9 @@ void RunCase(const std::string& name, const MeshInput& input, int resolution)
           worstAt = at;
         }
       });
-    const char* mode = culling == Culling::Auto ? "auto"
-      : culling == Culling::NonManifold         ? "nonmanifold"
-                                                : "manifold";
+    const char* mode = culling == DomainShape::Auto ? "auto"
+      : culling == DomainShape::NonManifold         ? "nonmanifold"
+                                                    : "manifold";
     std::printf("%-14s %-12s max|err| = %.3g h  culling factor %.2f  (sites %zu, pyramids %lld, "
                 "unbounded vertices %lld)\n",
       name.c_str(),

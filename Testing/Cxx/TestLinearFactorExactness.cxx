@@ -234,7 +234,7 @@ vtkSmartPointer<vtkPolyData> Procedural(const std::string& name)
 struct Options
 {
   std::string Backend;
-  int Culling = vtkLinearFactorDistanceField::CULLING_AUTO;
+  int DomainShape = vtkLinearFactorDistanceField::DOMAIN_SHAPE_AUTO;
   int Route = vtkLinearFactorDistanceField::ROUTE_AUTO;
   bool Signed = false;
   int Resolution = 20;
@@ -256,7 +256,7 @@ vtkSmartPointer<vtkImageData> Run(vtkPolyData* mesh, const Options& o, const int
   {
     f->SetBackendToCPU();
   }
-  f->SetCulling(o.Culling);
+  f->SetDomainShape(o.DomainShape);
   f->SetRoute(o.Route);
   f->SetSignMode(o.Signed ? vtkLinearFactorDistanceField::PSEUDO_NORMAL
                           : vtkLinearFactorDistanceField::UNSIGNED);
@@ -473,7 +473,7 @@ int main(int argc, char* argv[])
     for (int culling = 0; culling < 3; ++culling)
     {
       Options o = base;
-      o.Culling = culling;
+      o.DomainShape = culling;
       o.Signed = c.Closed;
       Compare(
         c.Name + " " + base.Backend + " " + cullingNames[culling], Run(c.Mesh, o), ref, c.Closed);

@@ -181,7 +181,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     const double caps[] = { 0, 0, 0.5, 3, 1e-300, -1, NaN, Inf };
     filter->SetMaximumDistance(in.Pick(caps));
     filter->SetSignMode(in.U8() % 3);
-    filter->SetCulling(in.U8() % 4);
+    filter->SetDomainShape(in.U8() % 4);
     filter->SetRoute(in.U8() % 4); // Auto, SiteScan, SampleQueries, or invalid
     filter->ComputeClosestFeatureOn();
     filter->ComputeClosestPointOn();

@@ -23,7 +23,7 @@ CASES = [
          inputs={"Input": "trefoil_knot.vtp"},
          properties=dict(ExplicitGrid=1, GridOrigin=[-0.6, -0.6, -0.3],
                          GridSpacing=[0.05, 0.06, 0.07], GridDimensions=[25, 21, 9],
-                         Culling="NonManifold", MaximumDistance=0.2, Backend="CPU"),
+                         DomainShape="NonManifold", MaximumDistance=0.2, Backend="CPU"),
          outputs={0: "vti"}),
     # The mesh partitioned across the ranks (ids generated while it is whole on rank 0,
     # then RedistributeDataSet): gathered and put in global-id order on every rank.

@@ -111,4 +111,24 @@ for with_quad in (False, True):
     if not (c64.min() == 0 and c64.max() == cells - 1):
         print("FAIL: the closest cells do not number the vertex cell first")
         sys.exit(1)
+
+# Culling, the earlier name of DomainShape: its setters and getter still work, each call
+# with a DeprecationWarning that names the new one.
+import warnings  # noqa: E402
+
+f = vtkLinearFactorDistanceField()
+with warnings.catch_warnings(record=True) as caught:
+    warnings.simplefilter("always")
+    f.SetCulling(f.CULLING_MANIFOLD)
+    manifold = f.GetDomainShape()
+    f.SetCullingToNonManifold()
+    old = f.GetCulling()
+names = [str(w.message) for w in caught if issubclass(w.category, DeprecationWarning)]
+print(f"Culling: DomainShape {manifold} then {old}; {len(names)} deprecation warnings")
+if manifold != f.DOMAIN_SHAPE_MANIFOLD or old != f.DOMAIN_SHAPE_NON_MANIFOLD:
+    print("FAIL: the deprecated Culling calls do not set DomainShape")
+    sys.exit(1)
+if len(names) != 3 or not all("DomainShape" in n for n in names):
+    print(f"FAIL: expected 3 deprecation warnings naming DomainShape: {names}")
+    sys.exit(1)
 print("1 passed, 0 failed")

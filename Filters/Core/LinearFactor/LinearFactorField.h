@@ -32,7 +32,7 @@ namespace vtkdf
 class HeadlessGL;
 
 /// Which domains bound the sites' Voronoi regions.
-enum class Culling
+enum class DomainShape
 {
   Auto,        // tightest exact domains for every site, whatever the topology
   NonManifold, // triangle prism, edge slab, whole space for points
@@ -60,7 +60,7 @@ struct LinearFactorRequest
 {
   SampleGrid Grid; // world coordinates
   IndexBox Extent; // the samples to compute, within Grid.Whole
-  Culling Domains = Culling::Auto;
+  DomainShape Domains = DomainShape::Auto;
   SignMode Sign = SignMode::Unsigned;
   /// A cap on the distances (a narrow band), in world units; 0: none.
   double MaximumDistance = 0;

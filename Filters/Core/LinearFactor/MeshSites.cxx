@@ -9,8 +9,8 @@ namespace sites
 {
 int SiteBuilder::EdgePlanes(int64_t e) const
 {
-  const bool wedge = this->Mode == Culling::Auto ||
-    (this->Mode == Culling::Manifold && this->EdgeGroups[e].Faces == 2);
+  const bool wedge = this->Mode == DomainShape::Auto ||
+    (this->Mode == DomainShape::Manifold && this->EdgeGroups[e].Faces == 2);
   return 2 + (wedge ? this->EdgeGroups[e].Faces : 0);
 }
 
@@ -233,7 +233,7 @@ void SiteBuilder::CountDomains()
 } // namespace sites
 
 bool MeshSites::Build(const MeshInput& in,
-  Culling culling,
+  DomainShape shape,
   double slack,
   std::string& error,
   const ParallelFor& parallelFor)
@@ -242,7 +242,7 @@ bool MeshSites::Build(const MeshInput& in,
   this->Planes.clear();
   this->SitePoints.clear();
   this->Statistics = DomainStatistics();
-  sites::SiteBuilder builder(in, culling, slack, parallelFor, *this);
+  sites::SiteBuilder builder(in, shape, slack, parallelFor, *this);
   if (!builder.MergePoints(error))
   {
     return false;

@@ -76,7 +76,7 @@ public:
   /// `parallelFor` (optional) runs the per-site passes in parallel; the result is the
   /// same either way.
   bool Build(const MeshInput& input,
-    Culling culling,
+    DomainShape shape,
     double slack,
     std::string& error,
     const ParallelFor& parallelFor = ParallelFor());

@@ -207,12 +207,12 @@ class SiteBuilder
 {
 public:
   SiteBuilder(const MeshInput& input,
-    Culling culling,
+    DomainShape shape,
     double slack,
     const ParallelFor& parallelFor,
     MeshSites& sites)
     : In(input)
-    , Mode(culling)
+    , Mode(shape)
     , Slack(slack)
     , For(parallelFor)
     , Out(sites)
@@ -271,7 +271,7 @@ private:
   void WriteVertexSites();
 
   const MeshInput& In;
-  const Culling Mode;
+  const DomainShape Mode;
   const double Slack;
   const ParallelFor& For;
   MeshSites& Out;

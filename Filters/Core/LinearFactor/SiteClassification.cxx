@@ -191,7 +191,7 @@ VertexEdgeSpan SiteBuilder::IncidentEdges(int64_t v) const
 void SiteBuilder::ClassifyVertices()
 {
   const int64_t nv = this->NumVertices;
-  if (this->Mode == Culling::Manifold)
+  if (this->Mode == DomainShape::Manifold)
   {
     this->VertexFaces.resize(nv);
     for (size_t f = 0; f < this->Faces.size(); ++f)
@@ -219,9 +219,9 @@ void SiteBuilder::ClassifyVertices()
 uint8_t SiteBuilder::Classify(int64_t v)
 {
   const VertexEdgeSpan incident = this->IncidentEdges(v);
-  if (this->Mode != Culling::Manifold)
+  if (this->Mode != DomainShape::Manifold)
   {
-    return this->Mode == Culling::Auto && !incident.empty() ? Polar : Unbounded;
+    return this->Mode == DomainShape::Auto && !incident.empty() ? Polar : Unbounded;
   }
   // Manifold culling: only where the faces around v form one closed fan.
   if (!this->ClosedFan(v, incident))
