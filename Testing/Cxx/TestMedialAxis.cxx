@@ -16,7 +16,8 @@
 // and torus, theta monotone (the set for a larger theta is a subset), one output point
 // per medial voxel, and on the GPU the same voxels as on the CPU from the same field.
 //
-// usage: TestMedialAxis cpu|gpu
+// usage: TestMedialAxis cpu|gpu [PLACEMENTS]: the first PLACEMENTS of the three placements
+// (rotation and offset) of every shape (all three by default).
 #include "vtkLinearFactorDistanceField.h"
 
 #include "TestSupport.h"
@@ -38,6 +39,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -449,10 +451,11 @@ std::vector<Point> Transformed(const std::vector<Point>& points, const Placement
 int main(int argc, char* argv[])
 {
   Backend = argc > 1 ? argv[1] : "cpu";
+  const int placements = argc > 2 ? std::atoi(argv[2]) : 3;
   const double pi = 3.14159265358979323846;
   const double h = 0.025;
 
-  for (int variant = 0; variant < 3; ++variant)
+  for (int variant = 0; variant < placements && variant < 3; ++variant)
   {
     const std::string tag = "#" + std::to_string(variant);
     Placement placement;
