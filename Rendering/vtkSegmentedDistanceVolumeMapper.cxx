@@ -292,6 +292,16 @@ bool vtkSegmentedDistanceVolumeMapper::UpdateField(vtkImageData* image)
     vtkErrorMacro("The field has " << regions << " regions; at most 2^24 can be rendered");
     return false;
   }
+  // Surface mode draws a signed field's zero set: a field with no negative sample (an
+  // unsigned distance, as vtkSegmentedDistanceField's Distance) has none, and the picture
+  // would stay empty without a word.
+  if (!segmented && regions < 2)
+  {
+    vtkWarningMacro("The field " << (array->GetName() ? array->GetName() : "(unnamed)")
+                                 << " has no negative value, so Mode Surface draws nothing: it "
+                                    "draws a signed field's zero set. Choose a signed field, or "
+                                    "SegmentedDistance for a segmented one");
+  }
 
   // Linear filtering for the rays' march over a signed field; the rest reads texels.
   PrepareTexture(impl.Field, vtkTextureObject::Linear, GL_RG32F, GL_RG, GL_FLOAT);

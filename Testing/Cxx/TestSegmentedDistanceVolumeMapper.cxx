@@ -23,7 +23,8 @@
 // - lifecycle: window resizes, property changes, new input data and
 //   ReleaseGraphicsResources between frames; the same pictures, no GL error.
 // - errors: bad input is reported (no scalars, NaN, a flat grid, SegmentedDistance without
-//   RegionOffset) and nothing is drawn.
+//   RegionOffset) and nothing is drawn; a field with no negative value (an unsigned
+//   distance) draws nothing in Mode Surface, with a warning.
 // - image walledbox|ct|blend: regression images (a non-manifold mesh's surfaces by
 //   region, a translucent composite of a CT-like phantom, the middle frame of a blend),
 //   each with numbers checked too; -V BASELINE -T TMP.
@@ -545,6 +546,26 @@ int TestErrors()
       c.Name,
       c.Expected);
     CHECK(!drawn, "%s: something was drawn", c.Name);
+  }
+  // A field without a negative sample (an unsigned distance) has no zero set to draw in
+  // Mode Surface: nothing drawn, and a warning that says why.
+  {
+    auto image = grid(8);
+    vtkNew<vtkFloatArray> values;
+    values->SetName("Distance");
+    values->SetNumberOfTuples(image->GetNumberOfPoints());
+    values->Fill(0.5);
+    image->GetPointData()->SetScalars(values);
+    vtkdf::testing::MessageRecorder messages(mapper);
+    mapper->SetInputData(image);
+    const Frame frame = scene.Draw({ volume });
+    const bool drawn =
+      std::any_of(frame.Depth.begin(), frame.Depth.end(), [](float z) { return z < 1.0f; });
+    std::printf("unsigned: %s", messages.Warnings.c_str());
+    CHECK(
+      messages.Errors.empty() && messages.Warnings.find("no negative value") != std::string::npos,
+      "unsigned: no warning that the field has no zero set");
+    CHECK(!drawn, "unsigned: something was drawn");
   }
   return 0;
 }
