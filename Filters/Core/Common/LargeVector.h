@@ -1,11 +1,16 @@
 // LargeVector: a std::vector for the big work arrays (sites, planes, the nearest-site
 // buffer) whose resize() leaves new elements default-initialized: no zeroing pass over
-// hundreds of MB that are written in full right after.
+// hundreds of MB that are written in full right after. Its blocks of 2 MiB and more come
+// from AllocateLarge.
 //
-// The blocks are not marked MADV_HUGEPAGE. That was tried: on the 2-core VMs this
-// project is measured on, first touching a huge-page block ran at 0.6-0.8 GB/s against
-// 1.9-2.8 GB/s for 4 KiB pages (54 MB, two threads), and vtkdf linfac on dragon_871k
-// at 128^3 took 2.44 s against 2.12 s (median of 4 alternating runs each).
+// AllocateLarge: such blocks 2 MiB-aligned and marked MADV_HUGEPAGE, so that the kernel
+// backs them with transparent huge pages where it offers them (its "madvise" mode: nothing
+// process-wide is changed) and their first touch costs a fault per 2 MiB instead of one
+// per 4 KiB. Where the kernel refuses, the pages stay 4 KiB. Machines differ: on one
+// 2-core VM, first touching huge pages ran at 0.6-0.8 GB/s against 1.9-2.8 GB/s for 4 KiB
+// pages; on another (256 MiB, one write a page), 4 KiB pages ran at 0.36 GB/s in every
+// run and huge pages at 13-16 GB/s, or 0.6 GB/s while the kernel compacted memory
+// (docs/benchmarks.md has the fields' times both ways).
 #ifndef vtkdf_LargeVector_h
 #define vtkdf_LargeVector_h
 
@@ -15,8 +20,37 @@
 #include <utility>
 #include <vector>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 namespace vtkdf
 {
+
+/// A block of `bytes` (at least 1) to release with std::free, or null when there is no
+/// memory: 2 MiB-aligned and marked for huge pages from 2 MiB on (above), malloc's below.
+inline void* AllocateLarge(size_t bytes)
+{
+  constexpr size_t HugePage = size_t(2) << 20;
+  if (bytes < HugePage)
+  {
+    return std::malloc(bytes > 0 ? bytes : 1);
+  }
+  if (bytes > SIZE_MAX - HugePage)
+  {
+    return nullptr;
+  }
+  const size_t rounded = (bytes + HugePage - 1) / HugePage * HugePage;
+  void* block = nullptr;
+  if (posix_memalign(&block, HugePage, rounded) != 0)
+  {
+    return nullptr;
+  }
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  madvise(block, rounded, MADV_HUGEPAGE); // a hint: where it is refused, nothing changes
+#endif
+  return block;
+}
 
 template<typename T>
 struct DefaultInitAllocator
@@ -37,7 +71,7 @@ struct DefaultInitAllocator
     {
       throw std::bad_array_new_length();
     }
-    void* p = std::malloc(n > 0 ? n * sizeof(T) : 1);
+    void* p = AllocateLarge(n * sizeof(T));
     if (!p)
     {
       throw std::bad_alloc();
