@@ -12,6 +12,7 @@
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkWeakPointer.h"
 
 #include <cstdio>
 #include <string>
@@ -79,7 +80,24 @@ public:
     filter->AddObserver(vtkCommand::ErrorEvent, this->Observer);
     filter->AddObserver(vtkCommand::WarningEvent, this->Observer);
     filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->Observer);
+    this->Filter = filter;
+    this->Executive = filter->GetExecutive();
   }
+  /// Stops observing (a recorder that left its scope must not be written to when the
+  /// filter reports again; the filter may be gone already).
+  ~MessageRecorder()
+  {
+    if (this->Filter)
+    {
+      this->Filter->RemoveObserver(this->Observer);
+    }
+    if (this->Executive)
+    {
+      this->Executive->RemoveObserver(this->Observer);
+    }
+  }
+  MessageRecorder(const MessageRecorder&) = delete;
+  MessageRecorder& operator=(const MessageRecorder&) = delete;
 
   /// Prints what was recorded; true when an expected (non-empty) error and warning are
   /// among them and the output is as expected (`outputPoints` > 0 or not).
@@ -117,6 +135,8 @@ public:
 
 private:
   vtkNew<vtkCallbackCommand> Observer;
+  vtkWeakPointer<vtkAlgorithm> Filter;
+  vtkWeakPointer<vtkExecutive> Executive;
 };
 } // namespace vtkdf::testing
 
