@@ -14,9 +14,6 @@ log="$out/paraview.log"
 PYTHONPATH=${DF_PVBATCH_PYTHONPATH:-} "$pvbatch" "$here/run_in_paraview.py" "$plugin" "$data" \
   "$out/paraview" >"$log" 2>&1 || { cat "$log"; exit 1; }
 cat "$log"
-if grep -En 'ERR\||WARN\||ERROR|[Ww]arning|Could not create' "$log"; then
-  echo "FAIL: ParaView logged the errors or warnings above while running the filters"
-  exit 1
-fi
+"$here/check_log.sh" "$log" "ParaView, while running the filters," || exit 1
 PYTHONPATH=$system_pythonpath "$python" "$here/run_in_vtk.py" "$data" "$out/vtk"
 "$python" "$here/compare_outputs.py" "$out/paraview" "$out/vtk"

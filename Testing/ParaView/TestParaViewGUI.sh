@@ -26,8 +26,5 @@ if [ ! -f "$out/done" ] || [ $status -ne 0 ]; then
   echo "FAIL: the GUI did not finish its script (exit status $status)"
   exit 1
 fi
-if grep -En 'ERR\||WARN\||ERROR|[Ww]arning|Could not create' "$log"; then
-  echo "FAIL: ParaView's GUI logged the errors or warnings above"
-  exit 1
-fi
+"$here/check_log.sh" "$log" "ParaView's GUI" || exit 1
 cat "$out/done"
