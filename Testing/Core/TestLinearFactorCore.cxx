@@ -170,15 +170,25 @@ void RunCase(const std::string& name, const MeshInput& input, int resolution)
       "%s: build %s",
       name.c_str(),
       error.c_str());
-    // memcmp only on non-empty arrays: an empty vector's data() may be null.
-    auto same = [](const auto& u, const auto& v)
+    // Every site and its planes alike, field by field (a Site has padding).
+    bool same = parallel.Count() == sites.Count();
+    for (int64_t s = 0; same && s < sites.Count(); ++s)
     {
-      return u.size() == v.size() &&
-        (u.empty() || std::memcmp(u.data(), v.data(), u.size() * sizeof(u[0])) == 0);
-    };
-    Check(same(parallel.Sites, sites.Sites) && same(parallel.Planes, sites.Planes),
-      "%s: the parallel build differs from the serial one",
-      name.c_str());
+      Site x, y;
+      sites.Describe(s, x);
+      parallel.Describe(s, y);
+      HalfSpace px[MaxDomainPlanes], py[MaxDomainPlanes];
+      const int n = sites.Planes(s, x, px, MaxDomainPlanes);
+      same = x.Type == y.Type && x.Required == y.Required && x.PlaneCount == y.PlaneCount &&
+        x.CellId == y.CellId && std::memcmp(x.Anchor, y.Anchor, sizeof(x.Anchor)) == 0 &&
+        std::memcmp(x.Axis, y.Axis, sizeof(x.Axis)) == 0 &&
+        std::memcmp(x.Normal, y.Normal, sizeof(x.Normal)) == 0 &&
+        std::memcmp(x.BoundsMin, y.BoundsMin, sizeof(x.BoundsMin)) == 0 &&
+        std::memcmp(x.BoundsMax, y.BoundsMax, sizeof(x.BoundsMax)) == 0 &&
+        parallel.Planes(s, y, py, MaxDomainPlanes) == n &&
+        std::memcmp(px, py, n * sizeof(HalfSpace)) == 0;
+    }
+    Check(same, "%s: the parallel build differs from the serial one", name.c_str());
 
     double worst = 0;
     int64_t worstAt = -1;
@@ -202,7 +212,7 @@ void RunCase(const std::string& name, const MeshInput& input, int resolution)
       mode,
       worst / h,
       double(report.Evaluations) / double(e.Count()),
-      sites.Sites.size(),
+      static_cast<size_t>(sites.Count()),
       (long long)sites.Statistics.PyramidVertices,
       (long long)sites.Statistics.UnboundedVertices);
     Check(worst <= 1e-3 * h,

@@ -80,12 +80,6 @@ bool BuildLocalSites(MeshInput& mesh,
     error = "Invalid input mesh: " + error + ".";
     return false;
   }
-  if (local.Sites.Sites.size() >= 0xffffffffu)
-  {
-    error =
-      "The mesh has " + std::to_string(local.Sites.Sites.size()) + " sites, more than 2^32 - 1.";
-    return false;
-  }
   return true;
 }
 
@@ -250,7 +244,7 @@ bool ComputeLinearFactorField(MeshInput mesh,
   {
     return false;
   }
-  if (local.Sites.Sites.empty())
+  if (local.Sites.Empty())
   {
     report.NoUsableCell = true;
     return true;
@@ -323,7 +317,7 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
   {
     return false;
   }
-  if (local.Sites.Sites.empty())
+  if (local.Sites.Empty())
   {
     report.NoUsableCell = true;
     return true;
@@ -380,12 +374,12 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
     }
     else
     {
-      field.SiteCells.resize(local.Sites.Sites.size());
-      field.SiteTypes.resize(local.Sites.Sites.size());
-      for (size_t s = 0; s < local.Sites.Sites.size(); ++s)
+      field.SiteCells.resize(local.Sites.Count());
+      field.SiteTypes.resize(local.Sites.Count());
+      for (int64_t s = 0; s < local.Sites.Count(); ++s)
       {
-        field.SiteCells[s] = local.Sites.Sites[s].CellId;
-        field.SiteTypes[s] = local.Sites.Sites[s].Type;
+        field.SiteCells[s] = local.Sites.CellOf(s);
+        field.SiteTypes[s] = local.Sites.TypeOf(s);
       }
       ok = use(field, error);
     }

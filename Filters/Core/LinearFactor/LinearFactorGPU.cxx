@@ -188,59 +188,55 @@ void DomainScan::UploadSites()
   const GLFunctions& gl = this->GL;
   const SampleGrid& grid = this->Grid;
   const IndexBox& ext = this->Extent;
-  const size_t numSites = this->Sites.Sites.size();
+  const int64_t numSites = this->Sites.Count();
   this->GpuSites.resize(numSites);
   std::vector<float> planes;
-  planes.reserve(4 * this->Sites.Planes.size());
+  std::vector<float> siteBounds(8 * std::max<int64_t>(1, numSites), 0.f);
   for (int a = 0; a < 3; ++a)
   {
     this->Base[a] = grid.Coordinate(a, grid.Whole.Lo[a]);
   }
   const double* base = this->Base;
   IndexPlane indexPlanes[GpuMaxPlanes];
-  for (size_t s = 0; s < numSites; ++s)
-  {
-    const Site& site = this->Sites.Sites[s];
-    GpuSite& g = this->GpuSites[s];
-    const IndexBox& r = this->Culling.Regions[s];
-    int count = SiteIndexPlanes(this->Sites, site, grid, indexPlanes, GpuMaxPlanes);
-    double anchorIndex[3];
-    for (int a = 0; a < 3; ++a)
+  Site site;
+  this->Culling.ForEachSite(0,
+    numSites,
+    [&](int64_t s, const IndexBox& reach)
     {
-      g.Anchor[a] = static_cast<float>(site.Anchor[a] - base[a]);
-      g.Axis[a] = static_cast<float>(site.Axis[a]);
-      g.Lo[a] = r.Lo[a] - ext.Lo[a];
-      g.Hi[a] = r.Hi[a] - ext.Lo[a];
-      anchorIndex[a] = (site.Anchor[a] - grid.Origin[a]) / grid.Spacing[a];
-    }
-    g.Anchor[3] = site.Type;
-    g.Axis[3] = site.Required;
-    g.Lo[3] = static_cast<int32_t>(planes.size() / 4);
-    g.Hi[3] = count;
-    for (int p = 0; p < count; ++p)
-    {
-      const IndexPlane& q = indexPlanes[p];
-      planes.push_back(static_cast<float>(q.A));
-      planes.push_back(static_cast<float>(q.B));
-      planes.push_back(static_cast<float>(q.C));
-      planes.push_back(static_cast<float>(
-        q.A * anchorIndex[0] + q.B * anchorIndex[1] + q.C * anchorIndex[2] + q.D));
-    }
-  }
+      this->Sites.Describe(s, site);
+      GpuSite& g = this->GpuSites[s];
+      const IndexBox r = this->Culling.Region(reach, site);
+      int count = SiteIndexPlanes(this->Sites, s, site, grid, indexPlanes, GpuMaxPlanes);
+      double anchorIndex[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        g.Anchor[a] = static_cast<float>(site.Anchor[a] - base[a]);
+        g.Axis[a] = static_cast<float>(site.Axis[a]);
+        g.Lo[a] = r.Lo[a] - ext.Lo[a];
+        g.Hi[a] = r.Hi[a] - ext.Lo[a];
+        anchorIndex[a] = (site.Anchor[a] - grid.Origin[a]) / grid.Spacing[a];
+        siteBounds[8 * s + a] =
+          std::nextafter(static_cast<float>(site.BoundsMin[a] - base[a]), -HUGE_VALF);
+        siteBounds[8 * s + 4 + a] =
+          std::nextafter(static_cast<float>(site.BoundsMax[a] - base[a]), HUGE_VALF);
+      }
+      g.Anchor[3] = site.Type;
+      g.Axis[3] = site.Required;
+      g.Lo[3] = static_cast<int32_t>(planes.size() / 4);
+      g.Hi[3] = count;
+      for (int p = 0; p < count; ++p)
+      {
+        const IndexPlane& q = indexPlanes[p];
+        planes.push_back(static_cast<float>(q.A));
+        planes.push_back(static_cast<float>(q.B));
+        planes.push_back(static_cast<float>(q.C));
+        planes.push_back(static_cast<float>(
+          q.A * anchorIndex[0] + q.B * anchorIndex[1] + q.C * anchorIndex[2] + q.D));
+      }
+    });
   if (planes.empty())
   {
     planes.assign(4, 0.f);
-  }
-  std::vector<float> siteBounds(8 * std::max<size_t>(1, numSites), 0.f);
-  for (size_t s = 0; s < numSites; ++s)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      siteBounds[8 * s + a] =
-        std::nextafter(static_cast<float>(this->Sites.Sites[s].BoundsMin[a] - base[a]), -HUGE_VALF);
-      siteBounds[8 * s + 4 + a] =
-        std::nextafter(static_cast<float>(this->Sites.Sites[s].BoundsMax[a] - base[a]), HUGE_VALF);
-    }
   }
   std::vector<float> blockBounds = this->Culling.BlockBound;
   if (blockBounds.empty())
@@ -335,11 +331,12 @@ void DomainScan::SetUniforms()
     diagonal += std::pow(grid.Whole.Size(a) * grid.Spacing[a], 2);
   }
   double reach = 2 * std::sqrt(diagonal) + 1e-30;
-  for (const Site& s : this->Sites.Sites)
+  for (int64_t s = 0; s < this->Sites.Count(); ++s)
   {
+    const double* anchor = this->Sites.AnchorOf(s);
     for (int a = 0; a < 3; ++a)
     {
-      reach = std::max(reach, 2 * std::fabs(s.Anchor[a] - this->Base[a]) + std::sqrt(diagonal));
+      reach = std::max(reach, 2 * std::fabs(anchor[a] - this->Base[a]) + std::sqrt(diagonal));
     }
   }
   gl.Uniform1f(gl.GetUniformLocation(program, "depthScale"), static_cast<float>(1.0 / reach));
@@ -367,9 +364,9 @@ bool DomainScan::ScanBatch(int k0,
   for (size_t s = 0; s < this->GpuSites.size(); ++s)
   {
     const GpuSite& g = this->GpuSites[s];
-    if (this->Culling.Regions[s].Empty())
+    if (g.Hi[0] < g.Lo[0] || g.Hi[1] < g.Lo[1] || g.Hi[2] < g.Lo[2])
     {
-      continue;
+      continue; // an empty region
     }
     const int lo = std::max(g.Lo[2], k0), hi = std::min(g.Hi[2], k1);
     for (int k = lo; k <= hi; ++k)
@@ -583,10 +580,11 @@ bool FinalizeGPU(HeadlessGL& context,
     return false;
   }
   // Sites in double: anchor (w: type), axis, pseudonormal.
-  std::vector<double> data(12 * std::max<size_t>(1, sites.Sites.size()), 0.0);
-  for (size_t s = 0; s < sites.Sites.size(); ++s)
+  std::vector<double> data(12 * std::max<int64_t>(1, sites.Count()), 0.0);
+  Site site;
+  for (int64_t s = 0; s < sites.Count(); ++s)
   {
-    const Site& site = sites.Sites[s];
+    sites.Describe(s, site);
     for (int a = 0; a < 3; ++a)
     {
       data[12 * s + a] = site.Anchor[a];

@@ -12,15 +12,17 @@ namespace vtkdf
 {
 
 int SiteIndexPlanes(const MeshSites& sites,
+  int64_t index,
   const Site& site,
   const SampleGrid& grid,
   IndexPlane* out,
   int capacity)
 {
-  const int count = std::min<int>(site.PlaneCount, capacity);
+  HalfSpace planes[MaxDomainPlanes];
+  const int count = sites.Planes(index, site, planes, std::min(capacity, MaxDomainPlanes));
   for (int p = 0; p < count; ++p)
   {
-    const HalfSpace& h = sites.Planes[site.PlaneBegin + p];
+    const HalfSpace& h = planes[p];
     // n . (origin + spacing * index - anchor) + d >= 0
     out[p].A = h.N[0] * grid.Spacing[0];
     out[p].B = h.N[1] * grid.Spacing[1];
@@ -95,13 +97,14 @@ public:
   SiteScan(const MeshSites& sites,
     const Site& site,
     uint32_t siteIndex,
+    const IndexBox& region,
     const RangeCulling& culling,
     const LocalFieldRequest& request,
     NearestSiteBuffer& nearest)
     : TheSite(site)
     , SiteIndex(siteIndex)
     , Culling(culling)
-    , Region(culling.Regions[siteIndex])
+    , Region(region)
     , Grid(request.Grid)
     , Nearest(nearest)
   {
@@ -110,13 +113,13 @@ public:
     const int u = this->U, v = this->V, w = this->W;
     // Planes with their coefficients in (inner, row, slice) order.
     IndexPlane planes[MaxDomainPlanes];
-    const int numPlanes = SiteIndexPlanes(sites, site, this->Grid, planes, MaxDomainPlanes);
+    const int numPlanes =
+      SiteIndexPlanes(sites, siteIndex, site, this->Grid, planes, MaxDomainPlanes);
     for (int p = 0; p < numPlanes; ++p)
     {
       const double c[3] = { planes[p].A, planes[p].B, planes[p].C };
       planes[p].A = c[u], planes[p].B = c[v], planes[p].C = c[w];
     }
-    const IndexBox& region = this->Region;
     this->Domain.Setup(
       planes, numPlanes, site.Required, region.Lo[u], region.Hi[u], region.Lo[v], region.Hi[v]);
     double P[3][3];
@@ -307,7 +310,7 @@ private:
   const Site& TheSite;
   const uint32_t SiteIndex;
   const RangeCulling& Culling;
-  const IndexBox& Region;
+  const IndexBox Region;
   const SampleGrid& Grid;
   NearestSiteBuffer& Nearest;
   int U, V, W;
@@ -318,17 +321,6 @@ private:
   int64_t CacheKey[CacheSize];
   bool CacheValue[CacheSize];
 };
-
-/// Scan-converts one site's domain inside its region; returns distance evaluations.
-int64_t ScanSite(const MeshSites& sites,
-  const Site& site,
-  uint32_t siteIndex,
-  const RangeCulling& culling,
-  const LocalFieldRequest& request,
-  NearestSiteBuffer& nearest)
-{
-  return SiteScan(sites, site, siteIndex, culling, request, nearest).Run();
-}
 
 } // namespace
 
@@ -341,7 +333,7 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites,
 {
   ScanStatistics stats;
   stats.Samples = request.Extent.Count();
-  const int64_t numSites = static_cast<int64_t>(sites.Sites.size());
+  const int64_t numSites = sites.Count();
   // Sites come grouped by block (RangeCulling::Order); batches of them report progress.
   const int64_t batches = std::max<int64_t>(1, std::min<int64_t>(20, numSites / 1024));
   std::atomic<int64_t> evaluations{ 0 };
@@ -354,16 +346,20 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites,
       [&](int64_t begin, int64_t end)
       {
         int64_t local = 0;
-        for (int64_t o = first + begin; o < first + end; ++o)
-        {
-          const int64_t id = culling.Order[o];
-          const IndexBox& region = culling.Regions[id];
-          if (!region.Empty())
+        Site site;
+        culling.ForEachSite(first + begin,
+          first + end,
+          [&](int64_t id, const IndexBox& reach)
           {
-            local += ScanSite(
-              sites, sites.Sites[id], static_cast<uint32_t>(id), culling, request, nearest);
-          }
-        }
+            sites.Describe(id, site);
+            const IndexBox region = culling.Region(reach, site);
+            if (!region.Empty())
+            {
+              local +=
+                SiteScan(sites, site, static_cast<uint32_t>(id), region, culling, request, nearest)
+                  .Run();
+            }
+          });
         evaluations += local;
       });
     if (progress && !progress(double(batch + 1) / batches))
@@ -396,6 +392,8 @@ void Finalize(const MeshSites& sites,
     std::max<int64_t>(1, 4096 / nx),
     [&](int64_t rowBegin, int64_t rowEnd)
     {
+      Site last;
+      int64_t described = -1;
       for (int64_t row = rowBegin; row < rowEnd; ++row)
       {
         const int j = ext.Lo[1] + static_cast<int>(row % ny);
@@ -409,8 +407,15 @@ void Finalize(const MeshSites& sites,
           const Site* site = nullptr;
           if (packed != NearestSiteBuffer::Empty)
           {
-            site = &sites.Sites[packed & 0xffffffffu];
-            sites.DistanceVector(*site, x, d);
+            // Neighbouring samples mostly share their site: described once for them.
+            const int64_t id = static_cast<int64_t>(packed & 0xffffffffu);
+            if (id != described)
+            {
+              sites.Describe(id, last);
+              described = id;
+            }
+            site = &last;
+            MeshSites::DistanceVector(*site, x, d);
             distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             if (banded && distance > cap)
             {

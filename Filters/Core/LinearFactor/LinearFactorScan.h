@@ -111,9 +111,10 @@ struct ScanStatistics
   bool Aborted = false;
 };
 
-/// Sample-index planes of a site's domain, at most `capacity` (optional
-/// planes beyond that are dropped, which only enlarges the domain).
+/// Sample-index planes of the domain of site `index` (described by `site`), at most
+/// `capacity` (optional planes beyond that are dropped, which only enlarges the domain).
 int SiteIndexPlanes(const MeshSites& sites,
+  int64_t index,
   const Site& site,
   const SampleGrid& grid,
   struct IndexPlane* out,

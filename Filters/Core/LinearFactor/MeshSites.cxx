@@ -7,25 +7,138 @@ namespace vtkdf
 {
 namespace sites
 {
-int SiteBuilder::EdgePlanes(int64_t e) const
+void SiteBuilder::Finish()
 {
-  const bool wedge = this->Mode == DomainShape::Auto ||
-    (this->Mode == DomainShape::Manifold && this->EdgeGroups[e].Faces == 2);
-  return 2 + (wedge ? this->EdgeGroups[e].Faces : 0);
+  const int64_t numFaces = this->NumFaces;
+  this->Out.FaceCorners.resize(numFaces);
+  this->Out.FaceCells.resize(numFaces);
+  Run(this->For,
+    numFaces,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t f = begin; f < end; ++f)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          this->Out.FaceCorners[f][k] = static_cast<uint32_t>(this->Faces[f].P[k]);
+        }
+        this->Out.FaceCells[f] = this->Faces[f].Cell;
+      }
+    });
+  LargeVector<FaceRecord>().swap(this->Faces);
+  std::vector<std::vector<int64_t>>().swap(this->VertexFaces);
+  this->Out.VertexCells.resize(this->NumVertices);
+  for (int64_t v = 0; v < this->NumVertices; ++v)
+  {
+    this->Out.VertexCells[v] = this->VertexCell[v].load(std::memory_order_relaxed);
+  }
+  std::vector<std::atomic<int64_t>>().swap(this->VertexCell);
 }
 
-int SiteBuilder::VertexPlanes(int64_t v) const
+void SiteBuilder::CountDomains()
 {
-  return this->Domain[v] == Polar
-    ? static_cast<int>(this->VertexEdgeOffsets[v + 1] - this->VertexEdgeOffsets[v])
-    : (this->Domain[v] == Pyramid ? 4 : 0);
+  DomainStatistics& statistics = this->Out.Statistics;
+  statistics.Faces = this->NumFaces;
+  statistics.Edges = this->NumEdges;
+  statistics.Vertices = this->NumVertices;
+  for (int64_t e = 0; e < this->NumEdges; ++e)
+  {
+    statistics.EdgeWedges += this->Out.Wedge(e) && this->EdgeFaceCount(e) > 0;
+  }
+  for (const uint8_t domain : this->Out.VertexDomains)
+  {
+    statistics.PolarVertices += domain == Polar;
+    statistics.PyramidVertices += domain == Pyramid;
+    statistics.UnboundedVertices += domain == Unbounded;
+  }
+}
+} // namespace sites
+
+bool MeshSites::Build(const MeshInput& in,
+  DomainShape shape,
+  double slack,
+  std::string& error,
+  const ParallelFor& parallelFor)
+{
+  *this = MeshSites();
+  sites::SiteBuilder builder(in, shape, slack, parallelFor, *this);
+  if (!builder.MergePoints(error))
+  {
+    return false;
+  }
+  if (builder.Empty())
+  {
+    return true;
+  }
+  builder.CollectFacesAndEdges();
+  builder.VertexNormals();
+  if (!builder.GroupEdges(error))
+  {
+    return false;
+  }
+  builder.ClassifyVertices();
+  builder.Finish();
+  builder.CountDomains();
+  return true;
+}
+
+int64_t MeshSites::CellOf(int64_t s) const
+{
+  const int64_t faces = this->NumFaces(), edges = this->NumEdges();
+  return s < faces
+    ? this->FaceCells[s]
+    : (s < faces + edges ? this->EdgeCells[s - faces] : this->VertexCells[s - faces - edges]);
+}
+
+const double* MeshSites::AnchorOf(int64_t s) const
+{
+  const int64_t faces = this->NumFaces(), edges = this->NumEdges();
+  return s < faces
+    ? this->X(this->FaceCorners[s][0])
+    : (s < faces + edges ? this->X(this->EdgeEnds[s - faces][0]) : this->X(s - faces - edges));
+}
+
+/// The unit normal of face f, as the build computed it.
+void MeshSites::FaceNormal(int64_t f, double normal[3]) const
+{
+  const auto& c = this->FaceCorners[f];
+  const sites::Vec e1 = sites::Sub(this->X(c[1]), this->X(c[0]));
+  const sites::Vec e2 = sites::Sub(this->X(c[2]), this->X(c[0]));
+  const sites::Vec n = sites::Cross(e1, e2);
+  const double scale = 1.0 / sites::Norm(n);
+  for (int a = 0; a < 3; ++a)
+  {
+    normal[a] = n[a] * scale;
+  }
+}
+
+/// The unit tangent of edge e, from its first end to its second.
+void MeshSites::EdgeTangent(int64_t e, double tangent[3]) const
+{
+  const sites::Vec t = sites::Sub(this->X(this->EdgeEnds[e][1]), this->X(this->EdgeEnds[e][0]));
+  const double scale = 1.0 / sites::Norm(t);
+  for (int a = 0; a < 3; ++a)
+  {
+    tangent[a] = t[a] * scale;
+  }
+}
+
+/// Whether edge e's domain is bounded by its faces too (a wedge), or only by its ends.
+bool MeshSites::Wedge(int64_t e) const
+{
+  return this->Shape == DomainShape::Auto ||
+    (this->Shape == DomainShape::Manifold &&
+      this->EdgeFaceStart[e + 1] - this->EdgeFaceStart[e] == 2);
 }
 
 /// The plane through `through` with normal n, relative to the site's anchor. The offset
 /// is computed from the rounded normal, so the stored plane still passes through it.
-void SiteBuilder::SetPlane(uint32_t at, const Vec& n, const double* through, const double* anchor)
+void MeshSites::SetPlane(HalfSpace& h,
+  const double n[3],
+  const double* through,
+  const double* anchor) const
 {
-  HalfSpace& h = this->Out.Planes[at];
   for (int a = 0; a < 3; ++a)
   {
     h.N[a] = static_cast<float>(n[a]);
@@ -35,21 +148,16 @@ void SiteBuilder::SetPlane(uint32_t at, const Vec& n, const double* through, con
     this->Slack);
 }
 
-Site& SiteBuilder::InitSite(int64_t index, uint8_t type, int64_t cell, const double* anchor)
+namespace
 {
-  Site& s = this->Out.Sites[index];
-  s = Site{};
-  s.Type = type;
-  s.CellId = cell;
-  s.PlaneBegin = this->PlaneBegin[index];
-  s.PlaneCount = static_cast<uint16_t>(this->PlaneBegin[index + 1] - this->PlaneBegin[index]);
+/// Starts a site's box at its anchor.
+void StartBox(Site& s)
+{
   for (int a = 0; a < 3; ++a)
   {
-    s.Anchor[a] = anchor[a];
-    s.BoundsMin[a] = FloatBelow(anchor[a]);
-    s.BoundsMax[a] = FloatAbove(anchor[a]);
+    s.BoundsMin[a] = FloatBelow(s.Anchor[a]);
+    s.BoundsMax[a] = FloatAbove(s.Anchor[a]);
   }
-  return s;
 }
 
 /// Grows a site's box to hold x.
@@ -62,205 +170,203 @@ void Grow(Site& s, const double* x)
   }
 }
 
-bool SiteBuilder::WriteSites(std::string& error)
+/// The corner of face `corners` that is neither a nor b.
+uint32_t ThirdCorner(const std::array<uint32_t, 3>& corners, uint32_t a, uint32_t b)
 {
-  // Plane counts first, then every site and its planes written in place, in parallel.
-  const int64_t numSites = this->NumFaces + this->NumEdges + this->NumVertices;
-  this->PlaneBegin.assign(numSites + 1, 0);
-  for (int64_t i = 0; i < numSites; ++i)
+  uint32_t c = corners[0];
+  for (int k = 0; k < 3; ++k)
   {
-    const int64_t count = i < this->NumFaces ? 3
-      : i < this->NumFaces + this->NumEdges
-      ? this->EdgePlanes(i - this->NumFaces)
-      : this->VertexPlanes(i - this->NumFaces - this->NumEdges);
-    const uint64_t next = uint64_t(this->PlaneBegin[i]) + count;
-    if (next > UINT32_MAX)
+    if (corners[k] != a && corners[k] != b)
     {
-      error = "the mesh needs more than 2^32 domain planes";
-      return false;
+      c = corners[k];
     }
-    this->PlaneBegin[i + 1] = static_cast<uint32_t>(next);
   }
-  this->Out.Sites.resize(numSites);
-  this->Out.Planes.resize(this->PlaneBegin[numSites]);
-  this->WriteFaceSites();
-  this->WriteEdgeSites();
-  this->WriteVertexSites();
-  return true;
+  return c;
 }
+} // namespace
 
-/// Face sites: the triangle prism (three planes through the edges, orthogonal to the
-/// triangle), required for the plane-distance formula to be exact.
-void SiteBuilder::WriteFaceSites()
+void MeshSites::BoxOf(int64_t s, float lo[3], float hi[3]) const
 {
-  Run(this->For,
-    this->NumFaces,
-    1024,
-    [&](int64_t begin, int64_t end)
+  const int64_t faces = this->NumFaces(), edges = this->NumEdges();
+  uint32_t points[3] = { 0, 0, 0 };
+  int count = 1;
+  if (s < faces)
+  {
+    std::copy(this->FaceCorners[s].begin(), this->FaceCorners[s].end(), points);
+    count = 3;
+  }
+  else if (s < faces + edges)
+  {
+    std::copy(this->EdgeEnds[s - faces].begin(), this->EdgeEnds[s - faces].end(), points);
+    count = 2;
+  }
+  else
+  {
+    points[0] = static_cast<uint32_t>(s - faces - edges);
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = FloatBelow(this->X(points[0])[a]);
+    hi[a] = FloatAbove(this->X(points[0])[a]);
+    for (int k = 1; k < count; ++k)
     {
-      for (int64_t fi = begin; fi < end; ++fi)
-      {
-        const FaceRecord& f = this->Faces[fi];
-        Site& s = this->InitSite(fi, FaceSite, f.Cell, this->X(f.P[0]));
-        for (int k = 0; k < 3; ++k)
-        {
-          const double* a = this->X(f.P[k]);
-          const Vec e = Sub(this->X(f.P[(k + 1) % 3]), a);
-          Vec m = Cross(f.Normal, e);
-          m = Scale(m, 1.0 / Norm(m));
-          if (Dot(m, Sub(this->X(f.P[(k + 2) % 3]), a)) < 0)
-          {
-            m = Scale(m, -1.0);
-          }
-          this->SetPlane(s.PlaneBegin + k, m, a, s.Anchor);
-          Grow(s, this->X(f.P[k]));
-        }
-        for (int a = 0; a < 3; ++a)
-        {
-          s.Axis[a] = f.Normal[a];
-          s.Normal[a] = static_cast<float>(f.Normal[a] * this->Orientation);
-        }
-        s.Required = 3;
-      }
-    });
+      lo[a] = std::min(lo[a], FloatBelow(this->X(points[k])[a]));
+      hi[a] = std::max(hi[a], FloatAbove(this->X(points[k])[a]));
+    }
+  }
 }
 
-/// Edge sites: the slab between the end planes (required), then one plane per incident
-/// face: a point on the face side of that plane is closer to the face.
-void SiteBuilder::WriteEdgeSites()
+// Faces: the triangle prism (three planes through the edges, orthogonal to the
+// triangle), required for the plane-distance formula to be exact.
+// Edges: the slab between the end planes (required), then one plane per incident face:
+// a point on the face side of that plane is closer to the face.
+// Vertices: the planes orthogonal to their edges (Polar), or the four sides of Theorem
+// 1's pyramid (Pyramid), or none.
+void MeshSites::Describe(int64_t s, Site& site) const
 {
-  Run(this->For,
-    this->NumEdges,
-    1024,
-    [&](int64_t begin, int64_t end)
+  site = Site();
+  const int64_t faces = this->NumFaces(), edges = this->NumEdges();
+  if (s < faces)
+  {
+    const auto& c = this->FaceCorners[s];
+    site.Type = FaceSite;
+    site.CellId = this->FaceCells[s];
+    std::copy(this->X(c[0]), this->X(c[0]) + 3, site.Anchor);
+    StartBox(site);
+    for (int k = 0; k < 3; ++k)
     {
-      for (int64_t e = begin; e < end; ++e)
-      {
-        const int64_t a = this->EdgeEnds[e][0], b = this->EdgeEnds[e][1];
-        const Vec& t = this->EdgeGroups[e].Tangent;
-        Site& s =
-          this->InitSite(this->NumFaces + e, EdgeSite, this->EdgeGroups[e].Cell, this->X(a));
-        Grow(s, this->X(b));
-        uint32_t at = s.PlaneBegin;
-        this->SetPlane(at++, t, this->X(a), s.Anchor);
-        this->SetPlane(at++, Scale(t, -1.0), this->X(b), s.Anchor);
-        s.Required = 2;
-        const bool wedge = s.PlaneCount > 2;
-        Vec pseudo{ 0, 0, 0 };
-        for (int i = 0; i < this->EdgeGroups[e].Faces; ++i)
-        {
-          const FaceRecord& f = this->Faces[this->EdgeFace(e, i)];
-          pseudo = Add(pseudo, Scale(f.Normal, this->Orientation));
-          if (wedge)
-          {
-            int64_t c = f.P[0];
-            for (int k = 0; k < 3; ++k)
-            {
-              if (f.P[k] != a && f.P[k] != b)
-              {
-                c = f.P[k];
-              }
-            }
-            const Vec ac = Sub(this->X(c), this->X(a));
-            Vec m = Sub(ac.data(), Scale(t, Dot(ac, t)).data());
-            m = Scale(m, -1.0 / Norm(m));
-            this->SetPlane(at++, m, this->X(a), s.Anchor);
-          }
-        }
-        for (int k = 0; k < 3; ++k)
-        {
-          s.Axis[k] = t[k];
-          s.Normal[k] = static_cast<float>(pseudo[k]);
-        }
-      }
-    });
-}
-
-void SiteBuilder::WriteVertexSites()
-{
-  Run(this->For,
-    this->NumVertices,
-    1024,
-    [&](int64_t begin, int64_t end)
+      Grow(site, this->X(c[k]));
+    }
+    this->FaceNormal(s, site.Axis);
+    for (int a = 0; a < 3; ++a)
     {
-      for (int64_t v = begin; v < end; ++v)
+      site.Normal[a] = static_cast<float>(site.Axis[a] * this->Orientation);
+    }
+    site.Required = 3;
+    site.PlaneCount = 3;
+  }
+  else if (s < faces + edges)
+  {
+    const int64_t e = s - faces;
+    site.Type = EdgeSite;
+    site.CellId = this->EdgeCells[e];
+    std::copy(this->X(this->EdgeEnds[e][0]), this->X(this->EdgeEnds[e][0]) + 3, site.Anchor);
+    StartBox(site);
+    Grow(site, this->X(this->EdgeEnds[e][1]));
+    this->EdgeTangent(e, site.Axis);
+    // The pseudonormal: the sum of the faces' normals.
+    sites::Vec pseudo{ 0, 0, 0 };
+    for (uint32_t i = this->EdgeFaceStart[e]; i < this->EdgeFaceStart[e + 1]; ++i)
+    {
+      sites::Vec n;
+      this->FaceNormal(this->EdgeFaces[i], n.data());
+      pseudo = sites::Add(pseudo, sites::Scale(n, this->Orientation));
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      site.Normal[a] = static_cast<float>(pseudo[a]);
+    }
+    site.Required = 2;
+    site.PlaneCount = 2 +
+      (this->Wedge(e) ? static_cast<int>(this->EdgeFaceStart[e + 1] - this->EdgeFaceStart[e]) : 0);
+  }
+  else
+  {
+    const int64_t v = s - faces - edges;
+    site.Type = VertexSite;
+    site.CellId = this->VertexCells[v];
+    std::copy(this->X(v), this->X(v) + 3, site.Anchor);
+    StartBox(site);
+    std::copy(this->VertexNormals[v].begin(), this->VertexNormals[v].end(), site.Normal);
+    site.PlaneCount = this->VertexDomains[v] == sites::Polar
+      ? static_cast<int>(this->VertexEdgeStart[v + 1] - this->VertexEdgeStart[v])
+      : (this->VertexDomains[v] == sites::Pyramid ? 4 : 0);
+  }
+}
+
+int MeshSites::Planes(int64_t s, const Site& site, HalfSpace* out, int capacity) const
+{
+  const int count = std::min(site.PlaneCount, capacity);
+  const int64_t faces = this->NumFaces(), edges = this->NumEdges();
+  if (s < faces)
+  {
+    const auto& c = this->FaceCorners[s];
+    for (int k = 0; k < count; ++k)
+    {
+      const double* a = this->X(c[k]);
+      const sites::Vec e = sites::Sub(this->X(c[(k + 1) % 3]), a);
+      sites::Vec m = sites::Cross({ site.Axis[0], site.Axis[1], site.Axis[2] }, e);
+      m = sites::Scale(m, 1.0 / sites::Norm(m));
+      if (sites::Dot(m, sites::Sub(this->X(c[(k + 2) % 3]), a)) < 0)
       {
-        Site& s = this->InitSite(this->NumFaces + this->NumEdges + v,
-          VertexSite,
-          this->VertexCell[v].load(std::memory_order_relaxed),
-          this->X(v));
-        s.Required = 0;
-        for (int a = 0; a < 3; ++a)
-        {
-          s.Normal[a] = static_cast<float>(this->VertexNormal[v][a]);
-        }
-        uint32_t at = s.PlaneBegin;
-        if (this->Domain[v] == Polar)
-        {
-          for (const auto& eu : this->IncidentEdges(v))
-          {
-            this->SetPlane(at++, Scale(this->Away(eu), -1.0), this->X(v), s.Anchor);
-          }
-        }
-        else if (this->Domain[v] == Pyramid)
-        {
-          for (const Vec& w : this->PyramidSides[v])
-          {
-            this->SetPlane(at++, w, this->X(v), s.Anchor);
-          }
-        }
+        m = sites::Scale(m, -1.0);
       }
-    });
+      this->SetPlane(out[k], m.data(), a, site.Anchor);
+    }
+  }
+  else if (s < faces + edges)
+  {
+    const int64_t e = s - faces;
+    const uint32_t a = this->EdgeEnds[e][0], b = this->EdgeEnds[e][1];
+    const double* t = site.Axis;
+    const double back[3] = { -t[0], -t[1], -t[2] };
+    const HalfSpace* end = out + count;
+    HalfSpace* at = out;
+    if (at < end)
+    {
+      this->SetPlane(*at++, t, this->X(a), site.Anchor);
+    }
+    if (at < end)
+    {
+      this->SetPlane(*at++, back, this->X(b), site.Anchor);
+    }
+    for (uint32_t i = this->EdgeFaceStart[e]; at < end && i < this->EdgeFaceStart[e + 1]; ++i)
+    {
+      const uint32_t c = ThirdCorner(this->FaceCorners[this->EdgeFaces[i]], a, b);
+      const sites::Vec ac = sites::Sub(this->X(c), this->X(a));
+      const sites::Vec tv{ t[0], t[1], t[2] };
+      sites::Vec m = sites::Sub(ac.data(), sites::Scale(tv, sites::Dot(ac, tv)).data());
+      m = sites::Scale(m, -1.0 / sites::Norm(m));
+      this->SetPlane(*at++, m.data(), this->X(a), site.Anchor);
+    }
+  }
+  else
+  {
+    const int64_t v = s - faces - edges;
+    if (this->VertexDomains[v] == sites::Polar)
+    {
+      // (x - p) . u <= 0 for every edge direction u away from the vertex.
+      for (int k = 0; k < count; ++k)
+      {
+        const uint32_t e = this->VertexEdges[this->VertexEdgeStart[v] + k];
+        double u[3];
+        this->EdgeTangent(e, u);
+        const double sign = this->EdgeEnds[e][0] == v ? -1.0 : 1.0;
+        const double n[3] = { u[0] * sign, u[1] * sign, u[2] * sign };
+        this->SetPlane(out[k], n, this->X(v), site.Anchor);
+      }
+    }
+    else if (this->VertexDomains[v] == sites::Pyramid)
+    {
+      for (int k = 0; k < count; ++k)
+      {
+        const float* w = &this->PyramidSides[v][3 * k];
+        const double n[3] = { w[0], w[1], w[2] };
+        this->SetPlane(out[k], n, this->X(v), site.Anchor);
+      }
+    }
+  }
+  return count;
 }
 
-void SiteBuilder::CountDomains()
+size_t MeshSites::Bytes() const
 {
-  DomainStatistics& statistics = this->Out.Statistics;
-  statistics.Faces = this->NumFaces;
-  statistics.Edges = this->NumEdges;
-  statistics.Vertices = this->NumVertices;
-  for (int64_t e = 0; e < this->NumEdges; ++e)
-  {
-    statistics.EdgeWedges += this->EdgePlanes(e) > 2;
-  }
-  for (int64_t v = 0; v < this->NumVertices; ++v)
-  {
-    statistics.PolarVertices += this->Domain[v] == Polar;
-    statistics.PyramidVertices += this->Domain[v] == Pyramid;
-    statistics.UnboundedVertices += this->Domain[v] == Unbounded;
-  }
-}
-} // namespace sites
-
-bool MeshSites::Build(const MeshInput& in,
-  DomainShape shape,
-  double slack,
-  std::string& error,
-  const ParallelFor& parallelFor)
-{
-  this->Sites.clear();
-  this->Planes.clear();
-  this->SitePoints.clear();
-  this->Statistics = DomainStatistics();
-  sites::SiteBuilder builder(in, shape, slack, parallelFor, *this);
-  if (!builder.MergePoints(error))
-  {
-    return false;
-  }
-  if (builder.Empty())
-  {
-    return true;
-  }
-  builder.CollectFacesAndEdges();
-  builder.VertexNormals();
-  builder.GroupEdges();
-  builder.ClassifyVertices();
-  if (!builder.WriteSites(error))
-  {
-    return false;
-  }
-  builder.CountDomains();
-  return true;
+  auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return bytes(this->SitePoints) + bytes(this->FaceCorners) + bytes(this->FaceCells) +
+    bytes(this->EdgeEnds) + bytes(this->EdgeCells) + bytes(this->EdgeFaceStart) +
+    bytes(this->EdgeFaces) + bytes(this->VertexCells) + bytes(this->VertexNormals) +
+    bytes(this->VertexDomains) + bytes(this->VertexEdgeStart) + bytes(this->VertexEdges) +
+    bytes(this->PyramidSides);
 }
 
 } // namespace vtkdf

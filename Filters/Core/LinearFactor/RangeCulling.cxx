@@ -281,20 +281,6 @@ bool GroupReach(const Blocks& blocks,
   return reachHi[0] >= 0;
 }
 
-/// The samples within `maximumDistance` of a site's box.
-IndexBox Band(const Site& s, const SampleGrid& grid, double maximumDistance)
-{
-  IndexBox band;
-  for (int a = 0; a < 3; ++a)
-  {
-    const double lo = (s.BoundsMin[a] - maximumDistance - grid.Origin[a]) / grid.Spacing[a];
-    const double hi = (s.BoundsMax[a] + maximumDistance - grid.Origin[a]) / grid.Spacing[a];
-    // Clamped both ways: a site far off the grid puts either end past int.
-    band.Lo[a] = static_cast<int>(std::min(std::max(std::ceil(lo), -2e9), 2e9));
-    band.Hi[a] = static_cast<int>(std::min(std::max(std::floor(hi), -2e9), 2e9));
-  }
-  return band;
-}
 /// The upper bound of the field over every block (BlockBound, level 0 of the pyramid)
 /// and the mesh point that gave it (BlockPoint).
 void BoundBlocks(RangeCulling& culling,
@@ -350,32 +336,34 @@ void BoundBlocks(RangeCulling& culling,
   culling.BlockExtent = blocks.Extent;
 }
 
-/// Order: the sites grouped by the block of their anchor; `offsets` where each block's
-/// group starts (one more than the blocks).
-void GroupSites(RangeCulling& culling,
-  const MeshSites& sites,
-  const Blocks& blocks,
-  std::vector<int64_t>& offsets)
+/// Order: the sites grouped by the block of their anchor (GroupStart: where each block's
+/// group starts, one more than the blocks). Counted, then placed: the blocks are found
+/// twice rather than stored.
+void GroupSites(RangeCulling& culling, const MeshSites& sites, const Blocks& blocks)
 {
-  const int64_t numSites = static_cast<int64_t>(sites.Sites.size());
+  const int64_t numSites = sites.Count();
   const SampleGrid& grid = blocks.Grid;
-  std::vector<int64_t> siteBlock(numSites);
-  offsets.assign(blocks.Total + 1, 0);
-  for (int64_t s = 0; s < numSites; ++s)
+  auto blockOf = [&](int64_t s)
   {
+    const double* anchor = sites.AnchorOf(s);
     int64_t id = 0, stride = 1;
     for (int a = 0; a < 3; ++a)
     {
       // Clamped before the conversion: an anchor far outside an explicit grid is
       // beyond int's range in blocks.
-      const double x = (sites.Sites[s].Anchor[a] - grid.Origin[a]) / grid.Spacing[a];
+      const double x = (anchor[a] - grid.Origin[a]) / grid.Spacing[a];
       const double at = std::floor((x - blocks.Extent.Lo[a]) / RangeCulling::BlockSize);
       const int blk = static_cast<int>(std::min(std::max(at, 0.0), double(blocks.Counts[a] - 1)));
       id += blk * stride;
       stride *= blocks.Counts[a];
     }
-    siteBlock[s] = id;
-    ++offsets[id + 1];
+    return id;
+  };
+  std::vector<int64_t>& offsets = culling.GroupStart;
+  offsets.assign(blocks.Total + 1, 0);
+  for (int64_t s = 0; s < numSites; ++s)
+  {
+    ++offsets[blockOf(s) + 1];
   }
   for (int64_t c = 0; c < blocks.Total; ++c)
   {
@@ -384,7 +372,7 @@ void GroupSites(RangeCulling& culling,
   std::vector<int64_t> fill(offsets.begin(), offsets.end() - 1);
   for (int64_t s = 0; s < numSites; ++s)
   {
-    culling.Order[fill[siteBlock[s]]++] = s;
+    culling.Order[fill[blockOf(s)]++] = static_cast<uint32_t>(s);
   }
 }
 
@@ -396,15 +384,23 @@ void RangeCulling::Build(const MeshSites& sites,
   double maximumDistance,
   const ParallelFor& parallelFor)
 {
-  const int64_t numSites = static_cast<int64_t>(sites.Sites.size());
-  this->Regions.assign(numSites, IndexBox());
+  const int64_t numSites = sites.Count();
+  this->MaximumDistance = maximumDistance;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Origin[a] = grid.Origin[a];
+    this->Spacing[a] = grid.Spacing[a];
+  }
   this->Order.resize(numSites);
   if (numSites == 0 || extent.Empty())
   {
+    // One group that reaches nowhere.
     for (int64_t s = 0; s < numSites; ++s)
     {
-      this->Order[s] = s;
+      this->Order[s] = static_cast<uint32_t>(s);
     }
+    this->GroupStart = { 0, numSites };
+    this->Reach.assign(1, IndexBox());
     return;
   }
   const Blocks blocks(grid, extent);
@@ -418,28 +414,29 @@ void RangeCulling::Build(const MeshSites& sites,
   BoundPyramid pyramid;
   BoundBlocks(*this, blocks, sites.SitePoints, maximumDistance, pyramid);
   BuildPyramid(pyramid);
-  std::vector<int64_t> offsets;
-  GroupSites(*this, sites, blocks, offsets);
+  GroupSites(*this, sites, blocks);
 
-  // Reach of each group, then each site's region.
+  // The reach of each group.
+  this->Reach.assign(blocks.Total, IndexBox());
   parallelFor(blocks.Total,
     16,
     [&](int64_t begin, int64_t end)
     {
       for (int64_t cluster = begin; cluster < end; ++cluster)
       {
-        if (offsets[cluster] == offsets[cluster + 1])
+        if (this->GroupStart[cluster] == this->GroupStart[cluster + 1])
         {
           continue;
         }
         Box group{ { HUGE_VAL, HUGE_VAL, HUGE_VAL }, { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL } };
-        for (int64_t o = offsets[cluster]; o < offsets[cluster + 1]; ++o)
+        for (int64_t o = this->GroupStart[cluster]; o < this->GroupStart[cluster + 1]; ++o)
         {
-          const Site& s = sites.Sites[this->Order[o]];
+          float lo[3], hi[3];
+          sites.BoxOf(this->Order[o], lo, hi);
           for (int a = 0; a < 3; ++a)
           {
-            group.Lo[a] = std::min<double>(group.Lo[a], s.BoundsMin[a]);
-            group.Hi[a] = std::max<double>(group.Hi[a], s.BoundsMax[a]);
+            group.Lo[a] = std::min<double>(group.Lo[a], lo[a]);
+            group.Hi[a] = std::max<double>(group.Hi[a], hi[a]);
           }
         }
         int reachLo[3], reachHi[3];
@@ -447,19 +444,12 @@ void RangeCulling::Build(const MeshSites& sites,
         {
           continue; // no block can have these sites as closest (MaximumDistance band)
         }
-        IndexBox reach;
+        IndexBox& reach = this->Reach[cluster];
         for (int a = 0; a < 3; ++a)
         {
           reach.Lo[a] = extent.Lo[a] + reachLo[a] * BlockSize;
           reach.Hi[a] = static_cast<int>(std::min<int64_t>(
             extent.Lo[a] + int64_t(reachHi[a] + 1) * BlockSize - 1, extent.Hi[a]));
-        }
-        for (int64_t o = offsets[cluster]; o < offsets[cluster + 1]; ++o)
-        {
-          const int64_t id = this->Order[o];
-          this->Regions[id] = std::isfinite(maximumDistance)
-            ? reach.Intersect(Band(sites.Sites[id], grid, maximumDistance))
-            : reach;
         }
       }
     });

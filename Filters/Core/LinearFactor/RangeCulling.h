@@ -34,16 +34,62 @@ public:
   /// geometry shader runs once per slice of a region (7 % faster on llvmpipe).
   int ReachLevel = 1;
 
-  /// Computes Regions (one per site, in sample indices, within `extent`) and Order
-  /// (site indices grouped by anchor block, for memory locality).
+  /// Computes Order (site indices grouped by the block of their anchor, for memory
+  /// locality), GroupStart and every group's Reach (in sample indices, within `extent`).
   void Build(const MeshSites& sites,
     const SampleGrid& grid,
     const IndexBox& extent,
     double maximumDistance,
     const ParallelFor& parallelFor);
 
-  std::vector<IndexBox> Regions;
-  std::vector<int64_t> Order;
+  /// Sites grouped by block: group g holds Order[GroupStart[g] .. GroupStart[g + 1]).
+  std::vector<uint32_t> Order;
+  std::vector<int64_t> GroupStart;
+  /// The samples where a group's sites may be the nearest (empty: nowhere).
+  std::vector<IndexBox> Reach;
+
+  /// Calls visit(site, reach of its group) for the sites at Order[begin .. end).
+  template<typename Visit>
+  void ForEachSite(int64_t begin, int64_t end, const Visit& visit) const
+  {
+    if (begin >= end)
+    {
+      return;
+    }
+    size_t group = static_cast<size_t>(
+      std::upper_bound(this->GroupStart.begin(), this->GroupStart.end(), begin) -
+      this->GroupStart.begin() - 1);
+    for (int64_t o = begin; o < end; ++o)
+    {
+      while (o >= this->GroupStart[group + 1])
+      {
+        ++group;
+      }
+      visit(static_cast<int64_t>(this->Order[o]), this->Reach[group]);
+    }
+  }
+
+  /// The samples of a site's region: its group's reach, within MaximumDistance of the
+  /// site's box when the field has a cap.
+  IndexBox Region(const IndexBox& reach, const Site& site) const
+  {
+    if (!std::isfinite(this->MaximumDistance) || reach.Empty())
+    {
+      return reach;
+    }
+    IndexBox band;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double lo =
+        (site.BoundsMin[a] - this->MaximumDistance - this->Origin[a]) / this->Spacing[a];
+      const double hi =
+        (site.BoundsMax[a] + this->MaximumDistance - this->Origin[a]) / this->Spacing[a];
+      // Clamped both ways: a site far off the grid puts either end past int.
+      band.Lo[a] = static_cast<int>(std::min(std::max(std::ceil(lo), -2e9), 2e9));
+      band.Hi[a] = static_cast<int>(std::min(std::max(std::floor(hi), -2e9), 2e9));
+    }
+    return reach.Intersect(band);
+  }
 
   /// Whether a site within the world box [lo, hi] may be the nearest one somewhere in
   /// the cell of block `block` (block indices within the extent; the cell is the
@@ -110,6 +156,10 @@ public:
   /// World coordinate where the cells of block 0 start, and a cell's width, per axis.
   double CellOrigin[3] = { 0, 0, 0 };
   double CellSize[3] = { 0, 0, 0 };
+  /// The field's cap and the grid's origin and spacing, for Region.
+  double MaximumDistance = HUGE_VAL;
+  double Origin[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
 };
 
 } // namespace vtkdf

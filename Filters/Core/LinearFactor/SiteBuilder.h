@@ -54,22 +54,16 @@ struct EdgeRecord
   int64_t Cell; // input cell
 };
 
-/// An edge at a vertex: its index, and +1 where its tangent points away from the vertex,
-/// -1 where it points towards it.
-struct VertexEdge
+/// The edges of a vertex (indices, ascending).
+struct EdgeSpan
 {
-  int64_t Edge;
-  double Sign;
-};
-struct VertexEdgeSpan
-{
-  const VertexEdge* First = nullptr;
+  const uint32_t* First = nullptr;
   size_t Count = 0;
-  const VertexEdge* begin() const { return First; }
-  const VertexEdge* end() const { return First + Count; }
+  const uint32_t* begin() const { return First; }
+  const uint32_t* end() const { return First + Count; }
   size_t size() const { return Count; }
   bool empty() const { return Count == 0; }
-  const VertexEdge& operator[](size_t i) const { return First[i]; }
+  uint32_t operator[](size_t i) const { return First[i]; }
 };
 
 /// parallelFor when the caller gave one, else a plain loop.
@@ -183,15 +177,6 @@ void ParallelSort(std::vector<T>& items, const Before& before, const ParallelFor
   }
 }
 
-/// An edge of the mesh: a group of equal edge records.
-struct EdgeGroup
-{
-  int64_t First, Last; // records [First, Last)
-  int64_t Cell;        // smallest input cell
-  int Faces;           // incident non-degenerate faces
-  Vec Tangent;         // unit, from its first end to its second
-};
-
 /// What bounds a vertex's domain (Manifold needs the neighbourhood's shape).
 enum VertexDomain : uint8_t
 {
@@ -202,7 +187,9 @@ enum VertexDomain : uint8_t
 
 /// MeshSites::Build's passes, in the order Build runs them, over what they share. Each
 /// pass that runs in parallel numbers what it makes as a serial loop would, so the sites
-/// and planes are the same whatever the schedule.
+/// are the same whatever the schedule. The passes write MeshSites' compact arrays as
+/// they go and release what the later passes no longer read, so that the build's peak
+/// stays near what the sites keep.
 class SiteBuilder
 {
 public:
@@ -213,12 +200,13 @@ public:
     MeshSites& sites)
     : In(input)
     , Mode(shape)
-    , Slack(slack)
     , For(parallelFor)
     , Out(sites)
     , P(input.Points.data())
     , NumPoints(static_cast<int64_t>(input.Points.size() / 3))
   {
+    sites.Shape = shape;
+    sites.Slack = slack;
   }
 
   /// Points that cells use, merged when their coordinates are identical, so that polygon
@@ -233,14 +221,14 @@ public:
   /// The orientation that makes the pseudonormals point outward for closed meshes, and
   /// the vertices' angle-weighted pseudonormals.
   void VertexNormals();
-  /// One edge per group of equal records (unless degenerate), and the edges of every
-  /// vertex.
-  void GroupEdges();
+  /// One edge per group of equal records (unless degenerate), its faces, and the edges
+  /// of every vertex. False and `error` when the sites (or their edges' faces, or their
+  /// vertices' edges) are 2^32 or more: they are numbered in 32 bits.
+  bool GroupEdges(std::string& error);
   /// What bounds every vertex's domain.
   void ClassifyVertices();
-  /// The sites and their planes, in place: faces, edges, then vertices. False and
-  /// `error` when the planes overflow their 32-bit indices.
-  bool WriteSites(std::string& error);
+  /// The faces in their compact form; the builder's own arrays released.
+  void Finish();
   /// How many sites got which kind of domain.
   void CountDomains();
 
@@ -256,23 +244,22 @@ private:
   void AddEdge(int64_t a, int64_t b, int64_t face, int64_t cell);
   template<typename Visit>
   int64_t ForEachGroup(int64_t a, const Visit& visit) const;
-  int64_t EdgeFace(int64_t e, int which) const;
-  Vec Away(const VertexEdge& eu) const;
-  VertexEdgeSpan IncidentEdges(int64_t v) const;
+  int EdgeFaceCount(int64_t e) const
+  {
+    return static_cast<int>(this->Out.EdgeFaceStart[e + 1] - this->Out.EdgeFaceStart[e]);
+  }
+  int64_t EdgeFace(int64_t e, int which) const
+  {
+    return this->Out.EdgeFaces[this->Out.EdgeFaceStart[e] + which];
+  }
+  Vec Away(int64_t v, int64_t e) const;
+  EdgeSpan IncidentEdges(int64_t v) const;
   uint8_t Classify(int64_t v);
-  bool ClosedFan(int64_t v, const VertexEdgeSpan& incident) const;
-  bool PyramidAround(int64_t v, const VertexEdgeSpan& incident);
-  int EdgePlanes(int64_t e) const;
-  int VertexPlanes(int64_t v) const;
-  void SetPlane(uint32_t at, const Vec& n, const double* through, const double* anchor);
-  Site& InitSite(int64_t index, uint8_t type, int64_t cell, const double* anchor);
-  void WriteFaceSites();
-  void WriteEdgeSites();
-  void WriteVertexSites();
+  bool ClosedFan(int64_t v, const EdgeSpan& incident) const;
+  bool PyramidAround(int64_t v, const EdgeSpan& incident);
 
   const MeshInput& In;
   const DomainShape Mode;
-  const double Slack;
   const ParallelFor& For;
   MeshSites& Out;
   const double* P;
@@ -291,19 +278,8 @@ private:
   std::vector<std::atomic<int64_t>> EdgeFill;
   LargeVector<EdgeRecord> Edges;
   std::vector<std::atomic<int64_t>> VertexCell;
-  double Orientation = 1;
-  std::vector<Vec> VertexNormal;
-  // Edges and the edges of every vertex.
-  std::vector<int64_t> GroupStart;
-  LargeVector<EdgeGroup> EdgeGroups;
-  LargeVector<std::array<int64_t, 2>> EdgeEnds;
-  std::vector<int64_t> VertexEdgeOffsets;
-  LargeVector<VertexEdge> VertexEdges;
+  // Classification (DomainShape::Manifold).
   std::vector<std::vector<int64_t>> VertexFaces;
-  // Domains.
-  std::vector<uint8_t> Domain;
-  std::vector<std::array<Vec, 4>> PyramidSides;
-  std::vector<uint32_t> PlaneBegin;
   int64_t NumFaces = 0, NumEdges = 0;
 };
 } // namespace sites

@@ -14,7 +14,8 @@ void SiteBuilder::VertexNormals()
               c = Sub(this->X(f.P[2]), this->X(0));
     volume += Dot(a, Cross(b, c));
   }
-  this->Orientation = volume < 0 ? -1.0 : 1.0;
+  const double orientation = volume < 0 ? -1.0 : 1.0;
+  this->Out.Orientation = orientation;
   this->NumFaces = static_cast<int64_t>(faces.size());
   // The corner angles in parallel, then summed in face order (the same sums either way).
   std::vector<double> cornerAngle(3 * this->NumFaces);
@@ -34,14 +35,22 @@ void SiteBuilder::VertexNormals()
         }
       }
     });
-  this->VertexNormal.assign(this->NumVertices, Vec{ 0, 0, 0 });
+  std::vector<Vec> sum(this->NumVertices, Vec{ 0, 0, 0 });
   for (int64_t fi = 0; fi < this->NumFaces; ++fi)
   {
     const FaceRecord& f = faces[fi];
     for (int k = 0; k < 3; ++k)
     {
-      this->VertexNormal[f.P[k]] = Add(
-        this->VertexNormal[f.P[k]], Scale(f.Normal, cornerAngle[3 * fi + k] * this->Orientation));
+      sum[f.P[k]] = Add(sum[f.P[k]], Scale(f.Normal, cornerAngle[3 * fi + k] * orientation));
+    }
+  }
+  // Only the sign of a dot product with it is used: float is enough.
+  this->Out.VertexNormals.resize(this->NumVertices);
+  for (int64_t v = 0; v < this->NumVertices; ++v)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Out.VertexNormals[v][a] = static_cast<float>(sum[v][a]);
     }
   }
 }
@@ -75,10 +84,10 @@ int64_t SiteBuilder::ForEachGroup(int64_t a, const Visit& visit) const
 // A group lies in one bucket (the records of one smaller point), so the buckets are
 // counted, then written, in parallel; edges are numbered in bucket order, as a serial
 // loop would.
-void SiteBuilder::GroupEdges()
+bool SiteBuilder::GroupEdges(std::string& error)
 {
   const int64_t nv = this->NumVertices;
-  this->GroupStart.assign(nv + 1, 0);
+  std::vector<int64_t> groupStart(nv + 1, 0);
   std::atomic<int64_t> degenerateEdges{ 0 };
   Run(this->For,
     nv,
@@ -90,19 +99,39 @@ void SiteBuilder::GroupEdges()
       {
         int64_t count = 0;
         local += this->ForEachGroup(a, [&](int64_t, int64_t, int64_t) { ++count; });
-        this->GroupStart[a + 1] = count;
+        groupStart[a + 1] = count;
       }
       degenerateEdges += local;
     });
   this->Out.Statistics.DegenerateEdges = degenerateEdges.load();
   for (int64_t v = 0; v < nv; ++v)
   {
-    this->GroupStart[v + 1] += this->GroupStart[v];
+    groupStart[v + 1] += groupStart[v];
   }
-  this->NumEdges = this->GroupStart[nv];
-  this->EdgeGroups.resize(this->NumEdges);
-  this->EdgeEnds.resize(this->NumEdges);
+  this->NumEdges = groupStart[nv];
+  const int64_t numSites = this->NumFaces + this->NumEdges + nv;
+  if (numSites >= int64_t(UINT32_MAX) || 2 * this->NumEdges >= int64_t(UINT32_MAX))
+  {
+    error = "the mesh has " + std::to_string(numSites) + " sites, more than 2^32 - 1";
+    return false;
+  }
+  MeshSites& out = this->Out;
+  out.EdgeEnds.resize(this->NumEdges);
+  out.EdgeCells.resize(this->NumEdges);
+  out.EdgeFaceStart.resize(this->NumEdges + 1);
+  out.EdgeFaceStart[0] = 0;
   std::vector<std::atomic<int64_t>> vertexEdgeCount(nv + 1); // value-initialized: zeros
+  // The faces of every edge are its records' that have one: they come last in a group
+  // (sorted by Face).
+  auto groupFaces = [this](int64_t first, int64_t last)
+  {
+    int64_t faces = 0;
+    for (int64_t r = first; r < last; ++r)
+    {
+      faces += this->Edges[r].Face >= 0;
+    }
+    return faces;
+  };
   Run(this->For,
     nv,
     4096,
@@ -110,44 +139,74 @@ void SiteBuilder::GroupEdges()
     {
       for (int64_t a = begin; a < end; ++a)
       {
-        int64_t e = this->GroupStart[a];
+        int64_t e = groupStart[a];
         this->ForEachGroup(a,
           [&](int64_t first, int64_t last, int64_t b)
           {
-            EdgeGroup& group = this->EdgeGroups[e];
-            group.First = first;
-            group.Last = last;
-            group.Cell = INT64_MAX;
-            group.Faces = 0;
+            int64_t cell = INT64_MAX;
             for (int64_t r = first; r < last; ++r)
             {
-              group.Cell = std::min(group.Cell, this->Edges[r].Cell);
-              group.Faces += this->Edges[r].Face >= 0;
+              cell = std::min(cell, this->Edges[r].Cell);
             }
-            const Vec t = Sub(this->X(b), this->X(a));
-            group.Tangent = Scale(t, 1.0 / Norm(t));
-            this->EdgeEnds[e] = { a, b };
+            out.EdgeCells[e] = cell;
+            out.EdgeEnds[e] = { static_cast<uint32_t>(a), static_cast<uint32_t>(b) };
+            out.EdgeFaceStart[e + 1] = static_cast<uint32_t>(groupFaces(first, last));
             vertexEdgeCount[a + 1].fetch_add(1, std::memory_order_relaxed);
             vertexEdgeCount[b + 1].fetch_add(1, std::memory_order_relaxed);
             ++e;
           });
       }
     });
+  uint64_t edgeFaces = 0;
+  for (int64_t e = 0; e < this->NumEdges; ++e)
+  {
+    edgeFaces += out.EdgeFaceStart[e + 1];
+    if (edgeFaces >= UINT32_MAX)
+    {
+      error = "the mesh's edges have more than 2^32 - 1 faces in all";
+      return false;
+    }
+    out.EdgeFaceStart[e + 1] = static_cast<uint32_t>(edgeFaces);
+  }
+  out.EdgeFaces.resize(edgeFaces);
+  Run(this->For,
+    nv,
+    4096,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t a = begin; a < end; ++a)
+      {
+        int64_t e = groupStart[a];
+        this->ForEachGroup(a,
+          [&](int64_t, int64_t last, int64_t)
+          {
+            uint32_t at = out.EdgeFaceStart[e];
+            for (int64_t r = last - this->EdgeFaceCount(e); r < last; ++r)
+            {
+              out.EdgeFaces[at++] = static_cast<uint32_t>(this->Edges[r].Face);
+            }
+            ++e;
+          });
+      }
+    });
+  LargeVector<EdgeRecord>().swap(this->Edges);
+  std::vector<int64_t>().swap(this->EdgeStart);
 
-  // The edges of every vertex, contiguous per vertex, in edge order: (edge, direction
-  // away from it). Filled in parallel, then each vertex's few sorted.
-  this->VertexEdgeOffsets.assign(nv + 1, 0);
+  // The edges of every vertex, contiguous per vertex, in edge order. Filled in
+  // parallel, then each vertex's few sorted.
+  out.VertexEdgeStart.resize(nv + 1);
+  out.VertexEdgeStart[0] = 0;
   for (int64_t v = 0; v < nv; ++v)
   {
-    this->VertexEdgeOffsets[v + 1] =
-      this->VertexEdgeOffsets[v] + vertexEdgeCount[v + 1].load(std::memory_order_relaxed);
+    out.VertexEdgeStart[v + 1] = static_cast<uint32_t>(
+      out.VertexEdgeStart[v] + vertexEdgeCount[v + 1].load(std::memory_order_relaxed));
   }
   std::vector<std::atomic<int64_t>>& vertexEdgeFill = vertexEdgeCount; // the next free entry
   for (int64_t v = 0; v < nv; ++v)
   {
-    vertexEdgeFill[v].store(this->VertexEdgeOffsets[v], std::memory_order_relaxed);
+    vertexEdgeFill[v].store(out.VertexEdgeStart[v], std::memory_order_relaxed);
   }
-  this->VertexEdges.resize(this->VertexEdgeOffsets[nv]);
+  out.VertexEdges.resize(out.VertexEdgeStart[nv]);
   Run(this->For,
     this->NumEdges,
     4096,
@@ -158,34 +217,29 @@ void SiteBuilder::GroupEdges()
         for (int side = 0; side < 2; ++side)
         {
           const int64_t at =
-            vertexEdgeFill[this->EdgeEnds[e][side]].fetch_add(1, std::memory_order_relaxed);
-          this->VertexEdges[at] = { e, side == 0 ? 1.0 : -1.0 };
+            vertexEdgeFill[out.EdgeEnds[e][side]].fetch_add(1, std::memory_order_relaxed);
+          out.VertexEdges[at] = static_cast<uint32_t>(e);
         }
       }
     });
-  SortBuckets(
-    this->VertexEdges,
-    this->VertexEdgeOffsets,
-    [](const VertexEdge& x, const VertexEdge& y) { return x.Edge < y.Edge; },
-    this->For);
+  std::vector<int64_t> vertexEdgeStart(out.VertexEdgeStart.begin(), out.VertexEdgeStart.end());
+  SortBuckets(out.VertexEdges, vertexEdgeStart, std::less<uint32_t>(), this->For);
+  return true;
 }
 
-/// The faces of an edge (records with a face come last in a group: sorted by Face).
-int64_t SiteBuilder::EdgeFace(int64_t e, int which) const
+/// The unit direction of edge e away from its end v.
+Vec SiteBuilder::Away(int64_t v, int64_t e) const
 {
-  return this->Edges[this->EdgeGroups[e].Last - this->EdgeGroups[e].Faces + which].Face;
+  double t[3];
+  this->Out.EdgeTangent(e, t);
+  const double sign = this->Out.EdgeEnds[e][0] == v ? 1.0 : -1.0;
+  return { t[0] * sign, t[1] * sign, t[2] * sign };
 }
 
-/// The unit direction of an edge away from the vertex it is seen from.
-Vec SiteBuilder::Away(const VertexEdge& eu) const
+EdgeSpan SiteBuilder::IncidentEdges(int64_t v) const
 {
-  return Scale(this->EdgeGroups[eu.Edge].Tangent, eu.Sign);
-}
-
-VertexEdgeSpan SiteBuilder::IncidentEdges(int64_t v) const
-{
-  return VertexEdgeSpan{ this->VertexEdges.data() + this->VertexEdgeOffsets[v],
-    static_cast<size_t>(this->VertexEdgeOffsets[v + 1] - this->VertexEdgeOffsets[v]) };
+  return EdgeSpan{ this->Out.VertexEdges.data() + this->Out.VertexEdgeStart[v],
+    static_cast<size_t>(this->Out.VertexEdgeStart[v + 1] - this->Out.VertexEdgeStart[v]) };
 }
 
 void SiteBuilder::ClassifyVertices()
@@ -201,9 +255,9 @@ void SiteBuilder::ClassifyVertices()
         this->VertexFaces[this->Faces[f].P[k]].push_back(static_cast<int64_t>(f));
       }
     }
-    this->PyramidSides.resize(nv);
+    this->Out.PyramidSides.resize(nv);
   }
-  this->Domain.assign(nv, Unbounded);
+  this->Out.VertexDomains.assign(nv, Unbounded);
   Run(this->For,
     nv,
     1024,
@@ -211,14 +265,14 @@ void SiteBuilder::ClassifyVertices()
     {
       for (int64_t v = begin; v < end; ++v)
       {
-        this->Domain[v] = this->Classify(v);
+        this->Out.VertexDomains[v] = this->Classify(v);
       }
     });
 }
 
 uint8_t SiteBuilder::Classify(int64_t v)
 {
-  const VertexEdgeSpan incident = this->IncidentEdges(v);
+  const EdgeSpan incident = this->IncidentEdges(v);
   if (this->Mode != DomainShape::Manifold)
   {
     return this->Mode == DomainShape::Auto && !incident.empty() ? Polar : Unbounded;
@@ -231,11 +285,11 @@ uint8_t SiteBuilder::Classify(int64_t v)
   // Convex or concave vertex (every incident edge bends the same way): the polytope
   // spanned by the face normals, i.e. the planes orthogonal to the edges.
   int convex = 0, concave = 0;
-  for (const auto& eu : incident)
+  for (const uint32_t e : incident)
   {
-    const FaceRecord& f0 = this->Faces[this->EdgeFace(eu.Edge, 0)];
-    const FaceRecord& f1 = this->Faces[this->EdgeFace(eu.Edge, 1)];
-    const int64_t a = this->EdgeEnds[eu.Edge][0], b = this->EdgeEnds[eu.Edge][1];
+    const FaceRecord& f0 = this->Faces[this->EdgeFace(e, 0)];
+    const FaceRecord& f1 = this->Faces[this->EdgeFace(e, 1)];
+    const int64_t a = this->Out.EdgeEnds[e][0], b = this->Out.EdgeEnds[e][1];
     int64_t c1 = f1.P[0];
     for (int k = 0; k < 3; ++k)
     {
@@ -244,7 +298,7 @@ uint8_t SiteBuilder::Classify(int64_t v)
         c1 = f1.P[k];
       }
     }
-    const double bend = Dot(Scale(f0.Normal, this->Orientation), Sub(this->X(c1), this->X(a)));
+    const double bend = Dot(Scale(f0.Normal, this->Out.Orientation), Sub(this->X(c1), this->X(a)));
     convex += bend <= 0;
     concave += bend >= 0;
   }
@@ -257,31 +311,30 @@ uint8_t SiteBuilder::Classify(int64_t v)
 
 /// Whether the faces around v form one closed fan: every incident edge has two faces, as
 /// many as the faces around v, and a walk around them visits each once.
-bool SiteBuilder::ClosedFan(int64_t v, const VertexEdgeSpan& incident) const
+bool SiteBuilder::ClosedFan(int64_t v, const EdgeSpan& incident) const
 {
   const auto& fan = this->VertexFaces[v];
   bool closed = !incident.empty() && fan.size() == incident.size();
-  for (const auto& eu : incident)
+  for (const uint32_t e : incident)
   {
-    closed = closed && this->EdgeGroups[eu.Edge].Faces == 2;
+    closed = closed && this->EdgeFaceCount(e) == 2;
   }
   if (!closed)
   {
     return false;
   }
   size_t steps = 0;
-  int64_t edge = incident[0].Edge, face = this->EdgeFace(edge, 0);
+  int64_t edge = incident[0], face = this->EdgeFace(edge, 0);
   const int64_t startFace = face;
   do
   {
     ++steps;
     int64_t next = -1;
-    for (const auto& eu : incident)
+    for (const uint32_t e : incident)
     {
-      if (eu.Edge != edge &&
-        (this->EdgeFace(eu.Edge, 0) == face || this->EdgeFace(eu.Edge, 1) == face))
+      if (e != edge && (this->EdgeFace(e, 0) == face || this->EdgeFace(e, 1) == face))
       {
-        next = eu.Edge;
+        next = e;
       }
     }
     if (next < 0)
@@ -296,8 +349,9 @@ bool SiteBuilder::ClosedFan(int64_t v, const VertexEdgeSpan& incident) const
 
 /// A hyperbolic vertex (Theorem 1): the cone about the mean normal n_a whose half-angle
 /// is the largest angle between n_a and a face normal, circumscribed by a square pyramid
-/// (PyramidSides[v]); false when there is none or it does not hold the exact domain.
-bool SiteBuilder::PyramidAround(int64_t v, const VertexEdgeSpan& incident)
+/// (PyramidSides[v], in float as the planes store it); false when there is none or it does
+/// not hold the exact domain.
+bool SiteBuilder::PyramidAround(int64_t v, const EdgeSpan& incident)
 {
   const auto& fan = this->VertexFaces[v];
   Vec na{ 0, 0, 0 };
@@ -325,11 +379,15 @@ bool SiteBuilder::PyramidAround(int64_t v, const VertexEdgeSpan& incident)
   b1 = Scale(b1, 1.0 / Norm(b1));
   const Vec b2 = Cross(na, b1);
   // The cone's tangent planes along +-b1, +-b2: a square pyramid containing the cone.
-  std::array<Vec, 4>& sides = this->PyramidSides[v];
+  std::array<Vec, 4> sides;
   const Vec directions[4] = { b1, Scale(b1, -1), b2, Scale(b2, -1) };
   for (int i = 0; i < 4; ++i)
   {
     sides[i] = Sub(Scale(na, sinTheta).data(), Scale(directions[i], cosTheta).data());
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Out.PyramidSides[v][3 * i + a] = static_cast<float>(sides[i][a]);
+    }
   }
   // Theorem 1 is stated for saddles; check that the exact domain (the cone of
   // directions y with y.u <= 0 for every edge u) really lies in the pyramid.
@@ -339,18 +397,18 @@ bool SiteBuilder::PyramidAround(int64_t v, const VertexEdgeSpan& incident)
   {
     for (size_t j = i + 1; j < incident.size(); ++j)
     {
-      const Vec r = Cross(this->Away(incident[i]), this->Away(incident[j]));
-      for (const auto& eu : incident)
+      const Vec r = Cross(this->Away(v, incident[i]), this->Away(v, incident[j]));
+      for (const uint32_t e : incident)
       {
-        rank = std::max(rank, std::fabs(Dot(r, this->Away(eu))));
+        rank = std::max(rank, std::fabs(Dot(r, this->Away(v, e))));
       }
       for (double sign : { 1.0, -1.0 })
       {
         const Vec ray = Scale(r, sign);
         bool inDomain = Norm(ray) > 1e-12;
-        for (const auto& eu : incident)
+        for (const uint32_t e : incident)
         {
-          inDomain = inDomain && Dot(ray, this->Away(eu)) <= 1e-12;
+          inDomain = inDomain && Dot(ray, this->Away(v, e)) <= 1e-12;
         }
         for (const Vec& w : sides)
         {

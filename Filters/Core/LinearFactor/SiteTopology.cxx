@@ -276,6 +276,11 @@ void SiteBuilder::CollectFacesAndEdges()
     [](const EdgeRecord& x, const EdgeRecord& y)
     { return x.B != y.B ? x.B < y.B : x.Face < y.Face; },
     this->For);
+  // What only this pass reads.
+  std::vector<int64_t>().swap(this->Canonical);
+  std::vector<int64_t>().swap(this->TriangleOrder);
+  std::vector<uint8_t>().swap(this->IsFace);
+  std::vector<std::atomic<int64_t>>().swap(this->EdgeFill);
 }
 
 /// The faces of every chunk of TriangleOrder (chunkFaces[chunk + 1]) and the edge
