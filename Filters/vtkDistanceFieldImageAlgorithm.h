@@ -47,6 +47,9 @@ public:
   /// Seconds the last complete run spent computing (input conversion and arrays
   /// included, no I/O).
   double GetLastTime() const { return this->Record.Time; }
+  /// The last run's peak memory above what the process held when it began, in MiB
+  /// (the process's resident memory: Filters/Core/Common/ProcessMemory.h); -1 unknown.
+  double GetLastPeakMemory() const { return this->Record.PeakMemory; }
   /// Seconds per stage of the last complete run, as "name:seconds,name:seconds,..." (the
   /// stages are the filter's own, e.g. sites, culling, scan, finalize).
   const char* GetLastStageTimes() const { return this->Record.StageTimes.c_str(); }

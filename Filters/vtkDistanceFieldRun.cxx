@@ -105,6 +105,8 @@ int RunRequestData(vtkAlgorithm* filter,
     text << (text.tellp() > 0 ? "," : "") << stage.first << ":" << stage.second;
   }
   record.StageTimes = text.str();
+  const int64_t peak = run.Timer.PeakMemory();
+  record.PeakMemory = peak < 0 ? -1.0 : peak / 1048576.0;
   record.Backend = gl ? "gpu" : "cpu";
   record.Renderer = gl ? gl->Renderer() : "cpu";
   record.Platform = gl ? gl->Platform() : "cpu";

@@ -18,6 +18,7 @@ struct RunRecord
   std::string Platform = "none"; ///< how the GPU's context was made, "cpu"
   double Time = 0;               ///< seconds of the run, input conversion included
   std::string StageTimes;        ///< "name:seconds,name:seconds,..."
+  double PeakMemory = -1;        ///< MiB above the run's start at its peak; -1 unknown
   std::string Reason = "none";   ///< why it ran where it did (ExecutionPlan::Reason)
 
   /// The lines of a filter's PrintSelf (LastBackend only `withBackend`: the convex
@@ -32,6 +33,7 @@ struct RunRecord
     os << indent << "LastPlatform: " << this->Platform << "\n";
     os << indent << "LastTime: " << this->Time << "\n";
     os << indent << "LastStageTimes: " << this->StageTimes << "\n";
+    os << indent << "LastPeakMemory: " << this->PeakMemory << " MiB\n";
     os << indent << "LastBackendReason: " << this->Reason << "\n";
   }
 };

@@ -273,7 +273,8 @@ int Finish(const char* subcommand,
   field->GetDimensions(dims);
   if (common.Timing)
   {
-    std::printf("vtkdf: %s dims=%dx%dx%d backend=%s renderer=\"%s\" time_s=%.6f%s stages=%s\n",
+    std::printf("vtkdf: %s dims=%dx%dx%d backend=%s renderer=\"%s\" time_s=%.6f%s stages=%s "
+                "peak_memory_mb=%.1f\n",
       subcommand,
       dims[0],
       dims[1],
@@ -282,7 +283,8 @@ int Finish(const char* subcommand,
       filter->GetLastRenderer(),
       filter->GetLastTime(),
       extra ? extra().c_str() : "",
-      filter->GetLastStageTimes());
+      filter->GetLastStageTimes(),
+      filter->GetLastPeakMemory());
   }
   if ((then && !then()) || !WriteXML<vtkXMLImageDataWriter>(field, common.Output))
   {

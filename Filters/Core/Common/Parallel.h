@@ -1,8 +1,10 @@
 // The few execution hooks the VTK-free cores need from their host: a parallel loop
 // (vtkSMPTools in the module, std::thread in stand-alone programs), progress with abort,
-// and the time each stage took.
+// and the time each stage took (and the run's peak memory).
 #ifndef vtkdf_Parallel_h
 #define vtkdf_Parallel_h
+
+#include "Common/ProcessMemory.h"
 
 #include <chrono>
 #include <cstdint>
@@ -25,15 +27,22 @@ using ProgressCallback = std::function<bool(double)>;
 class StageTimer
 {
 public:
-  StageTimer() { this->Start = this->Last = Now(); }
+  StageTimer()
+  {
+    this->Start = this->Last = Now();
+    this->Memory.Start();
+  }
   void End(const char* name)
   {
     const double now = Now();
     this->Stages.emplace_back(name, now - this->Last);
     this->Last = now;
+    this->Memory.Sample();
   }
   /// Seconds since the timer started.
   double Elapsed() const { return Now() - this->Start; }
+  /// The run's peak memory above its start, in bytes (ProcessMemory.h); -1: unknown.
+  int64_t PeakMemory() const { return this->Memory.Peak(); }
   const std::vector<std::pair<std::string, double>>& Times() const { return this->Stages; }
 
 private:
@@ -44,6 +53,7 @@ private:
   }
   double Start, Last;
   std::vector<std::pair<std::string, double>> Stages;
+  RunMemory Memory;
 };
 
 /// How a core's entry point runs: its loops, its progress (and abort), its stage times.

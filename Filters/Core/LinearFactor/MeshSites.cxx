@@ -9,24 +9,6 @@ namespace sites
 {
 void SiteBuilder::Finish()
 {
-  const int64_t numFaces = this->NumFaces;
-  this->Out.FaceCorners.resize(numFaces);
-  this->Out.FaceCells.resize(numFaces);
-  Run(this->For,
-    numFaces,
-    4096,
-    [&](int64_t begin, int64_t end)
-    {
-      for (int64_t f = begin; f < end; ++f)
-      {
-        for (int k = 0; k < 3; ++k)
-        {
-          this->Out.FaceCorners[f][k] = static_cast<uint32_t>(this->Faces[f].P[k]);
-        }
-        this->Out.FaceCells[f] = this->Faces[f].Cell;
-      }
-    });
-  LargeVector<FaceRecord>().swap(this->Faces);
   std::vector<std::vector<int64_t>>().swap(this->VertexFaces);
   this->Out.VertexCells.resize(this->NumVertices);
   for (int64_t v = 0; v < this->NumVertices; ++v)
@@ -71,7 +53,10 @@ bool MeshSites::Build(const MeshInput& in,
   {
     return true;
   }
-  builder.CollectFacesAndEdges();
+  if (!builder.CollectFacesAndEdges(error))
+  {
+    return false;
+  }
   builder.VertexNormals();
   if (!builder.GroupEdges(error))
   {

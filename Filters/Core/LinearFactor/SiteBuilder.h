@@ -47,11 +47,13 @@ inline Vec Add(const Vec& a, const Vec& b)
   return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
 }
 
+/// An edge occurrence, in the bucket of its smaller point A.
 struct EdgeRecord
 {
-  int64_t A, B; // canonical point ids, A < B
-  int64_t Face; // non-degenerate face index, or -1
-  int64_t Cell; // input cell
+  static constexpr uint32_t NoFace = UINT32_MAX;
+  uint32_t B;    // the larger merged point
+  uint32_t Face; // the non-degenerate face it bounds, or NoFace
+  int64_t Cell;  // input cell
 };
 
 /// The edges of a vertex (indices, ascending).
@@ -85,13 +87,6 @@ inline void Run(const ParallelFor& parallelFor,
     body(0, n);
   }
 }
-
-struct FaceRecord
-{
-  int64_t P[3];
-  int64_t Cell;
-  Vec Normal;
-};
 
 /// The bits of x (21 of them) moved to every third position: one axis of a Morton code.
 inline uint64_t SpreadBits(uint64_t x)
@@ -216,8 +211,9 @@ public:
   bool MergePoints(std::string& error);
   bool Empty() const { return this->NumVertices == 0; }
   /// Faces (non-degenerate triangles) and every edge occurrence, bucketed by its
-  /// smaller point; the smallest input cell of every vertex.
-  void CollectFacesAndEdges();
+  /// smaller point; the smallest input cell of every vertex. False and `error` when the
+  /// faces are 2^32 - 1 or more: they are numbered in 32 bits.
+  bool CollectFacesAndEdges(std::string& error);
   /// The orientation that makes the pseudonormals point outward for closed meshes, and
   /// the vertices' angle-weighted pseudonormals.
   void VertexNormals();
@@ -227,7 +223,7 @@ public:
   bool GroupEdges(std::string& error);
   /// What bounds every vertex's domain.
   void ClassifyVertices();
-  /// The faces in their compact form; the builder's own arrays released.
+  /// The vertices' cells in their compact form; the builder's own arrays released.
   void Finish();
   /// How many sites got which kind of domain.
   void CountDomains();
@@ -241,7 +237,13 @@ private:
   void Corners(int64_t i, int64_t c[3]) const;
   bool FaceNormal(const int64_t c[3], Vec& normal) const;
   void UseVertex(int64_t v, int64_t cell);
-  void AddEdge(int64_t a, int64_t b, int64_t face, int64_t cell);
+  void AddEdge(int64_t a, int64_t b, uint32_t face, int64_t cell);
+  Vec Normal(int64_t f) const
+  {
+    Vec n;
+    this->Out.FaceNormal(f, n.data());
+    return n;
+  }
   template<typename Visit>
   int64_t ForEachGroup(int64_t a, const Visit& visit) const;
   int EdgeFaceCount(int64_t e) const
@@ -269,10 +271,9 @@ private:
   int64_t NumVertices = 0;
   const double* Points = nullptr; // Out.SitePoints
   double Degenerate = 0;          // features below this size carry no direction
-  // Faces and edge records.
+  // Triangles and edge records.
   std::vector<int64_t> TriangleOrder;
   std::vector<uint8_t> IsFace;
-  LargeVector<FaceRecord> Faces;
   std::vector<int64_t> EdgeStart;
   // Per point: first the records of its bucket, then the next free record.
   std::vector<std::atomic<int64_t>> EdgeFill;

@@ -6,17 +6,16 @@ namespace sites
 {
 void SiteBuilder::VertexNormals()
 {
-  const LargeVector<FaceRecord>& faces = this->Faces;
+  const auto& corners = this->Out.FaceCorners;
   double volume = 0;
-  for (const FaceRecord& f : faces)
+  for (const auto& f : corners)
   {
-    const Vec a = Sub(this->X(f.P[0]), this->X(0)), b = Sub(this->X(f.P[1]), this->X(0)),
-              c = Sub(this->X(f.P[2]), this->X(0));
+    const Vec a = Sub(this->X(f[0]), this->X(0)), b = Sub(this->X(f[1]), this->X(0)),
+              c = Sub(this->X(f[2]), this->X(0));
     volume += Dot(a, Cross(b, c));
   }
   const double orientation = volume < 0 ? -1.0 : 1.0;
   this->Out.Orientation = orientation;
-  this->NumFaces = static_cast<int64_t>(faces.size());
   // The corner angles in parallel, then summed in face order (the same sums either way).
   std::vector<double> cornerAngle(3 * this->NumFaces);
   Run(this->For,
@@ -26,11 +25,11 @@ void SiteBuilder::VertexNormals()
     {
       for (int64_t fi = begin; fi < end; ++fi)
       {
-        const FaceRecord& f = faces[fi];
+        const auto& f = corners[fi];
         for (int k = 0; k < 3; ++k)
         {
-          const Vec u = Sub(this->X(f.P[(k + 1) % 3]), this->X(f.P[k]));
-          const Vec w = Sub(this->X(f.P[(k + 2) % 3]), this->X(f.P[k]));
+          const Vec u = Sub(this->X(f[(k + 1) % 3]), this->X(f[k]));
+          const Vec w = Sub(this->X(f[(k + 2) % 3]), this->X(f[k]));
           cornerAngle[3 * fi + k] = std::atan2(Norm(Cross(u, w)), Dot(u, w));
         }
       }
@@ -38,10 +37,11 @@ void SiteBuilder::VertexNormals()
   std::vector<Vec> sum(this->NumVertices, Vec{ 0, 0, 0 });
   for (int64_t fi = 0; fi < this->NumFaces; ++fi)
   {
-    const FaceRecord& f = faces[fi];
+    const auto& f = corners[fi];
+    const Vec normal = this->Normal(fi);
     for (int k = 0; k < 3; ++k)
     {
-      sum[f.P[k]] = Add(sum[f.P[k]], Scale(f.Normal, cornerAngle[3 * fi + k] * orientation));
+      sum[f[k]] = Add(sum[f[k]], Scale(normal, cornerAngle[3 * fi + k] * orientation));
     }
   }
   // Only the sign of a dot product with it is used: float is enough.
@@ -121,14 +121,14 @@ bool SiteBuilder::GroupEdges(std::string& error)
   out.EdgeFaceStart.resize(this->NumEdges + 1);
   out.EdgeFaceStart[0] = 0;
   std::vector<std::atomic<int64_t>> vertexEdgeCount(nv + 1); // value-initialized: zeros
-  // The faces of every edge are its records' that have one: they come last in a group
+  // The faces of every edge are its records' that have one: they come first in a group
   // (sorted by Face).
   auto groupFaces = [this](int64_t first, int64_t last)
   {
     int64_t faces = 0;
     for (int64_t r = first; r < last; ++r)
     {
-      faces += this->Edges[r].Face >= 0;
+      faces += this->Edges[r].Face != EdgeRecord::NoFace;
     }
     return faces;
   };
@@ -178,12 +178,12 @@ bool SiteBuilder::GroupEdges(std::string& error)
       {
         int64_t e = groupStart[a];
         this->ForEachGroup(a,
-          [&](int64_t, int64_t last, int64_t)
+          [&](int64_t first, int64_t, int64_t)
           {
             uint32_t at = out.EdgeFaceStart[e];
-            for (int64_t r = last - this->EdgeFaceCount(e); r < last; ++r)
+            for (int64_t r = first; r < first + this->EdgeFaceCount(e); ++r)
             {
-              out.EdgeFaces[at++] = static_cast<uint32_t>(this->Edges[r].Face);
+              out.EdgeFaces[at++] = this->Edges[r].Face;
             }
             ++e;
           });
@@ -248,11 +248,11 @@ void SiteBuilder::ClassifyVertices()
   if (this->Mode == DomainShape::Manifold)
   {
     this->VertexFaces.resize(nv);
-    for (size_t f = 0; f < this->Faces.size(); ++f)
+    for (int64_t f = 0; f < this->NumFaces; ++f)
     {
       for (int k = 0; k < 3; ++k)
       {
-        this->VertexFaces[this->Faces[f].P[k]].push_back(static_cast<int64_t>(f));
+        this->VertexFaces[this->Out.FaceCorners[f][k]].push_back(f);
       }
     }
     this->Out.PyramidSides.resize(nv);
@@ -287,18 +287,18 @@ uint8_t SiteBuilder::Classify(int64_t v)
   int convex = 0, concave = 0;
   for (const uint32_t e : incident)
   {
-    const FaceRecord& f0 = this->Faces[this->EdgeFace(e, 0)];
-    const FaceRecord& f1 = this->Faces[this->EdgeFace(e, 1)];
+    const auto& f1 = this->Out.FaceCorners[this->EdgeFace(e, 1)];
     const int64_t a = this->Out.EdgeEnds[e][0], b = this->Out.EdgeEnds[e][1];
-    int64_t c1 = f1.P[0];
+    int64_t c1 = f1[0];
     for (int k = 0; k < 3; ++k)
     {
-      if (f1.P[k] != a && f1.P[k] != b)
+      if (f1[k] != a && f1[k] != b)
       {
-        c1 = f1.P[k];
+        c1 = f1[k];
       }
     }
-    const double bend = Dot(Scale(f0.Normal, this->Out.Orientation), Sub(this->X(c1), this->X(a)));
+    const Vec n0 = Scale(this->Normal(this->EdgeFace(e, 0)), this->Out.Orientation);
+    const double bend = Dot(n0, Sub(this->X(c1), this->X(a)));
     convex += bend <= 0;
     concave += bend >= 0;
   }
@@ -357,7 +357,7 @@ bool SiteBuilder::PyramidAround(int64_t v, const EdgeSpan& incident)
   Vec na{ 0, 0, 0 };
   for (int64_t f : fan)
   {
-    na = Add(na, this->Faces[f].Normal);
+    na = Add(na, this->Normal(f));
   }
   const double nal = Norm(na);
   double cosTheta = 1;
@@ -366,7 +366,7 @@ bool SiteBuilder::PyramidAround(int64_t v, const EdgeSpan& incident)
     na = Scale(na, 1.0 / nal);
     for (int64_t f : fan)
     {
-      cosTheta = std::min(cosTheta, Dot(na, this->Faces[f].Normal));
+      cosTheta = std::min(cosTheta, Dot(na, this->Normal(f)));
     }
   }
   if (!(nal > 0 && cosTheta > 1e-6)) // theta >= pi/2: no pyramid

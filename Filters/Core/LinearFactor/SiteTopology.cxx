@@ -68,6 +68,11 @@ bool SiteBuilder::MergePoints(std::string& error)
     }
   }
   const int64_t nv = static_cast<int64_t>(merged.size());
+  if (nv >= int64_t(UINT32_MAX))
+  {
+    error = "the mesh has " + std::to_string(nv) + " distinct points, more than 2^32 - 2";
+    return false;
+  }
   this->NumVertices = nv;
   // The merged points, contiguous in curve order: every later pass reads them there.
   this->Out.SitePoints.resize(3 * nv);
@@ -222,12 +227,12 @@ void SiteBuilder::UseVertex(int64_t v, int64_t cell)
 }
 
 /// Appends an edge record to the bucket of its smaller point.
-void SiteBuilder::AddEdge(int64_t a, int64_t b, int64_t face, int64_t cell)
+void SiteBuilder::AddEdge(int64_t a, int64_t b, uint32_t face, int64_t cell)
 {
   if (a != b)
   {
     const int64_t at = this->EdgeFill[std::min(a, b)].fetch_add(1, std::memory_order_relaxed);
-    this->Edges[at] = { std::min(a, b), std::max(a, b), face, cell };
+    this->Edges[at] = { static_cast<uint32_t>(std::max(a, b)), face, cell };
   }
 }
 
@@ -235,10 +240,10 @@ void SiteBuilder::AddEdge(int64_t a, int64_t b, int64_t face, int64_t cell)
 // loop would number them whatever the schedule: count faces and edge records, then write
 // them. Edge records go straight into buckets by their smaller point (a counting sort);
 // sorting each small bucket by (B, Face) then orders them all by (A, B, Face), whatever
-// order the threads filled it in.
+// order the threads filled it in (the records without a face last in their group).
 constexpr int64_t Chunk = 4096;
 
-void SiteBuilder::CollectFacesAndEdges()
+bool SiteBuilder::CollectFacesAndEdges(std::string& error)
 {
   const int64_t nv = this->NumVertices;
   this->OrderTriangles();
@@ -256,8 +261,16 @@ void SiteBuilder::CollectFacesAndEdges()
   {
     chunkFaces[chunk + 1] += chunkFaces[chunk];
   }
-  this->Faces.resize(chunkFaces[numChunks]);
-  this->Out.Statistics.DegenerateFaces = numTriangles - chunkFaces[numChunks];
+  const int64_t numFaces = chunkFaces[numChunks];
+  if (numFaces >= int64_t(UINT32_MAX))
+  {
+    error = "the mesh has " + std::to_string(numFaces) + " faces, more than 2^32 - 2";
+    return false;
+  }
+  this->NumFaces = numFaces;
+  this->Out.FaceCorners.resize(numFaces);
+  this->Out.FaceCells.resize(numFaces);
+  this->Out.Statistics.DegenerateFaces = numTriangles - numFaces;
   this->Edges.resize(this->EdgeStart[nv]);
   for (int64_t v = 0; v < nv; ++v)
   {
@@ -281,6 +294,7 @@ void SiteBuilder::CollectFacesAndEdges()
   std::vector<int64_t>().swap(this->TriangleOrder);
   std::vector<uint8_t>().swap(this->IsFace);
   std::vector<std::atomic<int64_t>>().swap(this->EdgeFill);
+  return true;
 }
 
 /// The faces of every chunk of TriangleOrder (chunkFaces[chunk + 1]) and the edge
@@ -349,14 +363,15 @@ void SiteBuilder::WriteFacesAndEdges(const std::vector<int64_t>& chunkFaces)
           {
             this->UseVertex(c[k], cell);
           }
-          int64_t id = -1;
+          uint32_t id = EdgeRecord::NoFace;
           if (this->IsFace[i])
           {
-            id = face++;
-            FaceRecord& f = this->Faces[id];
-            this->FaceNormal(c, f.Normal);
-            std::copy(c, c + 3, f.P);
-            f.Cell = cell;
+            id = static_cast<uint32_t>(face++);
+            for (int k = 0; k < 3; ++k)
+            {
+              this->Out.FaceCorners[id][k] = static_cast<uint32_t>(c[k]);
+            }
+            this->Out.FaceCells[id] = cell;
           }
           for (int k = 0; k < 3; ++k)
           {
@@ -372,7 +387,7 @@ void SiteBuilder::WriteFacesAndEdges(const std::vector<int64_t>& chunkFaces)
     const int64_t cell = this->In.SegmentCells[s];
     this->UseVertex(a, cell);
     this->UseVertex(b, cell);
-    this->AddEdge(a, b, -1, cell);
+    this->AddEdge(a, b, EdgeRecord::NoFace, cell);
   }
   for (size_t v = 0; v < this->In.Vertices.size(); ++v)
   {
