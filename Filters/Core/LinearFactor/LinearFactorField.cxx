@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace vtkdf
 {
@@ -51,9 +52,12 @@ bool MoveToGridFrame(MeshInput& mesh,
 
 /// Moves `mesh` into the local frame of the request's grid and builds its sites there.
 /// The domains' slack is 1e-4 of the smallest spacing plus what the float planes need
-/// over the box that holds the mesh and the grid (MeshSites::PlaneSlack).
+/// over the box that holds the mesh and the grid (MeshSites::PlaneSlack). The mesh is
+/// released once read unless the winding number needs it (a winding sign, or
+/// `keepForWinding`).
 bool BuildLocalSites(MeshInput& mesh,
   const LinearFactorRequest& request,
+  bool keepForWinding,
   const ParallelFor& parallelFor,
   LocalSites& local,
   std::string& error)
@@ -75,7 +79,12 @@ bool BuildLocalSites(MeshInput& mesh,
     diagonal2 += (hi - lo) * (hi - lo);
   }
   const double slack = MeshSites::PlaneSlack(1e-4 * grid.MinSpacing(), std::sqrt(diagonal2));
-  if (!local.Sites.Build(mesh, request.Domains, slack, error, parallelFor))
+  // Only the winding number reads the mesh after its sites are built.
+  const bool keepMesh = request.Sign == SignMode::WindingNumber || keepForWinding;
+  const bool built = keepMesh
+    ? local.Sites.Build(mesh, request.Domains, slack, error, parallelFor)
+    : local.Sites.Build(std::move(mesh), request.Domains, slack, error, parallelFor);
+  if (!built)
   {
     error = "Invalid input mesh: " + error + ".";
     return false;
@@ -240,7 +249,7 @@ bool ComputeLinearFactorField(MeshInput mesh,
     execution.EndStage("queries");
     return WindingSignIfAsked(mesh, request, local, gl, arrays, execution, report, error);
   }
-  if (!BuildLocalSites(mesh, request, execution.For, local, error))
+  if (!BuildLocalSites(mesh, request, arrays.WindingNumber, execution.For, local, error))
   {
     return false;
   }
@@ -313,7 +322,7 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
 {
   report = LinearFactorReport();
   LocalSites local;
-  if (!BuildLocalSites(mesh, request, execution.For, local, error))
+  if (!BuildLocalSites(mesh, request, false, execution.For, local, error))
   {
     return false;
   }

@@ -37,14 +37,18 @@ void SiteBuilder::CountDomains()
 }
 } // namespace sites
 
-bool MeshSites::Build(const MeshInput& in,
+namespace
+{
+bool BuildSites(MeshSites& out,
+  const MeshInput& in,
+  MeshInput* release,
   DomainShape shape,
   double slack,
   std::string& error,
   const ParallelFor& parallelFor)
 {
-  *this = MeshSites();
-  sites::SiteBuilder builder(in, shape, slack, parallelFor, *this);
+  out = MeshSites();
+  sites::SiteBuilder builder(in, shape, slack, parallelFor, out);
   if (!builder.MergePoints(error))
   {
     return false;
@@ -53,7 +57,7 @@ bool MeshSites::Build(const MeshInput& in,
   {
     return true;
   }
-  if (!builder.CollectFacesAndEdges(error))
+  if (!builder.CollectFacesAndEdges(error, release))
   {
     return false;
   }
@@ -66,6 +70,25 @@ bool MeshSites::Build(const MeshInput& in,
   builder.Finish();
   builder.CountDomains();
   return true;
+}
+} // namespace
+
+bool MeshSites::Build(const MeshInput& in,
+  DomainShape shape,
+  double slack,
+  std::string& error,
+  const ParallelFor& parallelFor)
+{
+  return BuildSites(*this, in, nullptr, shape, slack, error, parallelFor);
+}
+
+bool MeshSites::Build(MeshInput&& in,
+  DomainShape shape,
+  double slack,
+  std::string& error,
+  const ParallelFor& parallelFor)
+{
+  return BuildSites(*this, in, &in, shape, slack, error, parallelFor);
 }
 
 int64_t MeshSites::CellOf(int64_t s) const

@@ -90,6 +90,13 @@ public:
     double slack,
     std::string& error,
     const ParallelFor& parallelFor = ParallelFor());
+  /// The same for a caller that no longer needs the mesh: its arrays are released as
+  /// soon as the build has read them (before its own peak).
+  bool Build(MeshInput&& input,
+    DomainShape shape,
+    double slack,
+    std::string& error,
+    const ParallelFor& parallelFor = ParallelFor());
 
   /// How far a stored plane may be from the exact one, per unit of distance from the
   /// site's anchor: the float normal's rounding (2^-24 per component), for each of the

@@ -47,13 +47,12 @@ inline Vec Add(const Vec& a, const Vec& b)
   return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
 }
 
-/// An edge occurrence, in the bucket of its smaller point A.
+/// An edge occurrence, in the bucket of its smaller point A: B the larger merged point;
+/// Source the non-degenerate face it bounds (below the face count), or the face count
+/// plus its entry in LooseCells (a degenerate triangle's, a segment's).
 struct EdgeRecord
 {
-  static constexpr uint32_t NoFace = UINT32_MAX;
-  uint32_t B;    // the larger merged point
-  uint32_t Face; // the non-degenerate face it bounds, or NoFace
-  int64_t Cell;  // input cell
+  uint32_t B, Source;
 };
 
 /// The edges of a vertex (indices, ascending).
@@ -212,8 +211,9 @@ public:
   bool Empty() const { return this->NumVertices == 0; }
   /// Faces (non-degenerate triangles) and every edge occurrence, bucketed by its
   /// smaller point; the smallest input cell of every vertex. False and `error` when the
-  /// faces are 2^32 - 1 or more: they are numbered in 32 bits.
-  bool CollectFacesAndEdges(std::string& error);
+  /// faces are 2^32 - 1 or more: they are numbered in 32 bits. The later passes do not
+  /// read the input: `release` (optional) is the input, whose arrays are then freed.
+  bool CollectFacesAndEdges(std::string& error, MeshInput* release);
   /// The orientation that makes the pseudonormals point outward for closed meshes, and
   /// the vertices' angle-weighted pseudonormals.
   void VertexNormals();
@@ -237,7 +237,13 @@ private:
   void Corners(int64_t i, int64_t c[3]) const;
   bool FaceNormal(const int64_t c[3], Vec& normal) const;
   void UseVertex(int64_t v, int64_t cell);
-  void AddEdge(int64_t a, int64_t b, uint32_t face, int64_t cell);
+  void AddEdge(int64_t a, int64_t b, uint32_t source);
+  bool IsFaceRecord(const EdgeRecord& r) const { return r.Source < this->NumFaces; }
+  int64_t RecordCell(const EdgeRecord& r) const
+  {
+    return this->IsFaceRecord(r) ? this->Out.FaceCells[r.Source]
+                                 : this->LooseCells[r.Source - this->NumFaces];
+  }
   Vec Normal(int64_t f) const
   {
     Vec n;
@@ -278,6 +284,7 @@ private:
   // Per point: first the records of its bucket, then the next free record.
   std::vector<std::atomic<int64_t>> EdgeFill;
   LargeVector<EdgeRecord> Edges;
+  std::vector<int64_t> LooseCells; // the input cells of the records without a face
   std::vector<std::atomic<int64_t>> VertexCell;
   // Classification (DomainShape::Manifold).
   std::vector<std::vector<int64_t>> VertexFaces;

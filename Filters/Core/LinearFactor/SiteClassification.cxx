@@ -128,7 +128,7 @@ bool SiteBuilder::GroupEdges(std::string& error)
     int64_t faces = 0;
     for (int64_t r = first; r < last; ++r)
     {
-      faces += this->Edges[r].Face != EdgeRecord::NoFace;
+      faces += this->IsFaceRecord(this->Edges[r]);
     }
     return faces;
   };
@@ -146,7 +146,7 @@ bool SiteBuilder::GroupEdges(std::string& error)
             int64_t cell = INT64_MAX;
             for (int64_t r = first; r < last; ++r)
             {
-              cell = std::min(cell, this->Edges[r].Cell);
+              cell = std::min(cell, this->RecordCell(this->Edges[r]));
             }
             out.EdgeCells[e] = cell;
             out.EdgeEnds[e] = { static_cast<uint32_t>(a), static_cast<uint32_t>(b) };
@@ -183,13 +183,14 @@ bool SiteBuilder::GroupEdges(std::string& error)
             uint32_t at = out.EdgeFaceStart[e];
             for (int64_t r = first; r < first + this->EdgeFaceCount(e); ++r)
             {
-              out.EdgeFaces[at++] = this->Edges[r].Face;
+              out.EdgeFaces[at++] = this->Edges[r].Source;
             }
             ++e;
           });
       }
     });
   LargeVector<EdgeRecord>().swap(this->Edges);
+  std::vector<int64_t>().swap(this->LooseCells);
   std::vector<int64_t>().swap(this->EdgeStart);
 
   // The edges of every vertex, contiguous per vertex, in edge order. Filled in

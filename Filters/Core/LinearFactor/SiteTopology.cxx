@@ -227,23 +227,23 @@ void SiteBuilder::UseVertex(int64_t v, int64_t cell)
 }
 
 /// Appends an edge record to the bucket of its smaller point.
-void SiteBuilder::AddEdge(int64_t a, int64_t b, uint32_t face, int64_t cell)
+void SiteBuilder::AddEdge(int64_t a, int64_t b, uint32_t source)
 {
   if (a != b)
   {
     const int64_t at = this->EdgeFill[std::min(a, b)].fetch_add(1, std::memory_order_relaxed);
-    this->Edges[at] = { static_cast<uint32_t>(std::max(a, b)), face, cell };
+    this->Edges[at] = { static_cast<uint32_t>(std::max(a, b)), source };
   }
 }
 
 // Two passes over fixed chunks of TriangleOrder, so that faces are numbered as a serial
 // loop would number them whatever the schedule: count faces and edge records, then write
 // them. Edge records go straight into buckets by their smaller point (a counting sort);
-// sorting each small bucket by (B, Face) then orders them all by (A, B, Face), whatever
-// order the threads filled it in (the records without a face last in their group).
+// sorting each small bucket by (B, Source) then orders them all by (A, B, Source), whatever
+// order the threads filled it in (the records of faces first in their group, by face).
 constexpr int64_t Chunk = 4096;
 
-bool SiteBuilder::CollectFacesAndEdges(std::string& error)
+bool SiteBuilder::CollectFacesAndEdges(std::string& error, MeshInput* release)
 {
   const int64_t nv = this->NumVertices;
   this->OrderTriangles();
@@ -262,12 +262,15 @@ bool SiteBuilder::CollectFacesAndEdges(std::string& error)
     chunkFaces[chunk + 1] += chunkFaces[chunk];
   }
   const int64_t numFaces = chunkFaces[numChunks];
-  if (numFaces >= int64_t(UINT32_MAX))
+  const int64_t numLoose = numTriangles - numFaces + int64_t(this->In.Segments.size() / 2);
+  if (numFaces + numLoose >= int64_t(UINT32_MAX))
   {
-    error = "the mesh has " + std::to_string(numFaces) + " faces, more than 2^32 - 2";
+    error = "the mesh has " + std::to_string(numFaces + numLoose) +
+      " triangles and segments, more than 2^32 - 2";
     return false;
   }
   this->NumFaces = numFaces;
+  this->LooseCells.resize(numLoose);
   this->Out.FaceCorners.resize(numFaces);
   this->Out.FaceCells.resize(numFaces);
   this->Out.Statistics.DegenerateFaces = numTriangles - numFaces;
@@ -287,13 +290,19 @@ bool SiteBuilder::CollectFacesAndEdges(std::string& error)
     this->Edges,
     this->EdgeStart,
     [](const EdgeRecord& x, const EdgeRecord& y)
-    { return x.B != y.B ? x.B < y.B : x.Face < y.Face; },
+    { return x.B != y.B ? x.B < y.B : x.Source < y.Source; },
     this->For);
   // What only this pass reads.
   std::vector<int64_t>().swap(this->Canonical);
   std::vector<int64_t>().swap(this->TriangleOrder);
   std::vector<uint8_t>().swap(this->IsFace);
   std::vector<std::atomic<int64_t>>().swap(this->EdgeFill);
+  if (release)
+  {
+    const std::array<double, 6> bounds = release->Bounds;
+    *release = MeshInput();
+    release->Bounds = bounds;
+  }
   return true;
 }
 
@@ -363,19 +372,26 @@ void SiteBuilder::WriteFacesAndEdges(const std::vector<int64_t>& chunkFaces)
           {
             this->UseVertex(c[k], cell);
           }
-          uint32_t id = EdgeRecord::NoFace;
+          uint32_t source;
           if (this->IsFace[i])
           {
-            id = static_cast<uint32_t>(face++);
+            source = static_cast<uint32_t>(face++);
             for (int k = 0; k < 3; ++k)
             {
-              this->Out.FaceCorners[id][k] = static_cast<uint32_t>(c[k]);
+              this->Out.FaceCorners[source][k] = static_cast<uint32_t>(c[k]);
             }
-            this->Out.FaceCells[id] = cell;
+            this->Out.FaceCells[source] = cell;
+          }
+          else
+          {
+            // The degenerate triangles before this one: i less the faces before it.
+            const int64_t loose = i - face;
+            this->LooseCells[loose] = cell;
+            source = static_cast<uint32_t>(this->NumFaces + loose);
           }
           for (int k = 0; k < 3; ++k)
           {
-            this->AddEdge(c[k], c[(k + 1) % 3], id, cell);
+            this->AddEdge(c[k], c[(k + 1) % 3], source);
           }
         }
       }
@@ -387,7 +403,9 @@ void SiteBuilder::WriteFacesAndEdges(const std::vector<int64_t>& chunkFaces)
     const int64_t cell = this->In.SegmentCells[s];
     this->UseVertex(a, cell);
     this->UseVertex(b, cell);
-    this->AddEdge(a, b, EdgeRecord::NoFace, cell);
+    const int64_t loose = numTriangles - this->NumFaces + static_cast<int64_t>(s);
+    this->LooseCells[loose] = cell;
+    this->AddEdge(a, b, static_cast<uint32_t>(this->NumFaces + loose));
   }
   for (size_t v = 0; v < this->In.Vertices.size(); ++v)
   {
