@@ -69,7 +69,7 @@ uint32_t SpreadBits(uint32_t x)
 }
 
 /// An inner node's box: the union of its children's.
-void UniteChildren(std::vector<Node>& nodes, int32_t slot)
+void UniteChildren(LargeVector<Node>& nodes, int32_t slot)
 {
   Node& node = nodes[slot];
   const Node &left = nodes[node.First], &right = nodes[node.First + 1];
@@ -331,7 +331,7 @@ int32_t SplitCodes(const LargeVector<uint32_t>& codes, int32_t begin, int32_t en
 
 /// Builds the subtree of primitives [begin, end) at nodes[slot], its descendants
 /// appended to `nodes` (children after their parent, siblings side by side).
-void BuildSubtree(std::vector<Node>& nodes,
+void BuildSubtree(LargeVector<Node>& nodes,
   const LargeVector<uint32_t>& codes,
   const LargeVector<Primitive>& primitives,
   int32_t slot,
@@ -378,7 +378,7 @@ void QueryTree::BuildNodes(int32_t n, const ParallelFor& parallelFor)
   struct Subtree
   {
     int32_t Slot, Begin, End;
-    std::vector<Node> Nodes;
+    LargeVector<Node> Nodes;
   };
   std::vector<Subtree> subtrees;
   const int32_t small = std::max<int32_t>(LeafSize, n / 64);

@@ -130,9 +130,9 @@ private:
   LargeVector<int64_t> Cells;
   LargeVector<uint8_t> Faces;
   LargeVector<uint32_t> Codes;
-  std::vector<Node> Nodes; // the binary tree, widened into WideNodes
-  std::vector<WideNode> WideNodes;
-  std::vector<Leaf> Leaves;
+  LargeVector<Node> Nodes; // the binary tree, widened into WideNodes
+  LargeVector<WideNode> WideNodes;
+  LargeVector<Leaf> Leaves;
   double Margin = 0; // how far the leaves' frames are widened beyond rounding
 };
 } // namespace nearest
