@@ -54,6 +54,7 @@ vtkdf::RunStatus vtkLinearFactorDistanceField::Execute(vtkInformationVector** in
   {
     return vtkdf::RunStatus::Failed;
   }
+  run.Timer.End("input");
   // Where the field and the sign run (Common/BackendPolicy.h). Signs alone where the
   // crossings decide them stay on the CPU, in less than a GPU pass.
   vtkdf::WorkDescription work;

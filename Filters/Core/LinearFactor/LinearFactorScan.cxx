@@ -385,6 +385,7 @@ void Finalize(const MeshSites& sites,
   const bool banded = std::isfinite(cap);
   const GridFrame& frame = arrays.Frame;
   const float worldCap = static_cast<float>(cap * frame.Scale);
+  const bool signedDistance = arrays.Signed && arrays.Distance;
   // Inside/outside of every sample (0: unknown, outside the band).
   std::vector<int8_t> side(arrays.Signed && arrays.Distance ? n : 0, 0);
   // One row of samples at a time: the row's j, k and coordinates are computed once.
@@ -411,7 +412,7 @@ void Finalize(const MeshSites& sites,
             const int64_t id = static_cast<int64_t>(packed & 0xffffffffu);
             if (id != described)
             {
-              sites.Describe(id, last);
+              sites.Describe(id, last, false, signedDistance);
               described = id;
             }
             site = &last;

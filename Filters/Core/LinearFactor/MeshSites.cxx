@@ -230,7 +230,7 @@ void MeshSites::BoxOf(int64_t s, float lo[3], float hi[3]) const
 // a point on the face side of that plane is closer to the face.
 // Vertices: the planes orthogonal to their edges (Polar), or the four sides of Theorem
 // 1's pyramid (Pyramid), or none.
-void MeshSites::Describe(int64_t s, Site& site) const
+void MeshSites::Describe(int64_t s, Site& site, bool box, bool normal) const
 {
   site = Site();
   const int64_t faces = this->NumFaces(), edges = this->NumEdges();
@@ -240,10 +240,13 @@ void MeshSites::Describe(int64_t s, Site& site) const
     site.Type = FaceSite;
     site.CellId = this->FaceCells[s];
     std::copy(this->X(c[0]), this->X(c[0]) + 3, site.Anchor);
-    StartBox(site);
-    for (int k = 0; k < 3; ++k)
+    if (box)
     {
-      Grow(site, this->X(c[k]));
+      StartBox(site);
+      for (int k = 0; k < 3; ++k)
+      {
+        Grow(site, this->X(c[k]));
+      }
     }
     this->FaceNormal(s, site.Axis);
     for (int a = 0; a < 3; ++a)
@@ -259,12 +262,15 @@ void MeshSites::Describe(int64_t s, Site& site) const
     site.Type = EdgeSite;
     site.CellId = this->EdgeCells[e];
     std::copy(this->X(this->EdgeEnds[e][0]), this->X(this->EdgeEnds[e][0]) + 3, site.Anchor);
-    StartBox(site);
-    Grow(site, this->X(this->EdgeEnds[e][1]));
+    if (box)
+    {
+      StartBox(site);
+      Grow(site, this->X(this->EdgeEnds[e][1]));
+    }
     this->EdgeTangent(e, site.Axis);
     // The pseudonormal: the sum of the faces' normals.
     sites::Vec pseudo{ 0, 0, 0 };
-    for (uint32_t i = this->EdgeFaceStart[e]; i < this->EdgeFaceStart[e + 1]; ++i)
+    for (uint32_t i = this->EdgeFaceStart[e]; normal && i < this->EdgeFaceStart[e + 1]; ++i)
     {
       sites::Vec n;
       this->FaceNormal(this->EdgeFaces[i], n.data());
@@ -284,7 +290,10 @@ void MeshSites::Describe(int64_t s, Site& site) const
     site.Type = VertexSite;
     site.CellId = this->VertexCells[v];
     std::copy(this->X(v), this->X(v) + 3, site.Anchor);
-    StartBox(site);
+    if (box)
+    {
+      StartBox(site);
+    }
     std::copy(this->VertexNormals[v].begin(), this->VertexNormals[v].end(), site.Normal);
     site.PlaneCount = this->VertexDomains[v] == sites::Polar
       ? static_cast<int>(this->VertexEdgeStart[v + 1] - this->VertexEdgeStart[v])

@@ -123,8 +123,10 @@ public:
   const double* AnchorOf(int64_t s) const;
   /// The box of site `s`, rounded outward to float (Site::BoundsMin, BoundsMax).
   void BoxOf(int64_t s, float lo[3], float hi[3]) const;
-  /// The site `s` without its planes.
-  void Describe(int64_t s, Site& site) const;
+  /// The site `s` without its planes; without its box (`box` false: Site's bounds left
+  /// 0) or an edge's pseudonormal (`normal` false: left 0) where the caller needs only
+  /// its distance.
+  void Describe(int64_t s, Site& site, bool box = true, bool normal = true) const;
   /// The planes of site `s` (described by `site`): at most `capacity` of them (optional
   /// planes beyond that are dropped, which only enlarges the domain); returns how many.
   int Planes(int64_t s, const Site& site, HalfSpace* out, int capacity) const;

@@ -162,6 +162,7 @@ bool QueryNearestTriangles(const MeshInput& mesh,
   {
     return false;
   }
+  execution.EndStage("tree");
   const IndexBox& ext = request.Extent;
   const SampleGrid& grid = request.Grid;
   const int64_t nx = ext.Size(0), ny = ext.Size(1), rows = ny * ext.Size(2);
