@@ -330,8 +330,8 @@ private:
       {
         return;
       }
-      std::vector<int64_t>& out = this->Mesh.Triangles;
-      std::vector<int64_t>& outCells = this->Mesh.TriangleCells;
+      vtkdf::LargeVector<int64_t>& out = this->Mesh.Triangles;
+      vtkdf::LargeVector<int64_t>& outCells = this->Mesh.TriangleCells;
       const size_t base = out.size(), baseCells = outCells.size();
       out.resize(base + 3 * n);
       outCells.resize(baseCells + n);

@@ -306,8 +306,8 @@ void TestOverlappingPairs()
 /// Two squares crossing along the z axis without a shared edge.
 void TestCut()
 {
-  std::vector<double> points;
-  std::vector<int64_t> triangles;
+  vtkdf::LargeVector<double> points;
+  vtkdf::LargeVector<int64_t> triangles;
   auto square = [&](double ux, double uy)
   {
     const int64_t base = static_cast<int64_t>(points.size() / 3);

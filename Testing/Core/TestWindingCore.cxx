@@ -37,8 +37,8 @@ std::mt19937_64 Random(16);
 
 struct Mesh
 {
-  std::vector<double> Points;
-  std::vector<int64_t> Triangles;
+  LargeVector<double> Points;
+  LargeVector<int64_t> Triangles;
 };
 
 /// A unit sphere: an octahedron subdivided `levels` times, projected, outward.
@@ -49,7 +49,7 @@ Mesh Sphere(int levels)
   m.Triangles = { 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5 };
   for (int l = 0; l < levels; ++l)
   {
-    std::vector<int64_t> next;
+    LargeVector<int64_t> next;
     auto middle = [&](int64_t a, int64_t b)
     {
       double p[3], n = 0;

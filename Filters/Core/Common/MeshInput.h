@@ -4,6 +4,7 @@
 #ifndef vtkdf_MeshInput_h
 #define vtkdf_MeshInput_h
 
+#include "Common/LargeVector.h"
 #include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
 
@@ -18,14 +19,16 @@ namespace vtkdf
 
 struct MeshInput
 {
-  std::vector<double> Points; // xyz, 3 per point
+  // LargeVector: a fine mesh's arrays are large and written once, by the conversion from
+  // the host's data (not zero-filled first; in 2 MiB pages where the kernel has them).
+  LargeVector<double> Points; // xyz, 3 per point
   // Triangles (polygons and strips already split into triangles), with the cell they came from.
-  std::vector<int64_t> Triangles; // 3 point ids each
-  std::vector<int64_t> TriangleCells;
-  std::vector<int64_t> Segments; // 2 point ids each (lines, polyline pieces)
-  std::vector<int64_t> SegmentCells;
-  std::vector<int64_t> Vertices; // point ids of vertex cells
-  std::vector<int64_t> VertexCells;
+  LargeVector<int64_t> Triangles; // 3 point ids each
+  LargeVector<int64_t> TriangleCells;
+  LargeVector<int64_t> Segments; // 2 point ids each (lines, polyline pieces)
+  LargeVector<int64_t> SegmentCells;
+  LargeVector<int64_t> Vertices; // point ids of vertex cells
+  LargeVector<int64_t> VertexCells;
   /// Bounds (xmin, xmax, ...) of the points the input's cells use, as whoever built the
   /// mesh found them (UsedPointBounds, or the filter's own pass over its input, which
   /// also counts the points of cells it could not use).
@@ -41,7 +44,7 @@ inline bool UsedPointBounds(const MeshInput& mesh, std::array<double, 6>& bounds
 {
   bounds = { { HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL } };
   bool any = false;
-  auto use = [&](const std::vector<int64_t>& ids)
+  auto use = [&](const LargeVector<int64_t>& ids)
   {
     for (const int64_t id : ids)
     {

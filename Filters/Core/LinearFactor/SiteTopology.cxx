@@ -13,7 +13,7 @@ bool SiteBuilder::MergePoints(std::string& error)
   const double* P = this->P;
   const int64_t numPoints = this->NumPoints;
   std::vector<char> used(numPoints, 0);
-  auto markUsed = [&](const std::vector<int64_t>& ids) -> bool
+  auto markUsed = [&](const LargeVector<int64_t>& ids) -> bool
   {
     for (int64_t id : ids)
     {
@@ -167,7 +167,7 @@ void SiteBuilder::SortAlongCurve(std::vector<int64_t>& order) const
 /// Triangles in the order of their first corner on the curve (a counting sort).
 void SiteBuilder::OrderTriangles()
 {
-  const std::vector<int64_t>& triangles = this->In.Triangles;
+  const LargeVector<int64_t>& triangles = this->In.Triangles;
   const int64_t numTriangles = static_cast<int64_t>(triangles.size() / 3);
   this->TriangleOrder.resize(numTriangles);
   std::vector<int64_t> start(this->NumVertices + 1, 0);
@@ -341,7 +341,7 @@ void SiteBuilder::CountFacesAndEdges(std::vector<int64_t>& chunkFaces)
         chunkFaces[chunk + 1] = count;
       }
     });
-  const std::vector<int64_t>& segments = this->In.Segments;
+  const LargeVector<int64_t>& segments = this->In.Segments;
   for (size_t s = 0; s < segments.size() / 2; ++s)
   {
     const int64_t a = this->Canonical[segments[2 * s]], b = this->Canonical[segments[2 * s + 1]];
@@ -396,7 +396,7 @@ void SiteBuilder::WriteFacesAndEdges(const std::vector<int64_t>& chunkFaces)
         }
       }
     });
-  const std::vector<int64_t>& segments = this->In.Segments;
+  const LargeVector<int64_t>& segments = this->In.Segments;
   for (size_t s = 0; s < segments.size() / 2; ++s)
   {
     const int64_t a = this->Canonical[segments[2 * s]], b = this->Canonical[segments[2 * s + 1]];

@@ -27,7 +27,7 @@ struct ProximityModel::Data
   InsideRule Rule = InsideRule::WindingNumber;
   bool Loaded = false, Reused = false;
   uint64_t Topology = 0; // a new number for each new topology (the GPU's copy follows it)
-  std::vector<int64_t> TriangleIds;
+  LargeVector<int64_t> TriangleIds;
   TriangleModel Model;
   std::vector<bool> Used; // points that a triangle uses
   std::array<double, 6> Bounds{ { 0, -1, 0, -1, 0, -1 } };

@@ -74,7 +74,7 @@ bool SideLabelsOnGPUField(HeadlessGL& context,
     gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers.Id[which]);
     gl.BufferData(GL_SHADER_STORAGE_BUFFER, std::max<int64_t>(size, 4), data, GL_STATIC_DRAW);
   };
-  const std::vector<double>& points = *patches.PointArray();
+  const LargeVector<double>& points = *patches.PointArray();
   upload(SiteBuffer, siteTriangle.data(), static_cast<int64_t>(siteTriangle.size()) * 4);
   upload(TriangleBuffer, triangles.data(), static_cast<int64_t>(triangles.size()) * 4);
   upload(PositionBuffer, points.data(), static_cast<int64_t>(points.size()) * 8);

@@ -20,10 +20,10 @@ namespace
 /// patches, and the triangles that have one (those with an area).
 struct Surface
 {
-  std::vector<double> WorldPoints; // when cut: the cut's points
-  std::vector<double> LocalPoints; // the points in the grid's local frame
-  const std::vector<double>* World = nullptr;
-  const std::vector<int64_t>* Triangles = nullptr;
+  LargeVector<double> WorldPoints; // when cut: the cut's points
+  LargeVector<double> LocalPoints; // the points in the grid's local frame
+  const LargeVector<double>* World = nullptr;
+  const LargeVector<int64_t>* Triangles = nullptr;
   SelfIntersectionCut Cut;
   SurfacePatches Patches;
   std::vector<int64_t> Kept; // per field triangle, its triangle of Patches

@@ -18,7 +18,7 @@ namespace vtkdf
 {
 namespace
 {
-Point3 At(const std::vector<double>& points, int64_t id)
+Point3 At(const LargeVector<double>& points, int64_t id)
 {
   return { { points[3 * id], points[3 * id + 1], points[3 * id + 2] } };
 }
@@ -41,7 +41,7 @@ struct Soup
   std::vector<TriangleCorners> Polygons;
   std::vector<int64_t> PolygonTriangle; // each polygon's input triangle
 
-  Soup(const std::vector<double>& points, const std::vector<int64_t>& triangles)
+  Soup(const LargeVector<double>& points, const LargeVector<int64_t>& triangles)
   {
     const int64_t triangleCount = static_cast<int64_t>(triangles.size() / 3);
     const int64_t pointCount = static_cast<int64_t>(points.size() / 3);
@@ -250,8 +250,8 @@ void LeaveGroupsUncut(const std::map<size_t, std::vector<size_t>>& groups, SelfI
 /// input triangle's place; the pieces of a cut one sorted by their corners (each rotated
 /// to start at its least corner, orientation kept), with three new points each after the
 /// input's points, which the others keep.
-void CanonicalOrder(const std::vector<double>& points,
-  const std::vector<int64_t>& triangles,
+void CanonicalOrder(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangles,
   const std::vector<uint8_t>& refined,
   SelfIntersectionCut& out)
 {
@@ -305,8 +305,8 @@ void CanonicalOrder(const std::vector<double>& points,
 #endif
 } // namespace
 
-void CutSelfIntersections(const std::vector<double>& points,
-  const std::vector<int64_t>& triangles,
+void CutSelfIntersections(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangles,
   SelfIntersectionCut& out)
 {
   out = SelfIntersectionCut();

@@ -17,6 +17,7 @@
 #ifndef vtkdf_SelfIntersections_h
 #define vtkdf_SelfIntersections_h
 
+#include "Common/LargeVector.h"
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,8 +29,8 @@ struct SelfIntersectionCut
 {
   /// The cut soup: xyz per point, 3 point ids per triangle, each triangle in the
   /// orientation of the input triangle it lies in (Parent).
-  std::vector<double> Points;
-  std::vector<int64_t> Triangles;
+  LargeVector<double> Points;
+  LargeVector<int64_t> Triangles;
   std::vector<int64_t> Parent;
   /// Input triangles that were cut, and whether any was (when none was, the output
   /// arrays are empty and the input stands).
@@ -48,8 +49,8 @@ struct SelfIntersectionCut
 /// that share no point and intersect. Neighbours that also cross elsewhere (a fold
 /// through its own fan) are not found. A group that cannot be cut is counted in `out`
 /// (FailedGroups) and left uncut.
-void CutSelfIntersections(const std::vector<double>& points,
-  const std::vector<int64_t>& triangles,
+void CutSelfIntersections(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangles,
   SelfIntersectionCut& out);
 
 } // namespace vtkdf

@@ -8,7 +8,7 @@
 namespace vtkdf
 {
 
-void SurfacePatches::Build(const std::vector<double>& points, const std::vector<int64_t>& triangles)
+void SurfacePatches::Build(const LargeVector<double>& points, const LargeVector<int64_t>& triangles)
 {
   this->Points = &points;
   this->Ids = triangles;
@@ -21,7 +21,7 @@ void SurfacePatches::Build(const std::vector<double>& points, const std::vector<
 /// Merged ids: the used points sorted by position, each group keyed by its lowest id.
 void SurfacePatches::MergePositions()
 {
-  const std::vector<double>& points = *this->Points;
+  const LargeVector<double>& points = *this->Points;
   const int64_t pointCount = static_cast<int64_t>(points.size() / 3);
   this->Keys.resize(pointCount);
   std::vector<uint8_t> used(pointCount, 0);

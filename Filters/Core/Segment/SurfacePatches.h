@@ -12,6 +12,7 @@
 #ifndef vtkdf_SurfacePatches_h
 #define vtkdf_SurfacePatches_h
 
+#include "Common/LargeVector.h"
 #include <cstdint>
 #include <vector>
 
@@ -22,7 +23,7 @@ class SurfacePatches
 {
 public:
   /// `points`: xyz; `triangles`: 3 point ids each.
-  void Build(const std::vector<double>& points, const std::vector<int64_t>& triangles);
+  void Build(const LargeVector<double>& points, const LargeVector<int64_t>& triangles);
 
   int64_t PatchCount = 0;
   int64_t CutEdges = 0;
@@ -52,7 +53,7 @@ public:
   bool Flatten(std::vector<int32_t>& triangles, std::vector<int32_t>& corners) const;
   /// The points Build was given (xyz per id), and how many triangle entries Flatten's
   /// `corners` holds after its starts.
-  const std::vector<double>* PointArray() const { return this->Points; }
+  const LargeVector<double>* PointArray() const { return this->Points; }
   int64_t CornerCount() const { return static_cast<int64_t>(this->CornerTriangles.size()); }
 
 private:
@@ -68,8 +69,8 @@ private:
   std::vector<Link> Links(const std::vector<uint8_t>& valid) const;
   void Orient(const std::vector<uint8_t>& valid, const std::vector<Link>& links);
 
-  const std::vector<double>* Points = nullptr;
-  std::vector<int64_t> Ids;         // the triangles' point ids
+  const LargeVector<double>* Points = nullptr;
+  LargeVector<int64_t> Ids;         // the triangles' point ids
   std::vector<int64_t> Keys;        // per point: the lowest id of its position
   std::vector<int64_t> CornerStart; // per key: first entry in CornerTriangles
   std::vector<int64_t> CornerTriangles;

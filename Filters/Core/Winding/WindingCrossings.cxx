@@ -45,7 +45,7 @@ void RadixSort(std::vector<T>& items, Key key)
 
 /// Each point's id with points at equal coordinates merged: the least id among them.
 /// Empty when there are 2^32 points or more.
-std::vector<uint32_t> MergedIds(const std::vector<double>& points)
+std::vector<uint32_t> MergedIds(const LargeVector<double>& points)
 {
   const size_t count = points.size() / 3;
   if (count >= (size_t(1) << 32) - 1)
@@ -150,7 +150,7 @@ bool BoundaryEdges(const std::vector<uint32_t>& id,
 }
 } // namespace
 
-bool CrossingsDecide(const std::vector<double>& points, const std::vector<int64_t>& triangles)
+bool CrossingsDecide(const LargeVector<double>& points, const LargeVector<int64_t>& triangles)
 {
   const std::vector<uint32_t> id = MergedIds(points);
   std::vector<std::array<uint32_t, 2>> boundary;
@@ -162,7 +162,7 @@ bool CrossingsDecide(const std::vector<double>& points, const std::vector<int64_
       boundary);
 }
 
-bool IsClosedChain(const std::vector<double>& points, const std::vector<int64_t>& triangles)
+bool IsClosedChain(const LargeVector<double>& points, const LargeVector<int64_t>& triangles)
 {
   const std::vector<uint32_t> id = MergedIds(points);
   if (id.size() != points.size() / 3)
@@ -272,8 +272,8 @@ struct Event
 namespace
 {
 /// Each triangle's orientation in projection along x and the lines its box covers.
-std::vector<Footprint> Footprints(const std::vector<double>& points,
-  const std::vector<int64_t>& triangleIds,
+std::vector<Footprint> Footprints(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangleIds,
   const SampleGrid& grid,
   const IndexBox& extent,
   const ParallelFor& parallelFor)
@@ -522,8 +522,8 @@ void WriteLines(std::vector<Event>& events,
 /// counts[v] = N (CountUnknown where |N| >= 127); the samples on the surface are left
 /// (0, or CountUnknown) and returned as (i, j, k). The lines go by tiles of
 /// TileLines x TileLines, each with the triangles whose boxes reach it.
-std::vector<std::array<int, 3>> CrossingPass(const std::vector<double>& points,
-  const std::vector<int64_t>& triangleIds,
+std::vector<std::array<int, 3>> CrossingPass(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangleIds,
   const SampleGrid& grid,
   const IndexBox& extent,
   uint8_t* inside,
@@ -617,8 +617,8 @@ std::vector<std::array<int, 3>> CrossingPass(const std::vector<double>& points,
 }
 } // namespace
 
-int64_t CrossingCounts(const std::vector<double>& points,
-  const std::vector<int64_t>& triangles,
+int64_t CrossingCounts(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangles,
   const SampleGrid& grid,
   const IndexBox& extent,
   int8_t* counts,
@@ -630,7 +630,7 @@ int64_t CrossingCounts(const std::vector<double>& points,
   return decided;
 }
 
-bool CloseWithCones(const std::vector<double>& corners, ConeClosure& closure)
+bool CloseWithCones(const LargeVector<double>& corners, ConeClosure& closure)
 {
   const std::vector<uint32_t> id = MergedIds(corners);
   const size_t count = corners.size() / 3;
@@ -768,8 +768,8 @@ bool CloseWithCones(const std::vector<double>& corners, ConeClosure& closure)
   return true;
 }
 
-WindingSignStatistics CrossingSigns(const std::vector<double>& points,
-  const std::vector<int64_t>& triangleIds,
+WindingSignStatistics CrossingSigns(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangleIds,
   const SampleGrid& grid,
   const IndexBox& extent,
   uint8_t* inside,

@@ -23,6 +23,7 @@
 #ifndef vtkdf_WindingCrossings_h
 #define vtkdf_WindingCrossings_h
 
+#include "Common/LargeVector.h"
 #include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
 #include "Winding/WindingNumber.h"
@@ -39,12 +40,12 @@ namespace vtkdf
 /// equal coordinates merged, every edge between distinct points used as often from u to
 /// v as from v to u, and no triangle repeated with the same orientation (the winding
 /// number counts those once).
-bool IsClosedChain(const std::vector<double>& points, const std::vector<int64_t>& triangles);
+bool IsClosedChain(const LargeVector<double>& points, const LargeVector<int64_t>& triangles);
 
 /// Whether the crossings' routes may decide these triangles' signs: closed, or with no
 /// edge (points merged by coordinates) used more than 64 times more often in one
 /// direction than in the other, so that CloseWithCones may close them.
-bool CrossingsDecide(const std::vector<double>& points, const std::vector<int64_t>& triangles);
+bool CrossingsDecide(const LargeVector<double>& points, const LargeVector<int64_t>& triangles);
 
 /// CrossingCounts' mark of a sample whose count is not known: on the surface, or
 /// |N| >= 127.
@@ -54,8 +55,8 @@ constexpr int8_t CountUnknown = INT8_MIN;
 /// own, then the cones'), Cone (the cones' alone), ids into Points.
 struct ConeClosure
 {
-  std::vector<double> Points;
-  std::vector<int64_t> Triangles, Cone;
+  LargeVector<double> Points;
+  LargeVector<int64_t> Triangles, Cone;
 };
 
 /// Closes the triangles of `corners` (9 coordinates each, none repeated with the same
@@ -64,13 +65,13 @@ struct ConeClosure
 /// per surplus use), one cone a closed walk along it, from the walk's mean lifted along
 /// its area vector. False when a cone triangle would repeat another, an edge's surplus
 /// exceeds 64, or the points number 2^32 or more.
-bool CloseWithCones(const std::vector<double>& corners, ConeClosure& closure);
+bool CloseWithCones(const LargeVector<double>& corners, ConeClosure& closure);
 
 /// N at every sample of `extent` (x fastest): the signed count of the crossings of the
 /// closed chain `triangles` on the ray to x = -infinity, CountUnknown on the surface.
 /// Returns the samples whose count is known.
-int64_t CrossingCounts(const std::vector<double>& points,
-  const std::vector<int64_t>& triangles,
+int64_t CrossingCounts(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangles,
   const SampleGrid& grid,
   const IndexBox& extent,
   int8_t* counts,
@@ -80,8 +81,8 @@ int64_t CrossingCounts(const std::vector<double>& points,
 /// of `extent` (x fastest). `hierarchy` gives the triangles' WindingNumber for the
 /// samples on the surface, called (once) only when there is one. Statistics: LineSamples
 /// decided by the crossings, Evaluated (and Exact) on the surface.
-WindingSignStatistics CrossingSigns(const std::vector<double>& points,
-  const std::vector<int64_t>& triangles,
+WindingSignStatistics CrossingSigns(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangles,
   const SampleGrid& grid,
   const IndexBox& extent,
   uint8_t* inside,

@@ -105,8 +105,8 @@ void TriangleSolidAngleGradient(const double a[3],
   }
 }
 
-void WindingNumber::Build(const std::vector<double>& points,
-  const std::vector<int64_t>& triangles,
+void WindingNumber::Build(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangles,
   double accuracy)
 {
   if (!(accuracy > 1))

@@ -25,6 +25,8 @@
 #ifndef vtkdf_WindingNumber_h
 #define vtkdf_WindingNumber_h
 
+#include "Common/LargeVector.h"
+
 #include <cstdint>
 #include <vector>
 
@@ -90,8 +92,8 @@ public:
 
   /// Builds the hierarchy over the triangles (3 point ids each into xyz `points`).
   /// Accuracy must exceed 1.
-  void Build(const std::vector<double>& points,
-    const std::vector<int64_t>& triangles,
+  void Build(const LargeVector<double>& points,
+    const LargeVector<int64_t>& triangles,
     double accuracy = DefaultAccuracy);
 
   /// w(q) from the hierarchy, with its error bound.
@@ -121,7 +123,7 @@ public:
   static constexpr int NodeDoubles = 17;
   void Flatten(std::vector<double>& nodes, std::vector<int32_t>& links) const;
   /// The kept triangles' corners, 9 doubles each, in the hierarchy's order.
-  const std::vector<double>& TriangleCorners() const { return this->Corners; }
+  const LargeVector<double>& TriangleCorners() const { return this->Corners; }
   double GetAccuracy() const { return this->Accuracy; }
 
   /// The triangles kept (repeated ones once).
@@ -176,7 +178,7 @@ private:
   AngleProduct ExactAngles(const double q[3]) const;
 
   std::vector<Node> Nodes;
-  std::vector<double> Corners; // 9 per triangle, in the hierarchy's order
+  LargeVector<double> Corners; // 9 per triangle, in the hierarchy's order
   // Per triangle, in the same order, for HessianBound: the ball around its centroid
   // through its farthest corner (centre, radius) and its area.
   std::vector<double> Balls; // 4 per triangle

@@ -293,8 +293,8 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
   // A closed mesh: w is the count of crossings along each line (WindingCrossings.h).
   if (CrossingsApply(options, grid))
   {
-    const std::vector<double>& corners = winding.TriangleCorners();
-    std::vector<int64_t> ids(corners.size() / 3);
+    const LargeVector<double>& corners = winding.TriangleCorners();
+    LargeVector<int64_t> ids(corners.size() / 3);
     std::iota(ids.begin(), ids.end(), int64_t(0));
     if (IsClosedChain(corners, ids))
     {
@@ -320,7 +320,7 @@ namespace
 {
 /// The power of two that brings the points and the grid's corners near 1 (0 where their
 /// largest coordinate lies within 2^+-100 already).
-int ScaleExponent(const std::vector<double>& points, const SampleGrid& grid)
+int ScaleExponent(const LargeVector<double>& points, const SampleGrid& grid)
 {
   double largest = 0;
   for (const double x : points)
@@ -338,8 +338,8 @@ int ScaleExponent(const std::vector<double>& points, const SampleGrid& grid)
 }
 } // namespace
 
-bool ComputeWindingSigns(const std::vector<double>& points,
-  const std::vector<int64_t>& triangles,
+bool ComputeWindingSigns(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangles,
   const SampleGrid& grid,
   const IndexBox& extent,
   uint8_t* inside,
@@ -354,7 +354,7 @@ bool ComputeWindingSigns(const std::vector<double>& points,
   // is exact (short of subnormal coordinates) and keeps every sign and value.
   if (const int exponent = ScaleExponent(points, grid))
   {
-    std::vector<double> scaledPoints(points);
+    LargeVector<double> scaledPoints(points);
     for (double& x : scaledPoints)
     {
       x = std::ldexp(x, -exponent);

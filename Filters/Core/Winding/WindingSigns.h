@@ -21,6 +21,7 @@
 #ifndef vtkdf_WindingSigns_h
 #define vtkdf_WindingSigns_h
 
+#include "Common/LargeVector.h"
 #include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
 #include "Winding/WindingNumber.h"
@@ -74,8 +75,8 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
 /// surface); on the GPU when `gl` is given (but where the crossings decide, with
 /// options.CrossingsOnCPU), WindingSignsGPU (which honours options.Value only). False
 /// and `error` when the GPU cannot run it.
-bool ComputeWindingSigns(const std::vector<double>& points,
-  const std::vector<int64_t>& triangles,
+bool ComputeWindingSigns(const LargeVector<double>& points,
+  const LargeVector<int64_t>& triangles,
   const SampleGrid& grid,
   const IndexBox& extent,
   uint8_t* inside,

@@ -46,7 +46,7 @@ bool WindingSignsGPU(HeadlessGL& context,
   std::vector<double> nodes;
   std::vector<int32_t> links;
   winding.Flatten(nodes, links);
-  const std::vector<double>& corners = winding.TriangleCorners();
+  const LargeVector<double>& corners = winding.TriangleCorners();
   const GLint64 maxBlock = MaxStorageBlock(gl);
   const int64_t sizes[3] = { static_cast<int64_t>(nodes.size() * sizeof(double)),
     static_cast<int64_t>(links.size() * sizeof(int32_t)),
