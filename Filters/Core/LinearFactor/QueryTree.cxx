@@ -416,6 +416,12 @@ void QueryTree::BuildNodes(int32_t n, const ParallelFor& parallelFor)
   };
   parallelFor ? parallelFor(static_cast<int64_t>(subtrees.size()), 1, build)
               : build(0, static_cast<int64_t>(subtrees.size()));
+  size_t total = this->Nodes.size();
+  for (const Subtree& t : subtrees)
+  {
+    total += t.Nodes.size() - 1;
+  }
+  this->Nodes.reserve(total);
   for (const Subtree& t : subtrees)
   {
     // Node j > 0 of the subtree goes to offset + j - 1; its root to t.Slot.
