@@ -122,7 +122,7 @@ bool SiteBuilder::GroupEdges(std::string& error)
   out.EdgeFaceStart[0] = 0;
   std::vector<std::atomic<int64_t>> vertexEdgeCount(nv + 1); // value-initialized: zeros
   // The faces of every edge are its records' that have one: they come first in a group
-  // (sorted by Face).
+  // (sorted by Source).
   auto groupFaces = [this](int64_t first, int64_t last)
   {
     int64_t faces = 0;
@@ -132,30 +132,36 @@ bool SiteBuilder::GroupEdges(std::string& error)
     }
     return faces;
   };
-  Run(this->For,
-    nv,
-    4096,
-    [&](int64_t begin, int64_t end)
-    {
-      for (int64_t a = begin; a < end; ++a)
+  // Every edge with its number e: the buckets in parallel, each numbering its groups from
+  // the bucket's first edge.
+  auto forEachEdge = [&](const auto& visit)
+  {
+    Run(this->For,
+      nv,
+      4096,
+      [&](int64_t begin, int64_t end)
       {
-        int64_t e = groupStart[a];
-        this->ForEachGroup(a,
-          [&](int64_t first, int64_t last, int64_t b)
-          {
-            int64_t cell = INT64_MAX;
-            for (int64_t r = first; r < last; ++r)
-            {
-              cell = std::min(cell, this->RecordCell(this->Edges[r]));
-            }
-            out.EdgeCells[e] = cell;
-            out.EdgeEnds[e] = { static_cast<uint32_t>(a), static_cast<uint32_t>(b) };
-            out.EdgeFaceStart[e + 1] = static_cast<uint32_t>(groupFaces(first, last));
-            vertexEdgeCount[a + 1].fetch_add(1, std::memory_order_relaxed);
-            vertexEdgeCount[b + 1].fetch_add(1, std::memory_order_relaxed);
-            ++e;
-          });
+        for (int64_t a = begin; a < end; ++a)
+        {
+          int64_t e = groupStart[a];
+          this->ForEachGroup(
+            a, [&](int64_t first, int64_t last, int64_t b) { visit(e++, first, last, a, b); });
+        }
+      });
+  };
+  forEachEdge(
+    [&](int64_t e, int64_t first, int64_t last, int64_t a, int64_t b)
+    {
+      int64_t cell = INT64_MAX;
+      for (int64_t r = first; r < last; ++r)
+      {
+        cell = std::min(cell, this->RecordCell(this->Edges[r]));
       }
+      out.EdgeCells[e] = cell;
+      out.EdgeEnds[e] = { static_cast<uint32_t>(a), static_cast<uint32_t>(b) };
+      out.EdgeFaceStart[e + 1] = static_cast<uint32_t>(groupFaces(first, last));
+      vertexEdgeCount[a + 1].fetch_add(1, std::memory_order_relaxed);
+      vertexEdgeCount[b + 1].fetch_add(1, std::memory_order_relaxed);
     });
   uint64_t edgeFaces = 0;
   for (int64_t e = 0; e < this->NumEdges; ++e)
@@ -169,24 +175,13 @@ bool SiteBuilder::GroupEdges(std::string& error)
     out.EdgeFaceStart[e + 1] = static_cast<uint32_t>(edgeFaces);
   }
   out.EdgeFaces.resize(edgeFaces);
-  Run(this->For,
-    nv,
-    4096,
-    [&](int64_t begin, int64_t end)
+  forEachEdge(
+    [&](int64_t e, int64_t first, int64_t, int64_t, int64_t)
     {
-      for (int64_t a = begin; a < end; ++a)
+      uint32_t at = out.EdgeFaceStart[e];
+      for (int64_t r = first; r < first + this->EdgeFaceCount(e); ++r)
       {
-        int64_t e = groupStart[a];
-        this->ForEachGroup(a,
-          [&](int64_t first, int64_t, int64_t)
-          {
-            uint32_t at = out.EdgeFaceStart[e];
-            for (int64_t r = first; r < first + this->EdgeFaceCount(e); ++r)
-            {
-              out.EdgeFaces[at++] = this->Edges[r].Source;
-            }
-            ++e;
-          });
+        out.EdgeFaces[at++] = this->Edges[r].Source;
       }
     });
   LargeVector<EdgeRecord>().swap(this->Edges);
