@@ -1,6 +1,6 @@
 // vtkDistanceFieldRunRecord: what every filter reports of its last complete run (its
 // GetLastTime() and friends), filled by the run every filter shares
-// (vtkDistanceFieldRun.h) and held by the module's two wrapped bases.
+// (vtkDistanceFieldRun.h) and held by the module's wrapped bases.
 #ifndef vtkDistanceFieldRunRecord_h
 #define vtkDistanceFieldRunRecord_h
 

@@ -3,6 +3,7 @@ set(df_root "${CMAKE_SOURCE_DIR}")
 set(classes
   "${df_root}/Filters/vtkDistanceFieldImageAlgorithm"
   "${df_root}/Filters/vtkDistanceFieldPolyDataAlgorithm"
+  "${df_root}/Filters/vtkDistanceFieldDataSetAlgorithm"
   "${df_root}/Filters/vtkDistanceFieldAlgorithm"
   "${df_root}/Filters/vtkLinearFactorDistanceField"
   "${df_root}/Filters/vtkPolyDataVoxelizer"
@@ -14,7 +15,9 @@ set(classes
   "${df_root}/Filters/vtkConvexQueryAlgorithm"
   "${df_root}/Filters/vtkUnionClosestPoint"
   "${df_root}/Filters/vtkPenetrationDepth"
-  "${df_root}/Filters/vtkDistanceFieldProximity")
+  "${df_root}/Filters/vtkDistanceFieldProximity"
+  "${df_root}/Filters/vtkMeshDistanceFilter"
+  "${df_root}/Filters/vtkMeshDistanceFunction")
 vtk_module_add_module(DistanceFields::vtkDistanceFields
   CLASSES ${classes}
   HEADERS "${df_root}/Filters/vtkDistanceFieldRunRecord.h"

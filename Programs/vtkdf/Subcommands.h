@@ -23,6 +23,8 @@ int Union(int argc, char* argv[]);
 int PenetrationDepth(int argc, char* argv[]);
 /// vtkdf proximity (vtkDistanceFieldProximity).
 int Proximity(int argc, char* argv[]);
+/// vtkdf probe (vtkMeshDistanceFilter).
+int Probe(int argc, char* argv[]);
 /// vtkdf render (vtkSegmentedDistanceVolumeMapper).
 int Render(int argc, char* argv[]);
 } // namespace vtkdf::cli

@@ -22,6 +22,7 @@
 //         [--pixels N] [--uncertified] [--timing]
 //         (penetration depth; P, Q: convex pieces in the forms union takes)
 //   vtkdf proximity A B -o OUT.vtp [--contacts OUT.vtp] [--models A.vtp B.vtp]
+//   vtkdf probe MESH POINTS -o OUT [--signed] [--sign ...] [--max-distance D]
 //         [--resolution N | --spacing H] [--margin M] [--sign winding|pseudonormal]
 //         [--no-contacts] [--backend ...] [--timing]
 //   vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H] ...
@@ -65,6 +66,7 @@ int main(int argc, char* argv[])
     { "union", vtkdf::cli::Union },
     { "pd", vtkdf::cli::PenetrationDepth },
     { "proximity", vtkdf::cli::Proximity },
+    { "probe", vtkdf::cli::Probe },
     { "render", vtkdf::cli::Render } };
   for (const auto& entry : subcommands)
   {

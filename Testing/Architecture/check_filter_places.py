@@ -2,7 +2,10 @@
 
 usage: check_filter_places.py SOURCE_DIR
 
-A filter is a class of Filters/vtk*.h with a New(). docs/architecture.md ("Adding a
+A filter is a class of Filters/vtk*.h with a New() that is not an implicit function
+(vtkMeshDistanceFunction is documented and tested with its filter, and has no proxy or
+subcommand of its own: ParaView's clip filters list only their own functions).
+docs/architecture.md ("Adding a
 filter") lists the places in the order one fills them; this checks that each filter is:
 1. in the module's class list (cmake/vtkDistanceFieldsModule.cmake);
 2. a ParaView proxy of that class (ParaView/DistanceFieldsFilters.xml);
@@ -34,7 +37,9 @@ def main():
     filters = []
     for header in sorted(glob.glob(os.path.join(root, "Filters", "vtk*.h"))):
         name = os.path.basename(header)[:-2]
-        if re.search(r"static\s+%s\s*\*\s*New\s*\(\s*\)" % name, open(header).read()):
+        source = open(header).read()
+        if re.search(r"static\s+%s\s*\*\s*New\s*\(\s*\)" % name, source) and \
+                "public vtkImplicitFunction" not in source:
             filters.append(name)
     places = [
         ("the class list of cmake/vtkDistanceFieldsModule.cmake",

@@ -3,8 +3,9 @@
 
 usage: check_functions.py SOURCE_DIR
 
-- ProcessRequest and RequestData are overridden only by the module's two wrapped bases
-  (vtkDistanceFieldImageAlgorithm, vtkDistanceFieldPolyDataAlgorithm), which run every
+- ProcessRequest and RequestData are overridden only by the module's wrapped bases
+  (vtkDistanceFieldImageAlgorithm, vtkDistanceFieldPolyDataAlgorithm,
+  vtkDistanceFieldDataSetAlgorithm: one per output type), which run every
   request the same way (Filters/vtkDistanceFieldRun.h); a filter supplies Execute.
 - A filter's Execute is at most 120 lines: it maps VTK's data onto one core entry point
   and back, and holds no algorithm.
@@ -24,7 +25,8 @@ import sys
 ADAPTER_LIMIT = 120
 FUNCTION_LIMIT = 150
 FILE_LIMIT = 1000
-BASES = {"Filters/vtkDistanceFieldImageAlgorithm.cxx", "Filters/vtkDistanceFieldPolyDataAlgorithm.cxx"}
+BASES = {"Filters/vtkDistanceFieldImageAlgorithm.cxx", "Filters/vtkDistanceFieldPolyDataAlgorithm.cxx",
+         "Filters/vtkDistanceFieldDataSetAlgorithm.cxx"}
 # Functions still over the limit: "path:name" -> what they hold.
 LONG = {
 }

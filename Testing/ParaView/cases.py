@@ -89,7 +89,13 @@ CASES = [
          inputs={"Source": "bunny_small.vtp", "Target": "teapot.vtp"},
          properties=dict(Resolution=48, SignMode="WindingNumber", ContactMargin=0.5),
          outputs={0: "vtp", 1: "vtp", 2: "vtp", 3: "vtp"}),
+    dict(name="mesh_distance", filter="MeshDistanceFilter",
+         inputs={"Input": "teapot.vtp", "Surface": "bunny_small.vtp"},
+         properties=dict(SignMode="WindingNumber", ComputeWindingNumber=1,
+                         ComputeClosestFeature=1),
+         outputs={0: "vtp"}),
 ]
 
 # The input port of each input property (the C++ classes take SetInputConnection(port)).
-INPUT_PORTS = {"Input": 0, "Source": 0, "Target": 1, "Query": 1, "SolidP": 0, "SolidQ": 1}
+INPUT_PORTS = {"Input": 0, "Source": 0, "Target": 1, "Query": 1, "SolidP": 0, "SolidQ": 1,
+               "Surface": 1}

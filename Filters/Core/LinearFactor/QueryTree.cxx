@@ -4,6 +4,7 @@
 #include "Common/LargeVector.h"
 #include "Common/PointTriangleDistance.h"
 #include "Common/Vector3.h"
+#include "Predicates/ExactPredicates.h"
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -226,6 +227,7 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
 {
   const PrimitiveCorners corners(mesh);
   const int64_t n = corners.Count();
+  this->Triangles = corners.Triangles;
   if (n >= std::numeric_limits<int32_t>::max())
   {
     error = "the mesh has " + std::to_string(n) + " cells, more than 2^31 - 1";
@@ -269,6 +271,7 @@ void QueryTree::GatherPrimitives(const PrimitiveCorners& corners,
   const int64_t n = corners.Count();
   this->Primitives.resize(n);
   this->Cells.resize(n);
+  this->Sources.resize(n);
   this->Faces.resize(n);
   this->Codes.resize(n);
   auto gather = [&](int64_t begin, int64_t end)
@@ -277,12 +280,13 @@ void QueryTree::GatherPrimitives(const PrimitiveCorners& corners,
     {
       Primitive& p = this->Primitives[i];
       int64_t c[3];
-      corners(static_cast<int64_t>(keys[i] & 0xffffffffu), c, this->Cells[i]);
+      this->Sources[i] = static_cast<uint32_t>(keys[i] & 0xffffffffu);
+      corners(this->Sources[i], c, this->Cells[i]);
       for (int k = 0; k < 3; ++k)
       {
         std::copy(&mesh.Points[3 * c[k]], &mesh.Points[3 * c[k]] + 3, p.X + 3 * k);
       }
-      const bool triangle = static_cast<int64_t>(keys[i] & 0xffffffffu) < corners.Triangles;
+      const bool triangle = static_cast<int64_t>(this->Sources[i]) < corners.Triangles;
       double normal[3];
       this->Faces[i] = triangle && FaceNormal(p.X, this->Degenerate, normal);
       this->Codes[i] = static_cast<uint32_t>(keys[i] >> 32);
@@ -738,9 +742,11 @@ int64_t QueryTree::Nearest(const double p[3],
 void QueryTree::FeatureCellAndNormal(const double* a,
   const double* b,
   int64_t& cell,
-  double normal[3]) const
+  double normal[3],
+  int64_t* primitive) const
 {
   cell = std::numeric_limits<int64_t>::max();
+  int64_t source = -1;
   normal[0] = normal[1] = normal[2] = 0;
   struct Range
   {
@@ -783,7 +789,15 @@ void QueryTree::FeatureCellAndNormal(const double* a,
       {
         continue;
       }
-      cell = std::min(cell, this->Cells[i]);
+      if (this->Cells[i] < cell || (this->Cells[i] == cell && this->Sources[i] < source))
+      {
+        cell = this->Cells[i];
+        source = this->Sources[i];
+        if (primitive)
+        {
+          *primitive = i;
+        }
+      }
       if (!this->Faces[i])
       {
         continue;
@@ -811,6 +825,119 @@ void QueryTree::FeatureCellAndNormal(const double* a,
       }
     }
   }
+}
+namespace
+{
+/// Sign of det[u - p', v - p'] in (y, z), p' = (y + e, z + e^2) for an infinitesimal e,
+/// when det[u - p, v - p] is 0 (as WindingCrossings.cxx moves its lines).
+int PerturbedSide(const double u[3], const double v[3])
+{
+  if (u[2] != v[2])
+  {
+    return u[2] > v[2] ? 1 : -1;
+  }
+  return v[1] > u[1] ? 1 : (v[1] < u[1] ? -1 : 0);
+}
+
+/// Triangle (a, b, c)'s crossing of the ray from p to x = -infinity: its contribution to
+/// the count, or false when p may lie on it.
+bool TriangleCrossing(const double* a,
+  const double* b,
+  const double* c,
+  const double p[3],
+  int& delta)
+{
+  delta = 0;
+  // Cheap rejections first: p's (y, z) outside the triangle's box, or p before all of it
+  // along x (its crossing, if any, lies ahead of p), leave no crossing behind p and p
+  // off the triangle.
+  if (p[1] < std::min({ a[1], b[1], c[1] }) || p[1] > std::max({ a[1], b[1], c[1] }) ||
+    p[2] < std::min({ a[2], b[2], c[2] }) || p[2] > std::max({ a[2], b[2], c[2] }) ||
+    p[0] < std::min({ a[0], b[0], c[0] }))
+  {
+    return true;
+  }
+  const int orientation = Orient2D(a, b, c, 1, 2);
+  const int side[3] = { Orient2D(p, a, b, 1, 2), Orient2D(p, b, c, 1, 2), Orient2D(p, c, a, 1, 2) };
+  if (orientation == 0)
+  {
+    // Seen edge-on along x: no crossing, but p on the line of its projection, within its
+    // x range, may lie on it.
+    return !(side[0] == 0 && side[1] == 0 && side[2] == 0 &&
+      std::min({ a[0], b[0], c[0] }) <= p[0] && p[0] <= std::max({ a[0], b[0], c[0] }));
+  }
+  bool closed = true, moved = true;
+  const double* from[3] = { a, b, c };
+  const double* to[3] = { b, c, a };
+  for (int e = 0; e < 3; ++e)
+  {
+    closed = closed && (side[e] == orientation || side[e] == 0);
+    moved = moved && (side[e] != 0 ? side[e] : PerturbedSide(from[e], to[e])) == orientation;
+  }
+  if (!closed)
+  {
+    return true;
+  }
+  const int beyond = orientation * Orient3D(a, b, c, p);
+  if (beyond == 0)
+  {
+    return false; // p on the triangle (or on its boundary)
+  }
+  // w counts crossings entering the side the normal points away from.
+  delta = moved && beyond > 0 ? -orientation : 0;
+  return true;
+}
+} // namespace
+
+bool QueryTree::CrossingCount(const double p[3], int64_t& count) const
+{
+  count = 0;
+  if (this->WideNodes.empty())
+  {
+    return true;
+  }
+  struct Range
+  {
+    int32_t First, Count;
+  };
+  Range stack[StackSize]; // as in Nearest
+  int depth = 0;
+  stack[depth++] = Range{ 0, 0 };
+  while (depth > 0)
+  {
+    const Range node = stack[--depth];
+    if (node.Count == 0)
+    {
+      // The children whose boxes the ray meets: p's (y, z) within them, their x from p's on down.
+      const WideNode& wide = this->WideNodes[node.First];
+      for (int k = 0; k < 4; ++k)
+      {
+        if (wide.Count[k] >= 0 && wide.Lo[0][k] <= p[0] && wide.Lo[1][k] <= p[1] &&
+          p[1] <= wide.Hi[1][k] && wide.Lo[2][k] <= p[2] && p[2] <= wide.Hi[2][k])
+        {
+          stack[depth++] = wide.Count[k] > 0
+            ? Range{ this->Leaves[wide.First[k]].First, wide.Count[k] }
+            : Range{ wide.First[k], 0 };
+        }
+      }
+      continue;
+    }
+    for (int32_t i = node.First; i < node.First + node.Count; ++i)
+    {
+      if (static_cast<int64_t>(this->Sources[i]) >= this->Triangles)
+      {
+        continue;
+      }
+      const Primitive& t = this->Primitives[i];
+      int delta;
+      if (!TriangleCrossing(t.X, t.X + 3, t.X + 6, p, delta))
+      {
+        return false;
+      }
+      count += delta;
+    }
+  }
+  return true;
 }
 } // namespace nearest
 } // namespace vtkdf

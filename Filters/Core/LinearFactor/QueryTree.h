@@ -86,14 +86,25 @@ public:
 
   /// The smallest cell among the primitives with a corner at `a` (and at `b` too, when
   /// given), and the pseudonormal of that vertex or edge: the faces' unit normals, each
-  /// weighted by its angle at `a` for a vertex.
+  /// weighted by its angle at `a` for a vertex. With `primitive`, the primitive of that
+  /// cell holding the feature (the first in the mesh's order where the cell has several).
   void FeatureCellAndNormal(const double* a,
     const double* b,
     int64_t& cell,
-    double normal[3]) const;
+    double normal[3],
+    int64_t* primitive = nullptr) const;
+
+  /// The signed count of the crossings of the mesh's triangles with the ray from p to
+  /// x = -infinity (WindingCrossings.h's rule: exact orientation tests, the ray moved
+  /// symbolically off edges and corners): the winding number at p when the triangles
+  /// form a closed chain. False when p may lie on a triangle (then undecided).
+  bool CrossingCount(const double p[3], int64_t& count) const;
 
   const Primitive& Get(int64_t i) const { return this->Primitives[i]; }
   int64_t Cell(int64_t i) const { return this->Cells[i]; }
+  /// The primitive's index in the mesh's order: its triangles, then its segments, then
+  /// its vertices.
+  int64_t Source(int64_t i) const { return this->Sources[i]; }
   /// A face's pseudonormal: its unit normal, turned by the mesh's orientation.
   void FaceNormalOf(int64_t i, double normal[3]) const
   {
@@ -108,6 +119,7 @@ public:
   // arbitrary anyway) the two may differ.
   double Orientation = 1;
   double Degenerate = 0;
+  int64_t Triangles = 0; // primitives of the mesh's triangles: Source() below this
   double Tolerance2 = 0; // absolute slack on squared distances (coordinates' rounding)
 
 private:
@@ -123,11 +135,12 @@ private:
   void FrameLeaves(const ParallelFor& parallelFor);
   double LeafDistance2(const Leaf& leaf, const double p[3]) const;
 
-  // Per primitive, in the tree's order: its corners, input cell, whether it is a proper
-  // triangle (MeshSites' rule; otherwise only its edges count) and, while the tree is
-  // built, its Morton code.
+  // Per primitive, in the tree's order: its corners, input cell, index in the mesh's
+  // order, whether it is a proper triangle (MeshSites' rule; otherwise only its edges
+  // count) and, while the tree is built, its Morton code.
   LargeVector<Primitive> Primitives;
   LargeVector<int64_t> Cells;
+  LargeVector<uint32_t> Sources;
   LargeVector<uint8_t> Faces;
   LargeVector<uint32_t> Codes;
   LargeVector<Node> Nodes; // the binary tree, widened into WideNodes
