@@ -125,6 +125,19 @@ answers() {
     --backend "$1" | grep -Eo "colliding=[01]|contacts=[0-9]+" | tr '\n' ' '
 }
 [ "$(answers cpu)" = "$(answers gpu)" ] && [[ "$(answers cpu)" == *contacts=[1-9]* ]] || fail "proximity: the GPU's contacts differ from the CPU's"
+# probe: points from a .csv (with a header) and from a mesh, signed by the winding
+# number; the .npy of distances equal to the .vtp's Distance; the summary printed.
+printf 'x,y,z\n0,0,0\n0.1,4.5,0.2\n20,0,0\n' >"$out/points.csv"
+run probe "^vtkdf: probe time_s=[0-9.]+ stages=.*tree.*queries.* evaluations=[1-9][0-9]* peak_memory_mb=" \
+  "$out/probe.vtp" -- \
+  probe "$data/bunny_small.vtp" "$out/points.csv" -o "$out/probe.vtp" --signed --timing
+"$vtkdf" probe "$data/bunny_small.vtp" "$out/points.csv" -o "$out/probe.npy" --signed \
+  >"$out/probe-npy.out" || fail "probe -o .npy: exit status $?"
+grep -Eq "^vtkdf: probe points=3 max_abs_distance=[0-9.]+ .* farthest_point=2 beyond=0" \
+  "$out/probe-npy.out" || fail "probe: the summary ($(head -c 300 "$out/probe-npy.out"))"
+[ "$(stat -c %s "$out/probe.npy")" = $((128 + 3 * 8)) ] || fail "probe: the .npy's size"
+"$vtkdf" probe "$data/cow.vtp" "$data/plane.vtp" -o "$out/probe-mesh.vtp" --max-distance 0.5 \
+  >/dev/null || fail "probe: points of a mesh, capped"
 # blend: a field with itself is itself, at any T.
 if "$vtkdf" blend "$out/segment.vti" "$out/segment.vti" -t 0.3 -o "$out/blend.vti" \
   --png "$out/blend.png" 2>"$out/blend.err"; then
@@ -164,6 +177,11 @@ grep -q "Backend is GPU but" "$out/uniongpu.out" || fail "union --backend gpu wi
 VTKDF_GL_PLATFORM=none expect_failure proximitygpu proximity "$data/bunny_small.vtp" \
   "$data/cow.vtp" -o "$out/x.vtp" --backend gpu
 grep -q "Backend is GPU but" "$out/proximitygpu.out" || fail "proximity --backend gpu without a GPU: no message"
+expect_failure probeout probe "$data/bunny_small.vtp" "$out/points.csv" -o "$out/x.vtu"
+grep -q "name it OUT.vtp" "$out/probeout.out" || fail "probe -o .vtu for a point cloud: no message"
+printf '0,0,0\n1,nan,0\n' >"$out/nan.csv"
+expect_failure probenan probe "$data/bunny_small.vtp" "$out/nan.csv" -o "$out/x.vtp"
+grep -q "point 1 has a NaN" "$out/probenan.out" || fail "probe with a NaN point: no message"
 expect_failure pdone pd "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp"
 expect_failure unionpieces union "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp" --piece-array Nope
 expect_failure rendermesh render "$data/plane.vtp" -o "$out/x.png"

@@ -19,9 +19,9 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -60,10 +60,21 @@ bool ReadCSV(const std::string& path, std::vector<double>& xyz, std::string& err
     {
       c = c == ',' || c == ';' || c == '\t' ? ' ' : c;
     }
-    std::istringstream fields(line);
+    // strtod, not a stream: it reads nan and inf too (the filter then names the point).
     double x[3];
-    std::string rest;
-    if (!(fields >> x[0] >> x[1] >> x[2]) || (fields >> rest))
+    const char* at = line.c_str();
+    char* end = nullptr;
+    int read = 0;
+    for (; read < 3; ++read, at = end)
+    {
+      x[read] = std::strtod(at, &end);
+      if (end == at)
+      {
+        break;
+      }
+    }
+    const bool rest = read == 3 && std::string(end).find_first_not_of(" \r") != std::string::npos;
+    if (read < 3 || rest)
     {
       if (number == 1 || line.find_first_not_of(" \r") == std::string::npos)
       {
