@@ -4,7 +4,7 @@
 #include "Common/LargeVector.h"
 #include "Common/PointTriangleDistance.h"
 #include "Common/Vector3.h"
-#include "Predicates/ExactPredicates.h"
+#include "Winding/WindingCrossings.h"
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -739,15 +739,15 @@ int64_t QueryTree::Nearest(const double p[3],
   return evaluations;
 }
 
-void QueryTree::FeatureCellAndNormal(const double* a,
-  const double* b,
-  int64_t& cell,
-  double normal[3],
-  int64_t* primitive) const
+/// Every primitive of the leaves under the children that `inBox(wide, k)` accepts, from
+/// the root down, to `visit(i)`; false as soon as a visit returns false.
+template<typename InBox, typename Visit>
+bool QueryTree::VisitPrimitives(const InBox& inBox, const Visit& visit) const
 {
-  cell = std::numeric_limits<int64_t>::max();
-  int64_t source = -1;
-  normal[0] = normal[1] = normal[2] = 0;
+  if (this->WideNodes.empty())
+  {
+    return true;
+  }
   struct Range
   {
     int32_t First, Count;
@@ -760,13 +760,10 @@ void QueryTree::FeatureCellAndNormal(const double* a,
     const Range node = stack[--depth];
     if (node.Count == 0)
     {
-      // The children whose boxes hold a.
       const WideNode& wide = this->WideNodes[node.First];
       for (int k = 0; k < 4; ++k)
       {
-        if (wide.Count[k] >= 0 && wide.Lo[0][k] <= a[0] && a[0] <= wide.Hi[0][k] &&
-          wide.Lo[1][k] <= a[1] && a[1] <= wide.Hi[1][k] && wide.Lo[2][k] <= a[2] &&
-          a[2] <= wide.Hi[2][k])
+        if (wide.Count[k] >= 0 && inBox(wide, k))
         {
           stack[depth++] = wide.Count[k] > 0
             ? Range{ this->Leaves[wide.First[k]].First, wide.Count[k] }
@@ -776,6 +773,33 @@ void QueryTree::FeatureCellAndNormal(const double* a,
       continue;
     }
     for (int32_t i = node.First; i < node.First + node.Count; ++i)
+    {
+      if (!visit(i))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+void QueryTree::FeatureCellAndNormal(const double* a,
+  const double* b,
+  int64_t& cell,
+  double normal[3],
+  int64_t* primitive) const
+{
+  cell = std::numeric_limits<int64_t>::max();
+  int64_t source = -1;
+  normal[0] = normal[1] = normal[2] = 0;
+  // The leaves whose boxes hold a.
+  auto holdsA = [a](const WideNode& wide, int k)
+  {
+    return wide.Lo[0][k] <= a[0] && a[0] <= wide.Hi[0][k] && wide.Lo[1][k] <= a[1] &&
+      a[1] <= wide.Hi[1][k] && wide.Lo[2][k] <= a[2] && a[2] <= wide.Hi[2][k];
+  };
+  this->VisitPrimitives(holdsA,
+    [&](int32_t i)
     {
       const Primitive& t = this->Primitives[i];
       int atA = -1;
@@ -787,7 +811,7 @@ void QueryTree::FeatureCellAndNormal(const double* a,
       }
       if (atA < 0 || !hasB)
       {
-        continue;
+        return true;
       }
       if (this->Cells[i] < cell || (this->Cells[i] == cell && this->Sources[i] < source))
       {
@@ -800,7 +824,7 @@ void QueryTree::FeatureCellAndNormal(const double* a,
       }
       if (!this->Faces[i])
       {
-        continue;
+        return true;
       }
       double n[3];
       FaceNormal(t.X, this->Degenerate, n);
@@ -823,121 +847,32 @@ void QueryTree::FeatureCellAndNormal(const double* a,
       {
         normal[k] += n[k] * weight * this->Orientation;
       }
-    }
-  }
+      return true;
+    });
 }
-namespace
-{
-/// Sign of det[u - p', v - p'] in (y, z), p' = (y + e, z + e^2) for an infinitesimal e,
-/// when det[u - p, v - p] is 0 (as WindingCrossings.cxx moves its lines).
-int PerturbedSide(const double u[3], const double v[3])
-{
-  if (u[2] != v[2])
-  {
-    return u[2] > v[2] ? 1 : -1;
-  }
-  return v[1] > u[1] ? 1 : (v[1] < u[1] ? -1 : 0);
-}
-
-/// Triangle (a, b, c)'s crossing of the ray from p to x = -infinity: its contribution to
-/// the count, or false when p may lie on it.
-bool TriangleCrossing(const double* a,
-  const double* b,
-  const double* c,
-  const double p[3],
-  int& delta)
-{
-  delta = 0;
-  // Cheap rejections first: p's (y, z) outside the triangle's box, or p before all of it
-  // along x (its crossing, if any, lies ahead of p), leave no crossing behind p and p
-  // off the triangle.
-  if (p[1] < std::min({ a[1], b[1], c[1] }) || p[1] > std::max({ a[1], b[1], c[1] }) ||
-    p[2] < std::min({ a[2], b[2], c[2] }) || p[2] > std::max({ a[2], b[2], c[2] }) ||
-    p[0] < std::min({ a[0], b[0], c[0] }))
-  {
-    return true;
-  }
-  const int orientation = Orient2D(a, b, c, 1, 2);
-  const int side[3] = { Orient2D(p, a, b, 1, 2), Orient2D(p, b, c, 1, 2), Orient2D(p, c, a, 1, 2) };
-  if (orientation == 0)
-  {
-    // Seen edge-on along x: no crossing, but p on the line of its projection, within its
-    // x range, may lie on it.
-    return !(side[0] == 0 && side[1] == 0 && side[2] == 0 &&
-      std::min({ a[0], b[0], c[0] }) <= p[0] && p[0] <= std::max({ a[0], b[0], c[0] }));
-  }
-  bool closed = true, moved = true;
-  const double* from[3] = { a, b, c };
-  const double* to[3] = { b, c, a };
-  for (int e = 0; e < 3; ++e)
-  {
-    closed = closed && (side[e] == orientation || side[e] == 0);
-    moved = moved && (side[e] != 0 ? side[e] : PerturbedSide(from[e], to[e])) == orientation;
-  }
-  if (!closed)
-  {
-    return true;
-  }
-  const int beyond = orientation * Orient3D(a, b, c, p);
-  if (beyond == 0)
-  {
-    return false; // p on the triangle (or on its boundary)
-  }
-  // w counts crossings entering the side the normal points away from.
-  delta = moved && beyond > 0 ? -orientation : 0;
-  return true;
-}
-} // namespace
 
 bool QueryTree::CrossingCount(const double p[3], int64_t& count) const
 {
   count = 0;
-  if (this->WideNodes.empty())
+  // The leaves whose boxes the ray meets: p's (y, z) within them, their x from p's on down.
+  auto onRay = [p](const WideNode& wide, int k)
   {
-    return true;
-  }
-  struct Range
-  {
-    int32_t First, Count;
+    return wide.Lo[0][k] <= p[0] && wide.Lo[1][k] <= p[1] && p[1] <= wide.Hi[1][k] &&
+      wide.Lo[2][k] <= p[2] && p[2] <= wide.Hi[2][k];
   };
-  Range stack[StackSize]; // as in Nearest
-  int depth = 0;
-  stack[depth++] = Range{ 0, 0 };
-  while (depth > 0)
-  {
-    const Range node = stack[--depth];
-    if (node.Count == 0)
-    {
-      // The children whose boxes the ray meets: p's (y, z) within them, their x from p's on down.
-      const WideNode& wide = this->WideNodes[node.First];
-      for (int k = 0; k < 4; ++k)
-      {
-        if (wide.Count[k] >= 0 && wide.Lo[0][k] <= p[0] && wide.Lo[1][k] <= p[1] &&
-          p[1] <= wide.Hi[1][k] && wide.Lo[2][k] <= p[2] && p[2] <= wide.Hi[2][k])
-        {
-          stack[depth++] = wide.Count[k] > 0
-            ? Range{ this->Leaves[wide.First[k]].First, wide.Count[k] }
-            : Range{ wide.First[k], 0 };
-        }
-      }
-      continue;
-    }
-    for (int32_t i = node.First; i < node.First + node.Count; ++i)
+  return this->VisitPrimitives(onRay,
+    [&](int32_t i)
     {
       if (static_cast<int64_t>(this->Sources[i]) >= this->Triangles)
       {
-        continue;
+        return true; // a segment or a point: not part of w
       }
       const Primitive& t = this->Primitives[i];
-      int delta;
-      if (!TriangleCrossing(t.X, t.X + 3, t.X + 6, p, delta))
-      {
-        return false;
-      }
+      int delta = 0;
+      const bool decided = RayCrossing(t.X, t.X + 3, t.X + 6, p, delta);
       count += delta;
-    }
-  }
-  return true;
+      return decided;
+    });
 }
 } // namespace nearest
 } // namespace vtkdf

@@ -134,6 +134,8 @@ private:
   void Widen();
   void FrameLeaves(const ParallelFor& parallelFor);
   double LeafDistance2(const Leaf& leaf, const double p[3]) const;
+  template<typename InBox, typename Visit>
+  bool VisitPrimitives(const InBox& inBox, const Visit& visit) const;
 
   // Per primitive, in the tree's order: its corners, input cell, index in the mesh's
   // order, whether it is a proper triangle (MeshSites' rule; otherwise only its edges

@@ -150,6 +150,58 @@ bool BoundaryEdges(const std::vector<uint32_t>& id,
 }
 } // namespace
 
+int PerturbedSide(const double u[3], const double v[3])
+{
+  if (u[2] != v[2])
+  {
+    return u[2] > v[2] ? 1 : -1;
+  }
+  return v[1] > u[1] ? 1 : (v[1] < u[1] ? -1 : 0);
+}
+
+bool RayCrossing(const double* a, const double* b, const double* c, const double p[3], int& delta)
+{
+  delta = 0;
+  // Cheap rejections first: p's (y, z) outside the triangle's box, or p before all of it
+  // along x (its crossing, if any, lies ahead of p), leave no crossing behind p and p
+  // off the triangle.
+  if (p[1] < std::min({ a[1], b[1], c[1] }) || p[1] > std::max({ a[1], b[1], c[1] }) ||
+    p[2] < std::min({ a[2], b[2], c[2] }) || p[2] > std::max({ a[2], b[2], c[2] }) ||
+    p[0] < std::min({ a[0], b[0], c[0] }))
+  {
+    return true;
+  }
+  const int orientation = Orient2D(a, b, c, 1, 2);
+  const int side[3] = { Orient2D(p, a, b, 1, 2), Orient2D(p, b, c, 1, 2), Orient2D(p, c, a, 1, 2) };
+  if (orientation == 0)
+  {
+    // Seen edge-on along x: no crossing, but p on the line of its projection, within its
+    // x range, may lie on it.
+    return !(side[0] == 0 && side[1] == 0 && side[2] == 0 &&
+      std::min({ a[0], b[0], c[0] }) <= p[0] && p[0] <= std::max({ a[0], b[0], c[0] }));
+  }
+  bool closed = true, moved = true;
+  const double* from[3] = { a, b, c };
+  const double* to[3] = { b, c, a };
+  for (int e = 0; e < 3; ++e)
+  {
+    closed = closed && (side[e] == orientation || side[e] == 0);
+    moved = moved && (side[e] != 0 ? side[e] : PerturbedSide(from[e], to[e])) == orientation;
+  }
+  if (!closed)
+  {
+    return true;
+  }
+  const int beyond = orientation * Orient3D(a, b, c, p);
+  if (beyond == 0)
+  {
+    return false; // p on the triangle (or on its boundary)
+  }
+  // w counts crossings entering the side the normal points away from.
+  delta = moved && beyond > 0 ? -orientation : 0;
+  return true;
+}
+
 bool CrossingsDecide(const LargeVector<double>& points, const LargeVector<int64_t>& triangles)
 {
   const std::vector<uint32_t> id = MergedIds(points);
@@ -241,17 +293,6 @@ void IndexRange(const SampleGrid& grid,
   {
     --last;
   }
-}
-
-/// Sign of det[u - p', v - p'] in (y, z), p' = (y + e, z + e^2) for an infinitesimal e,
-/// when det[u - p, v - p] is 0: its e term (u_z - v_z), else its e^2 term (v_y - u_y).
-int PerturbedSide(const double u[3], const double v[3])
-{
-  if (u[2] != v[2])
-  {
-    return u[2] > v[2] ? 1 : -1;
-  }
-  return v[1] > u[1] ? 1 : (v[1] < u[1] ? -1 : 0);
 }
 
 struct Footprint

@@ -47,6 +47,16 @@ bool IsClosedChain(const LargeVector<double>& points, const LargeVector<int64_t>
 /// direction than in the other, so that CloseWithCones may close them.
 bool CrossingsDecide(const LargeVector<double>& points, const LargeVector<int64_t>& triangles);
 
+/// Sign of det[u - p', v - p'] in (y, z), p' = (y + e, z + e^2) for an infinitesimal e,
+/// when det[u - p, v - p] is 0: its e term (u_z - v_z), else its e^2 term (v_y - u_y).
+int PerturbedSide(const double u[3], const double v[3]);
+
+/// Triangle (a, b, c)'s contribution `delta` to the signed count of crossings of the ray
+/// from p to x = -infinity, by the rule of the grid's lines (p moved symbolically to
+/// (y + e, z + e^2), exact orientation tests): summed over a closed chain's triangles,
+/// w at p. False when p may lie on the triangle (then undecided).
+bool RayCrossing(const double* a, const double* b, const double* c, const double p[3], int& delta);
+
 /// CrossingCounts' mark of a sample whose count is not known: on the surface, or
 /// |N| >= 127.
 constexpr int8_t CountUnknown = INT8_MIN;
