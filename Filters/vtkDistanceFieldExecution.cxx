@@ -1,6 +1,7 @@
 #include "vtkDistanceFieldExecution.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkInformationVector.h"
 #include "vtkDataObject.h"
 #include "vtkErrorCode.h"
 #include "vtkInformation.h"
@@ -127,6 +128,17 @@ void RequestWholeInput(vtkInformation* input)
   input->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
   input->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   input->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+}
+
+void RequestWholeInputs(vtkInformationVector** inputVector, int ports)
+{
+  for (int port = 0; port < ports; ++port)
+  {
+    if (vtkInformation* in = inputVector[port]->GetInformationObject(0))
+    {
+      RequestWholeInput(in);
+    }
+  }
 }
 
 vtkTypeBool ProcessRequestOrEmpty(vtkAlgorithm* filter,

@@ -15,6 +15,7 @@
 
 class vtkAlgorithm;
 class vtkInformation;
+class vtkInformationVector;
 
 namespace vtkdf
 {
@@ -67,6 +68,9 @@ vtkTypeBool ProcessRequestOrEmpty(vtkAlgorithm* filter,
 /// passes each rank's piece upstream, and an image source that can produce sub-extents
 /// then makes only that piece, although every voxel here may depend on every other.
 void RequestWholeInput(vtkInformation* input);
+
+/// RequestWholeInput for the first connection of each of ports 0 to `ports` - 1.
+void RequestWholeInputs(vtkInformationVector** inputVector, int ports);
 
 } // namespace vtkdf
 

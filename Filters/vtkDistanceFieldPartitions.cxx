@@ -216,6 +216,21 @@ bool SameMeshOnEveryRank(vtkPolyData* mesh)
   return true;
 }
 
+bool BothMeshesOnEveryRank(vtkPolyData* const meshes[2], const char* noun, std::string& error)
+{
+  for (int port = 0; port < 2; ++port)
+  {
+    if (meshes[port] && !SameMeshOnEveryRank(meshes[port]))
+    {
+      error = std::string(noun) + (port == 0 ? " A" : " B") + " (input " + std::to_string(port) +
+        ") differs between the ranks of this distributed run (it was partitioned upstream): "
+        "every rank needs both inputs whole.";
+      return false;
+    }
+  }
+  return true;
+}
+
 bool IsFirstRank()
 {
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();

@@ -40,6 +40,11 @@ void MeshPiece(int& piece, int& pieces);
 /// runs alone). Collective.
 bool SameMeshOnEveryRank(vtkPolyData* mesh);
 
+/// Whether both meshes of a two-mesh filter (`noun` "Model" or "Mesh": its word for
+/// them) are the same on every rank (SameMeshOnEveryRank, collective; a null mesh is
+/// skipped); false, with `error` naming the first that is not.
+bool BothMeshesOnEveryRank(vtkPolyData* const meshes[2], const char* noun, std::string& error);
+
 /// Whether this process is rank 0 of the global controller (or runs alone): where an
 /// answer that is not a piece of a grid is output, so that the ranks' outputs do not
 /// repeat it.

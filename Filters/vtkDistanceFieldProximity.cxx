@@ -92,13 +92,7 @@ int vtkDistanceFieldProximity::RequestUpdateExtent(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector*)
 {
-  for (int port = 0; port < 2; ++port)
-  {
-    if (vtkInformation* in = inputVector[port]->GetInformationObject(0))
-    {
-      vtkdf::RequestWholeInput(in);
-    }
-  }
+  vtkdf::RequestWholeInputs(inputVector, 2);
   return 1;
 }
 
@@ -151,15 +145,10 @@ vtkdf::RunStatus vtkDistanceFieldProximity::Execute(vtkInformationVector** input
   const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
   const int rank = controller ? controller->GetLocalProcessId() : 0;
   vtkPolyData* inputs[2] = { a, b };
-  for (int port = 0; port < 2; ++port)
+  std::string error;
+  if (!vtkdf::BothMeshesOnEveryRank(inputs, "Model", error))
   {
-    if (inputs[port] && !vtkdf::SameMeshOnEveryRank(inputs[port]))
-    {
-      return run.Fail(std::string("Model ") + (port == 0 ? "A" : "B") + " (input " +
-        std::to_string(port) +
-        ") differs between the ranks of this distributed run (it was partitioned upstream): "
-        "every rank needs both models whole.");
-    }
+    return run.Fail(error);
   }
   if (!this->LoadModel(a, 0, *this->ModelA) || !this->LoadModel(b, 1, *this->ModelB))
   {
@@ -193,7 +182,6 @@ vtkdf::RunStatus vtkDistanceFieldProximity::Execute(vtkInformationVector** input
   // process aborts.
   const vtkdf::Execution execution = run.MakeExecution(0.05, 0.95, ranks == 1);
   vtkdf::ProximityReport report;
-  std::string error;
   const bool computed =
     vtkdf::ComputeProximity(*this->ModelA, *this->ModelB, request, report, execution, error);
   if (!computed)

@@ -138,6 +138,17 @@ grep -Eq "^vtkdf: probe points=3 max_abs_distance=[0-9.]+ .* farthest_point=2 be
 [ "$(stat -c %s "$out/probe.npy")" = $((128 + 3 * 8)) ] || fail "probe: the .npy's size"
 "$vtkdf" probe "$data/cow.vtp" "$data/plane.vtp" -o "$out/probe-mesh.vtp" --max-distance 0.5 \
   >/dev/null || fail "probe: points of a mesh, capped"
+# hausdorff: both outputs written, the distance found inside its certified interval,
+# which is no wider than asked (1e-5 of the diagonal, at most 0.16 here).
+run hausdorff "^vtkdf: hausdorff time_s=[0-9.]+ stages=input:[0-9.e-]+,trees:[0-9.e-]+,points:[0-9.e-]+,refine:[0-9.e-]+ pieces=[1-9][0-9]* rounds=[1-9][0-9]* evaluations=[1-9][0-9]* peak_memory_mb=" \
+  "$out/hausdorff-a.vtp" "$out/hausdorff-b.vtp" -- \
+  hausdorff "$data/bunny_small.vtp" "$data/cow.vtp" -o "$out/hausdorff-a.vtp" \
+  --output-b "$out/hausdorff-b.vtp" --relative-error 1e-5 --timing
+grep -E "^vtkdf: hausdorff distance=" "$out/timing.log" | tail -1 |
+  awk '{ for (i = 2; i <= NF; i++) { split($i, kv, "="); v[kv[1]] = kv[2] }
+         exit !(v["lower"] <= v["distance"] && v["distance"] <= v["upper"] &&
+                v["upper"] - v["lower"] <= 1.6e-4 && v["distance"] > 0) }' ||
+  fail "hausdorff: the distance outside its interval, or the interval too wide"
 # blend: a field with itself is itself, at any T.
 if "$vtkdf" blend "$out/segment.vti" "$out/segment.vti" -t 0.3 -o "$out/blend.vti" \
   --png "$out/blend.png" 2>"$out/blend.err"; then
@@ -182,6 +193,9 @@ grep -q "name it OUT.vtp" "$out/probeout.out" || fail "probe -o .vtu for a point
 printf '0,0,0\n1,nan,0\n' >"$out/nan.csv"
 expect_failure probenan probe "$data/bunny_small.vtp" "$out/nan.csv" -o "$out/x.vtp"
 grep -q "point 1 has a NaN" "$out/probenan.out" || fail "probe with a NaN point: no message"
+expect_failure hausdorffnone hausdorff "$data/bunny_small.vtp" "$data/cow.vtp" -o "$out/x.vtp" \
+  --relative-error 0
+expect_failure hausdorffout hausdorff "$data/bunny_small.vtp" "$data/cow.vtp" -o "$out/x.vti"
 expect_failure pdone pd "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp"
 expect_failure unionpieces union "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp" --piece-array Nope
 expect_failure rendermesh render "$data/plane.vtp" -o "$out/x.png"

@@ -17,7 +17,8 @@ set(classes
   "${df_root}/Filters/vtkPenetrationDepth"
   "${df_root}/Filters/vtkDistanceFieldProximity"
   "${df_root}/Filters/vtkMeshDistanceFilter"
-  "${df_root}/Filters/vtkMeshDistanceFunction")
+  "${df_root}/Filters/vtkMeshDistanceFunction"
+  "${df_root}/Filters/vtkMeshHausdorffDistance")
 vtk_module_add_module(DistanceFields::vtkDistanceFields
   CLASSES ${classes}
   HEADERS "${df_root}/Filters/vtkDistanceFieldRunRecord.h"

@@ -25,6 +25,8 @@ int PenetrationDepth(int argc, char* argv[]);
 int Proximity(int argc, char* argv[]);
 /// vtkdf probe (vtkMeshDistanceFilter).
 int Probe(int argc, char* argv[]);
+/// vtkdf hausdorff (vtkMeshHausdorffDistance).
+int Hausdorff(int argc, char* argv[]);
 /// vtkdf render (vtkSegmentedDistanceVolumeMapper).
 int Render(int argc, char* argv[]);
 } // namespace vtkdf::cli

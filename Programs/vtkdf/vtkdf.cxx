@@ -22,9 +22,11 @@
 //         [--pixels N] [--uncertified] [--timing]
 //         (penetration depth; P, Q: convex pieces in the forms union takes)
 //   vtkdf proximity A B -o OUT.vtp [--contacts OUT.vtp] [--models A.vtp B.vtp]
-//   vtkdf probe MESH POINTS -o OUT [--signed] [--sign ...] [--max-distance D]
 //         [--resolution N | --spacing H] [--margin M] [--sign winding|pseudonormal]
 //         [--no-contacts] [--backend ...] [--timing]
+//   vtkdf probe MESH POINTS -o OUT [--signed] [--sign pseudonormal|winding]
+//         [--max-distance D] [--winding] [--timing]
+//   vtkdf hausdorff A B -o A_OUT.vtp [--output-b B_OUT.vtp] [--relative-error E] [--timing]
 //   vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H] ...
 //         (vtkSegmentedDistanceVolumeMapper; needs an X server)
 //
@@ -67,6 +69,7 @@ int main(int argc, char* argv[])
     { "pd", vtkdf::cli::PenetrationDepth },
     { "proximity", vtkdf::cli::Proximity },
     { "probe", vtkdf::cli::Probe },
+    { "hausdorff", vtkdf::cli::Hausdorff },
     { "render", vtkdf::cli::Render } };
   for (const auto& entry : subcommands)
   {

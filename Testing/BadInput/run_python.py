@@ -18,14 +18,19 @@ from vtkmodules.util.misc import calldata_type  # noqa: E402
 from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter  # noqa: E402
 from vtkdistancefields import (vtkChamferVoxelDistance, vtkLinearFactorDistanceField,  # noqa: E402
-                               vtkDistanceFieldProximity, vtkMedialAxisFilter, vtkPolyDataVoxelizer,
-                               vtkPenetrationDepth, vtkSegmentedDistanceContour,
-                               vtkSegmentedDistanceField, vtkUnionClosestPoint)
+                               vtkDistanceFieldProximity, vtkMedialAxisFilter,
+                               vtkMeshDistanceFilter, vtkMeshHausdorffDistance,
+                               vtkPolyDataVoxelizer, vtkPenetrationDepth,
+                               vtkSegmentedDistanceContour, vtkSegmentedDistanceField,
+                               vtkUnionClosestPoint)
 
 FILTERS = {"linfac": vtkLinearFactorDistanceField, "voxelize": vtkPolyDataVoxelizer,
            "chamfer": vtkChamferVoxelDistance, "medial": vtkMedialAxisFilter,
            "segment": vtkSegmentedDistanceField, "union": vtkUnionClosestPoint,
-           "pd": vtkPenetrationDepth, "proximity": vtkDistanceFieldProximity}
+           "pd": vtkPenetrationDepth, "proximity": vtkDistanceFieldProximity,
+           "probe": vtkMeshDistanceFilter, "hausdorff": vtkMeshHausdorffDistance}
+# The subcommands with no grid and no Backend property, and their own cases.
+OWN_CASES = ("union", "pd", "proximity", "probe", "hausdorff")
 
 
 class NotPassable(Exception):
@@ -82,6 +87,8 @@ def configure(f, sub, options, contour=None):
             f.SetContactMargin(number(value, float))
         elif option == "--padding":
             f.SetPadding(number(value, float))
+        elif option == "--relative-error":
+            f.SetRelativeError(number(value, float))
         elif option == "--max-distance":
             f.SetMaximumDistance(number(value, float))
         elif option == "--layers":
@@ -130,7 +137,7 @@ def read(path):
 
 def run_case(corpus, data, sub, name, path, options, kind, pattern, workdir):
     f = FILTERS[sub]()
-    if sub not in ("union", "pd", "proximity"):
+    if sub not in OWN_CASES:
         f.SetBackend(f.BACKEND_CPU if sub != "voxelize" else f.BACKEND_AUTO)
     errors, warnings = [], []
 
@@ -156,7 +163,13 @@ def run_case(corpus, data, sub, name, path, options, kind, pattern, workdir):
         configure(f, sub, options, contour)
     except (NotPassable, TypeError, OverflowError, ValueError) as refused:
         return kind == "usage", f"not passable ({refused})"
-    f.SetInputData(0, read(path))
+    if sub == "probe":  # the bad input is the surface; the points are the plane's
+        f.SetInputData(0, read(os.path.join(data, "plane.vtp")))
+        f.SetInputData(1, read(path))
+    else:
+        f.SetInputData(0, read(path))
+    if sub == "hausdorff":  # the bad input is mesh A; mesh B is the teapot
+        f.SetInputData(1, read(os.path.join(data, "teapot.vtp")))
     if sub == "pd":  # the bad input is P; Q is a good solid
         f.SetInputData(1, read(os.path.join(data, "hubo_ankle_convex4.vtp")))
     if sub == "proximity":  # the bad input is model A; model B is the teapot
@@ -196,8 +209,7 @@ def main(corpus, data, sub, workdir):
         if not line.strip() or line.startswith("#"):
             continue
         name, subs, input_name, options, expect = [w.strip() for w in line.split("|", 4)]
-        if subs != "all" and sub not in subs.split() or subs == "all" and sub in ("union", "pd",
-                                                                                 "proximity"):
+        if subs != "all" and sub not in subs.split() or subs == "all" and sub in OWN_CASES:
             continue
         kind, _, pattern = expect.partition(" ")
         path = os.path.join(corpus, input_name)

@@ -23,6 +23,7 @@
 //   in a batch; through vtkClipPolyData, no kept point inside the exact winding number's
 //   solid; without a surface, NoValue.
 // Usage: TestMeshDistanceFilter DATA_DIR brute|grid|scale|cap|function|errors
+#include "MeshPrimitives.h"
 #include "TestSupport.h"
 #include "UnitBoxMesh.h"
 #include "vtkLinearFactorDistanceField.h"
@@ -55,7 +56,10 @@
 #include <string>
 #include <vector>
 
+using vtkdf::testing::Collect;
 using vtkdf::testing::Failures;
+using vtkdf::testing::Primitives;
+using vtkdf::testing::SquaredDistance;
 
 namespace
 {
@@ -65,51 +69,6 @@ void Check(bool ok, const std::string& what)
   {
     std::printf("FAIL: %s\n", what.c_str());
   }
-}
-
-/// The triangles of a mesh cell by cell as the test sees them (triangle cells only, and
-/// line and vertex cells as segments and points: a, b, b and a, a, a).
-struct Primitives
-{
-  std::vector<std::array<double, 9>> X;
-  std::vector<vtkIdType> Cell, Sub;
-};
-
-Primitives Collect(vtkPolyData* mesh)
-{
-  Primitives p;
-  // The filters' cell numbering: vertices, lines, polygons, strips.
-  vtkIdType cell = 0;
-  auto corner = [&](vtkIdType id, double* x) { mesh->GetPoint(id, x); };
-  vtkNew<vtkIdList> ids;
-  for (vtkCellArray* cells : { mesh->GetVerts(), mesh->GetLines(), mesh->GetPolys() })
-  {
-    const bool lines = cells == mesh->GetLines(), verts = cells == mesh->GetVerts();
-    for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c, ++cell)
-    {
-      cells->GetCellAtId(c, ids);
-      const vtkIdType n = ids->GetNumberOfIds();
-      const vtkIdType parts = verts ? n : (lines ? n - 1 : 1);
-      for (vtkIdType k = 0; k < parts; ++k)
-      {
-        std::array<double, 9> x;
-        const vtkIdType a = ids->GetId(k), b = verts ? a : ids->GetId(k + 1),
-                        cc = verts || lines ? b : ids->GetId(2);
-        corner(a, x.data());
-        corner(b, x.data() + 3);
-        corner(cc, x.data() + 6);
-        p.X.push_back(x);
-        p.Cell.push_back(cell);
-        p.Sub.push_back(k);
-      }
-    }
-  }
-  return p;
-}
-
-double SquaredDistance(const double q[3], const std::array<double, 9>& t)
-{
-  return vtkdf::SquaredDistanceToTriangle(q, t.data(), t.data() + 3, t.data() + 6);
 }
 
 /// The triangles once each (the winding number's rule: a triangle repeated with the same

@@ -94,8 +94,12 @@ CASES = [
          properties=dict(SignMode="WindingNumber", ComputeWindingNumber=1,
                          ComputeClosestFeature=1),
          outputs={0: "vtp"}),
+    dict(name="hausdorff", filter="MeshHausdorffDistance",
+         inputs={"Input": "bunny_small.vtp", "MeshB": "teapot.vtp"},
+         properties=dict(RelativeError=1e-5),
+         outputs={0: "vtp", 1: "vtp"}),
 ]
 
 # The input port of each input property (the C++ classes take SetInputConnection(port)).
 INPUT_PORTS = {"Input": 0, "Source": 0, "Target": 1, "Query": 1, "SolidP": 0, "SolidQ": 1,
-               "Surface": 1}
+               "Surface": 1, "MeshB": 1}

@@ -21,11 +21,6 @@ namespace
 using nearest::Primitive;
 using nearest::QueryTree;
 
-bool SamePoint(const double* u, const double* v)
-{
-  return u[0] == v[0] && u[1] == v[1] && u[2] == v[2];
-}
-
 /// The barycentric coordinates of `p` (on the plane of a, b, c up to rounding) in that
 /// triangle.
 void FaceBarycentric(const double* a,

@@ -1,13 +1,16 @@
 // QueryTree: the tree of a mesh's primitives (triangles, and the segments and points of
 // degenerate cells) that answers exact nearest-primitive queries with the tie rules of
-// the linear factorization (QueryTree.cxx). NearestTriangleQueries asks it for the
-// samples of a grid. Private to the linear-factorization family.
+// the linear factorization (built in QueryTree.cxx, searched in QueryTreeSearch.cxx).
+// NearestTriangleQueries asks it for the samples of a grid, PointDistance for any points,
+// HausdorffDistance for points and pieces of another mesh. Private to the
+// linear-factorization family.
 #ifndef vtkdf_QueryTree_h
 #define vtkdf_QueryTree_h
 
 #include "Common/LargeVector.h"
 #include "Common/MeshInput.h"
 #include "Common/Parallel.h"
+#include "Common/PointTriangleDistance.h"
 
 #include <cstdint>
 #include <string>
@@ -84,6 +87,26 @@ public:
     double closest[3],
     int& feature) const;
 
+  /// The primitive whose largest squared distance from the `count` points (at most 3,
+  /// xyz each) is the smallest, below `bound2`: min over primitives t of max over i of
+  /// |p_i - t|^2, as `index` and `worst2` (index -1 when none is below the bound). The
+  /// search stops at the first primitive at or below `enough2`. Every point of a convex
+  /// set within the points' hull is within that distance of the primitive, the bound the
+  /// Hausdorff distance subdivides by. Returns the primitive distances computed.
+  int64_t NearestToAll(const double* points,
+    int count,
+    double bound2,
+    double enough2,
+    int64_t& index,
+    double& worst2) const;
+
+  /// The proper triangles (faces) whose boxes meet the box lo..hi, into `found`; false
+  /// when there are more than `limit`.
+  bool GatherFaces(const double lo[3],
+    const double hi[3],
+    size_t limit,
+    std::vector<int32_t>& found) const;
+
   /// The smallest cell among the primitives with a corner at `a` (and at `b` too, when
   /// given), and the pseudonormal of that vertex or edge: the faces' unit normals, each
   /// weighted by its angle at `a` for a vertex. With `primitive`, the primitive of that
@@ -101,6 +124,17 @@ public:
   bool CrossingCount(const double p[3], int64_t& count) const;
 
   const Primitive& Get(int64_t i) const { return this->Primitives[i]; }
+  /// The squared distance from p to primitive i (its edges only where it is not a proper
+  /// triangle), as Nearest computes it.
+  double Distance2(int64_t i, const double p[3]) const
+  {
+    const Primitive& t = this->Primitives[i];
+    return this->Faces[i] ? SquaredDistanceToTriangle(p, t.X, t.X + 3, t.X + 6)
+                          : SquaredDistanceToTriangleEdges(p, t.X, t.X + 3, t.X + 6);
+  }
+  int64_t Size() const { return static_cast<int64_t>(this->Primitives.size()); }
+  /// Whether primitive i is a proper triangle (else only its edges count).
+  bool IsFace(int64_t i) const { return this->Faces[i] != 0; }
   int64_t Cell(int64_t i) const { return this->Cells[i]; }
   /// The primitive's index in the mesh's order: its triangles, then its segments, then
   /// its vertices.
