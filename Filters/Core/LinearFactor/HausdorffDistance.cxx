@@ -64,13 +64,16 @@ public:
   {
   }
 
-  /// Every point's squared distance and nearest primitive; Found starts at the farthest
-  /// used point.
-  void QueryPoints(const ParallelFor& parallelFor);
+  /// Every point's squared distance and nearest primitive (in the order of
+  /// `sourceTree`, the source's own tree); Found starts at the farthest used point.
+  void QueryPoints(const QueryTree& sourceTree, const ParallelFor& parallelFor);
   /// Refines the source's primitives until every piece's bound is within `tolerance` of
   /// the farthest distance found; false when aborted.
   bool Refine(double tolerance, const Execution& execution, OneSidedHausdorff& side);
 
+  // The source's triangles and segments (its mesh's indices) in its tree's order: the
+  // first round's pieces, neighbours in turn.
+  std::vector<int64_t> Primitives;
   LargeVector<double> D2;       // per point (NaN: not finite)
   LargeVector<int32_t> Nearest; // per point (-1: none)
   Farthest Found;
@@ -125,17 +128,62 @@ int32_t OneSide::NearestTo(const double x[3], int64_t seed, double& d2, int64_t&
   return static_cast<int32_t>(index);
 }
 
-void OneSide::QueryPoints(const ParallelFor& parallelFor)
+void OneSide::QueryPoints(const QueryTree& sourceTree, const ParallelFor& parallelFor)
 {
   const int64_t count = static_cast<int64_t>(this->Source.Points.size() / 3);
   this->D2 = LargeVector<double>(count);
   this->Nearest = LargeVector<int32_t>(count);
+  // The points in the order the source's own tree holds its primitives (Morton order):
+  // each query is then bounded by a near neighbour's nearest primitive and walks the
+  // nodes the previous one walked. Points no cell uses come last.
+  LargeVector<int64_t> order(count);
+  std::vector<uint8_t> seen(static_cast<size_t>(count), 0);
+  int64_t placed = 0;
+  const int64_t triangles = static_cast<int64_t>(this->Source.Triangles.size() / 3);
+  const int64_t segments = static_cast<int64_t>(this->Source.Segments.size() / 2);
+  auto place = [&](int64_t id)
+  {
+    if (!seen[id])
+    {
+      seen[id] = 1;
+      order[placed++] = id;
+    }
+  };
+  for (int64_t i = 0; i < sourceTree.Size(); ++i)
+  {
+    const int64_t source = sourceTree.Source(i);
+    if (source < triangles + segments)
+    {
+      this->Primitives.push_back(source);
+    }
+    if (source < triangles)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        place(this->Source.Triangles[3 * source + c]);
+      }
+    }
+    else if (source < triangles + segments)
+    {
+      place(this->Source.Segments[2 * (source - triangles)]);
+      place(this->Source.Segments[2 * (source - triangles) + 1]);
+    }
+    else
+    {
+      place(this->Source.Vertices[source - triangles - segments]);
+    }
+  }
+  for (int64_t id = 0; id < count; ++id)
+  {
+    place(id);
+  }
   auto query = [&](int64_t begin, int64_t end)
   {
     int64_t evaluations = 0;
-    int64_t previous = -1; // a neighbour in the mesh's order seeds the search
-    for (int64_t i = begin; i < end; ++i)
+    int64_t previous = -1;
+    for (int64_t k = begin; k < end; ++k)
     {
+      const int64_t i = order[k];
       this->Nearest[i] =
         this->NearestTo(&this->Source.Points[3 * i], previous, this->D2[i], evaluations);
       previous = this->Nearest[i];
@@ -305,8 +353,7 @@ void Split(const Piece& piece, const Midpoints& midpoints, Piece* children)
 
 bool OneSide::Refine(double tolerance, const Execution& execution, OneSidedHausdorff& side)
 {
-  const int64_t primitives =
-    static_cast<int64_t>(this->Source.Triangles.size() / 3 + this->Source.Segments.size() / 2);
+  const int64_t primitives = static_cast<int64_t>(this->Primitives.size());
   // The round's pieces (the first round reads the primitives), the next round's, and per
   // piece of the round whether it is split, the primitive that bounded it best, its
   // place among the pieces split and where its children go: reused round after round.
@@ -335,7 +382,7 @@ bool OneSide::Refine(double tolerance, const Execution& execution, OneSidedHausd
     }
     auto pieceAt = [&](int64_t i)
     {
-      Piece piece = first ? this->FromPrimitive(i) : pieces[i];
+      Piece piece = first ? this->FromPrimitive(this->Primitives[i]) : pieces[i];
       if (!split.empty() && split[i])
       {
         piece.Near[3] = best[i];
@@ -567,8 +614,8 @@ bool ComputeHausdorffDistance(MeshInput a,
   }
 
   OneSide aToB(a, treeB, slack), bToA(b, treeA, slack);
-  aToB.QueryPoints(execution.For);
-  bToA.QueryPoints(execution.For);
+  aToB.QueryPoints(treeA, execution.For);
+  bToA.QueryPoints(treeB, execution.For);
   execution.EndStage("points");
   if (!execution.Report(0.2))
   {
