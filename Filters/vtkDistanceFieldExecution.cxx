@@ -1,10 +1,10 @@
 #include "vtkDistanceFieldExecution.h"
 
 #include "vtkAlgorithm.h"
-#include "vtkInformationVector.h"
 #include "vtkDataObject.h"
 #include "vtkErrorCode.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkSMPTools.h"
 #include "vtkSetGet.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
