@@ -45,9 +45,17 @@ vtkdf::RunStatus vtkLinearFactorDistanceField::Execute(vtkInformationVector** in
   const vtkIdType n = static_cast<vtkIdType>(request.Extent.Count());
   const bool winding = this->SignMode == WINDING_NUMBER || this->ComputeWindingNumber;
   // Refuse grids that overflow indices or memory before allocating anything.
-  const double bytesPerSample = 8.0 /* nearest-site buffer */ + (this->ComputeDistance ? 4 : 0) +
-    (this->ComputeClosestCellId ? sizeof(vtkIdType) : 0) + (this->ComputeClosestFeature ? 1 : 0) +
-    (this->ComputeClosestPoint ? 12 : 0) + (this->ComputeWindingNumber ? 4 : 0) + (winding ? 1 : 0);
+  // The surface coordinates need the closest cells and, for a signed gradient, the
+  // distances: the core keeps its own where they are not asked for.
+  const bool surface = this->ComputeClosestBarycentric || this->ComputeGradient;
+  const bool cells = this->ComputeClosestCellId || surface;
+  const bool distances =
+    this->ComputeDistance || (this->ComputeGradient && this->SignMode != UNSIGNED);
+  const double bytesPerSample = 8.0 /* nearest-site buffer */ + (distances ? 4 : 0) +
+    (cells ? sizeof(vtkIdType) : 0) + (this->ComputeClosestFeature ? 1 : 0) +
+    (this->ComputeClosestPoint ? 12 : 0) + (this->ComputeWindingNumber ? 4 : 0) +
+    (winding ? 1 : 0) + (this->ComputeClosestBarycentric ? 12 + sizeof(vtkIdType) : 0) +
+    (this->ComputeGradient ? 12 : 0);
   vtkdf::MeshInput mesh;
   if (!this->CheckMemory(double(n) * bytesPerSample, request.Extent) ||
     !this->ReadMesh(input, request.Grid, mesh))
@@ -140,6 +148,21 @@ vtkdf::LinearFactorArrays vtkLinearFactorDistanceField::AddArrays(vtkImageData* 
     arrays.WindingNumber = a->GetPointer(0);
     pd->AddArray(a);
   }
+  if (this->ComputeClosestBarycentric)
+  {
+    auto a = vtkdf::NewArray<vtkFloatArray>("ClosestBarycentric", n, 3);
+    arrays.ClosestBarycentric = a->GetPointer(0);
+    pd->AddArray(a);
+    auto sub = vtkdf::NewArray<vtkIdTypeArray>("ClosestSubTriangle", n);
+    arrays.ClosestSubTriangle = reinterpret_cast<int64_t*>(sub->GetPointer(0));
+    pd->AddArray(sub);
+  }
+  if (this->ComputeGradient)
+  {
+    auto a = vtkdf::NewArray<vtkFloatArray>("Gradient", n, 3);
+    arrays.Gradient = a->GetPointer(0);
+    pd->AddArray(a);
+  }
   return arrays;
 }
 
@@ -184,6 +207,8 @@ void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeClosestFeature: " << this->ComputeClosestFeature << "\n";
   os << indent << "ComputeClosestPoint: " << this->ComputeClosestPoint << "\n";
   os << indent << "ComputeWindingNumber: " << this->ComputeWindingNumber << "\n";
+  os << indent << "ComputeClosestBarycentric: " << this->ComputeClosestBarycentric << "\n";
+  os << indent << "ComputeGradient: " << this->ComputeGradient << "\n";
   os << indent << "LastEvaluations: " << this->LastEvaluations << "\n";
   os << indent << "LastWindingBlockSamples: " << this->LastWindingBlockSamples << "\n";
   os << indent << "LastWindingLineSamples: " << this->LastWindingLineSamples << "\n";

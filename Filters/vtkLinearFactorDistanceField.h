@@ -16,7 +16,8 @@
  * Output point data (each switchable): `Distance` (float; negative inside with
  * SignMode = PseudoNormal or WindingNumber), `ClosestCellId` (input cell id),
  * `ClosestFeature` (uint8: 0 vertex, 1 edge, 2 face interior), `ClosestPoint` (float
- * x3), `WindingNumber` (float).
+ * x3), `WindingNumber` (float), `ClosestBarycentric` with `ClosestSubTriangle`, and
+ * `Gradient` (float x3): vtkMeshDistanceFilter's arrays, at the grid's samples.
  *
  * Domains (DomainShape): Auto gives every site the tightest exact domain whatever the
  * topology (edges bounded by all incident faces, vertices by the planes orthogonal to
@@ -159,6 +160,20 @@ public:
   vtkSetMacro(ComputeWindingNumber, bool);
   vtkGetMacro(ComputeWindingNumber, bool);
   vtkBooleanMacro(ComputeWindingNumber, bool);
+  /// `ClosestBarycentric` (float x3) and `ClosestSubTriangle` (vtkIdType): the closest
+  /// point's coordinates on triangle ClosestSubTriangle of the closest cell as the module
+  /// splits it (vtkMeshDistanceFilter's arrays, with its conventions for line and vertex
+  /// cells); -1 and NaN beyond MaximumDistance. Off by default.
+  vtkSetMacro(ComputeClosestBarycentric, bool);
+  vtkGetMacro(ComputeClosestBarycentric, bool);
+  vtkBooleanMacro(ComputeClosestBarycentric, bool);
+  /// `Gradient` (float x3): the unit vector from the closest point to the sample times
+  /// the distance's sign, the gradient of Distance wherever it is differentiable; at a
+  /// sample on the surface itself, the closest feature's unit angle-weighted pseudonormal
+  /// (0 on a vertex or line cell); NaN beyond MaximumDistance. Off by default.
+  vtkSetMacro(ComputeGradient, bool);
+  vtkGetMacro(ComputeGradient, bool);
+  vtkBooleanMacro(ComputeGradient, bool);
   ///@}
 
   /// Distance evaluations of the last run (samples covered by a domain, or with
@@ -203,6 +218,8 @@ protected:
   bool ComputeClosestFeature = false;
   bool ComputeClosestPoint = false;
   bool ComputeWindingNumber = false;
+  bool ComputeClosestBarycentric = false;
+  bool ComputeGradient = false;
   vtkTypeInt64 LastEvaluations = 0;
   double LastCullingFactor = 0;
   vtkTypeInt64 LastWindingBlockSamples = 0;

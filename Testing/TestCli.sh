@@ -45,10 +45,10 @@ run() {
 }
 
 timing='backend=cpu renderer="cpu" time_s=[0-9.]+'
-run linfac "^vtkdf: linfac dims=[0-9]+x[0-9]+x[0-9]+ $timing culling_factor=[0-9.]+ route=scan stages=input:[0-9.e-]+,sites:[0-9.e-]+,culling:[0-9.e-]+,scan:[0-9.e-]+,finalize:[0-9.e-]+ peak_memory_mb=[0-9.]+$" \
+run linfac "^vtkdf: linfac dims=[0-9]+x[0-9]+x[0-9]+ $timing culling_factor=[0-9.]+ route=scan stages=input:[0-9.e-]+,sites:[0-9.e-]+,culling:[0-9.e-]+,scan:[0-9.e-]+,finalize:[0-9.e-]+,surface:[0-9.e-]+ peak_memory_mb=[0-9.]+$" \
   "$out/linfac.vti" "$out/linfac.png" -- \
   linfac "$data/bunny_small.vtp" -o "$out/linfac.vti" --resolution 24 --signed \
-  --arrays distance,point --backend cpu --timing --png "$out/linfac.png"
+  --arrays distance,point,gradient,barycentric --backend cpu --timing --png "$out/linfac.png"
 run linfac-queries "^vtkdf: linfac dims=[0-9]+x[0-9]+x[0-9]+ $timing culling_factor=[0-9.]+ route=queries stages=input:[0-9.e-]+,tree:[0-9.e-]+,queries:[0-9.e-]+ peak_memory_mb=[0-9.]+$" \
   "$out/linfac-queries.vti" -- \
   linfac "$data/bunny_small.vtp" -o "$out/linfac-queries.vti" --resolution 24 --signed \

@@ -3,7 +3,8 @@ be (usage: check_cli_values.py OUT_DIR DATA_DIR TIMING_LOG). Prints each failure
 
 - linfac (the bunny, signed, with closest points): |Distance| is the distance from each
   sample to its ClosestPoint (to float rounding), negative and positive samples both
-  occur, and every closest point lies in the bunny's box; the per-sample query route
+  occur, every closest point lies in the bunny's box, x - Distance * Gradient is the
+  closest point and the barycentric coordinates are a convex combination; the per-sample query route
   (linfac-queries) gives the same field.
 - medial: the medial_voxels count printed is the number of points written.
 - chamfer: the zero layer is exactly the Boundary mask of voxelize's output, and the
@@ -59,6 +60,20 @@ else:
     slack = 1e-6 * np.linalg.norm(box[:, 1] - box[:, 0])
     if ((closest < box[:, 0] - slack) | (closest > box[:, 1] + slack)).any():
         failures.append("linfac: a closest point outside the mesh's box")
+    # Gradient: the unit vector from the closest point, signed, so x - d g is the closest
+    # point; the barycentric coordinates of a triangle mesh's closest point are a convex
+    # combination.
+    gradient = array(field, "Gradient").reshape(-1, 3)
+    bary = array(field, "ClosestBarycentric").reshape(-1, 3)
+    if len(gradient) != len(distance) or len(bary) != len(distance):
+        failures.append("linfac: %d gradients, %d barycentric coordinates"
+                        % (len(gradient), len(bary)))
+    else:
+        moved = samples - distance[:, None] * gradient
+        if np.abs(moved - closest).max() > 1e-5 * spacing * 24:
+            failures.append("linfac: x - Distance * Gradient is not the closest point")
+        if np.abs(bary.sum(axis=1) - 1).max() > 1e-5 or bary.min() < -1e-5:
+            failures.append("linfac: barycentric coordinates not a convex combination")
 queries = array(read("linfac-queries.vti"), "Distance")
 if queries.shape != distance.shape or np.abs(queries - distance).max() > 1e-6 * spacing * 24:
     failures.append("linfac-queries: the per-sample query route differs from the scan")

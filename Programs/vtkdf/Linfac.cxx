@@ -55,6 +55,8 @@ int Linfac(int argc, char* argv[])
   filter->SetComputeClosestCellId(arrays.find("cellid") != std::string::npos);
   filter->SetComputeClosestFeature(arrays.find("feature") != std::string::npos);
   filter->SetComputeClosestPoint(arrays.find("point") != std::string::npos);
+  filter->SetComputeClosestBarycentric(arrays.find("barycentric") != std::string::npos);
+  filter->SetComputeGradient(arrays.find("gradient") != std::string::npos);
   const int code = Finish("linfac",
     filter,
     common,

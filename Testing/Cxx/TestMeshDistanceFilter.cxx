@@ -14,7 +14,9 @@
 //   no sliver seen edge-on leaves a solid angle to rounding);
 //   PseudoNormal mode on the closed mesh: the same sign;
 // - the answers at the samples of an image equal vtkLinearFactorDistanceField's there
-//   (mixed_cells: quads, a concave hexagon, a strip, a polyline, vertices);
+//   (mixed_cells: quads, a concave hexagon, a strip, a polyline, vertices; a cube whose
+//   faces hold samples), its ClosestSubTriangle, ClosestBarycentric and Gradient too, on
+//   the site scan and the sample queries;
 // - a mesh and its points scaled by 2^20 and 2^-30 give distances scaled exactly;
 // - MaximumDistance: farther points hold the cap, cell -1, NaN closest points;
 // - the hierarchy is reused for new points and rebuilt for a changed surface;
@@ -32,6 +34,7 @@
 
 #include "vtkCellArray.h"
 #include "vtkClipPolyData.h"
+#include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -399,57 +402,205 @@ void Brute(const std::string& data)
   CheckBruteForce("mixed primitives", MixedPrimitives(), 2, false);
 }
 
-/// The filter on an image's samples against vtkLinearFactorDistanceField on that grid.
+/// The grid filter's ClosestSubTriangle, ClosestBarycentric and Gradient against the
+/// point filter's at the same samples, where the two name the same closest cell.
+void CompareSurfaceArrays(vtkImageData* image,
+  vtkDataSet* points,
+  const std::string& what,
+  vtkIdType sameCells)
+{
+  vtkPointData* pd = image->GetPointData();
+  vtkDataArray* cells = pd->GetArray("ClosestCellId");
+  vtkDataArray* sub = pd->GetArray("ClosestSubTriangle");
+  vtkDataArray* bary = pd->GetArray("ClosestBarycentric");
+  vtkDataArray* gradient = pd->GetArray("Gradient");
+  vtkDataArray* distance = pd->GetArray("Distance");
+  vtkDataArray* expectedCells = PointArray(points, "ClosestCellId");
+  vtkDataArray* expectedSub = PointArray(points, "ClosestSubTriangle");
+  vtkDataArray* expectedBary = PointArray(points, "ClosestBarycentric");
+  vtkDataArray* expectedGradient = PointArray(points, "Gradient");
+  if (!cells || !sub || !bary || !gradient || !distance || !expectedCells || !expectedSub ||
+    !expectedBary || !expectedGradient)
+  {
+    Check(false, what + ": a surface array is missing");
+    return;
+  }
+  const vtkIdType n = image->GetNumberOfPoints();
+  vtkIdType compared = 0, otherSub = 0, onSurface = 0;
+  double largestBary = 0, largestGradient = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (cells->GetTuple1(i) != expectedCells->GetTuple1(i))
+    {
+      continue;
+    }
+    ++compared;
+    onSurface += distance->GetTuple1(i) == 0;
+    if (sub->GetTuple1(i) != expectedSub->GetTuple1(i))
+    {
+      ++otherSub;
+      continue;
+    }
+    double b[3], e[3], g[3], eg[3];
+    bary->GetTuple(i, b);
+    expectedBary->GetTuple(i, e);
+    gradient->GetTuple(i, g);
+    expectedGradient->GetTuple(i, eg);
+    for (int k = 0; k < 3; ++k)
+    {
+      largestBary = std::max(largestBary, std::fabs(b[k] - e[k]));
+      largestGradient = std::max(largestGradient, std::fabs(g[k] - eg[k]));
+    }
+    Check(std::fabs(vtkMath::Norm(g) - 1) <= 1e-6 || vtkMath::Norm(eg) == 0,
+      what + " sample " + std::to_string(i) + ": the gradient is not a unit vector");
+  }
+  // Float arrays against double ones.
+  Check(largestBary <= 1e-5,
+    what + ": barycentric coordinates differ by " + std::to_string(largestBary));
+  Check(largestGradient <= 1e-5, what + ": gradients differ by " + std::to_string(largestGradient));
+  // A sample on the boundary of two of a cell's triangles may name either.
+  Check(otherSub <= compared / 200, what + ": " + std::to_string(otherSub) + " other triangles");
+  Check(compared == sameCells && (onSurface > 0) == (what.find("cube") == 0),
+    what + ": " + std::to_string(compared) + " samples compared, " + std::to_string(onSurface) +
+      " on the surface");
+  std::printf("%s: %lld samples compared, %lld on the surface, %lld other triangles, "
+              "barycentric within %.2g, gradient within %.2g\n",
+    what.c_str(),
+    static_cast<long long>(compared),
+    static_cast<long long>(onSurface),
+    static_cast<long long>(otherSub),
+    largestBary,
+    largestGradient);
+}
+
+/// The filter on an image's samples against vtkLinearFactorDistanceField on that grid:
+/// mixed_cells at resolution 24, on both routes, and a cube of quads whose faces hold
+/// samples (the gradient there the pseudonormal).
 void Grid(const std::string& data)
 {
   vtkNew<vtkPolyDataReader> reader;
   reader->SetFileName((data + "/mixed_cells.vtk").c_str());
   reader->Update();
-  vtkPolyData* mesh = reader->GetOutput();
-  for (int sign : { 0, 1, 2 })
+  vtkNew<vtkCubeSource> cube;
+  cube->Update();
+  // The cube lies on the grid's lines: samples on its diagonal planes are equidistant
+  // from two faces, and the site scan's ties go to the lower site (faces in the sites'
+  // order), the queries' to the smaller cell: there the cells may differ.
+  struct Case
+  {
+    std::string Name;
+    vtkPolyData* Mesh;
+    int Route;
+    vtkIdType TieShare; // at most n / TieShare samples may name another cell
+    bool GPU = false;
+  };
+  const Case cases[] = { { "mixed_cells scan", reader->GetOutput(), 1, 200 },
+    { "mixed_cells queries", reader->GetOutput(), 2, 200 },
+    { "cube scan", cube->GetOutput(), 1, 5 },
+    { "cube queries", cube->GetOutput(), 2, 200 },
+    { "cube scan gpu", cube->GetOutput(), 1, 5, true } };
+  for (const Case& c : cases)
+  {
+    for (int sign : { 0, 1, 2 })
+    {
+      const std::string what = c.Name + " sign " + std::to_string(sign);
+      vtkNew<vtkLinearFactorDistanceField> field;
+      field->SetInputData(c.Mesh);
+      if (c.Mesh == cube->GetOutput())
+      {
+        // Samples every 1/8 from -1: the faces at +-0.5 hold samples.
+        field->ExplicitGridOn();
+        field->SetGridOrigin(-1, -1, -1);
+        field->SetGridSpacing(0.125, 0.125, 0.125);
+        field->SetGridDimensions(17, 17, 17);
+      }
+      else
+      {
+        field->SetResolution(24);
+      }
+      field->SetSignMode(sign);
+      field->SetRoute(c.Route);
+      field->ComputeClosestBarycentricOn();
+      field->ComputeGradientOn();
+      field->SetBackend(
+        c.GPU ? vtkDistanceFieldAlgorithm::BACKEND_GPU : vtkDistanceFieldAlgorithm::BACKEND_CPU);
+      field->Update();
+      vtkImageData* image = field->GetOutput();
+      Check(image->GetNumberOfPoints() > 0, what + ": no field");
+      vtkNew<vtkImageData> samples;
+      samples->CopyStructure(image);
+      vtkNew<vtkMeshDistanceFilter> filter;
+      filter->SetInputData(0, samples);
+      filter->SetSurfaceData(c.Mesh);
+      filter->SetSignMode(sign);
+      filter->Update();
+      vtkDataArray* expected = image->GetPointData()->GetArray("Distance");
+      vtkDataArray* expectedCells = image->GetPointData()->GetArray("ClosestCellId");
+      vtkDataArray* distance = PointArray(filter->GetOutput(), "Distance");
+      vtkDataArray* cells = PointArray(filter->GetOutput(), "ClosestCellId");
+      if (!expected || !expectedCells || !distance || !cells)
+      {
+        Check(false, "grid: an array is missing");
+        continue;
+      }
+      const vtkIdType n = image->GetNumberOfPoints();
+      vtkIdType otherCells = 0;
+      double largest = 0;
+      for (vtkIdType i = 0; i < n; ++i)
+      {
+        const double e = expected->GetTuple1(i), d = distance->GetTuple1(i);
+        largest = std::max(largest, std::fabs(d - e));
+        Check(std::fabs(d - e) <= 1e-6 * std::fabs(e) + 1e-6,
+          what + " sample " + std::to_string(i) + ": " + std::to_string(d) +
+            " against the field's " + std::to_string(e));
+        otherCells += cells->GetTuple1(i) != expectedCells->GetTuple1(i);
+      }
+      // Samples within rounding of two features may name either.
+      Check(
+        otherCells <= n / c.TieShare, what + ": " + std::to_string(otherCells) + " other cells");
+      std::printf("grid %s: %lld samples, largest difference %.3g, %lld other cells\n",
+        what.c_str(),
+        static_cast<long long>(n),
+        largest,
+        static_cast<long long>(otherCells));
+      CompareSurfaceArrays(image, filter->GetOutput(), what, n - otherCells);
+    }
+  }
+  // A narrow band: beyond it no closest cell, no triangle, NaN coordinates and gradient.
+  for (int route : { 1, 2 })
   {
     vtkNew<vtkLinearFactorDistanceField> field;
-    field->SetInputData(mesh);
+    field->SetInputData(reader->GetOutput());
     field->SetResolution(24);
-    field->SetSignMode(sign);
+    field->SetSignModeToWindingNumber();
+    field->SetRoute(route);
+    field->SetMaximumDistance(0.1);
+    field->ComputeClosestBarycentricOn();
+    field->ComputeGradientOn();
+    field->ComputeClosestCellIdOff();
+    field->ComputeDistanceOff();
     field->SetBackendToCPU();
     field->Update();
-    vtkImageData* image = field->GetOutput();
-    vtkNew<vtkImageData> samples;
-    samples->CopyStructure(image);
-    vtkNew<vtkMeshDistanceFilter> filter;
-    filter->SetInputData(0, samples);
-    filter->SetSurfaceData(mesh);
-    filter->SetSignMode(sign);
-    filter->Update();
-    vtkDataArray* expected = image->GetPointData()->GetArray("Distance");
-    vtkDataArray* expectedCells = image->GetPointData()->GetArray("ClosestCellId");
-    vtkDataArray* distance = PointArray(filter->GetOutput(), "Distance");
-    vtkDataArray* cells = PointArray(filter->GetOutput(), "ClosestCellId");
-    if (!expected || !expectedCells || !distance || !cells)
+    vtkPointData* pd = field->GetOutput()->GetPointData();
+    vtkDataArray* sub = pd->GetArray("ClosestSubTriangle");
+    vtkDataArray* bary = pd->GetArray("ClosestBarycentric");
+    vtkDataArray* gradient = pd->GetArray("Gradient");
+    if (!sub || !bary || !gradient || pd->GetArray("ClosestCellId") || pd->GetArray("Distance"))
     {
-      Check(false, "grid: an array is missing");
+      Check(false, "band: the arrays are not the ones asked for");
       continue;
     }
-    const vtkIdType n = image->GetNumberOfPoints();
-    vtkIdType otherCells = 0;
-    double largest = 0;
-    for (vtkIdType i = 0; i < n; ++i)
+    vtkIdType beyond = 0;
+    for (vtkIdType i = 0; i < sub->GetNumberOfTuples(); ++i)
     {
-      const double e = expected->GetTuple1(i), d = distance->GetTuple1(i);
-      largest = std::max(largest, std::fabs(d - e));
-      Check(std::fabs(d - e) <= 1e-6 * std::fabs(e) + 1e-6,
-        "grid sign " + std::to_string(sign) + " sample " + std::to_string(i) + ": " +
-          std::to_string(d) + " against the field's " + std::to_string(e));
-      otherCells += cells->GetTuple1(i) != expectedCells->GetTuple1(i);
+      const bool none = sub->GetTuple1(i) < 0;
+      beyond += none;
+      Check(none == std::isnan(bary->GetComponent(i, 0)) &&
+          none == std::isnan(gradient->GetComponent(i, 2)),
+        "band route " + std::to_string(route) + " sample " + std::to_string(i));
     }
-    // Samples within rounding of two features may name either.
-    Check(otherCells <= n / 200, "grid: " + std::to_string(otherCells) + " other cells");
-    std::printf("grid sign %d: %lld samples, largest difference %.3g, %lld other cells\n",
-      sign,
-      static_cast<long long>(n),
-      largest,
-      static_cast<long long>(otherCells));
+    Check(beyond > 0 && beyond < sub->GetNumberOfTuples(), "band: no sample beyond it");
+    std::printf("band route %d: %lld samples beyond\n", route, static_cast<long long>(beyond));
   }
 }
 

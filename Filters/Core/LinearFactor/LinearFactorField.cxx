@@ -8,6 +8,7 @@
 #include "LinearFactor/MeshSites.h"
 #include "LinearFactor/NearestTriangleQueries.h"
 #include "LinearFactor/RangeCulling.h"
+#include "LinearFactor/SurfaceCoordinates.h"
 #include "Winding/WindingSigns.h"
 
 #include <algorithm>
@@ -53,11 +54,10 @@ bool MoveToGridFrame(MeshInput& mesh,
 /// Moves `mesh` into the local frame of the request's grid and builds its sites there.
 /// The domains' slack is 1e-4 of the smallest spacing plus what the float planes need
 /// over the box that holds the mesh and the grid (MeshSites::PlaneSlack). The mesh is
-/// released once read unless the winding number needs it (a winding sign, or
-/// `keepForWinding`).
+/// released once read unless a later pass needs it (a winding sign, or `keepMesh`).
 bool BuildLocalSites(MeshInput& mesh,
   const LinearFactorRequest& request,
-  bool keepForWinding,
+  bool keepMesh,
   const ParallelFor& parallelFor,
   LocalSites& local,
   std::string& error)
@@ -79,9 +79,9 @@ bool BuildLocalSites(MeshInput& mesh,
     diagonal2 += (hi - lo) * (hi - lo);
   }
   const double slack = MeshSites::PlaneSlack(1e-4 * grid.MinSpacing(), std::sqrt(diagonal2));
-  // Only the winding number reads the mesh after its sites are built.
-  const bool keepMesh = request.Sign == SignMode::WindingNumber || keepForWinding;
-  const bool built = keepMesh
+  // Only the winding number and the surface coordinates read the mesh after its sites
+  // are built.
+  const bool built = keepMesh || request.Sign == SignMode::WindingNumber
     ? local.Sites.Build(mesh, request.Domains, slack, error, parallelFor)
     : local.Sites.Build(std::move(mesh), request.Domains, slack, error, parallelFor);
   if (!built)
@@ -184,17 +184,85 @@ bool WindingSignIfAsked(const MeshInput& mesh,
   }
   return true;
 }
+
+/// Whether the request asks for the closest points' places on their cells or the gradient.
+bool WantsSurfaceCoordinates(const LinearFactorArrays& arrays)
+{
+  return arrays.ClosestSubTriangle || arrays.ClosestBarycentric || arrays.Gradient;
+}
+
+/// The arrays the field writes: the caller's, with the closest cells (and the signed
+/// distances, for a signed gradient) in `cells` and `distances` where the caller did not
+/// ask for them but the surface coordinates need them.
+LinearFactorArrays FieldArrays(const LinearFactorArrays& arrays,
+  const LinearFactorRequest& request,
+  LargeVector<int64_t>& cells,
+  LargeVector<float>& distances)
+{
+  LinearFactorArrays field = arrays;
+  if (!WantsSurfaceCoordinates(arrays))
+  {
+    return field;
+  }
+  const int64_t n = request.Extent.Count();
+  if (!field.ClosestCellId)
+  {
+    cells.resize(n);
+    field.ClosestCellId = cells.data();
+  }
+  if (!field.Distance && arrays.Gradient && request.Sign != SignMode::Unsigned)
+  {
+    distances.resize(n);
+    field.Distance = distances.data();
+  }
+  return field;
+}
+
+/// The surface coordinates and the gradient, when the request asks for them, from the
+/// field's closest cells and signed distances.
+bool SurfaceCoordinatesIfAsked(const MeshInput& mesh,
+  const LocalSites& local,
+  const LinearFactorArrays& field,
+  const Execution& execution,
+  std::string& error)
+{
+  if (!WantsSurfaceCoordinates(field))
+  {
+    return true;
+  }
+  SurfaceCoordinateArrays out;
+  out.ClosestSubTriangle = field.ClosestSubTriangle;
+  out.ClosestBarycentric = field.ClosestBarycentric;
+  out.Gradient = field.Gradient;
+  if (!ComputeSurfaceCoordinates(mesh,
+        local.Request.Grid,
+        local.Request.Extent,
+        field.ClosestCellId,
+        field.Distance,
+        out,
+        execution.For,
+        error))
+  {
+    error = "Invalid input mesh: " + error + ".";
+    return false;
+  }
+  execution.EndStage("surface");
+  return true;
+}
 } // namespace
 
 bool ComputeLinearFactorField(MeshInput mesh,
   const LinearFactorRequest& request,
   HeadlessGL* gl,
-  const LinearFactorArrays& arrays,
+  const LinearFactorArrays& requested,
   const Execution& execution,
   LinearFactorReport& report,
   std::string& error)
 {
   report = LinearFactorReport();
+  LargeVector<int64_t> cells;
+  LargeVector<float> distances;
+  const LinearFactorArrays arrays = FieldArrays(requested, request, cells, distances);
   const double accuracy = 1e-3 * request.Grid.MinSpacing();
   if (request.MaximumDistance > 0 && request.MaximumDistance < accuracy)
   {
@@ -247,9 +315,11 @@ bool ComputeLinearFactorField(MeshInput mesh,
       return true;
     }
     execution.EndStage("queries");
-    return WindingSignIfAsked(mesh, request, local, gl, arrays, execution, report, error);
+    return WindingSignIfAsked(mesh, request, local, gl, arrays, execution, report, error) &&
+      SurfaceCoordinatesIfAsked(mesh, local, arrays, execution, error);
   }
-  if (!BuildLocalSites(mesh, request, arrays.WindingNumber, execution.For, local, error))
+  const bool keepMesh = arrays.WindingNumber || WantsSurfaceCoordinates(arrays);
+  if (!BuildLocalSites(mesh, request, keepMesh, execution.For, local, error))
   {
     return false;
   }
@@ -309,7 +379,8 @@ bool ComputeLinearFactorField(MeshInput mesh,
     ArraysInFrame(arrays, request, local.Frame),
     execution.For);
   execution.EndStage("finalize");
-  return WindingSignIfAsked(mesh, request, local, gl, arrays, execution, report, error);
+  return WindingSignIfAsked(mesh, request, local, gl, arrays, execution, report, error) &&
+    SurfaceCoordinatesIfAsked(mesh, local, arrays, execution, error);
 }
 
 bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,

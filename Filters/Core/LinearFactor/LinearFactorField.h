@@ -82,6 +82,12 @@ struct LinearFactorArrays
   uint8_t* ClosestFeature = nullptr; // 0 vertex, 1 edge, 2 face
   float* ClosestPoint = nullptr;     // 3 per sample
   float* WindingNumber = nullptr;    // the winding number w itself
+  /// Where on its cell each closest point lies (SurfaceCoordinates.h): the index of the
+  /// triangle within the cell's triangulation, the barycentric coordinates there (3 per
+  /// sample), and the unit gradient of the (signed) distance (3 per sample).
+  int64_t* ClosestSubTriangle = nullptr;
+  float* ClosestBarycentric = nullptr;
+  float* Gradient = nullptr;
 };
 
 struct LinearFactorReport

@@ -1,5 +1,6 @@
 #include "LinearFactor/PointDistance.h"
 
+#include "Common/Barycentric.h"
 #include "Common/LargeVector.h"
 #include "Common/PointTriangleDistance.h"
 #include "Common/Vector3.h"
@@ -20,26 +21,6 @@ namespace
 {
 using nearest::Primitive;
 using nearest::QueryTree;
-
-/// The barycentric coordinates of `p` (on the plane of a, b, c up to rounding) in that
-/// triangle.
-void FaceBarycentric(const double* a,
-  const double* b,
-  const double* c,
-  const double p[3],
-  double bary[3])
-{
-  double u[3], v[3], w[3];
-  for (int k = 0; k < 3; ++k)
-  {
-    u[k] = b[k] - a[k], v[k] = c[k] - a[k], w[k] = p[k] - a[k];
-  }
-  const double uu = Dot(u, u), uv = Dot(u, v), vv = Dot(v, v), wu = Dot(w, u), wv = Dot(w, v);
-  const double denominator = uu * vv - uv * uv;
-  bary[1] = (vv * wu - uv * wv) / denominator;
-  bary[2] = (uu * wv - uv * wu) / denominator;
-  bary[0] = 1 - bary[1] - bary[2];
-}
 
 /// The coordinates of `closest` on primitive p, which holds the closest feature of `type`
 /// (0 vertex a, 1 edge ab, 2 face).
@@ -68,12 +49,7 @@ void Barycentric(const Primitive& p,
     {
       ++atB;
     }
-    double ab[3], ac[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      ab[k] = b[k] - a[k], ac[k] = closest[k] - a[k];
-    }
-    along = std::min(1.0, std::max(0.0, Dot(ac, ab) / Dot(ab, ab)));
+    along = SegmentParameter(a, b, closest);
     bary[atB] = along;
   }
   bary[atA] += 1 - along;
