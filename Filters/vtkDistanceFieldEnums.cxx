@@ -99,7 +99,7 @@ const EnumTable Backend("Backend",
   { "FieldFromMesh", "ConvexQuery", "DistanceFieldProximity" },
   { { 0, "Auto", "auto" }, { 1, "GPU", "gpu" }, { 2, "CPU", "cpu" } });
 const EnumTable LinearFactorSign("SignMode",
-  { "LinearFactorDistanceField", "MeshDistanceFilter" },
+  { "LinearFactorDistanceField", "MeshDistanceFilter", "ClipByMeshDistance" },
   { { 0, "Unsigned", "unsigned" },
     { 1, "PseudoNormal", "pseudonormal" },
     { 2, "WindingNumber", "winding" } });

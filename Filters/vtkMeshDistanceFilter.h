@@ -27,8 +27,12 @@
  * - `WindingNumber` when asked for (ComputeWindingNumber): the generalized winding
  *   number, within about 1e-3, exact where it is near 1/2.
  * and field data `MaximumAbsoluteDistance`, `MeanAbsoluteDistance`,
- * `RootMeanSquareDistance` (over the points within MaximumDistance), `FarthestPointId`
- * and `FarthestPoint` (the first point at the maximum), `PointsBeyond`.
+ * `RootMeanSquareDistance` (over the points within MaximumDistance; exact sums, so the
+ * same on any threads and ranks), `FarthestPointId` and `FarthestPoint` (the first point
+ * at the maximum; with global point ids, the smallest id's, and that id), `PointsBeyond`.
+ * In a distributed run every rank measures its own points to the whole surface and the
+ * field data covers all the ranks' points (collective: every rank executes the filter);
+ * without global ids FarthestPointId is then -1 where several ranks hold points.
  *
  * Points farther than MaximumDistance hold that distance (its sign from the winding
  * number in WindingNumber mode; NaN in PseudoNormal mode, where no closest feature signs
@@ -53,9 +57,11 @@
 namespace vtkdf
 {
 class PointDistanceQueries;
+struct PointDistanceArrays;
 }
 #endif
 
+class vtkPointData;
 class vtkPolyData;
 
 class VTKDISTANCEFIELDS_EXPORT vtkMeshDistanceFilter : public vtkDistanceFieldDataSetAlgorithm
@@ -139,6 +145,10 @@ protected:
 #endif
 
   bool CheckProperties();
+#ifndef __VTK_WRAP__
+  /// The requested arrays on `pd`, `count` points each.
+  vtkdf::PointDistanceArrays AddArrays(vtkPointData* pd, vtkIdType count) const;
+#endif
   /// The surface's hierarchy for this SignMode, built unless the last one still holds.
   bool PrepareQueries(vtkPolyData* surface, vtkdf::FilterRun& run);
 

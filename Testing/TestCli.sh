@@ -149,6 +149,10 @@ grep -E "^vtkdf: hausdorff distance=" "$out/timing.log" | tail -1 |
          exit !(v["lower"] <= v["distance"] && v["distance"] <= v["upper"] &&
                 v["upper"] - v["lower"] <= 1.6e-4 && v["distance"] > 0) }' ||
   fail "hausdorff: the distance outside its interval, or the interval too wide"
+# clip: linfac's grid cut inside the bunny (the winding sign by default).
+run clip "^vtkdf: clip time_s=[0-9.]+ stages=distances:[0-9.e-]+,clip:[0-9.e-]+ peak_memory_mb=" \
+  "$out/clip.vtu" -- \
+  clip "$data/bunny_small.vtp" "$out/linfac.vti" -o "$out/clip.vtu" --timing
 # blend: a field with itself is itself, at any T.
 if "$vtkdf" blend "$out/segment.vti" "$out/segment.vti" -t 0.3 -o "$out/blend.vti" \
   --png "$out/blend.png" 2>"$out/blend.err"; then
@@ -196,6 +200,12 @@ grep -q "point 1 has a NaN" "$out/probenan.out" || fail "probe with a NaN point:
 expect_failure hausdorffnone hausdorff "$data/bunny_small.vtp" "$data/cow.vtp" -o "$out/x.vtp" \
   --relative-error 0
 expect_failure hausdorffout hausdorff "$data/bunny_small.vtp" "$data/cow.vtp" -o "$out/x.vti"
+expect_failure clipout clip "$data/bunny_small.vtp" "$out/linfac.vti" -o "$out/x.vtp"
+grep -q "name it OUT.vtu" "$out/clipout.out" || fail "clip -o .vtp: no message"
+expect_failure clipsign clip "$data/bunny_small.vtp" "$out/linfac.vti" -o "$out/x.vtu" --sign up
+expect_failure clipvalue clip "$data/bunny_small.vtp" "$out/linfac.vti" -o "$out/x.vtu" \
+  --value nan
+grep -q "Value must be finite" "$out/clipvalue.out" || fail "clip --value nan: no message"
 expect_failure pdone pd "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp"
 expect_failure unionpieces union "$data/hubo_ankle_convex4.vtp" -o "$out/x.vtp" --piece-array Nope
 expect_failure rendermesh render "$data/plane.vtp" -o "$out/x.png"
@@ -205,6 +215,7 @@ grep -q "needs an X server" "$out/renderdisplay.out" || fail "render without DIS
 [ -e "$out/x.vti" ] && fail "a failed run wrote $out/x.vti"
 [ -e "$out/x.png" ] && fail "a failed run wrote $out/x.png"
 [ -e "$out/x.vtp" ] && fail "a failed run wrote $out/x.vtp"
+[ -e "$out/x.vtu" ] && fail "a failed run wrote $out/x.vtu"
 # union --convex-hulls on convex pieces: the same answer, no warning.
 "$vtkdf" union "$data/hubo_ankle_convex4.vtp" -o "$out/union-hulls.vtp" --query 0 0.01 0.01 \
   --convex-hulls 2>"$out/union-hulls.err" || fail "union --convex-hulls: exit status $?"

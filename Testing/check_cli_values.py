@@ -6,6 +6,7 @@ be (usage: check_cli_values.py OUT_DIR DATA_DIR TIMING_LOG). Prints each failure
   occur, every closest point lies in the bunny's box, x - Distance * Gradient is the
   closest point and the barycentric coordinates are a convex combination; the per-sample query route
   (linfac-queries) gives the same field.
+- clip: every point kept inside the bunny (Distance at most 0).
 - medial: the medial_voxels count printed is the number of points written.
 - chamfer: the zero layer is exactly the Boundary mask of voxelize's output, and the
   largest |distance| is the layers count printed.
@@ -16,7 +17,8 @@ import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPolyDataReader
+from vtkmodules.vtkIOXML import (vtkXMLImageDataReader, vtkXMLPolyDataReader,
+                                 vtkXMLUnstructuredGridReader)
 
 out, data, log = sys.argv[1], sys.argv[2], open(sys.argv[3]).read()
 failures = []
@@ -77,6 +79,14 @@ else:
 queries = array(read("linfac-queries.vti"), "Distance")
 if queries.shape != distance.shape or np.abs(queries - distance).max() > 1e-6 * spacing * 24:
     failures.append("linfac-queries: the per-sample query route differs from the scan")
+
+# clip: the grid kept inside the bunny: every point's Distance at most 0 (the cut's
+# points interpolated to it), and some cells.
+clip = read("clip.vtu", vtkXMLUnstructuredGridReader)
+clipped = array(clip, "Distance")
+if clip.GetNumberOfCells() == 0 or clipped.size == 0 or clipped.max() > 1e-12 * spacing:
+    failures.append("clip: %d cells, Distance up to %g" % (clip.GetNumberOfCells(),
+                                                          clipped.max() if clipped.size else 0))
 
 medial = read("medial.vtp", vtkXMLPolyDataReader).GetNumberOfPoints()
 if printed("medial", "medial_voxels") != medial:

@@ -45,7 +45,8 @@ df_declare_targets_with_missing_files()
 find_package(ParaView 5.11 REQUIRED COMPONENTS RemotingCore RemotingServerManager RemotingViews)
 # ParaView's VTK, with the modules ours depend on (and their own dependencies: X11, GLEW).
 find_package(VTK REQUIRED COMPONENTS CommonCore CommonDataModel CommonExecutionModel
-  CommonSystem CommonMath vtksys ParallelCore RenderingCore RenderingVolume RenderingOpenGL2 glew)
+  CommonSystem CommonMath vtksys ParallelCore FiltersGeneral RenderingCore RenderingVolume
+  RenderingOpenGL2 glew)
 # The wrapping hierarchy files of ParaView's modules (which the client-server wrapping of
 # ours reads) come with python3-paraview too. Where that package is unpacked elsewhere
 # (dpkg -x python3-paraview_*.deb ROOT, as Testing/ParaView/setup-paraview.sh does), point

@@ -4,6 +4,7 @@ set(classes
   "${df_root}/Filters/vtkDistanceFieldImageAlgorithm"
   "${df_root}/Filters/vtkDistanceFieldPolyDataAlgorithm"
   "${df_root}/Filters/vtkDistanceFieldDataSetAlgorithm"
+  "${df_root}/Filters/vtkDistanceFieldUnstructuredGridAlgorithm"
   "${df_root}/Filters/vtkDistanceFieldAlgorithm"
   "${df_root}/Filters/vtkLinearFactorDistanceField"
   "${df_root}/Filters/vtkPolyDataVoxelizer"
@@ -18,7 +19,8 @@ set(classes
   "${df_root}/Filters/vtkDistanceFieldProximity"
   "${df_root}/Filters/vtkMeshDistanceFilter"
   "${df_root}/Filters/vtkMeshDistanceFunction"
-  "${df_root}/Filters/vtkMeshHausdorffDistance")
+  "${df_root}/Filters/vtkMeshHausdorffDistance"
+  "${df_root}/Filters/vtkClipByMeshDistance")
 vtk_module_add_module(DistanceFields::vtkDistanceFields
   CLASSES ${classes}
   HEADERS "${df_root}/Filters/vtkDistanceFieldRunRecord.h"

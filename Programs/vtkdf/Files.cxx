@@ -2,12 +2,15 @@
 
 #include "Options.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkDataSet.h"
 #include "vtkImageData.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataReader.h"
 #include "vtkSTLReader.h"
+#include "vtkXMLDataObjectWriter.h"
+#include "vtkXMLGenericDataObjectReader.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLMultiBlockDataReader.h"
 #include "vtkXMLPolyDataReader.h"
@@ -98,6 +101,50 @@ vtkSmartPointer<vtkDataObject> ReadMeshOrImageOrExit(const std::string& input)
       Usage(("cannot read an image from " + input + " (missing, unreadable or empty)").c_str()));
   }
   return reader->GetOutput();
+}
+
+vtkSmartPointer<vtkDataSet> ReadDataSetOrExit(const std::string& path)
+{
+  if (!(EndsWith(path, ".vtu") || EndsWith(path, ".vti") || EndsWith(path, ".vts") ||
+        EndsWith(path, ".vtr")))
+  {
+    return ReadMeshOrExit(path);
+  }
+  vtkNew<vtkXMLGenericDataObjectReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkDataSet* data = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+  if (reader->GetErrorCode() || !data)
+  {
+    std::exit(Usage(("cannot read " + path).c_str()));
+  }
+  return data;
+}
+
+int WriteDataSet(vtkDataSet* data, const std::string& path)
+{
+  const int type = data->GetDataObjectType();
+  const char* extension = type == VTK_POLY_DATA ? ".vtp"
+    : type == VTK_UNSTRUCTURED_GRID             ? ".vtu"
+    : type == VTK_IMAGE_DATA                    ? ".vti"
+    : type == VTK_STRUCTURED_GRID               ? ".vts"
+    : type == VTK_RECTILINEAR_GRID              ? ".vtr"
+                                                : ".vtk";
+  if (!EndsWith(path, extension))
+  {
+    std::fprintf(
+      stderr, "vtkdf: the output is a %s: name it OUT%s\n", data->GetClassName(), extension);
+    return 2;
+  }
+  vtkNew<vtkXMLDataObjectWriter> writer;
+  writer->SetInputData(data);
+  writer->SetFileName(path.c_str());
+  if (!writer->Write() || writer->GetErrorCode() != 0)
+  {
+    std::fprintf(stderr, "vtkdf: cannot write %s\n", path.c_str());
+    return 1;
+  }
+  return 0;
 }
 
 } // namespace vtkdf::cli

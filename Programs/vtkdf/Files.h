@@ -4,6 +4,7 @@
 #define vtkdf_Files_h
 
 #include "vtkDataObject.h"
+#include "vtkDataSet.h" // ReadDataSetOrExit's smart pointer
 #include "vtkNew.h"
 #include "vtkPolyData.h" // ReadMesh's smart pointers convert where they are used
 #include "vtkSmartPointer.h"
@@ -23,6 +24,14 @@ vtkSmartPointer<vtkDataObject> ReadPolytopesOrExit(const std::string& input);
 
 /// A .vti (an image of masks or a field) or a mesh.
 vtkSmartPointer<vtkDataObject> ReadMeshOrImageOrExit(const std::string& input);
+
+/// Any dataset: a VTK XML .vtu, .vti, .vts or .vtr, or a mesh.
+vtkSmartPointer<vtkDataSet> ReadDataSetOrExit(const std::string& path);
+
+/// Writes `data` as VTK XML: the exit status, 0 when written, 2 (a usage error) when
+/// `path` does not end with its type's extension (.vtp, .vtu, .vti, .vts, .vtr), 1 when
+/// it cannot be written; with a message.
+int WriteDataSet(vtkDataSet* data, const std::string& path);
 
 /// Writes `data` as a VTK XML file (`Writer`: vtkXMLImageDataWriter or
 /// vtkXMLPolyDataWriter); false, with a message, when the file cannot be written (VTK

@@ -14,8 +14,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkType.h"
-#include "vtkXMLDataObjectWriter.h"
-#include "vtkXMLGenericDataObjectReader.h"
 
 #include <cstdint>
 #include <cstdio>
@@ -182,20 +180,7 @@ vtkSmartPointer<vtkDataSet> ReadPointsOrExit(const std::string& path)
     }
     return Cloud(xyz);
   }
-  if (EndsWith(path, ".vtu") || EndsWith(path, ".vti") || EndsWith(path, ".vts") ||
-    EndsWith(path, ".vtr"))
-  {
-    vtkNew<vtkXMLGenericDataObjectReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    vtkDataSet* data = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
-    if (reader->GetErrorCode() || !data)
-    {
-      std::exit(Usage(("cannot read " + path).c_str()));
-    }
-    return data;
-  }
-  return ReadMeshOrExit(path);
+  return ReadDataSetOrExit(path);
 }
 } // namespace
 
@@ -285,30 +270,7 @@ int Probe(int argc, char* argv[])
   {
     return WriteNPY(distance, output) ? 0 : 1;
   }
-  vtkNew<vtkXMLDataObjectWriter> writer;
-  writer->SetInputData(result);
-  writer->SetFileName(output.c_str());
-  const int type = result->GetDataObjectType();
-  const char* extension = type == VTK_POLY_DATA ? ".vtp"
-    : type == VTK_UNSTRUCTURED_GRID             ? ".vtu"
-    : type == VTK_IMAGE_DATA                    ? ".vti"
-    : type == VTK_STRUCTURED_GRID               ? ".vts"
-    : type == VTK_RECTILINEAR_GRID              ? ".vtr"
-                                                : ".vtk";
-  if (!EndsWith(output, extension))
-  {
-    std::fprintf(stderr,
-      "vtkdf: the output is a %s: name it OUT%s (or OUT.npy)\n",
-      result->GetClassName(),
-      extension);
-    return 2;
-  }
-  if (!writer->Write() || writer->GetErrorCode() != 0)
-  {
-    std::fprintf(stderr, "vtkdf: cannot write %s\n", output.c_str());
-    return 1;
-  }
-  return 0;
+  return WriteDataSet(result, output);
 }
 
 } // namespace vtkdf::cli

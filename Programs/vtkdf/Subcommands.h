@@ -27,6 +27,8 @@ int Proximity(int argc, char* argv[]);
 int Probe(int argc, char* argv[]);
 /// vtkdf hausdorff (vtkMeshHausdorffDistance).
 int Hausdorff(int argc, char* argv[]);
+/// vtkdf clip (vtkClipByMeshDistance).
+int Clip(int argc, char* argv[]);
 /// vtkdf render (vtkSegmentedDistanceVolumeMapper).
 int Render(int argc, char* argv[]);
 } // namespace vtkdf::cli

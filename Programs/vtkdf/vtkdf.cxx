@@ -27,6 +27,8 @@
 //   vtkdf probe MESH POINTS -o OUT [--signed] [--sign pseudonormal|winding]
 //         [--max-distance D] [--winding] [--timing]
 //   vtkdf hausdorff A B -o A_OUT.vtp [--output-b B_OUT.vtp] [--relative-error E] [--timing]
+//   vtkdf clip MESH DATASET -o OUT.vtu [--value V] [--sign unsigned|pseudonormal|winding]
+//         [--outside] [--timing]
 //   vtkdf render FIELD.vti -o IMAGE.png [--mode surface|composite] [--size W H] ...
 //         (vtkSegmentedDistanceVolumeMapper; needs an X server)
 //
@@ -70,6 +72,7 @@ int main(int argc, char* argv[])
     { "proximity", vtkdf::cli::Proximity },
     { "probe", vtkdf::cli::Probe },
     { "hausdorff", vtkdf::cli::Hausdorff },
+    { "clip", vtkdf::cli::Clip },
     { "render", vtkdf::cli::Render } };
   for (const auto& entry : subcommands)
   {

@@ -5,7 +5,8 @@ usage: check_functions.py SOURCE_DIR
 
 - ProcessRequest and RequestData are overridden only by the module's wrapped bases
   (vtkDistanceFieldImageAlgorithm, vtkDistanceFieldPolyDataAlgorithm,
-  vtkDistanceFieldDataSetAlgorithm: one per output type), which run every
+  vtkDistanceFieldDataSetAlgorithm, vtkDistanceFieldUnstructuredGridAlgorithm: one per
+  output type), which run every
   request the same way (Filters/vtkDistanceFieldRun.h); a filter supplies Execute.
 - A filter's Execute is at most 120 lines: it maps VTK's data onto one core entry point
   and back, and holds no algorithm.
@@ -26,7 +27,8 @@ ADAPTER_LIMIT = 120
 FUNCTION_LIMIT = 150
 FILE_LIMIT = 1000
 BASES = {"Filters/vtkDistanceFieldImageAlgorithm.cxx", "Filters/vtkDistanceFieldPolyDataAlgorithm.cxx",
-         "Filters/vtkDistanceFieldDataSetAlgorithm.cxx"}
+         "Filters/vtkDistanceFieldDataSetAlgorithm.cxx",
+         "Filters/vtkDistanceFieldUnstructuredGridAlgorithm.cxx"}
 # Functions still over the limit: "path:name" -> what they hold.
 LONG = {
 }
@@ -89,7 +91,7 @@ def main():
             where = "%s:%d %s" % (path, line, name)
             key = "%s:%s" % (path, name)
             if adapter and name in ("ProcessRequest", "RequestData") and path not in BASES:
-                problems.append("%s: only the two wrapped bases run requests (%s); a filter "
+                problems.append("%s: only the wrapped bases run requests (%s); a filter "
                                 "supplies Execute" % (where, ", ".join(sorted(BASES))))
             if adapter and name == "Execute" and length > ADAPTER_LIMIT:
                 problems.append("%s: %d lines, over the adapters' %d" % (where, length, ADAPTER_LIMIT))

@@ -16,8 +16,10 @@ second=()
 [ "$sub" = pd ] && result="$out/$sub.vtp" && second=("$data/hubo_ankle_convex4.vtp")
 # proximity: the bad input is model A; model B is the teapot.
 [ "$sub" = proximity ] && result="$out/$sub.vtp" && second=("$data/teapot.vtp")
-# probe: the bad input is the surface; the points are the plane's.
+# probe, clip: the bad input is the surface; the points (the dataset to clip) are the
+# plane's.
 [ "$sub" = probe ] && result="$out/$sub.vtp" && second=("$data/plane.vtp")
+[ "$sub" = clip ] && result="$out/$sub.vtu" && second=("$data/plane.vtp")
 # hausdorff: the bad input is mesh A; mesh B is the teapot.
 [ "$sub" = hausdorff ] && result="$out/$sub.vtp" && second=("$data/teapot.vtp")
 rm -f "$result"

@@ -17,7 +17,8 @@ import check_output  # noqa: E402
 from vtkmodules.util.misc import calldata_type  # noqa: E402
 from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter  # noqa: E402
-from vtkdistancefields import (vtkChamferVoxelDistance, vtkLinearFactorDistanceField,  # noqa: E402
+from vtkdistancefields import (vtkChamferVoxelDistance, vtkClipByMeshDistance,  # noqa: E402
+                               vtkLinearFactorDistanceField,
                                vtkDistanceFieldProximity, vtkMedialAxisFilter,
                                vtkMeshDistanceFilter, vtkMeshHausdorffDistance,
                                vtkPolyDataVoxelizer, vtkPenetrationDepth,
@@ -28,9 +29,10 @@ FILTERS = {"linfac": vtkLinearFactorDistanceField, "voxelize": vtkPolyDataVoxeli
            "chamfer": vtkChamferVoxelDistance, "medial": vtkMedialAxisFilter,
            "segment": vtkSegmentedDistanceField, "union": vtkUnionClosestPoint,
            "pd": vtkPenetrationDepth, "proximity": vtkDistanceFieldProximity,
-           "probe": vtkMeshDistanceFilter, "hausdorff": vtkMeshHausdorffDistance}
+           "probe": vtkMeshDistanceFilter, "hausdorff": vtkMeshHausdorffDistance,
+           "clip": vtkClipByMeshDistance}
 # The subcommands with no grid and no Backend property, and their own cases.
-OWN_CASES = ("union", "pd", "proximity", "probe", "hausdorff")
+OWN_CASES = ("union", "pd", "proximity", "probe", "hausdorff", "clip")
 
 
 class NotPassable(Exception):
@@ -163,7 +165,7 @@ def run_case(corpus, data, sub, name, path, options, kind, pattern, workdir):
         configure(f, sub, options, contour)
     except (NotPassable, TypeError, OverflowError, ValueError) as refused:
         return kind == "usage", f"not passable ({refused})"
-    if sub == "probe":  # the bad input is the surface; the points are the plane's
+    if sub in ("probe", "clip"):  # the bad input is the surface; the points the plane's
         f.SetInputData(0, read(os.path.join(data, "plane.vtp")))
         f.SetInputData(1, read(path))
     else:

@@ -5,8 +5,8 @@ A case names a filter by its proxy name (the class name without "vtk"), its inpu
 property name (a file of Testing/Data, or "case:port" for an earlier case's output), its
 properties by their C++ names (enumerations by the words of their SetXToY() methods) and
 the output ports it writes, with their file extensions. "partitioned:FILE" is the file
-partitioned across the ranks by ParaView (distributed_only: such cases run only in
-run_in_paraview.py's distributed mode)."""
+partitioned across the ranks by ParaView, "ghosted:FILE" the same with a layer of ghost
+cells (distributed_only: such cases run only in run_in_paraview.py's distributed mode)."""
 
 CASES = [
     dict(name="linfac_pseudonormal", filter="LinearFactorDistanceField",
@@ -94,6 +94,24 @@ CASES = [
          properties=dict(SignMode="WindingNumber", ComputeWindingNumber=1,
                          ComputeClosestFeature=1),
          outputs={0: "vtp"}),
+    # The points partitioned across the ranks, each point that several ranks hold a
+    # ghost but on one (the surface whole on each): every point's answer and the
+    # statistics over all of them as one process computes them.
+    dict(name="mesh_distance_partitioned", filter="MeshDistanceFilter",
+         inputs={"Input": "ghosted:teapot.vtp", "Surface": "bunny_small.vtp"},
+         properties=dict(SignMode="WindingNumber"),
+         outputs={0: "vtp"}, distributed_only=True),
+    # A grid (a field's of floats alone, in slabs across the ranks) clipped inside the
+    # bunny: VTK's clip interpolates the input's arrays, whose integers it rounds
+    # differently from one version to the next.
+    dict(name="clip_grid", filter="LinearFactorDistanceField",
+         inputs={"Input": "bunny_small.vtp"},
+         properties=dict(Resolution=20, ComputeClosestCellId=0, Backend="CPU"),
+         outputs={0: "vti"}),
+    dict(name="clip", filter="ClipByMeshDistance",
+         inputs={"Input": "clip_grid:0", "Surface": "bunny_small.vtp"},
+         properties=dict(Value=0.25),
+         outputs={0: "vtu"}),
     dict(name="hausdorff", filter="MeshHausdorffDistance",
          inputs={"Input": "bunny_small.vtp", "MeshB": "teapot.vtp"},
          properties=dict(RelativeError=1e-5),

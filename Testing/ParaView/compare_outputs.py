@@ -10,14 +10,19 @@ import sys
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import (vtkXMLImageDataReader, vtkXMLPImageDataReader,
-                                 vtkXMLPolyDataReader, vtkXMLPPolyDataReader)
+                                 vtkXMLPolyDataReader, vtkXMLPPolyDataReader,
+                                 vtkXMLPUnstructuredGridReader,
+                                 vtkXMLUnstructuredGridReader)
+
+
+READERS = {".vti": vtkXMLImageDataReader, ".vtp": vtkXMLPolyDataReader,
+           ".vtu": vtkXMLUnstructuredGridReader, ".pvti": vtkXMLPImageDataReader,
+           ".pvtp": vtkXMLPPolyDataReader, ".pvtu": vtkXMLPUnstructuredGridReader}
 
 
 def read(path):
-    """A .vti, a .vtp, or a .pvti or .pvtp assembled from its pieces."""
-    readers = {".vti": vtkXMLImageDataReader, ".vtp": vtkXMLPolyDataReader,
-               ".pvti": vtkXMLPImageDataReader, ".pvtp": vtkXMLPPolyDataReader}
-    reader = readers[os.path.splitext(path)[1]]()
+    """A .vti, .vtp or .vtu, or a .pvti, .pvtp or .pvtu assembled from its pieces."""
+    reader = READERS[os.path.splitext(path)[1]]()
     reader.SetFileName(path)
     reader.Update()
     return reader.GetOutput()
@@ -40,25 +45,99 @@ def arrays(data):
     return found
 
 
+def cell_arrays(data):
+    """A point set's cells as (tag, offsets, connectivity) triples: a poly data's four
+    kinds, an unstructured grid's cells (tagged with their types)."""
+    if data.IsA("vtkUnstructuredGrid"):
+        cells = data.GetCells()
+        return [(vtk_to_numpy(data.GetCellTypesArray()).astype(np.int64),
+                 vtk_to_numpy(cells.GetOffsetsArray()).astype(np.int64),
+                 vtk_to_numpy(cells.GetConnectivityArray()).astype(np.int64))]
+    found = []
+    for tag, cells in enumerate((data.GetVerts(), data.GetLines(), data.GetPolys(),
+                                 data.GetStrips())):
+        offsets = vtk_to_numpy(cells.GetOffsetsArray()).astype(np.int64)
+        found.append((np.full(max(len(offsets) - 1, 0), tag, np.int64), offsets,
+                      vtk_to_numpy(cells.GetConnectivityArray()).astype(np.int64)))
+    return found
+
+
 def geometry(data):
     if data.IsA("vtkImageData"):
         return (tuple(data.GetExtent()), tuple(data.GetOrigin()), tuple(data.GetSpacing()))
     parts = [vtk_to_numpy(data.GetPoints().GetData()).tobytes() if data.GetPoints() else b""]
-    for cells in (data.GetVerts(), data.GetLines(), data.GetPolys(), data.GetStrips()):
-        parts.append(vtk_to_numpy(cells.GetOffsetsArray()).astype(np.int64).tobytes())
-        parts.append(vtk_to_numpy(cells.GetConnectivityArray()).astype(np.int64).tobytes())
+    for tags, offsets, connectivity in cell_arrays(data):
+        parts += [tags.tobytes(), offsets.tobytes(), connectivity.tobytes()]
     return tuple(parts)
+
+
+# What a partition adds to a piece, not the filter: ghost flags, original ids.
+PARTITION_ARRAYS = ("vtkGhostType", "vtkOriginalCellIds", "vtkOriginalPointIds")
+
+
+def row_bytes(values, count, rounded=False):
+    """Each of `count` rows of an array (any components) as bytes (doubles rounded to
+    float when `rounded`)."""
+    if count == 0:
+        return np.zeros((0, 0), np.uint8)
+    if rounded and values.dtype == np.float64:
+        values = values.astype(np.float32)
+    values = np.ascontiguousarray(values).reshape(count, -1)
+    return values.view(np.uint8).reshape(count, -1)
+
+
+def canonical(data, rounded=False):
+    """A point set in an order that does not depend on how it was split among ranks: its
+    cells but ghost cells (a piece's copies of its neighbours'), each as its type, its
+    points (coordinates and point data) in the cell's order and its cell data, sorted and
+    counted once; and the points those cells use (all the points but ghost ones where
+    there are no cells), sorted and counted once. Arrays a partition adds
+    (PARTITION_ARRAYS) are left out. With `rounded`, doubles count as floats."""
+    count = data.GetNumberOfPoints()
+    point_data, cell_data = data.GetPointData(), data.GetCellData()
+    point_names = sorted(n for n in (point_data.GetArrayName(i)
+                                     for i in range(point_data.GetNumberOfArrays()))
+                         if n not in PARTITION_ARRAYS)
+    cell_names = sorted(n for n in (cell_data.GetArrayName(i)
+                                    for i in range(cell_data.GetNumberOfArrays()))
+                        if n not in PARTITION_ARRAYS)
+    columns = [row_bytes(vtk_to_numpy(data.GetPoints().GetData()), count, rounded)] + [
+        row_bytes(vtk_to_numpy(point_data.GetArray(name)), count, rounded)
+        for name in point_names]
+    rows = np.hstack(columns) if count else np.zeros((0, 0), np.uint8)
+    keys = [bytes(row) for row in rows]
+    ghost_cells = cell_data.GetArray("vtkGhostType")
+    ghost_cells = vtk_to_numpy(ghost_cells) if ghost_cells else None
+    cells, used, first = set(), set(), 0
+    for tags, offsets, connectivity in cell_arrays(data):
+        values = [row_bytes(vtk_to_numpy(cell_data.GetArray(name))[first:first + len(tags)],
+                            len(tags), rounded) for name in cell_names]
+        for c in range(len(tags)):
+            if ghost_cells is not None and ghost_cells[first + c] & 1:
+                continue
+            ids = connectivity[offsets[c]:offsets[c + 1]].tolist()
+            used.update(ids)
+            cells.add((int(tags[c]), tuple(keys[i] for i in ids),
+                       b"".join(bytes(v[c]) for v in values)))
+        first += len(tags)
+    if first == 0:
+        ghost_points = point_data.GetArray("vtkGhostType")
+        ghost_points = vtk_to_numpy(ghost_points) if ghost_points else np.zeros(count, int)
+        used = [i for i in range(count) if not ghost_points[i] & 1]
+    return tuple(sorted(set(keys[i] for i in used))), tuple(sorted(cells))
 
 
 def outputs(folder):
     """The output files of a folder by name without extension (a .pvti's pieces are in
     its own subfolder)."""
     return {os.path.splitext(name)[0]: os.path.join(folder, name)
-            for name in os.listdir(folder) if os.path.splitext(name)[1] in (".vti", ".vtp", ".pvti", ".pvtp")}
+            for name in os.listdir(folder) if os.path.splitext(name)[1] in READERS}
 
 
-def compare(first_folder, second_folder):
-    """Prints each output's comparison; returns the failures."""
+def compare(first_folder, second_folder, canonical_points=False):
+    """Prints each output's comparison; returns the failures. With `canonical_points`,
+    poly data and unstructured grids are compared in canonical order (the points and
+    cells that several ranks wrote, each once: canonical())."""
     first, second = outputs(first_folder), outputs(second_folder)
     names = sorted(first)
     failures = []
@@ -71,18 +150,33 @@ def compare(first_folder, second_folder):
         if a.GetNumberOfPoints() == 0:
             failures.append(f"{name}: empty")
             continue
-        if geometry(a) != geometry(b):
-            failures.append(f"{name}: the grids or geometries differ")
         arrays_a, arrays_b = arrays(a), arrays(b)
+        failed = len(failures)
+        # An unstructured grid (a clip's) in canonical order always, its doubles as
+        # floats: VTK's versions order a clip's points and cells differently, and its
+        # clip interpolates a cut edge from either end, by the order of the points
+        # (which a partition changes), so that the new points agree to rounding.
+        grid = a.IsA("vtkUnstructuredGrid")
+        in_order = (canonical_points or grid) and not a.IsA("vtkImageData")
+        if in_order:
+            if canonical(a, rounded=grid) != canonical(b, rounded=grid):
+                failures.append(f"{name}: the points, cells or their arrays differ")
+        elif geometry(a) != geometry(b):
+            failures.append(f"{name}: the grids or geometries differ")
+        if in_order:
+            arrays_a = {k: v for k, v in arrays_a.items() if k[1] not in PARTITION_ARRAYS}
+            arrays_b = {k: v for k, v in arrays_b.items() if k[1] not in PARTITION_ARRAYS}
         if sorted(arrays_a) != sorted(arrays_b):
             failures.append(f"{name}: arrays {sorted(arrays_a)} and {sorted(arrays_b)}")
-        differing = [key[1] for key in arrays_a
-                     if key in arrays_b and arrays_a[key] != arrays_b[key]]
+        # In canonical order the points' and cells' arrays were compared with them.
+        compared = [key for key in arrays_a if key in arrays_b and
+                    not (in_order and key[0] != "field")]
+        differing = [key[1] for key in compared if arrays_a[key] != arrays_b[key]]
         if differing:
             failures.append(f"{name}: arrays differ: {differing}")
         print(f"{name}: {a.GetNumberOfPoints()} points, {len(arrays_a)} arrays "
               f"({', '.join(sorted(key[1] for key in arrays_a))}): "
-              f"{'differ' if differing else 'equal bit for bit'}")
+              f"{'differ' if len(failures) > failed else 'equal bit for bit'}")
     return failures
 
 

@@ -4,7 +4,7 @@ pvpython run_in_paraview.py PLUGIN DATA_DIR OUT_DIR server:HOST:PORT
 
 Each output port goes to OUT_DIR/<case>_<port>.<extension>. With "distributed" (under
 mpiexec ... pvbatch --symmetric), the outputs are written by ParaView's parallel writers
-(.pvti, .pvtp: one piece a rank), and every rank prints the extent of each image it
+(.pvti, .pvtp, .pvtu: one piece a rank), and every rank prints the extent of each image it
 computed. With "server:HOST:PORT", pvpython connects to a pvserver there (mpiexec -n R
 pvserver) and the server's ranks run the cases and write them likewise."""
 import os
@@ -37,13 +37,18 @@ for case in CASES:
         continue
     inputs = {}
     for name, source in case["inputs"].items():
-        if source.startswith("partitioned:"):
+        if source.startswith(("partitioned:", "ghosted:")):
             # Global ids while the mesh is whole (on rank 0: a one-piece file gives the
-            # other ranks nothing), then a part of it on every rank.
-            reader = simple.XMLPolyDataReader(FileName=[os.path.join(data_dir, source[12:])])
+            # other ranks nothing), then a part of it on every rank; "ghosted:" adds a
+            # layer of ghost cells, and marks the copies of points that another rank
+            # owns (VTK's ghost points).
+            kind, file_name = source.split(":")
+            reader = simple.XMLPolyDataReader(FileName=[os.path.join(data_dir, file_name)])
             ids = simple.GenerateGlobalIds(Input=reader)
             parts = simple.RedistributeDataSet(Input=ids)
             inputs[name] = simple.ExtractSurface(Input=parts)
+            if kind == "ghosted":
+                inputs[name] = simple.GhostCellsGenerator(Input=inputs[name])
         elif ":" in source:
             earlier, port = source.split(":")
             inputs[name] = simple.OutputPort(made[earlier], int(port))
@@ -55,8 +60,8 @@ for case in CASES:
         if distributed:
             # One piece a rank, assembled by the reader of the .pvti/.pvtp.
             path = os.path.join(out_dir, f"{case['name']}_{port}.p{extension}")
-            write = (simple.XMLPImageDataWriter if extension == "vti"
-                     else simple.XMLPPolyDataWriter)
+            write = {"vti": simple.XMLPImageDataWriter, "vtp": simple.XMLPPolyDataWriter,
+                     "vtu": simple.XMLPUnstructuredGridWriter}[extension]
             writer = write(Input=simple.OutputPort(proxy, port), FileName=path)
             writer.UpdatePipeline()
             if extension == "vti" and not server:

@@ -4,7 +4,7 @@ import os
 import sys
 
 from vtkmodules.vtkIOXML import (vtkXMLImageDataWriter, vtkXMLPolyDataReader,
-                                 vtkXMLPolyDataWriter)
+                                 vtkXMLPolyDataWriter, vtkXMLUnstructuredGridWriter)
 
 import vtkdistancefields
 
@@ -36,7 +36,8 @@ for case in CASES:
     made[case["name"]] = algorithm
     for port, extension in case["outputs"].items():
         algorithm.Update(port)
-        writer = vtkXMLImageDataWriter() if extension == "vti" else vtkXMLPolyDataWriter()
+        writer = {"vti": vtkXMLImageDataWriter, "vtp": vtkXMLPolyDataWriter,
+                  "vtu": vtkXMLUnstructuredGridWriter}[extension]()
         path = os.path.join(out_dir, f"{case['name']}_{port}.{extension}")
         writer.SetFileName(path)
         writer.SetInputData(algorithm.GetOutputDataObject(port))

@@ -4,7 +4,7 @@ docs/mesh-distance.md): random points around the unit cube [0, 1]^3 (a closed me
 closest points on the box and the gradients of unit length; an image's samples as the
 points (the output an image too); the summary in field data. vtkMeshDistanceFunction
 through vtkSampleFunction (the same distances) and vtkClipPolyData (a sheet cut along
-the cube's faces)."""
+the cube's faces). vtkClipByMeshDistance: a grid clipped to the box, the unit cube."""
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
@@ -109,3 +109,30 @@ clip.Update()
 bounds = clip.GetOutput().GetBounds()
 assert max(abs(b - e) for b, e in zip(bounds, (0, 1, 0, 1, 0.5, 0.5))) < 1e-9, bounds
 print(f"vtkSampleFunction: {len(nodes)} samples; vtkClipPolyData: the square {bounds}")
+
+# vtkClipByMeshDistance: a grid whose cells straddle the box's faces, clipped to the box
+# (the winding sign): the unit cube, but where the distance outside is to an edge or a
+# corner of the box (not linear along a cell's edge): its cells' volume within 2%, every
+# kept point inside the cube or on it.
+from vtkmodules.vtkFiltersVerdict import vtkCellSizeFilter  # noqa: E402
+
+from vtkdistancefields import vtkClipByMeshDistance  # noqa: E402
+
+block = vtkImageData()
+block.SetDimensions(21, 21, 21)
+block.SetOrigin(-0.55, -0.55, -0.55)
+block.SetSpacing(0.1, 0.1, 0.1)
+cut = vtkClipByMeshDistance()
+cut.SetInputData(block)
+cut.SetSurfaceData(surface)
+cut.Update()
+sizes = vtkCellSizeFilter()
+sizes.SetInputConnection(cut.GetOutputPort())
+sizes.Update()
+volume = vtk_to_numpy(sizes.GetOutput().GetCellData().GetArray("Volume")).sum()
+bounds = cut.GetOutput().GetBounds()
+kept = vtk_to_numpy(cut.GetOutput().GetPointData().GetArray("Distance"))
+assert max(abs(b - e) for b, e in zip(bounds, (0, 1, 0, 1, 0, 1))) < 1e-9, bounds
+assert abs(volume - 1) < 0.02 and kept.max() <= 1e-12, (volume, kept.max())
+print(f"vtkClipByMeshDistance: {cut.GetOutput().GetNumberOfCells()} cells, bounds {bounds}, "
+      f"volume {volume:.6f}")

@@ -120,31 +120,34 @@ LargeVector<int64_t> MortonOrder(const double* points,
 }
 
 /// The summary of the |distances| (NaN: beyond the cap) in input order, whatever the
-/// threads.
-void Summarize(const LargeVector<double>& magnitude, PointDistanceStatistics& stats)
+/// threads, but for the excluded points.
+void Summarize(const LargeVector<double>& magnitude,
+  const uint8_t* excluded,
+  PointDistanceStatistics& stats)
 {
   const int64_t count = static_cast<int64_t>(magnitude.size());
-  double sum = 0, squares = 0;
-  int64_t within = 0;
   for (int64_t i = 0; i < count; ++i)
   {
+    if (excluded && excluded[i])
+    {
+      continue;
+    }
+    ++stats.Points;
     const double v = magnitude[i];
     if (std::isnan(v))
     {
       ++stats.Beyond;
       continue;
     }
-    ++within;
-    sum += v;
-    squares += v * v;
+    stats.Sum.Add(v);
+    stats.Squares.Add(v * v);
     if (v > stats.Maximum || stats.Farthest < 0)
     {
       stats.Maximum = v;
       stats.Farthest = i;
     }
   }
-  stats.Mean = within > 0 ? sum / double(within) : 0;
-  stats.RootMeanSquare = within > 0 ? std::sqrt(squares / double(within)) : 0;
+  stats.Finish();
 }
 
 } // namespace
@@ -445,10 +448,10 @@ bool PointDistanceQueries::QueryPoints(const double* points,
   const PointDistanceArrays& arrays,
   const Execution& execution,
   PointDistanceStatistics& stats,
-  std::string& error) const
+  std::string& error,
+  const uint8_t* excluded) const
 {
   stats = PointDistanceStatistics();
-  stats.Points = count;
   // The points' box (every coordinate checked first), then their Morton order in it.
   double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
   for (int64_t i = 0; i < count; ++i)
@@ -571,7 +574,11 @@ bool PointDistanceQueries::QueryPoints(const double* points,
   stats.Evaluations = evaluations.load();
   execution.EndStage("queries");
 
-  Summarize(magnitude, stats);
+  Summarize(magnitude, excluded, stats);
+  if (arrays.Magnitude)
+  {
+    std::copy(magnitude.begin(), magnitude.end(), arrays.Magnitude);
+  }
   return true;
 }
 

@@ -21,10 +21,12 @@
 #ifndef vtkdf_PointDistance_h
 #define vtkdf_PointDistance_h
 
+#include "Common/ExactSum.h"
 #include "Common/MeshInput.h"
 #include "Common/Parallel.h"
 #include "LinearFactor/LinearFactorField.h"
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -79,18 +81,30 @@ struct PointDistanceArrays
   uint8_t* ClosestFeature = nullptr;
   double* Gradient = nullptr;
   double* WindingNumber = nullptr;
+  /// |distance| within the cap, NaN beyond it: what the statistics summarize.
+  double* Magnitude = nullptr;
 };
 
-/// A batch's summary of |distance| over the points within the cap (in a fixed order of
-/// summation: the same on any number of threads).
+/// A batch's summary of |distance| over the points within the cap (its sums exact: the
+/// same on any number of threads, and for any split of the points into batches that
+/// Combine adds up).
 struct PointDistanceStatistics
 {
-  int64_t Points = 0;
+  int64_t Points = 0;      // the points summarized (those not excluded)
   int64_t Beyond = 0;      // points beyond the cap
   int64_t Evaluations = 0; // primitive distances computed
   double Maximum = 0, Mean = 0, RootMeanSquare = 0;
   int64_t Farthest = -1; // the first point at the maximum
   bool Aborted = false;
+  ExactSum Sum, Squares; // of |d| and of its (rounded) squares, over the points within
+
+  /// Mean and RootMeanSquare from the sums.
+  void Finish()
+  {
+    const double within = static_cast<double>(this->Points - this->Beyond);
+    this->Mean = within > 0 ? this->Sum.Value() / within : 0;
+    this->RootMeanSquare = within > 0 ? std::sqrt(this->Squares.Value() / within) : 0;
+  }
 };
 
 class PointDistanceQueries
@@ -123,14 +137,17 @@ public:
 
   /// The answers at `count` points (xyz, world units) into `arrays`. False and `error`
   /// when a point has a NaN or infinite coordinate (naming it); progress and abort
-  /// between batches of points.
+  /// between batches of points. Points i with `excluded[i]` non-zero (when given: a
+  /// distributed run's copies of points another rank owns) get their answers but are
+  /// left out of the statistics.
   bool QueryPoints(const double* points,
     int64_t count,
     double cap,
     const PointDistanceArrays& arrays,
     const Execution& execution,
     PointDistanceStatistics& stats,
-    std::string& error) const;
+    std::string& error,
+    const uint8_t* excluded = nullptr) const;
 
   SignMode Sign() const;
   /// The mesh's triangles, segments and points in the tree.
