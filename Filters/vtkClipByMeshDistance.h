@@ -18,6 +18,10 @@
  * function, in one step (the distances of all points in parallel) and with two inputs,
  * as ParaView's "Clip By Mesh Distance" uses it. The surface's hierarchy is kept while
  * the surface and SignMode do not change, so a new Value or new points reuse it.
+ *
+ * In a distributed run (the global controller's ranks, ParaView's MPI engine) each rank
+ * clips its own piece of input 0 against the whole surface; like vtkMeshDistanceFilter
+ * it is collective: every rank must execute it.
  */
 #ifndef vtkClipByMeshDistance_h
 #define vtkClipByMeshDistance_h
