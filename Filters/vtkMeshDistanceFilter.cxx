@@ -115,23 +115,10 @@ void SummarizeByGlobalIds(vtkMultiProcessController* controller,
     for (vtkIdType k = 0; k < total; ++k)
     {
       const vtkIdType at = order[k];
-      if (k > 0 && allIds[at] == allIds[order[k - 1]])
+      // Another rank's copy of the same point counts once.
+      if (k == 0 || allIds[at] != allIds[order[k - 1]])
       {
-        continue; // another rank's copy of the same point
-      }
-      ++all.Points;
-      const double v = allValues[at];
-      if (std::isnan(v))
-      {
-        ++all.Beyond;
-        continue;
-      }
-      all.Sum.Add(v);
-      all.Squares.Add(v * v);
-      if (v > all.Maximum || all.Farthest < 0)
-      {
-        all.Maximum = v;
-        all.Farthest = allIds[at];
+        all.Count(allValues[at], allIds[at]);
       }
     }
     all.Finish();

@@ -45,18 +45,6 @@ public:
     }
   }
 
-  void Add(const ExactSum& other)
-  {
-    ExactSum normal = other;
-    normal.Normalize();
-    this->Normalize();
-    for (int d = 0; d < Digits; ++d)
-    {
-      this->Digit[d] += normal.Digit[d];
-    }
-    this->Normalize();
-  }
-
   /// Carries every digit's excess into the next: the representation of the sum is then
   /// unique, each digit below 2^32 (the last holds what is left).
   void Normalize()

@@ -128,23 +128,9 @@ void Summarize(const LargeVector<double>& magnitude,
   const int64_t count = static_cast<int64_t>(magnitude.size());
   for (int64_t i = 0; i < count; ++i)
   {
-    if (excluded && excluded[i])
+    if (!excluded || !excluded[i])
     {
-      continue;
-    }
-    ++stats.Points;
-    const double v = magnitude[i];
-    if (std::isnan(v))
-    {
-      ++stats.Beyond;
-      continue;
-    }
-    stats.Sum.Add(v);
-    stats.Squares.Add(v * v);
-    if (v > stats.Maximum || stats.Farthest < 0)
-    {
-      stats.Maximum = v;
-      stats.Farthest = i;
+      stats.Count(magnitude[i], i);
     }
   }
   stats.Finish();

@@ -98,6 +98,25 @@ struct PointDistanceStatistics
   bool Aborted = false;
   ExactSum Sum, Squares; // of |d| and of its (rounded) squares, over the points within
 
+  /// Counts one point whose |distance| is `magnitude` (NaN: beyond the cap), named
+  /// `key` (its index, or its global id) if it becomes the farthest.
+  void Count(double magnitude, int64_t key)
+  {
+    ++this->Points;
+    if (std::isnan(magnitude))
+    {
+      ++this->Beyond;
+      return;
+    }
+    this->Sum.Add(magnitude);
+    this->Squares.Add(magnitude * magnitude);
+    if (magnitude > this->Maximum || this->Farthest < 0)
+    {
+      this->Maximum = magnitude;
+      this->Farthest = key;
+    }
+  }
+
   /// Mean and RootMeanSquare from the sums.
   void Finish()
   {
