@@ -103,8 +103,11 @@ const EnumTable LinearFactorSign("SignMode",
   { { 0, "Unsigned", "unsigned" },
     { 1, "PseudoNormal", "pseudonormal" },
     { 2, "WindingNumber", "winding" } });
+const EnumTable SparseSign("SignMode",
+  { "SparseDistanceField" },
+  { { 0, "Unsigned", "unsigned" }, { 1, "PseudoNormal", "pseudonormal" } });
 const EnumTable DomainShape("DomainShape",
-  { "LinearFactorDistanceField" },
+  { "LinearFactorDistanceField", "SparseDistanceField" },
   { { 0, "Auto", "auto" }, { 1, "NonManifold", "nonmanifold" }, { 2, "Manifold", "manifold" } });
 const EnumTable Route("Route",
   { "LinearFactorDistanceField" },

@@ -20,7 +20,8 @@ set(classes
   "${df_root}/Filters/vtkMeshDistanceFilter"
   "${df_root}/Filters/vtkMeshDistanceFunction"
   "${df_root}/Filters/vtkMeshHausdorffDistance"
-  "${df_root}/Filters/vtkClipByMeshDistance")
+  "${df_root}/Filters/vtkClipByMeshDistance"
+  "${df_root}/Filters/vtkSparseDistanceField")
 vtk_module_add_module(DistanceFields::vtkDistanceFields
   CLASSES ${classes}
   HEADERS "${df_root}/Filters/vtkDistanceFieldRunRecord.h"

@@ -41,7 +41,7 @@ bool WriteXML(vtkDataObject* data, const std::string& path)
 {
   vtkNew<Writer> writer;
   writer->SetFileName(path.c_str());
-  writer->SetInputData(data);
+  writer->SetInputDataObject(data);
   if (!writer->Write() || writer->GetErrorCode() != 0)
   {
     std::fprintf(stderr, "vtkdf: cannot write %s\n", path.c_str());

@@ -7,8 +7,11 @@
 #include "vtkLinearFactorDistanceField.h"
 
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkPolyData.h"
 #include "vtkNew.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace vtkdf::cli
@@ -18,8 +21,9 @@ int Linfac(int argc, char* argv[])
 {
   CommonOptions common;
   std::string png, arrays = "distance,cellid", domains = "auto", culling, route = "auto", sign;
-  double maxDistance = 0;
+  double maxDistance = 0, band = 0;
   bool signedField = false;
+  SparseOptions sparse;
   ParseOptions(argc,
     argv,
     common,
@@ -30,10 +34,47 @@ int Linfac(int argc, char* argv[])
       Text("--route", route),
       Text("--arrays", arrays),
       Number("--max-distance", maxDistance),
+      Number("--band", band),
+      Count("--brick-size", sparse.BrickSize),
+      Text("--sides", sparse.Sides),
       Text("--png", png) });
+  const bool pieces = EndsWith(common.Output, ".vtpd");
+  if (band != 0 && maxDistance != 0)
+  {
+    std::fprintf(stderr, "vtkdf: --band K is --max-distance K spacings: give one of them\n");
+    return 2;
+  }
+  if ((pieces && band == 0) || (!sparse.Sides.empty() && !pieces))
+  {
+    std::fprintf(stderr,
+      "vtkdf: a .vtpd output (the band's pieces, --sides) needs --band K, and --band K a "
+      ".vtpd or .vti output\n");
+    return 2;
+  }
   vtkNew<vtkLinearFactorDistanceField> filter;
   filter->SetInputData(ReadMeshOrExit(argv[2]));
   Configure(filter, common);
+  if (pieces)
+  {
+    const std::string signWord = sign.empty() ? (signedField ? "pseudonormal" : "unsigned") : sign;
+    sparse.Signed = EnumWord("--sign", signWord, vtkdf::enums::SparseSign) != 0;
+    sparse.BandWidth = band;
+    sparse.Arrays = arrays;
+    sparse.DomainShape = EnumWord("--domains", domains, vtkdf::enums::DomainShape);
+    return LinfacSparse(vtkPolyData::SafeDownCast(filter->GetInputDataObject(0, 0)), common, sparse);
+  }
+  if (band != 0)
+  {
+    // The dense field with the same band: K spacings of the grid the filter will use.
+    filter->UpdateInformation();
+    double spacing[3] = { 1, 1, 1 };
+    filter->GetOutputInformation(0)->Get(vtkDataObject::SPACING(), spacing);
+    maxDistance = band * std::min(std::min(spacing[0], spacing[1]), spacing[2]);
+    if (!(maxDistance > 0))
+    {
+      maxDistance = band; // an invalid band: the filter names it
+    }
+  }
   // --culling: the earlier name of --domains, still read.
   if (!culling.empty())
   {

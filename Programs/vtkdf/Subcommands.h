@@ -3,10 +3,28 @@
 #ifndef vtkdf_Subcommands_h
 #define vtkdf_Subcommands_h
 
+#include <string>
+
+class vtkPolyData;
+
 namespace vtkdf::cli
 {
-/// vtkdf linfac (vtkLinearFactorDistanceField).
+struct CommonOptions;
+
+/// vtkdf linfac (vtkLinearFactorDistanceField; vtkSparseDistanceField with --band K and
+/// a .vtpd output).
 int Linfac(int argc, char* argv[]);
+/// What vtkdf linfac --band ... -o OUT.vtpd passes on to vtkSparseDistanceField.
+struct SparseOptions
+{
+  double BandWidth = 0;
+  int BrickSize = 32;
+  int DomainShape = 0;
+  bool Signed = false;
+  std::string Arrays, Sides;
+};
+/// vtkdf linfac's sparse band: the pieces to the .vtpd, the sides to `Sides` (optional).
+int LinfacSparse(vtkPolyData* mesh, CommonOptions& common, const SparseOptions& options);
 /// vtkdf voxelize (vtkPolyDataVoxelizer).
 int Voxelize(int argc, char* argv[]);
 /// vtkdf chamfer (vtkChamferVoxelDistance).

@@ -5,6 +5,7 @@
 #include "GL/HeadlessGL.h"
 #include "LinearFactor/LinearFactorGPU.h"
 #include "LinearFactor/LinearFactorScan.h"
+#include "LinearFactor/LocalSites.h"
 #include "LinearFactor/MeshSites.h"
 #include "LinearFactor/NearestTriangleQueries.h"
 #include "LinearFactor/RangeCulling.h"
@@ -20,78 +21,6 @@ namespace vtkdf
 
 namespace
 {
-/// The request in the grid's local frame, and the sites of the mesh moved there.
-struct LocalSites
-{
-  GridFrame Frame;
-  LocalFieldRequest Request;
-  MeshSites Sites;
-};
-
-/// Moves `mesh` into the local frame of the request's grid.
-bool MoveToGridFrame(MeshInput& mesh,
-  const LinearFactorRequest& request,
-  const ParallelFor& parallelFor,
-  LocalSites& local,
-  std::string& error)
-{
-  if (!CheckGrid(request.Grid, mesh.Bounds.data(), error))
-  {
-    error = "Invalid input: " + error + ".";
-    return false;
-  }
-  local.Frame = GridFrame::For(request.Grid);
-  local.Request.Grid = local.Frame.Local(request.Grid);
-  local.Request.Extent = request.Extent;
-  if (request.MaximumDistance > 0)
-  {
-    local.Request.MaximumDistance = request.MaximumDistance / local.Frame.Scale;
-  }
-  MoveToLocalFrame(mesh, local.Frame, parallelFor);
-  return true;
-}
-
-/// Moves `mesh` into the local frame of the request's grid and builds its sites there.
-/// The domains' slack is 1e-4 of the smallest spacing plus what the float planes need
-/// over the box that holds the mesh and the grid (MeshSites::PlaneSlack). The mesh is
-/// released once read unless a later pass needs it (a winding sign, or `keepMesh`).
-bool BuildLocalSites(MeshInput& mesh,
-  const LinearFactorRequest& request,
-  bool keepMesh,
-  const ParallelFor& parallelFor,
-  LocalSites& local,
-  std::string& error)
-{
-  if (!MoveToGridFrame(mesh, request, parallelFor, local, error))
-  {
-    return false;
-  }
-  // The planes are used between the mesh and the samples: the diagonal of the box that
-  // holds both bounds that distance.
-  const SampleGrid& grid = local.Request.Grid;
-  double diagonal2 = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const double g0 = grid.Coordinate(a, grid.Whole.Lo[a]);
-    const double g1 = grid.Coordinate(a, grid.Whole.Hi[a]);
-    const double lo = std::min(std::min(g0, g1), local.Frame.ToLocal(a, mesh.Bounds[2 * a]));
-    const double hi = std::max(std::max(g0, g1), local.Frame.ToLocal(a, mesh.Bounds[2 * a + 1]));
-    diagonal2 += (hi - lo) * (hi - lo);
-  }
-  const double slack = MeshSites::PlaneSlack(1e-4 * grid.MinSpacing(), std::sqrt(diagonal2));
-  // Only the winding number and the surface coordinates read the mesh after its sites
-  // are built.
-  const bool built = keepMesh || request.Sign == SignMode::WindingNumber
-    ? local.Sites.Build(mesh, request.Domains, slack, error, parallelFor)
-    : local.Sites.Build(std::move(mesh), request.Domains, slack, error, parallelFor);
-  if (!built)
-  {
-    error = "Invalid input mesh: " + error + ".";
-    return false;
-  }
-  return true;
-}
-
 /// Inside or outside at every sample by the winding number (on the GPU when `gl` is
 /// given), the distances' signs set from it when `sign` says so, and w itself when asked
 /// for.

@@ -333,7 +333,7 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites,
 {
   ScanStatistics stats;
   stats.Samples = request.Extent.Count();
-  const int64_t numSites = sites.Count();
+  const int64_t numSites = static_cast<int64_t>(culling.Order.size());
   // Sites come grouped by block (RangeCulling::Order); batches of them report progress.
   const int64_t batches = std::max<int64_t>(1, std::min<int64_t>(20, numSites / 1024));
   std::atomic<int64_t> evaluations{ 0 };

@@ -29,10 +29,15 @@ class NearestSiteBuffer
 {
 public:
   static constexpr uint64_t Empty = ~uint64_t(0);
-  /// `count` empty entries; `parallelFor` (optional) fills them in parallel.
+  /// `count` empty entries; `parallelFor` (optional) fills them in parallel. The block
+  /// is kept when it is large enough (a buffer reused for many small pieces).
   void Reset(int64_t count, const ParallelFor& parallelFor = ParallelFor())
   {
-    this->Values.reset(DefaultInitAllocator<std::atomic<uint64_t>>().allocate(count));
+    if (count > this->Capacity || !this->Values)
+    {
+      this->Values.reset(DefaultInitAllocator<std::atomic<uint64_t>>().allocate(count));
+      this->Capacity = count;
+    }
     this->Count = count;
     auto fill = [this](int64_t begin, int64_t end)
     {
@@ -78,7 +83,7 @@ private:
     }
   };
   std::unique_ptr<std::atomic<uint64_t>[], Free> Values;
-  int64_t Count = 0;
+  int64_t Count = 0, Capacity = 0;
 };
 
 /// The request of the scan and the queries, in the grid's local frame (GridFrame: the

@@ -339,9 +339,13 @@ void BoundBlocks(RangeCulling& culling,
 /// Order: the sites grouped by the block of their anchor (GroupStart: where each block's
 /// group starts, one more than the blocks). Counted, then placed: the blocks are found
 /// twice rather than stored.
-void GroupSites(RangeCulling& culling, const MeshSites& sites, const Blocks& blocks)
+void GroupSites(RangeCulling& culling,
+  const MeshSites& sites,
+  const Blocks& blocks,
+  const std::vector<uint32_t>& subset)
 {
-  const int64_t numSites = sites.Count();
+  const bool all = subset.empty();
+  const int64_t numSites = all ? sites.Count() : static_cast<int64_t>(subset.size());
   const SampleGrid& grid = blocks.Grid;
   auto blockOf = [&](int64_t s)
   {
@@ -363,7 +367,7 @@ void GroupSites(RangeCulling& culling, const MeshSites& sites, const Blocks& blo
   offsets.assign(blocks.Total + 1, 0);
   for (int64_t s = 0; s < numSites; ++s)
   {
-    ++offsets[blockOf(s) + 1];
+    ++offsets[blockOf(all ? s : subset[s]) + 1];
   }
   for (int64_t c = 0; c < blocks.Total; ++c)
   {
@@ -372,7 +376,8 @@ void GroupSites(RangeCulling& culling, const MeshSites& sites, const Blocks& blo
   std::vector<int64_t> fill(offsets.begin(), offsets.end() - 1);
   for (int64_t s = 0; s < numSites; ++s)
   {
-    culling.Order[fill[blockOf(s)]++] = static_cast<uint32_t>(s);
+    const int64_t site = all ? s : subset[s];
+    culling.Order[fill[blockOf(site)]++] = static_cast<uint32_t>(site);
   }
 }
 
@@ -382,9 +387,12 @@ void RangeCulling::Build(const MeshSites& sites,
   const SampleGrid& grid,
   const IndexBox& extent,
   double maximumDistance,
-  const ParallelFor& parallelFor)
+  const ParallelFor& parallelFor,
+  const std::vector<uint32_t>* subset)
 {
-  const int64_t numSites = sites.Count();
+  static const std::vector<uint32_t> everySite;
+  const std::vector<uint32_t>& only = subset ? *subset : everySite;
+  const int64_t numSites = subset ? static_cast<int64_t>(subset->size()) : sites.Count();
   this->MaximumDistance = maximumDistance;
   for (int a = 0; a < 3; ++a)
   {
@@ -397,7 +405,7 @@ void RangeCulling::Build(const MeshSites& sites,
     // One group that reaches nowhere.
     for (int64_t s = 0; s < numSites; ++s)
     {
-      this->Order[s] = static_cast<uint32_t>(s);
+      this->Order[s] = subset ? only[s] : static_cast<uint32_t>(s);
     }
     this->GroupStart = { 0, numSites };
     this->Reach.assign(1, IndexBox());
@@ -412,9 +420,21 @@ void RangeCulling::Build(const MeshSites& sites,
     this->CellSize[a] = BlockSize * grid.Spacing[a];
   }
   BoundPyramid pyramid;
-  BoundBlocks(*this, blocks, sites.SitePoints, maximumDistance, pyramid);
+  if (subset)
+  {
+    std::vector<double> anchors(3 * only.size());
+    for (size_t s = 0; s < only.size(); ++s)
+    {
+      std::copy(sites.AnchorOf(only[s]), sites.AnchorOf(only[s]) + 3, &anchors[3 * s]);
+    }
+    BoundBlocks(*this, blocks, anchors, maximumDistance, pyramid);
+  }
+  else
+  {
+    BoundBlocks(*this, blocks, sites.SitePoints, maximumDistance, pyramid);
+  }
   BuildPyramid(pyramid);
-  GroupSites(*this, sites, blocks);
+  GroupSites(*this, sites, blocks, only);
 
   // The reach of each group.
   this->Reach.assign(blocks.Total, IndexBox());

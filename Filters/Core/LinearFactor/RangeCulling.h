@@ -36,11 +36,15 @@ public:
 
   /// Computes Order (site indices grouped by the block of their anchor, for memory
   /// locality), GroupStart and every group's Reach (in sample indices, within `extent`).
+  /// `subset` (optional, ascending): the only sites to consider, as for a piece of a
+  /// narrow band, which holds every site within the band of its samples; the blocks'
+  /// bounds then come from their anchors (any mesh point bounds the field from above).
   void Build(const MeshSites& sites,
     const SampleGrid& grid,
     const IndexBox& extent,
     double maximumDistance,
-    const ParallelFor& parallelFor);
+    const ParallelFor& parallelFor,
+    const std::vector<uint32_t>* subset = nullptr);
 
   /// Sites grouped by block: group g holds Order[GroupStart[g] .. GroupStart[g + 1]).
   std::vector<uint32_t> Order;

@@ -1,0 +1,73 @@
+#include "Subcommands.h"
+
+#include "Files.h"
+#include "Options.h"
+#include "vtkDistanceFieldEnums.h"
+#include "vtkSparseDistanceField.h"
+
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkNew.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtkXMLPartitionedDataSetWriter.h"
+
+#include <cstdio>
+
+namespace vtkdf::cli
+{
+
+int LinfacSparse(vtkPolyData* mesh, CommonOptions& common, const SparseOptions& options)
+{
+  vtkNew<vtkSparseDistanceField> filter;
+  filter->SetInputData(mesh);
+  Configure(filter, common);
+  filter->SetBandWidth(options.BandWidth);
+  filter->SetBrickSize(options.BrickSize);
+  filter->SetDomainShape(options.DomainShape);
+  filter->SetSignMode(options.Signed ? vtkSparseDistanceField::PSEUDO_NORMAL
+                                     : vtkSparseDistanceField::UNSIGNED);
+  filter->SetComputeClosestCellId(options.Arrays.find("cellid") != std::string::npos);
+  filter->SetComputeClosestFeature(options.Arrays.find("feature") != std::string::npos);
+  filter->SetComputeClosestPoint(options.Arrays.find("point") != std::string::npos);
+  filter->Update();
+  if (filter->GetErrorCode() || filter->GetLastPieces() == 0)
+  {
+    std::fprintf(stderr, "vtkdf: no output was computed\n");
+    return 1;
+  }
+  if (common.Timing)
+  {
+    int whole[6];
+    filter->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    std::printf("vtkdf: linfac dims=%dx%dx%d backend=%s time_s=%.6f band=%g band_samples=%lld "
+                "pieces=%lld candidate_bricks=%lld piece_memory_mb=%.1f stages=%s "
+                "peak_memory_mb=%.1f\n",
+      whole[1] - whole[0] + 1,
+      whole[3] - whole[2] + 1,
+      whole[5] - whole[4] + 1,
+      filter->GetLastBackend(),
+      filter->GetLastTime(),
+      options.BandWidth,
+      static_cast<long long>(filter->GetLastBandSamples()),
+      static_cast<long long>(filter->GetLastPieces()),
+      static_cast<long long>(filter->GetLastCandidateBricks()),
+      filter->GetLastPieceMemory(),
+      filter->GetLastStageTimes(),
+      filter->GetLastPeakMemory());
+  }
+  if (!WriteXML<vtkXMLPartitionedDataSetWriter>(filter->GetOutputDataObject(0), common.Output))
+  {
+    return 1;
+  }
+  if (!options.Sides.empty() &&
+    !WriteXML<vtkXMLImageDataWriter>(filter->GetOutputDataObject(1), options.Sides))
+  {
+    return 1;
+  }
+  return 0;
+}
+
+} // namespace vtkdf::cli
