@@ -22,9 +22,16 @@ second=()
 [ "$sub" = clip ] && result="$out/$sub.vtu" && second=("$data/plane.vtp")
 # hausdorff: the bad input is mesh A; mesh B is the teapot.
 [ "$sub" = hausdorff ] && result="$out/$sub.vtp" && second=("$data/teapot.vtp")
-rm -f "$result"
+# band: vtkdf linfac's sparse band (vtkSparseDistanceField), 2 spacings unless the case
+# gives its own.
+command=$sub
+if [ "$sub" = band ]; then
+  command=linfac result="$out/$sub.vtpd"
+  [[ "$options" == *--band* ]] || options="$options --band 2"
+fi
+rm -rf "$result" "${result%.vtpd}"
 # shellcheck disable=SC2086 # the options are words
-timeout 120 "$vtkdf" "$sub" "$path" "${second[@]}" -o "$result" $options > "$out/$sub.stdout" 2> "$out/$sub.stderr"
+timeout 120 "$vtkdf" "$command" "$path" "${second[@]}" -o "$result" $options > "$out/$sub.stdout" 2> "$out/$sub.stderr"
 status=$?
 fail() {
   echo "FAIL ($sub $input $options): $*"

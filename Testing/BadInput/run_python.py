@@ -23,14 +23,14 @@ from vtkdistancefields import (vtkChamferVoxelDistance, vtkClipByMeshDistance,  
                                vtkMeshDistanceFilter, vtkMeshHausdorffDistance,
                                vtkPolyDataVoxelizer, vtkPenetrationDepth,
                                vtkSegmentedDistanceContour, vtkSegmentedDistanceField,
-                               vtkUnionClosestPoint)
+                               vtkSparseDistanceField, vtkUnionClosestPoint)
 
 FILTERS = {"linfac": vtkLinearFactorDistanceField, "voxelize": vtkPolyDataVoxelizer,
            "chamfer": vtkChamferVoxelDistance, "medial": vtkMedialAxisFilter,
            "segment": vtkSegmentedDistanceField, "union": vtkUnionClosestPoint,
            "pd": vtkPenetrationDepth, "proximity": vtkDistanceFieldProximity,
            "probe": vtkMeshDistanceFilter, "hausdorff": vtkMeshHausdorffDistance,
-           "clip": vtkClipByMeshDistance}
+           "clip": vtkClipByMeshDistance, "band": vtkSparseDistanceField}
 # The subcommands with no grid and no Backend property, and their own cases.
 OWN_CASES = ("union", "pd", "proximity", "probe", "hausdorff", "clip")
 
@@ -91,7 +91,13 @@ def configure(f, sub, options, contour=None):
             f.SetPadding(number(value, float))
         elif option == "--relative-error":
             f.SetRelativeError(number(value, float))
+        elif option == "--band":
+            f.SetBandWidth(number(value, float))
+        elif option == "--brick-size":
+            f.SetBrickSize(number(value, int))
         elif option == "--max-distance":
+            if sub == "band":
+                raise NotPassable("the sparse band's cap is BandWidth")
             f.SetMaximumDistance(number(value, float))
         elif option == "--layers":
             f.SetMaximumLayers(number(value, int))
@@ -110,7 +116,7 @@ def configure(f, sub, options, contour=None):
         elif option == "--feature-angle" and contour is not None:
             contour.SetFeatureAngle(number(value, float))
         elif option == "--sign":
-            if value not in ("pseudonormal", "winding"):
+            if value not in ("pseudonormal", "winding") or sub == "band" and value == "winding":
                 raise NotPassable(f"{option} {value}")
             getattr(f, "SetSignModeTo" + ("PseudoNormal" if value == "pseudonormal"
                                           else "WindingNumber"))()
@@ -183,7 +189,7 @@ def run_case(corpus, data, sub, name, path, options, kind, pattern, workdir):
         contour.AddObserver("WarningEvent", on_warning)
         contour.Update()
         f = contour
-    output = f.GetOutput()
+    output = f.GetOutputDataObject(0)  # band's: a vtkPartitionedDataSet of pieces
     empty = output.GetNumberOfPoints() == 0
     if kind in ("error", "usage"):
         text = " | ".join(errors)

@@ -6,7 +6,8 @@ property name (a file of Testing/Data, or "case:port" for an earlier case's outp
 properties by their C++ names (enumerations by the words of their SetXToY() methods) and
 the output ports it writes, with their file extensions. "partitioned:FILE" is the file
 partitioned across the ranks by ParaView, "ghosted:FILE" the same with a layer of ghost
-cells (distributed_only: such cases run only in run_in_paraview.py's distributed mode)."""
+cells (distributed_only: such cases run only in run_in_paraview.py's distributed mode;
+serial_only: never there)."""
 
 CASES = [
     dict(name="linfac_pseudonormal", filter="LinearFactorDistanceField",
@@ -112,6 +113,13 @@ CASES = [
          inputs={"Input": "clip_grid:0", "Surface": "bunny_small.vtp"},
          properties=dict(Value=0.25),
          outputs={0: "vtu"}),
+    # The sparse band's sides (port 1; its pieces, a vtkPartitionedDataSet, are checked
+    # against the dense field in the module's own tests). Every rank computes the whole
+    # band: serial only.
+    dict(name="sparse", filter="SparseDistanceField",
+         inputs={"Input": "bunny_small.vtp"},
+         properties=dict(Resolution=40, BandWidth=2, BrickSize=8, SignMode="PseudoNormal"),
+         outputs={1: "vti"}, serial_only=True),
     dict(name="hausdorff", filter="MeshHausdorffDistance",
          inputs={"Input": "bunny_small.vtp", "MeshB": "teapot.vtp"},
          properties=dict(RelativeError=1e-5),

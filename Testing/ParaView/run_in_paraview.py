@@ -33,7 +33,8 @@ process = vtkProcessModule.GetProcessModule()
 rank, ranks = process.GetPartitionId(), process.GetNumberOfLocalPartitions()
 made = {}
 for case in CASES:
-    if case.get("distributed_only") and not distributed:
+    if (case.get("distributed_only") and not distributed) or (
+            case.get("serial_only") and distributed):
         continue
     inputs = {}
     for name, source in case["inputs"].items():

@@ -331,7 +331,22 @@ bool MakeBrickGrid(const SampleGrid& grid, int size, BrickGrid& bricks, std::str
   if (total > double(int64_t(1) << 28))
   {
     error = "The grid would have " + FormatNumber(total) +
-      " bricks, more than 2^28: use a larger BrickSize.";
+      " bricks, more than 2^28 bricks: use a larger BrickSize.";
+    return false;
+  }
+  return true;
+}
+
+/// Whether the grid of bricks (its sides, pieces and binning offsets: 13 bytes a brick)
+/// fits the memory limit.
+bool CheckBrickGridMemory(const SparseBandRequest& request, const BrickGrid& bricks, std::string& error)
+{
+  const double bytes = 13.0 * double(bricks.Total());
+  if (request.MemoryLimit > 0 && bytes > request.MemoryLimit)
+  {
+    error = "The grid of " + std::to_string(bricks.Total()) + " bricks needs " +
+      FormatNumber(bytes / 1048576.0) + " MiB, above the memory limit (" +
+      FormatNumber(request.MemoryLimit / 1048576.0) + " MiB): use a larger BrickSize.";
     return false;
   }
   return true;
@@ -373,7 +388,8 @@ bool ComputeSparseBand(MeshInput mesh,
   field.BrickSize = request.BrickSize;
   BrickGrid bricks;
   if (!CheckRequest(request, error) ||
-    !MakeBrickGrid(request.Grid, request.BrickSize, bricks, error))
+    !MakeBrickGrid(request.Grid, request.BrickSize, bricks, error) ||
+    !CheckBrickGridMemory(request, bricks, error))
   {
     return false;
   }
