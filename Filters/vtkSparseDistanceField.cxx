@@ -2,6 +2,8 @@
 
 #include "vtkCellData.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
@@ -231,6 +233,12 @@ vtkdf::RunStatus vtkSparseDistanceField::Execute(vtkInformationVector** inputVec
     pieces->SetPartition(static_cast<unsigned int>(b),
       BrickImage(field.Bricks[b], request.Grid, this->ComputeClosestFeature));
   }
+  // The band's half-width in world units: what a reader of the pieces (the .vdb writer,
+  // vtkOpenVDBLevelSetWriter) takes as the level set's background.
+  vtkNew<vtkDoubleArray> bandWidth;
+  bandWidth->SetName("BandWidth");
+  bandWidth->InsertNextValue(request.BandWidth);
+  pieces->GetFieldData()->AddArray(bandWidth);
   SidesImage(field, request.Grid, vtkImageData::GetData(outputVector, 1));
   run.Timer.End("pieces");
   return vtkdf::RunStatus::Done;

@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 # and file: cpack's Debian packages (Testing/run-install-tests.sh).
 packages="cmake g++ make pkg-config libvtk9-dev python3-vtk9 python3-numpy libegl-dev
   libegl1-mesa-dev libgl1-mesa-dri libgles-dev libosmesa6-dev libepoxy-dev libglm-dev libqhull-dev
-  libboost-dev libcgal-dev libgmp-dev libmpfr-dev
+  libboost-dev libcgal-dev libgmp-dev libmpfr-dev libopenvdb-dev python3-openvdb
   xvfb xauth openmpi-bin
   clang libclang-rt-14-dev dpkg-dev file"
 ./Testing/install-packages.sh $packages

@@ -45,7 +45,7 @@ df_declare_targets_with_missing_files()
 find_package(ParaView 5.11 REQUIRED COMPONENTS RemotingCore RemotingServerManager RemotingViews)
 # ParaView's VTK, with the modules ours depend on (and their own dependencies: X11, GLEW).
 find_package(VTK REQUIRED COMPONENTS CommonCore CommonDataModel CommonExecutionModel
-  CommonSystem CommonMath vtksys ParallelCore FiltersGeneral RenderingCore RenderingVolume
+  CommonSystem CommonMath vtksys ParallelCore FiltersGeneral IOCore RenderingCore RenderingVolume
   RenderingOpenGL2 glew)
 # The wrapping hierarchy files of ParaView's modules (which the client-server wrapping of
 # ours reads) come with python3-paraview too. Where that package is unpacked elsewhere
@@ -68,6 +68,9 @@ endforeach ()
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
 
+# The plugin has no .vdb writer: OpenVDB links the system's TBB, which a ParaView binary
+# of another build may load in another version beside its own.
+set(DF_USE_OPENVDB OFF)
 add_subdirectory(Filters/Core)
 df_module_directory()
 set(BUILD_SHARED_LIBS ON)

@@ -22,6 +22,10 @@ set(classes
   "${df_root}/Filters/vtkMeshHausdorffDistance"
   "${df_root}/Filters/vtkClipByMeshDistance"
   "${df_root}/Filters/vtkSparseDistanceField")
+# The .vdb writer, where OpenVDB is (DF_USE_OPENVDB, Filters/Core/CMakeLists.txt).
+if (DF_USE_OPENVDB)
+  list(APPEND classes "${df_root}/Filters/vtkOpenVDBLevelSetWriter")
+endif ()
 vtk_module_add_module(DistanceFields::vtkDistanceFields
   CLASSES ${classes}
   HEADERS "${df_root}/Filters/vtkDistanceFieldRunRecord.h"

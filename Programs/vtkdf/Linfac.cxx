@@ -37,18 +37,19 @@ int Linfac(int argc, char* argv[])
       Number("--band", band),
       Count("--brick-size", sparse.BrickSize),
       Text("--sides", sparse.Sides),
+      Text("--vdb", sparse.Vdb),
       Text("--png", png) });
-  const bool pieces = EndsWith(common.Output, ".vtpd");
+  const bool pieces = EndsWith(common.Output, ".vtpd") || EndsWith(common.Output, ".vdb");
   if (band != 0 && maxDistance != 0)
   {
     std::fprintf(stderr, "vtkdf: --band K is --max-distance K spacings: give one of them\n");
     return 2;
   }
-  if ((pieces && band == 0) || (!sparse.Sides.empty() && !pieces))
+  if ((pieces && band == 0) || ((!sparse.Sides.empty() || !sparse.Vdb.empty()) && !pieces))
   {
     std::fprintf(stderr,
-      "vtkdf: a .vtpd output (the band's pieces, --sides) needs --band K, and --band K a "
-      ".vtpd or .vti output\n");
+      "vtkdf: a .vtpd or .vdb output (the band's pieces, --sides, --vdb) needs --band K, "
+      "and --band K a .vtpd, .vdb or .vti output\n");
     return 2;
   }
   vtkNew<vtkLinearFactorDistanceField> filter;

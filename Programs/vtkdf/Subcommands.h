@@ -22,8 +22,10 @@ struct SparseOptions
   int DomainShape = 0;
   bool Signed = false;
   std::string Arrays, Sides;
+  std::string Vdb; // an OpenVDB level set (vtkOpenVDBLevelSetWriter) to write as well
 };
-/// vtkdf linfac's sparse band: the pieces to the .vtpd, the sides to `Sides` (optional).
+/// vtkdf linfac's sparse band: the pieces to the output (.vtpd) or a level set to it
+/// (.vdb), the sides to `Sides` and a level set to `Vdb` (both optional).
 int LinfacSparse(vtkPolyData* mesh, CommonOptions& common, const SparseOptions& options);
 /// vtkdf voxelize (vtkPolyDataVoxelizer).
 int Voxelize(int argc, char* argv[]);

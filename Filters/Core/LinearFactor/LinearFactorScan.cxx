@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <deque>
 
 namespace vtkdf
 {
@@ -468,10 +467,17 @@ void FloodBandSides(const IndexBox& extent,
   float worldCap)
 {
   // Beyond the band the closest site is unknown, but inside/outside cannot change
-  // without crossing the surface, which lies in the band: flood the known sides.
+  // without crossing the surface, which lies in the band: flood the known sides,
+  // breadth first from every known sample in index order. The queue is a vector read
+  // from its head (every sample enters it once). Small extents (a sparse band's bricks,
+  // thousands of them) reuse their thread's queue: fresh pages cost more than the flood.
   const int64_t nx = extent.Size(0), ny = extent.Size(1), nz = extent.Size(2);
   const int64_t n = static_cast<int64_t>(side.size()), nxy = nx * ny;
-  std::deque<int64_t> queue;
+  thread_local std::vector<int64_t> reused;
+  std::vector<int64_t> own;
+  std::vector<int64_t>& queue = n <= (int64_t(1) << 20) ? reused : own;
+  queue.clear();
+  queue.reserve(static_cast<size_t>(n));
   for (int64_t at = 0; at < n; ++at)
   {
     if (side[at] != 0)
@@ -479,11 +485,10 @@ void FloodBandSides(const IndexBox& extent,
       queue.push_back(at);
     }
   }
-  while (!queue.empty())
+  for (size_t head = 0; head < queue.size(); ++head)
   {
-    const int64_t at = queue.front();
-    queue.pop_front();
-    const int64_t i = at % nx, j = (at / nx) % ny, k = at / nxy;
+    const int64_t at = queue[head];
+    const int64_t k = at / nxy, rest = at - k * nxy, j = rest / nx, i = rest - j * nx;
     const int64_t nbr[6] = { i > 0 ? at - 1 : -1,
       i + 1 < nx ? at + 1 : -1,
       j > 0 ? at - nx : -1,
