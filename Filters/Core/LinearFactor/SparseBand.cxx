@@ -117,42 +117,91 @@ bool BandRegion(const MeshSites& sites,
   return !region.Empty();
 }
 
-/// Bins every site into the bricks its band region reaches: counted, then placed, in the
-/// order of the sites.
+/// Whether a face site's plane lies farther than `reach` from every sample of `box` (its
+/// samples' coordinates): then so does the face, which cannot be the nearest site of a
+/// band sample there.
+bool PlaneMisses(const MeshSites& sites,
+  int64_t s,
+  const SampleGrid& grid,
+  const IndexBox& box,
+  double reach)
+{
+  Site face;
+  sites.Describe(s, face, false, false);
+  double centre = 0, radius = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double lo = grid.Coordinate(a, box.Lo[a]), hi = grid.Coordinate(a, box.Hi[a]);
+    centre += face.Axis[a] * (0.5 * (lo + hi) - face.Anchor[a]);
+    radius += std::fabs(face.Axis[a]) * 0.5 * (hi - lo);
+  }
+  return std::fabs(centre) - radius > reach;
+}
+
+/// Bins every site into the bricks its band region reaches (less those a face's plane
+/// keeps beyond the band): the pairs found in parallel, then counted and placed by brick
+/// in the order of the sites.
 void BinSites(const MeshSites& sites,
   const SampleGrid& grid,
   const BrickGrid& bricks,
   double cap,
+  const ParallelFor& parallelFor,
   BrickSites& out)
 {
-  out.Start.assign(bricks.Total() + 1, 0);
-  auto visit = [&](int64_t s, const auto& use)
+  struct Pair
   {
-    IndexBox region;
-    if (!BandRegion(sites, s, grid, cap, region))
+    int64_t Brick;
+    uint32_t Site;
+  };
+  // The plane test's margin covers its rounding: a face within the band stays.
+  const double reach = cap + 1e-6 * (cap + grid.MinSpacing() * bricks.Size);
+  const int64_t numSites = sites.Count();
+  const int64_t chunks = std::max<int64_t>(1, std::min<int64_t>(256, numSites / 4096));
+  std::vector<std::vector<Pair>> found(chunks);
+  parallelFor(chunks,
+    1,
+    [&](int64_t first, int64_t last)
     {
-      return;
-    }
-    int first[3], last[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      bricks.Range(a, region.Lo[a], region.Hi[a], first[a], last[a]);
-    }
-    for (int k = first[2]; k <= last[2]; ++k)
-    {
-      for (int j = first[1]; j <= last[1]; ++j)
+      for (int64_t chunk = first; chunk < last; ++chunk)
       {
-        for (int i = first[0]; i <= last[0]; ++i)
+        for (int64_t s = numSites * chunk / chunks; s < numSites * (chunk + 1) / chunks; ++s)
         {
-          use(bricks.Id(i, j, k));
+          IndexBox region;
+          if (!BandRegion(sites, s, grid, cap, region))
+          {
+            continue;
+          }
+          int lo[3], hi[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            bricks.Range(a, region.Lo[a], region.Hi[a], lo[a], hi[a]);
+          }
+          const bool face = sites.TypeOf(s) == FaceSite;
+          const bool several = lo[0] < hi[0] || lo[1] < hi[1] || lo[2] < hi[2];
+          for (int k = lo[2]; k <= hi[2]; ++k)
+          {
+            for (int j = lo[1]; j <= hi[1]; ++j)
+            {
+              for (int i = lo[0]; i <= hi[0]; ++i)
+              {
+                if (face && several && PlaneMisses(sites, s, grid, bricks.Extent({ { i, j, k } }), reach))
+                {
+                  continue;
+                }
+                found[chunk].push_back({ bricks.Id(i, j, k), static_cast<uint32_t>(s) });
+              }
+            }
+          }
         }
       }
-    }
-  };
-  const int64_t numSites = sites.Count();
-  for (int64_t s = 0; s < numSites; ++s)
+    });
+  out.Start.assign(bricks.Total() + 1, 0);
+  for (const std::vector<Pair>& pairs : found)
   {
-    visit(s, [&](int64_t b) { ++out.Start[b + 1]; });
+    for (const Pair& pair : pairs)
+    {
+      ++out.Start[pair.Brick + 1];
+    }
   }
   for (int64_t b = 0; b < bricks.Total(); ++b)
   {
@@ -160,9 +209,13 @@ void BinSites(const MeshSites& sites,
   }
   out.Sites.resize(out.Start.back());
   std::vector<int64_t> fill(out.Start.begin(), out.Start.end() - 1);
-  for (int64_t s = 0; s < numSites; ++s)
+  for (std::vector<Pair>& pairs : found)
   {
-    visit(s, [&](int64_t b) { out.Sites[fill[b]++] = static_cast<uint32_t>(s); });
+    for (const Pair& pair : pairs)
+    {
+      out.Sites[fill[pair.Brick]++] = pair.Site;
+    }
+    pairs = std::vector<Pair>();
   }
 }
 
@@ -414,7 +467,8 @@ bool ComputeSparseBand(MeshInput mesh,
   }
   execution.EndStage("sites");
   BrickSites binned;
-  BinSites(local.Sites, local.Request.Grid, bricks, local.Request.MaximumDistance, binned);
+  BinSites(
+    local.Sites, local.Request.Grid, bricks, local.Request.MaximumDistance, execution.For, binned);
   if (!CheckBrickMemory(request, binned, bricks, field.CandidateBricks, error))
   {
     return false;
