@@ -24,7 +24,10 @@ vtkStandardNewMacro(vtkOpenVDBLevelSetWriter);
 namespace
 {
 /// A piece as the core reads it; false and `error` when it lacks what a level set needs.
-bool PieceBrick(vtkImageData* piece, unsigned index, vtkdf::LevelSetBrick& brick, std::string& error)
+bool PieceBrick(vtkImageData* piece,
+  unsigned index,
+  vtkdf::LevelSetBrick& brick,
+  std::string& error)
 {
   const std::string which = "Piece " + std::to_string(index);
   if (!piece)
@@ -109,8 +112,8 @@ vtkOpenVDBLevelSetWriter::vtkOpenVDBLevelSetWriter()
 
 int vtkOpenVDBLevelSetWriter::FillInputPortInformation(int port, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(),
-    port == 0 ? "vtkPartitionedDataSet" : "vtkImageData");
+  info->Set(
+    vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 0 ? "vtkPartitionedDataSet" : "vtkImageData");
   if (port == 1)
   {
     info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
@@ -132,8 +135,7 @@ void vtkOpenVDBLevelSetWriter::WriteData()
     return fail("No FileName: set the .vdb file to write.");
   }
   vtkDataArray* bandWidth = pieces ? pieces->GetFieldData()->GetArray("BandWidth") : nullptr;
-  if (!pieces || !bandWidth || bandWidth->GetNumberOfTuples() < 1 ||
-    !(bandWidth->GetTuple1(0) > 0))
+  if (!pieces || !bandWidth || bandWidth->GetNumberOfTuples() < 1 || !(bandWidth->GetTuple1(0) > 0))
   {
     return fail("The input is not vtkSparseDistanceField's pieces: no BandWidth field data.");
   }

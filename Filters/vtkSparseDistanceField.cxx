@@ -48,7 +48,10 @@ std::array<int, 3> BrickCounts(const vtkdf::IndexBox& whole, int brickSize)
 
 /// A VTK array that adopts a brick's block (released with free(), as SparseBand allocates it).
 template<typename ArrayT, typename T>
-vtkNew<ArrayT> AdoptArray(const char* name, vtkdf::BrickArray<T>& block, vtkIdType tuples, int components = 1)
+vtkNew<ArrayT> AdoptArray(const char* name,
+  vtkdf::BrickArray<T>& block,
+  vtkIdType tuples,
+  int components = 1)
 {
   vtkNew<ArrayT> array;
   array->SetName(name);
@@ -74,9 +77,9 @@ vtkSmartPointer<vtkImageData> BrickImage(vtkdf::SparseBrick& brick,
   vtkPointData* pd = image->GetPointData();
   // The ghost array: HIDDENPOINT beyond the band (ClosestFeature 255), written over the
   // features' own block when they are not kept.
-  vtkdf::BrickArray<uint8_t> hidden =
-    keepFeature ? vtkdf::BrickArray<uint8_t>(static_cast<uint8_t*>(std::malloc(n)))
-                : std::move(brick.ClosestFeature);
+  vtkdf::BrickArray<uint8_t> hidden = keepFeature
+    ? vtkdf::BrickArray<uint8_t>(static_cast<uint8_t*>(std::malloc(n)))
+    : std::move(brick.ClosestFeature);
   if (!hidden)
   {
     throw std::bad_alloc();
@@ -86,8 +89,7 @@ vtkSmartPointer<vtkImageData> BrickImage(vtkdf::SparseBrick& brick,
     feature + n,
     hidden.get(),
     [](uint8_t f) { return f == 255 ? uint8_t(vtkDataSetAttributes::HIDDENPOINT) : uint8_t(0); });
-  pd->AddArray(
-    AdoptArray<vtkUnsignedCharArray>(vtkDataSetAttributes::GhostArrayName(), hidden, n));
+  pd->AddArray(AdoptArray<vtkUnsignedCharArray>(vtkDataSetAttributes::GhostArrayName(), hidden, n));
   pd->SetScalars(AdoptArray<vtkFloatArray>("Distance", brick.Distance, n));
   if (brick.ClosestCellId)
   {
@@ -106,7 +108,9 @@ vtkSmartPointer<vtkImageData> BrickImage(vtkdf::SparseBrick& brick,
 }
 
 /// The coarse grid of sides: a cell per brick.
-void SidesImage(const vtkdf::SparseBandField& field, const vtkdf::SampleGrid& grid, vtkImageData* sides)
+void SidesImage(const vtkdf::SparseBandField& field,
+  const vtkdf::SampleGrid& grid,
+  vtkImageData* sides)
 {
   const std::array<int, 3>& nb = field.BrickCounts;
   sides->SetExtent(0, nb[0], 0, nb[1], 0, nb[2]);
@@ -203,8 +207,8 @@ vtkdf::RunStatus vtkSparseDistanceField::Execute(vtkInformationVector** inputVec
   request.BandWidth = this->BandWidth * request.Grid.MinSpacing();
   request.BrickSize = this->BrickSize;
   request.Domains = static_cast<vtkdf::DomainShape>(this->DomainShape);
-  request.Sign = this->SignMode == PSEUDO_NORMAL ? vtkdf::SignMode::PseudoNormal
-                                                 : vtkdf::SignMode::Unsigned;
+  request.Sign =
+    this->SignMode == PSEUDO_NORMAL ? vtkdf::SignMode::PseudoNormal : vtkdf::SignMode::Unsigned;
   request.ClosestCellId = this->ComputeClosestCellId;
   request.ClosestPoint = this->ComputeClosestPoint;
   request.MemoryLimit = this->EffectiveMemoryLimit();
@@ -264,8 +268,8 @@ bool vtkSparseDistanceField::CheckProperties()
   }
   if (!(std::isfinite(this->BandWidth) && this->BandWidth >= 1e-3))
   {
-    vtkErrorMacro("BandWidth must be finite and at least 1e-3 (spacings); it is "
-      << this->BandWidth << ".");
+    vtkErrorMacro(
+      "BandWidth must be finite and at least 1e-3 (spacings); it is " << this->BandWidth << ".");
     return false;
   }
   if (this->BrickSize < 2 || this->BrickSize > 1024)

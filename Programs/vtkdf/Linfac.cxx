@@ -8,8 +8,8 @@
 
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkPolyData.h"
 #include "vtkNew.h"
+#include "vtkPolyData.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -62,7 +62,8 @@ int Linfac(int argc, char* argv[])
     sparse.BandWidth = band;
     sparse.Arrays = arrays;
     sparse.DomainShape = EnumWord("--domains", domains, vtkdf::enums::DomainShape);
-    return LinfacSparse(vtkPolyData::SafeDownCast(filter->GetInputDataObject(0, 0)), common, sparse);
+    return LinfacSparse(
+      vtkPolyData::SafeDownCast(filter->GetInputDataObject(0, 0)), common, sparse);
   }
   if (band != 0)
   {

@@ -68,8 +68,8 @@ int LinfacSparse(vtkPolyData* mesh, CommonOptions& common, const SparseOptions& 
   filter->SetBandWidth(options.BandWidth);
   filter->SetBrickSize(options.BrickSize);
   filter->SetDomainShape(options.DomainShape);
-  filter->SetSignMode(options.Signed ? vtkSparseDistanceField::PSEUDO_NORMAL
-                                     : vtkSparseDistanceField::UNSIGNED);
+  filter->SetSignMode(
+    options.Signed ? vtkSparseDistanceField::PSEUDO_NORMAL : vtkSparseDistanceField::UNSIGNED);
   filter->SetComputeClosestCellId(options.Arrays.find("cellid") != std::string::npos);
   filter->SetComputeClosestFeature(options.Arrays.find("feature") != std::string::npos);
   filter->SetComputeClosestPoint(options.Arrays.find("point") != std::string::npos);

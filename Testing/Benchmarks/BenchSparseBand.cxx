@@ -15,6 +15,7 @@
 #include "vtkSparseDistanceField.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -24,7 +25,6 @@
 #include "vtkPLYReader.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPointData.h"
-#include "vtkCellData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
@@ -207,10 +207,21 @@ int main(int argc, char* argv[])
               "stages %s), OpenVDB meshToLevelSet %.3f s (%llu active voxels): OpenVDB / ours "
               "%.2f; OpenVDB's error at %zu common voxels: max %.3f h, 99th percentile %.3f h, "
               "%lld signs differ; %lld voxels active in OpenVDB's band only\n",
-    argv[1], resolution, band, threads, Median(ourTimes),
+    argv[1],
+    resolution,
+    band,
+    threads,
+    Median(ourTimes),
     static_cast<long long>(ours->GetLastBandSamples()),
-    static_cast<long long>(ours->GetLastPieces()), ours->GetLastStageTimes(), Median(vdbTimes),
-    static_cast<unsigned long long>(vdb->activeVoxelCount()), Median(vdbTimes) / Median(ourTimes),
-    errors.size(), worst, p99, static_cast<long long>(signs), static_cast<long long>(onlyVdb));
+    static_cast<long long>(ours->GetLastPieces()),
+    ours->GetLastStageTimes(),
+    Median(vdbTimes),
+    static_cast<unsigned long long>(vdb->activeVoxelCount()),
+    Median(vdbTimes) / Median(ourTimes),
+    errors.size(),
+    worst,
+    p99,
+    static_cast<long long>(signs),
+    static_cast<long long>(onlyVdb));
   return 0;
 }

@@ -60,7 +60,9 @@ bool SameBits(vtkDataArray* a, vtkIdType i, vtkDataArray* b, vtkIdType j)
 }
 
 /// The dense field of the same grid and band.
-vtkSmartPointer<vtkImageData> Dense(vtkPolyData* mesh, const Case& c, vtkSparseDistanceField* sparse)
+vtkSmartPointer<vtkImageData> Dense(vtkPolyData* mesh,
+  const Case& c,
+  vtkSparseDistanceField* sparse)
 {
   vtkNew<vtkLinearFactorDistanceField> dense;
   dense->SetInputData(mesh);
@@ -131,10 +133,13 @@ void CompareCase(const std::string& data, const Case& c)
       {
         for (int i = e[0]; i <= e[1]; ++i)
         {
-          const vtkIdType at = (i - e[0]) + (e[1] - e[0] + 1) * ((j - e[2]) + (e[3] - e[2] + 1) * vtkIdType(k - e[4]));
-          const vtkIdType d = (i - whole[0]) + dims[0] * ((j - whole[2]) + dims[1] * vtkIdType(k - whole[4]));
+          const vtkIdType at =
+            (i - e[0]) + (e[1] - e[0] + 1) * ((j - e[2]) + (e[3] - e[2] + 1) * vtkIdType(k - e[4]));
+          const vtkIdType d =
+            (i - whole[0]) + dims[0] * ((j - whole[2]) + dims[1] * vtkIdType(k - whole[4]));
           covered[d] = 1;
-          const bool inBand = dense->GetPointData()->GetArray("ClosestFeature")->GetTuple1(d) != 255;
+          const bool inBand =
+            dense->GetPointData()->GetArray("ClosestFeature")->GetTuple1(d) != 255;
           band += inBand;
           for (const char* name : names)
           {
@@ -178,10 +183,18 @@ void CompareCase(const std::string& data, const Case& c)
   std::printf("%s %d band %g brick %d sign %d: %u pieces, %lld band samples (%lld in the pieces), "
               "%lld differences, %lld band samples outside them, %lld far sides wrong, %lld "
               "ghosts wrong\n",
-    c.Mesh, c.Resolution, c.Band, c.Brick, c.Sign, pieces->GetNumberOfPartitions(),
-    static_cast<long long>(sparse->GetLastBandSamples()), static_cast<long long>(band),
-    static_cast<long long>(differences), static_cast<long long>(uncoveredBand),
-    static_cast<long long>(sideWrong), static_cast<long long>(hiddenWrong));
+    c.Mesh,
+    c.Resolution,
+    c.Band,
+    c.Brick,
+    c.Sign,
+    pieces->GetNumberOfPartitions(),
+    static_cast<long long>(sparse->GetLastBandSamples()),
+    static_cast<long long>(band),
+    static_cast<long long>(differences),
+    static_cast<long long>(uncoveredBand),
+    static_cast<long long>(sideWrong),
+    static_cast<long long>(hiddenWrong));
   CHECK(pieces->GetNumberOfPartitions() > 0 && band > 0);
   CHECK(band == sparse->GetLastBandSamples());
   CHECK(differences == 0 && uncoveredBand == 0 && sideWrong == 0 && hiddenWrong == 0);
@@ -222,28 +235,38 @@ void Refused(const char* what, const char* expected, const Setup& setup)
   MessageRecorder recorder(sparse);
   sparse->Update();
   auto* pieces = vtkPartitionedDataSet::SafeDownCast(sparse->GetOutputDataObject(0));
-  const bool ok = sparse->GetErrorCode() != 0 && recorder.Errors.find(expected) != std::string::npos &&
-    pieces && pieces->GetNumberOfPartitions() == 0;
+  const bool ok = sparse->GetErrorCode() != 0 &&
+    recorder.Errors.find(expected) != std::string::npos && pieces &&
+    pieces->GetNumberOfPartitions() == 0;
   std::printf("%s: %s\n", what, ok ? "refused" : recorder.Errors.c_str());
   CHECK(ok);
 }
 
 int Errors()
 {
-  Refused("band nan", "BandWidth must be finite", [](vtkSparseDistanceField* s) { s->SetBandWidth(NAN); });
-  Refused("band 0", "BandWidth must be finite", [](vtkSparseDistanceField* s) { s->SetBandWidth(0); });
-  Refused("brick 1", "BrickSize must be between", [](vtkSparseDistanceField* s) { s->SetBrickSize(1); });
+  Refused("band nan",
+    "BandWidth must be finite",
+    [](vtkSparseDistanceField* s) { s->SetBandWidth(NAN); });
+  Refused(
+    "band 0", "BandWidth must be finite", [](vtkSparseDistanceField* s) { s->SetBandWidth(0); });
+  Refused(
+    "brick 1", "BrickSize must be between", [](vtkSparseDistanceField* s) { s->SetBrickSize(1); });
   Refused("sign 2", "SignMode must be", [](vtkSparseDistanceField* s) { s->SetSignMode(2); });
-  Refused("domains", "DomainShape must be", [](vtkSparseDistanceField* s) { s->SetDomainShape(5); });
+  Refused(
+    "domains", "DomainShape must be", [](vtkSparseDistanceField* s) { s->SetDomainShape(5); });
   Refused("gpu", "CPU only", [](vtkSparseDistanceField* s) { s->SetBackendToGPU(); });
-  Refused("memory", "above the memory limit",
+  Refused("memory",
+    "above the memory limit",
     [](vtkSparseDistanceField* s)
     {
       s->SetResolution(512);
       s->SetMemoryLimit(1 << 20);
     });
-  Refused("nan mesh", "Invalid input mesh", [](vtkSparseDistanceField* s) { s->SetInputData(Triangle(NAN)); });
-  Refused("too many bricks", "larger BrickSize",
+  Refused("nan mesh",
+    "Invalid input mesh",
+    [](vtkSparseDistanceField* s) { s->SetInputData(Triangle(NAN)); });
+  Refused("too many bricks",
+    "larger BrickSize",
     [](vtkSparseDistanceField* s)
     {
       s->SetExplicitGrid(true);

@@ -28,7 +28,8 @@ void FillInsideBricks(const LevelSetGrid& grid, openvdb::FloatGrid& levelSet)
     {
       continue;
     }
-    const int b[3] = { static_cast<int>(id % n[0]), static_cast<int>((id / n[0]) % n[1]),
+    const int b[3] = { static_cast<int>(id % n[0]),
+      static_cast<int>((id / n[0]) % n[1]),
       static_cast<int>(id / (int64_t(n[0]) * n[1])) };
     const openvdb::Coord lo(b[0] * grid.BrickSize, b[1] * grid.BrickSize, b[2] * grid.BrickSize);
     const openvdb::Coord hi = lo.offsetBy(grid.BrickSize);
@@ -105,9 +106,10 @@ bool WriteOpenVDBLevelSet(const std::string& path,
     levelSet->setGridClass(openvdb::GRID_LEVEL_SET);
     levelSet->setName(grid.Name);
     FillInsideBricks(grid, *levelSet);
-    const bool points =
-      !bricks.empty() && std::all_of(bricks.begin(), bricks.end(),
-                           [](const LevelSetBrick& b) { return b.ClosestPoint != nullptr; });
+    const bool points = !bricks.empty() &&
+      std::all_of(bricks.begin(),
+        bricks.end(),
+        [](const LevelSetBrick& b) { return b.ClosestPoint != nullptr; });
     openvdb::Vec3SGrid::Ptr closest = openvdb::Vec3SGrid::create(openvdb::Vec3s(0, 0, 0));
     closest->setTransform(transform->copy());
     closest->setName("closest_point");

@@ -184,7 +184,8 @@ void BinSites(const MeshSites& sites,
             {
               for (int i = lo[0]; i <= hi[0]; ++i)
               {
-                if (face && several && PlaneMisses(sites, s, grid, bricks.Extent({ { i, j, k } }), reach))
+                if (face && several &&
+                  PlaneMisses(sites, s, grid, bricks.Extent({ { i, j, k } }), reach))
                 {
                   continue;
                 }
@@ -240,8 +241,8 @@ SparseBrick ComputeBrick(const LocalSites& local,
   thread_local NearestSiteBuffer nearest;
   const int64_t n = piece.Extent.Count();
   nearest.Reset(n);
-  evaluations += ScanSitesCPU(local.Sites, range, piece, nearest, Serial, ProgressCallback())
-                   .Evaluations;
+  evaluations +=
+    ScanSitesCPU(local.Sites, range, piece, nearest, Serial, ProgressCallback()).Evaluations;
   range = RangeCulling();
   brick.Distance = NewBrickArray<float>(n);
   brick.ClosestFeature = NewBrickArray<uint8_t>(n);
@@ -357,7 +358,8 @@ bool CheckRequest(const SparseBandRequest& request, std::string& error)
   }
   if (request.BrickSize < 2 || request.BrickSize > 1024)
   {
-    error = "BrickSize must be between 2 and 1024; it is " + std::to_string(request.BrickSize) + ".";
+    error =
+      "BrickSize must be between 2 and 1024; it is " + std::to_string(request.BrickSize) + ".";
     return false;
   }
   if (request.Sign == SignMode::WindingNumber)
@@ -392,7 +394,9 @@ bool MakeBrickGrid(const SampleGrid& grid, int size, BrickGrid& bricks, std::str
 
 /// Whether the grid of bricks (its sides, pieces and binning offsets: 13 bytes a brick)
 /// fits the memory limit.
-bool CheckBrickGridMemory(const SparseBandRequest& request, const BrickGrid& bricks, std::string& error)
+bool CheckBrickGridMemory(const SparseBandRequest& request,
+  const BrickGrid& bricks,
+  std::string& error)
 {
   const double bytes = 13.0 * double(bricks.Total());
   if (request.MemoryLimit > 0 && bytes > request.MemoryLimit)
