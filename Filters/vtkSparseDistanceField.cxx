@@ -26,8 +26,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 #include <utility>
 
 vtkStandardNewMacro(vtkSparseDistanceField);
@@ -46,7 +44,7 @@ std::array<int, 3> BrickCounts(const vtkdf::IndexBox& whole, int brickSize)
   return counts;
 }
 
-/// A VTK array that adopts a brick's block (released with free(), as SparseBand allocates it).
+/// A VTK array that adopts a brick's block (released by ReleaseBlock: Common/BlockArena.h).
 template<typename ArrayT, typename T>
 vtkNew<ArrayT> AdoptArray(const char* name,
   vtkdf::BrickArray<T>& block,
@@ -59,7 +57,8 @@ vtkNew<ArrayT> AdoptArray(const char* name,
   array->SetArray(reinterpret_cast<typename ArrayT::ValueType*>(block.release()),
     tuples * components,
     0,
-    vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+    vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
+  array->SetArrayFreeFunction(vtkdf::ReleaseBlock);
   return array;
 }
 
@@ -77,13 +76,8 @@ vtkSmartPointer<vtkImageData> BrickImage(vtkdf::SparseBrick& brick,
   vtkPointData* pd = image->GetPointData();
   // The ghost array: HIDDENPOINT beyond the band (ClosestFeature 255), written over the
   // features' own block when they are not kept.
-  vtkdf::BrickArray<uint8_t> hidden = keepFeature
-    ? vtkdf::BrickArray<uint8_t>(static_cast<uint8_t*>(std::malloc(n)))
-    : std::move(brick.ClosestFeature);
-  if (!hidden)
-  {
-    throw std::bad_alloc();
-  }
+  vtkdf::BrickArray<uint8_t> hidden =
+    keepFeature ? vtkdf::NewBlockArray<uint8_t>(n) : std::move(brick.ClosestFeature);
   const uint8_t* feature = keepFeature ? brick.ClosestFeature.get() : hidden.get();
   std::transform(feature,
     feature + n,

@@ -469,44 +469,67 @@ void FloodBandSides(const IndexBox& extent,
   // Beyond the band the closest site is unknown, but inside/outside cannot change
   // without crossing the surface, which lies in the band: flood the known sides,
   // breadth first from every known sample in index order. The queue is a vector read
-  // from its head (every sample enters it once). Small extents (a sparse band's bricks,
-  // thousands of them) reuse their thread's queue: fresh pages cost more than the flood.
+  // from its head (every sample enters it once), of the samples' coordinates packed in
+  // 21 bits each where they fit (no division to find a sample's neighbours), else of
+  // their indices. Small extents (a sparse band's bricks, thousands of them) reuse their
+  // thread's queue: fresh pages cost more than the flood.
   const int64_t nx = extent.Size(0), ny = extent.Size(1), nz = extent.Size(2);
   const int64_t n = static_cast<int64_t>(side.size()), nxy = nx * ny;
-  thread_local std::vector<int64_t> reused;
-  std::vector<int64_t> own;
-  std::vector<int64_t>& queue = n <= (int64_t(1) << 20) ? reused : own;
+  const bool packed = nx < (1 << 21) && ny < (1 << 21) && nz < (1 << 21);
+  constexpr uint64_t Mask = (uint64_t(1) << 21) - 1;
+  auto key = [packed](int64_t i, int64_t j, int64_t k, int64_t at)
+  { return packed ? uint64_t(i) | uint64_t(j) << 21 | uint64_t(k) << 42 : uint64_t(at); };
+  thread_local std::vector<uint64_t> reused;
+  std::vector<uint64_t> own;
+  std::vector<uint64_t>& queue = n <= (int64_t(1) << 20) ? reused : own;
   queue.clear();
   queue.reserve(static_cast<size_t>(n));
-  for (int64_t at = 0; at < n; ++at)
+  for (int64_t k = 0, at = 0; k < nz; ++k)
   {
-    if (side[at] != 0)
+    for (int64_t j = 0; j < ny; ++j)
     {
-      queue.push_back(at);
+      for (int64_t i = 0; i < nx; ++i, ++at)
+      {
+        if (side[at] != 0)
+        {
+          queue.push_back(key(i, j, k, at));
+        }
+      }
     }
   }
   for (size_t head = 0; head < queue.size(); ++head)
   {
-    const int64_t at = queue[head];
-    const int64_t k = at / nxy, rest = at - k * nxy, j = rest / nx, i = rest - j * nx;
-    const int64_t nbr[6] = { i > 0 ? at - 1 : -1,
-      i + 1 < nx ? at + 1 : -1,
-      j > 0 ? at - nx : -1,
-      j + 1 < ny ? at + nx : -1,
-      k > 0 ? at - nxy : -1,
-      k + 1 < nz ? at + nxy : -1 };
-    for (int64_t b : nbr)
+    const uint64_t q = queue[head];
+    int64_t i, j, k, at;
+    if (packed)
     {
-      if (b >= 0 && side[b] == 0)
+      i = int64_t(q & Mask), j = int64_t((q >> 21) & Mask), k = int64_t(q >> 42);
+      at = i + nx * (j + ny * k);
+    }
+    else
+    {
+      at = int64_t(q), k = at / nxy;
+      const int64_t rest = at - k * nxy;
+      j = rest / nx, i = rest - j * nx;
+    }
+    auto visit = [&](bool inside, int64_t b, int64_t bi, int64_t bj, int64_t bk)
+    {
+      if (inside && side[b] == 0)
       {
         side[b] = side[at];
         if (side[b] < 0)
         {
           distance[b] = -worldCap;
         }
-        queue.push_back(b);
+        queue.push_back(key(bi, bj, bk, b));
       }
-    }
+    };
+    visit(i > 0, at - 1, i - 1, j, k);
+    visit(i + 1 < nx, at + 1, i + 1, j, k);
+    visit(j > 0, at - nx, i, j - 1, k);
+    visit(j + 1 < ny, at + nx, i, j + 1, k);
+    visit(k > 0, at - nxy, i, j, k - 1);
+    visit(k + 1 < nz, at + nxy, i, j, k + 1);
   }
 }
 

@@ -38,15 +38,22 @@ const ParallelFor Serial = [](int64_t n, int64_t, const std::function<void(int64
   }
 };
 
-template<typename T>
-BrickArray<T> NewBrickArray(int64_t count)
+/// The arrays a thread computes its bricks into (reused: fresh pages cost more than the
+/// scan), copied out to blocks of BlockArena.h for the bricks that hold band samples.
+struct BrickScratch
 {
-  BrickArray<T> array(static_cast<T*>(std::malloc(static_cast<size_t>(count) * sizeof(T))));
-  if (!array)
-  {
-    throw std::bad_alloc();
-  }
-  return array;
+  std::vector<float> Distance;
+  std::vector<uint8_t> Feature;
+  std::vector<int64_t> Cells;
+  std::vector<float> Points;
+};
+
+template<typename T>
+BrickArray<T> CopyToBlock(const std::vector<T>& from, int64_t count)
+{
+  BrickArray<T> block = NewBlockArray<T>(count);
+  std::copy(from.begin(), from.begin() + count, block.get());
+  return block;
 }
 
 /// The grid of bricks over the whole grid.
@@ -244,26 +251,34 @@ SparseBrick ComputeBrick(const LocalSites& local,
   evaluations +=
     ScanSitesCPU(local.Sites, range, piece, nearest, Serial, ProgressCallback()).Evaluations;
   range = RangeCulling();
-  brick.Distance = NewBrickArray<float>(n);
-  brick.ClosestFeature = NewBrickArray<uint8_t>(n);
-  if (request.ClosestCellId)
-  {
-    brick.ClosestCellId = NewBrickArray<int64_t>(n);
-  }
-  if (request.ClosestPoint)
-  {
-    brick.ClosestPoint = NewBrickArray<float>(3 * n);
-  }
+  thread_local BrickScratch scratch;
+  scratch.Distance.resize(n);
+  scratch.Feature.resize(n);
+  scratch.Cells.resize(request.ClosestCellId ? n : 0);
+  scratch.Points.resize(request.ClosestPoint ? 3 * n : 0);
   LocalFieldArrays arrays;
   arrays.Frame = local.Frame;
-  arrays.Distance = brick.Distance.get();
+  arrays.Distance = scratch.Distance.data();
   arrays.Signed = request.Sign == SignMode::PseudoNormal;
-  arrays.ClosestCellId = brick.ClosestCellId.get();
-  arrays.ClosestFeature = brick.ClosestFeature.get();
-  arrays.ClosestPoint = brick.ClosestPoint.get();
+  arrays.ClosestCellId = request.ClosestCellId ? scratch.Cells.data() : nullptr;
+  arrays.ClosestFeature = scratch.Feature.data();
+  arrays.ClosestPoint = request.ClosestPoint ? scratch.Points.data() : nullptr;
   Finalize(local.Sites, piece, nearest, arrays, Serial);
   brick.BandSamples = static_cast<int64_t>(
-    n - std::count(brick.ClosestFeature.get(), brick.ClosestFeature.get() + n, uint8_t(255)));
+    n - std::count(scratch.Feature.begin(), scratch.Feature.begin() + n, uint8_t(255)));
+  if (brick.BandSamples > 0)
+  {
+    brick.Distance = CopyToBlock(scratch.Distance, n);
+    brick.ClosestFeature = CopyToBlock(scratch.Feature, n);
+    if (request.ClosestCellId)
+    {
+      brick.ClosestCellId = CopyToBlock(scratch.Cells, n);
+    }
+    if (request.ClosestPoint)
+    {
+      brick.ClosestPoint = CopyToBlock(scratch.Points, 3 * n);
+    }
+  }
   return brick;
 }
 
@@ -512,10 +527,6 @@ bool ComputeSparseBand(MeshInput mesh,
             binned.Sites.begin() + binned.Start[b], binned.Sites.begin() + binned.Start[b + 1]);
           computed[t] =
             ComputeBrick(local, bricks, b, std::move(candidates), request, brickEvaluations);
-          if (computed[t].BandSamples == 0)
-          {
-            computed[t] = SparseBrick(); // beyond the band: its arrays go at once
-          }
         }
         evaluations += brickEvaluations;
       });

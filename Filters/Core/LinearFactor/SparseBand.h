@@ -23,6 +23,7 @@
 #ifndef vtkdf_SparseBand_h
 #define vtkdf_SparseBand_h
 
+#include "Common/BlockArena.h"
 #include "Common/MeshInput.h"
 #include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
@@ -30,21 +31,16 @@
 
 #include <array>
 #include <cstdint>
-#include <cstdlib>
-#include <memory>
 #include <string>
 #include <vector>
 
 namespace vtkdf
 {
 
-/// An array of a brick, in memory that std::free releases (a VTK array can adopt it).
-struct FreeBlock
-{
-  void operator()(void* block) const { std::free(block); }
-};
+/// An array of a brick: a block of BlockArena.h, which ReleaseBlock releases (a VTK array
+/// can adopt it with ReleaseBlock as its free function).
 template<typename T>
-using BrickArray = std::unique_ptr<T[], FreeBlock>;
+using BrickArray = BlockArray<T>;
 
 struct SparseBandRequest
 {
