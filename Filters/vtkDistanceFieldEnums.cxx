@@ -99,13 +99,13 @@ const EnumTable Backend("Backend",
   { "FieldFromMesh", "ConvexQuery", "DistanceFieldProximity" },
   { { 0, "Auto", "auto" }, { 1, "GPU", "gpu" }, { 2, "CPU", "cpu" } });
 const EnumTable LinearFactorSign("SignMode",
-  { "LinearFactorDistanceField", "MeshDistanceFilter", "ClipByMeshDistance" },
+  { "LinearFactorDistanceField",
+    "MeshDistanceFilter",
+    "ClipByMeshDistance",
+    "SparseDistanceField" },
   { { 0, "Unsigned", "unsigned" },
     { 1, "PseudoNormal", "pseudonormal" },
     { 2, "WindingNumber", "winding" } });
-const EnumTable SparseSign("SignMode",
-  { "SparseDistanceField" },
-  { { 0, "Unsigned", "unsigned" }, { 1, "PseudoNormal", "pseudonormal" } });
 const EnumTable DomainShape("DomainShape",
   { "LinearFactorDistanceField", "SparseDistanceField" },
   { { 0, "Auto", "auto" }, { 1, "NonManifold", "nonmanifold" }, { 2, "Manifold", "manifold" } });

@@ -55,7 +55,6 @@ namespace enums
 {
 extern VTKDISTANCEFIELDS_EXPORT const EnumTable Backend;
 extern VTKDISTANCEFIELDS_EXPORT const EnumTable LinearFactorSign;
-extern VTKDISTANCEFIELDS_EXPORT const EnumTable SparseSign;
 extern VTKDISTANCEFIELDS_EXPORT const EnumTable DomainShape;
 extern VTKDISTANCEFIELDS_EXPORT const EnumTable Route;
 extern VTKDISTANCEFIELDS_EXPORT const EnumTable VoxelMode;

@@ -1,6 +1,7 @@
 #include "vtkSparseDistanceField.h"
 
 #include "vtkCellData.h"
+#include "vtkCommunicator.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -10,6 +11,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPointData.h"
@@ -22,6 +24,7 @@
 #include "LinearFactor/SparseBand.h"
 
 #include "vtkDistanceFieldEnums.h"
+#include "vtkDistanceFieldPartitions.h"
 #include "vtkDistanceFieldRun.h"
 
 #include <algorithm>
@@ -32,18 +35,6 @@ vtkStandardNewMacro(vtkSparseDistanceField);
 
 namespace
 {
-/// The grid of bricks over a whole grid (SparseBand.h's: at least one brick per axis).
-std::array<int, 3> BrickCounts(const vtkdf::IndexBox& whole, int brickSize)
-{
-  std::array<int, 3> counts;
-  for (int a = 0; a < 3; ++a)
-  {
-    const int64_t intervals = int64_t(whole.Hi[a]) - whole.Lo[a];
-    counts[a] = static_cast<int>(std::max<int64_t>(1, (intervals + brickSize - 1) / brickSize));
-  }
-  return counts;
-}
-
 /// A VTK array that adopts a brick's block (released by ReleaseBlock: Common/BlockArena.h).
 template<typename ArrayT, typename T>
 vtkNew<ArrayT> AdoptArray(const char* name,
@@ -101,13 +92,21 @@ vtkSmartPointer<vtkImageData> BrickImage(vtkdf::SparseBrick& brick,
   return image;
 }
 
-/// The coarse grid of sides: a cell per brick.
+/// The coarse grid of sides, a cell per brick, over `extent` (the whole grid's, or the
+/// piece a distributed run asks of this process).
 void SidesImage(const vtkdf::SparseBandField& field,
   const vtkdf::SampleGrid& grid,
+  const int extent[6],
   vtkImageData* sides)
 {
   const std::array<int, 3>& nb = field.BrickCounts;
-  sides->SetExtent(0, nb[0], 0, nb[1], 0, nb[2]);
+  int e[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    e[2 * a] = std::max(0, std::min(extent[2 * a], nb[a]));
+    e[2 * a + 1] = std::max(e[2 * a], std::min(extent[2 * a + 1], nb[a]));
+  }
+  sides->SetExtent(e);
   double origin[3], spacing[3];
   for (int a = 0; a < 3; ++a)
   {
@@ -116,15 +115,26 @@ void SidesImage(const vtkdf::SparseBandField& field,
   }
   sides->SetOrigin(origin);
   sides->SetSpacing(spacing);
-  const vtkIdType cells = static_cast<vtkIdType>(field.Sides.size());
+  const vtkIdType cells = vtkIdType(e[1] - e[0]) * (e[3] - e[2]) * (e[5] - e[4]);
   vtkNew<vtkSignedCharArray> side;
   side->SetName("Side");
   side->SetNumberOfTuples(cells);
-  std::copy(field.Sides.begin(), field.Sides.end(), side->GetPointer(0));
   vtkNew<vtkIntArray> piece;
   piece->SetName("Piece");
   piece->SetNumberOfTuples(cells);
-  std::copy(field.BrickOf.begin(), field.BrickOf.end(), piece->GetPointer(0));
+  vtkIdType cell = 0;
+  for (int k = e[4]; k < e[5]; ++k)
+  {
+    for (int j = e[2]; j < e[3]; ++j)
+    {
+      for (int i = e[0]; i < e[1]; ++i, ++cell)
+      {
+        const size_t b = i + size_t(nb[0]) * (j + size_t(nb[1]) * k);
+        side->SetValue(cell, field.Sides[b]);
+        piece->SetValue(cell, field.BrickOf[b]);
+      }
+    }
+  }
   sides->GetCellData()->AddArray(side);
   sides->GetCellData()->AddArray(piece);
 }
@@ -157,7 +167,7 @@ int vtkSparseDistanceField::RequestInformation(vtkInformation* request,
   double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
   if (GetOutputGrid(outputVector->GetInformationObject(0), grid, extent))
   {
-    const std::array<int, 3> counts = BrickCounts(grid.Whole, this->BrickSize);
+    const std::array<int, 3> counts = vtkdf::BrickGrid::Over(grid.Whole, this->BrickSize).Counts;
     for (int a = 0; a < 3; ++a)
     {
       whole[2 * a] = 0;
@@ -170,6 +180,8 @@ int vtkSparseDistanceField::RequestInformation(vtkInformation* request,
   sidesInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
   sidesInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
   sidesInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  // A distributed run asks each rank for a piece of the sides (every rank has them all).
+  sidesInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   return 1;
 }
 
@@ -178,6 +190,7 @@ vtkdf::RunStatus vtkSparseDistanceField::Execute(vtkInformationVector** inputVec
   vtkdf::FilterRun& run)
 {
   this->LastBandSamples = this->LastPieces = this->LastCandidateBricks = 0;
+  this->LastWindingBricksDecided = 0;
   this->LastPieceMemory = 0;
   if (this->Backend == BACKEND_GPU)
   {
@@ -201,11 +214,22 @@ vtkdf::RunStatus vtkSparseDistanceField::Execute(vtkInformationVector** inputVec
   request.BandWidth = this->BandWidth * request.Grid.MinSpacing();
   request.BrickSize = this->BrickSize;
   request.Domains = static_cast<vtkdf::DomainShape>(this->DomainShape);
-  request.Sign =
-    this->SignMode == PSEUDO_NORMAL ? vtkdf::SignMode::PseudoNormal : vtkdf::SignMode::Unsigned;
+  request.Sign = static_cast<vtkdf::SignMode>(this->SignMode);
   request.ClosestCellId = this->ComputeClosestCellId;
   request.ClosestPoint = this->ComputeClosestPoint;
   request.MemoryLimit = this->EffectiveMemoryLimit();
+  // A distributed run: each rank computes its share of the bricks.
+  vtkdf::MeshPiece(request.Piece, request.Pieces);
+  request.SumOverPieces = [](std::vector<int8_t>& values)
+  {
+    std::vector<int8_t> sum(values.size());
+    vtkMultiProcessController::GetGlobalController()->AllReduce(
+      reinterpret_cast<const signed char*>(values.data()),
+      reinterpret_cast<signed char*>(sum.data()),
+      static_cast<vtkIdType>(values.size()),
+      vtkCommunicator::SUM_OP);
+    values.swap(sum);
+  };
   vtkdf::SparseBandField field;
   std::string error;
   if (!vtkdf::ComputeSparseBand(std::move(mesh), request, run.MakeExecution(), field, error))
@@ -223,6 +247,7 @@ vtkdf::RunStatus vtkSparseDistanceField::Execute(vtkInformationVector** inputVec
   this->LastBandSamples = field.BandSamples;
   this->LastPieces = static_cast<vtkTypeInt64>(field.Bricks.size());
   this->LastCandidateBricks = field.CandidateBricks;
+  this->LastWindingBricksDecided = field.WindingBricksDecided;
   this->LastPieceMemory = double(field.Bytes()) / 1048576.0;
   vtkPartitionedDataSet* pieces = vtkPartitionedDataSet::GetData(outputVector, 0);
   pieces->SetNumberOfPartitions(static_cast<unsigned int>(field.Bricks.size()));
@@ -237,7 +262,15 @@ vtkdf::RunStatus vtkSparseDistanceField::Execute(vtkInformationVector** inputVec
   bandWidth->SetName("BandWidth");
   bandWidth->InsertNextValue(request.BandWidth);
   pieces->GetFieldData()->AddArray(bandWidth);
-  SidesImage(field, request.Grid, vtkImageData::GetData(outputVector, 1));
+  vtkInformation* sidesInfo = outputVector->GetInformationObject(1);
+  int sidesExtent[6] = {
+    0, field.BrickCounts[0], 0, field.BrickCounts[1], 0, field.BrickCounts[2]
+  };
+  if (sidesInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    sidesInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), sidesExtent);
+  }
+  SidesImage(field, request.Grid, sidesExtent, vtkImageData::GetData(outputVector, 1));
   run.Timer.End("pieces");
   return vtkdf::RunStatus::Done;
 }
@@ -255,7 +288,7 @@ std::string vtkSparseDistanceField::PointCloudRefusal()
 bool vtkSparseDistanceField::CheckProperties()
 {
   if (!this->Superclass::CheckProperties() ||
-    !this->CheckEnum(this->SignMode, vtkdf::enums::SparseSign) ||
+    !this->CheckEnum(this->SignMode, vtkdf::enums::LinearFactorSign) ||
     !this->CheckEnum(this->DomainShape, vtkdf::enums::DomainShape))
   {
     return false;
@@ -277,7 +310,7 @@ bool vtkSparseDistanceField::CheckProperties()
 void vtkSparseDistanceField::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SignMode: " << vtkdf::enums::SparseSign.Name(this->SignMode) << "\n";
+  os << indent << "SignMode: " << vtkdf::enums::LinearFactorSign.Name(this->SignMode) << "\n";
   os << indent << "DomainShape: " << vtkdf::enums::DomainShape.Name(this->DomainShape) << "\n";
   os << indent << "BandWidth: " << this->BandWidth << "\n";
   os << indent << "BrickSize: " << this->BrickSize << "\n";
@@ -287,5 +320,6 @@ void vtkSparseDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastBandSamples: " << this->LastBandSamples << "\n";
   os << indent << "LastPieces: " << this->LastPieces << "\n";
   os << indent << "LastCandidateBricks: " << this->LastCandidateBricks << "\n";
+  os << indent << "LastWindingBricksDecided: " << this->LastWindingBricksDecided << "\n";
   os << indent << "LastPieceMemory: " << this->LastPieceMemory << " MiB\n";
 }

@@ -25,10 +25,21 @@
  * when none), so that "inside?" has an answer anywhere in the grid: a sample beyond the
  * band takes its brick's Side, or its piece's sign where there is a piece.
  *
- * The sides beyond the band are flooded from the band's signs, within each brick and
- * then over the grid of bricks (Filters/Core/LinearFactor/SparseBand.h): the dense
- * field's sides wherever the band's signs agree, as on a closed mesh. The sparse band
- * runs on the CPU; the winding number's sign needs the dense field.
+ * With SignMode PseudoNormal the sides beyond the band are flooded from the band's
+ * signs, within each brick and then over the grid of bricks
+ * (Filters/Core/LinearFactor/SparseBand.h): the dense field's sides wherever the band's
+ * signs agree, as on a closed mesh. With SignMode WindingNumber every sample has the
+ * dense field's side, open meshes and soups included: a brick beyond the band gets its
+ * one side from a single test (Filters/Core/Winding/BrickWindingSigns.h), and one whose
+ * samples lie on both sides (the surface |w| = 1/2 of an open mesh can pass between the
+ * band's bricks) is a piece of its own, every sample hidden. The sparse band runs on the
+ * CPU.
+ *
+ * In a distributed run (vtkMultiProcessController's global controller: ParaView's MPI
+ * engine, or a vtkMPIController) every rank computes its share of the bricks: output 0
+ * holds its pieces, output 1 the part of the grid of bricks it is asked for (Piece
+ * numbers the pieces among all ranks' pieces); together they are one process's outputs,
+ * bit for bit. Every rank must run the filter in the same pass (docs/distributed.md).
  */
 #ifndef vtkSparseDistanceField_h
 #define vtkSparseDistanceField_h
@@ -43,17 +54,20 @@ public:
   vtkTypeMacro(vtkSparseDistanceField, vtkDistanceFieldAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// How Distance is signed: Unsigned (the default) or PseudoNormal (negative inside, by
-  /// the angle-weighted pseudonormal of the closest feature; vtkLinearFactorDistanceField).
+  /// How Distance is signed: Unsigned (the default), PseudoNormal (negative inside, by
+  /// the angle-weighted pseudonormal of the closest feature) or WindingNumber (inside
+  /// where the generalized winding number has |w| > 1/2), as vtkLinearFactorDistanceField.
   enum SignModeType
   {
     UNSIGNED = 0,
-    PSEUDO_NORMAL = 1
+    PSEUDO_NORMAL = 1,
+    WINDING_NUMBER = 2
   };
   vtkSetMacro(SignMode, int);
   vtkGetMacro(SignMode, int);
   void SetSignModeToUnsigned() { this->SetSignMode(UNSIGNED); }
   void SetSignModeToPseudoNormal() { this->SetSignMode(PSEUDO_NORMAL); }
+  void SetSignModeToWindingNumber() { this->SetSignMode(WINDING_NUMBER); }
 
   /// The sites' domains, as vtkLinearFactorDistanceField's DomainShape (0 Auto, the
   /// default; 1 NonManifold; 2 Manifold). Every mode gives the same field.
@@ -89,6 +103,9 @@ public:
   vtkGetMacro(LastBandSamples, vtkTypeInt64);
   vtkGetMacro(LastPieces, vtkTypeInt64);
   vtkGetMacro(LastCandidateBricks, vtkTypeInt64);
+  /// SignMode WindingNumber: the bricks beyond the band whose sides no single test
+  /// proved, decided sample by sample, in the last run.
+  vtkGetMacro(LastWindingBricksDecided, vtkTypeInt64);
   /// The bytes the last run's pieces hold, in MiB.
   vtkGetMacro(LastPieceMemory, double);
 
@@ -116,6 +133,7 @@ protected:
   vtkTypeInt64 LastBandSamples = 0;
   vtkTypeInt64 LastPieces = 0;
   vtkTypeInt64 LastCandidateBricks = 0;
+  vtkTypeInt64 LastWindingBricksDecided = 0;
   double LastPieceMemory = 0;
 
 private:

@@ -13,6 +13,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace vtkdf::cli
 {
@@ -24,8 +26,19 @@ int Linfac(int argc, char* argv[])
   double maxDistance = 0, band = 0;
   bool signedField = false;
   SparseOptions sparse;
+  // --vdb OUT.vdb without -o: the level set alone, as -o OUT.vdb.
+  std::vector<char*> args(argv, argv + argc);
+  if (std::none_of(args.begin(),
+        args.end(),
+        [](const char* a) { return a == std::string("-o") || a == std::string("--output"); }))
+  {
+    for (char*& a : args)
+    {
+      a = a == std::string("--vdb") ? const_cast<char*>("-o") : a;
+    }
+  }
   ParseOptions(argc,
-    argv,
+    args.data(),
     common,
     { Flag("--signed", signedField),
       Text("--sign", sign),
@@ -58,7 +71,7 @@ int Linfac(int argc, char* argv[])
   if (pieces)
   {
     const std::string signWord = sign.empty() ? (signedField ? "pseudonormal" : "unsigned") : sign;
-    sparse.Signed = EnumWord("--sign", signWord, vtkdf::enums::SparseSign) != 0;
+    sparse.SignMode = EnumWord("--sign", signWord, vtkdf::enums::LinearFactorSign);
     sparse.BandWidth = band;
     sparse.Arrays = arrays;
     sparse.DomainShape = EnumWord("--domains", domains, vtkdf::enums::DomainShape);

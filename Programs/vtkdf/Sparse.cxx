@@ -68,8 +68,7 @@ int LinfacSparse(vtkPolyData* mesh, CommonOptions& common, const SparseOptions& 
   filter->SetBandWidth(options.BandWidth);
   filter->SetBrickSize(options.BrickSize);
   filter->SetDomainShape(options.DomainShape);
-  filter->SetSignMode(
-    options.Signed ? vtkSparseDistanceField::PSEUDO_NORMAL : vtkSparseDistanceField::UNSIGNED);
+  filter->SetSignMode(options.SignMode);
   filter->SetComputeClosestCellId(options.Arrays.find("cellid") != std::string::npos);
   filter->SetComputeClosestFeature(options.Arrays.find("feature") != std::string::npos);
   filter->SetComputeClosestPoint(options.Arrays.find("point") != std::string::npos);
@@ -83,9 +82,11 @@ int LinfacSparse(vtkPolyData* mesh, CommonOptions& common, const SparseOptions& 
   {
     int whole[6];
     filter->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-    std::printf("vtkdf: linfac dims=%dx%dx%d backend=%s time_s=%.6f band=%g band_samples=%lld "
-                "pieces=%lld candidate_bricks=%lld piece_memory_mb=%.1f stages=%s "
-                "peak_memory_mb=%.1f\n",
+    std::printf(
+      "vtkdf: linfac dims=%dx%dx%d backend=%s time_s=%.6f band=%g band_samples=%lld "
+      "pieces=%lld candidate_bricks=%lld winding_bricks_decided=%lld piece_memory_mb=%.1f "
+      "stages=%s "
+      "peak_memory_mb=%.1f\n",
       whole[1] - whole[0] + 1,
       whole[3] - whole[2] + 1,
       whole[5] - whole[4] + 1,
@@ -95,6 +96,7 @@ int LinfacSparse(vtkPolyData* mesh, CommonOptions& common, const SparseOptions& 
       static_cast<long long>(filter->GetLastBandSamples()),
       static_cast<long long>(filter->GetLastPieces()),
       static_cast<long long>(filter->GetLastCandidateBricks()),
+      static_cast<long long>(filter->GetLastWindingBricksDecided()),
       filter->GetLastPieceMemory(),
       filter->GetLastStageTimes(),
       filter->GetLastPeakMemory());

@@ -20,7 +20,7 @@ struct SparseOptions
   double BandWidth = 0;
   int BrickSize = 32;
   int DomainShape = 0;
-  bool Signed = false;
+  int SignMode = 0; // vtkSparseDistanceField's
   std::string Arrays, Sides;
   std::string Vdb; // an OpenVDB level set (vtkOpenVDBLevelSetWriter) to write as well
 };

@@ -116,7 +116,7 @@ def configure(f, sub, options, contour=None):
         elif option == "--feature-angle" and contour is not None:
             contour.SetFeatureAngle(number(value, float))
         elif option == "--sign":
-            if value not in ("pseudonormal", "winding") or sub == "band" and value == "winding":
+            if value not in ("pseudonormal", "winding"):
                 raise NotPassable(f"{option} {value}")
             getattr(f, "SetSignModeTo" + ("PseudoNormal" if value == "pseudonormal"
                                           else "WindingNumber"))()

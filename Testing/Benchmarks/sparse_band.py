@@ -1,10 +1,11 @@
 """Benchmark (not a test): vtkSparseDistanceField at large grids, with spot checks.
 
 PYTHONPATH=build/lib/python3/dist-packages python3 Testing/Benchmarks/sparse_band.py \
-    MESH N [BAND] [BRICK] [CHECKS]
+    MESH N [BAND] [BRICK] [CHECKS] [SIGN]
 
 Runs the sparse band of MESH (.vtp or .ply) on the default grid of resolution N, signed by
-pseudonormals, BAND spacings (default 3) in bricks of BRICK samples (default 32), and
+SIGN (pseudonormal, the default, or winding), BAND spacings (default 3) in bricks of BRICK
+samples (default 32), and
 prints the filter's time, stages, pieces, band samples and their memory; run it under
 /usr/bin/time -v for the process's peak memory. With CHECKS > 0, that many random band
 samples of the pieces are compared with a brute-force distance to every triangle (numpy,
@@ -64,21 +65,22 @@ def read(path):
     return triangles.GetOutput()
 
 
-def main(path, n, band=3.0, brick=32, checks=0):
+def main(path, n, band=3.0, brick=32, checks=0, sign="pseudonormal"):
     mesh = read(path)
     sparse = vtkSparseDistanceField()
     sparse.SetInputData(mesh)
     sparse.SetResolution(n)
     sparse.SetBandWidth(band)
     sparse.SetBrickSize(brick)
-    sparse.SetSignModeToPseudoNormal()
+    sparse.SetSignMode({"pseudonormal": 1, "winding": 2}[sign])
     start = time.perf_counter()
     sparse.Update()
     seconds = time.perf_counter() - start
     pieces, sides = sparse.GetOutputDataObject(0), sparse.GetOutputDataObject(1)
-    print(f"{path.split('/')[-1]} {n}^3 band {band:g} brick {brick}: {seconds:.2f} s "
+    print(f"{path.split('/')[-1]} {n}^3 band {band:g} brick {brick} {sign}: {seconds:.2f} s "
           f"(filter {sparse.GetLastTime():.2f} s), {sparse.GetLastPieces()} pieces "
-          f"({sparse.GetLastCandidateBricks()} candidate bricks), "
+          f"({sparse.GetLastCandidateBricks()} candidate bricks, "
+          f"{sparse.GetLastWindingBricksDecided()} beyond the band signed by sample), "
           f"{sparse.GetLastBandSamples()} band samples, pieces {sparse.GetLastPieceMemory():.0f} MiB, "
           f"run peak {sparse.GetLastPeakMemory():.0f} MiB; stages {sparse.GetLastStageTimes()}",
           flush=True)
@@ -143,4 +145,5 @@ def main(path, n, band=3.0, brick=32, checks=0):
 if __name__ == "__main__":
     a = sys.argv[1:]
     sys.exit(main(a[0], int(a[1]), float(a[2]) if len(a) > 2 else 3.0,
-                  int(a[3]) if len(a) > 3 else 32, int(a[4]) if len(a) > 4 else 0))
+                  int(a[3]) if len(a) > 3 else 32, int(a[4]) if len(a) > 4 else 0,
+                  a[5] if len(a) > 5 else "pseudonormal"))

@@ -7,7 +7,9 @@ properties by their C++ names (enumerations by the words of their SetXToY() meth
 the output ports it writes, with their file extensions. "partitioned:FILE" is the file
 partitioned across the ranks by ParaView, "ghosted:FILE" the same with a layer of ghost
 cells (distributed_only: such cases run only in run_in_paraview.py's distributed mode;
-serial_only: never there)."""
+serial_only: never there). pieces_port: an output port of pieces (a
+vtkPartitionedDataSet) that a distributed run splits among the ranks: check_distributed.py
+compares the ranks' pieces with one rank's."""
 
 CASES = [
     dict(name="linfac_pseudonormal", filter="LinearFactorDistanceField",
@@ -113,13 +115,18 @@ CASES = [
          inputs={"Input": "clip_grid:0", "Surface": "bunny_small.vtp"},
          properties=dict(Value=0.25),
          outputs={0: "vtu"}),
-    # The sparse band's sides (port 1; its pieces, a vtkPartitionedDataSet, are checked
-    # against the dense field in the module's own tests). Every rank computes the whole
-    # band: serial only.
+    # The sparse band's sides (port 1) and, distributed, its pieces (port 0, a
+    # vtkPartitionedDataSet: each rank's share of the bricks, digested; checked against
+    # the dense field in the module's own tests).
     dict(name="sparse", filter="SparseDistanceField",
          inputs={"Input": "bunny_small.vtp"},
          properties=dict(Resolution=40, BandWidth=2, BrickSize=8, SignMode="PseudoNormal"),
-         outputs={1: "vti"}, serial_only=True),
+         outputs={1: "vti"}, pieces_port=0),
+    dict(name="sparse_winding", filter="SparseDistanceField",
+         inputs={"Input": "aneurysm.vtp"},
+         properties=dict(Resolution=48, BandWidth=1.5, BrickSize=4, SignMode="WindingNumber",
+                         ComputeClosestPoint=1),
+         outputs={1: "vti"}, pieces_port=0),
     dict(name="hausdorff", filter="MeshHausdorffDistance",
          inputs={"Input": "bunny_small.vtp", "MeshB": "teapot.vtp"},
          properties=dict(RelativeError=1e-5),

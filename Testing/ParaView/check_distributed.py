@@ -3,7 +3,8 @@ R given, and checks that the assembled .pvti outputs of R ranks equal the 1-rank
 bit for bit (the mesh whole, or partitioned across the ranks with global ids), that the
 filters that compute a piece (the linear factorization, the voxelizer, the medial axis,
 the chamfer transform with a layer limit, the segmented field and its blend) computed only a slab on
-each rank (the extents every rank prints), and that a mesh
+each rank (the extents every rank prints), that the sparse band's pieces of R ranks are
+one rank's, each on one rank, and that a mesh
 partitioned without global ids is refused:
 python3 check_distributed.py MPIEXEC PVBATCH PLUGIN DATA_DIR OUT_DIR R...
 (DF_PVBATCH_PYTHONPATH: python3-paraview's modules)."""
@@ -40,18 +41,40 @@ def run(ranks):
     if result.returncode != 0:
         print(result.stdout + result.stderr)
         sys.exit(f"FAIL: {ranks} ranks: exit status {result.returncode}")
-    extents = {}
+    extents, pieces = {}, {}
     # The ranks share stdout: their lines may run together.
     for case, rank, extent in re.findall(
             r"([a-z0-9_]+): rank (\d+) of \d+ computed extent (\([-0-9, ]+\))", result.stdout):
         extents.setdefault(case, {})[int(rank)] = ast.literal_eval(extent)
-    return folder, extents
+    for case, rank, extent, digest in re.findall(
+            r"([a-z0-9_]+): rank (\d+) piece (\([-0-9, ]+\)) ([0-9a-f]{40})", result.stdout):
+        pieces.setdefault(case, []).append((int(rank), extent, digest))
+    return folder, extents, pieces
+
+
+def compare_pieces(serial_pieces, pieces, ranks):
+    """The ranks' pieces of each case with pieces_port: together one rank's (the same
+    extents and digests), each on one rank, no rank with all of them."""
+    found = []
+    for case, alone in sorted(serial_pieces.items()):
+        mine = pieces.get(case, [])
+        expected = sorted((extent, digest) for _, extent, digest in alone)
+        got = sorted((extent, digest) for _, extent, digest in mine)
+        per_rank = [sum(1 for r, _, _ in mine if r == rank) for rank in range(ranks)]
+        print(f"{case}: {len(expected)} pieces on 1 rank, {per_rank} on {ranks}")
+        if got != expected:
+            found.append(f"{case}: the ranks' pieces are not one rank's")
+        if max(per_rank) == len(expected):
+            found.append(f"{case}: one rank computed every piece")
+    return found
 
 
 failures = []
-serial, serial_extents = run(1)
+serial, serial_extents, serial_pieces = run(1)
+if "sparse" not in serial_pieces:
+    failures.append("no pieces were reported for the sparse band")
 for ranks in rank_counts:
-    folder, extents = run(ranks)
+    folder, extents, pieces = run(ranks)
     print(f"== {ranks} ranks against 1")
     for case, by_rank in sorted(extents.items()):
         whole = serial_extents[case][0]
@@ -63,6 +86,7 @@ for ranks in rank_counts:
     # Poly data and unstructured grids of several pieces in canonical order: a point or
     # cell that two ranks wrote counts once.
     failures += [f"{ranks} ranks: {f}" for f in compare(serial, folder, canonical_points=True)]
+    failures += [f"{ranks} ranks: {f}" for f in compare_pieces(serial_pieces, pieces, ranks)]
 # A mesh partitioned without global ids is refused on every rank, with the message.
 command = [mpiexec, "-n", "2"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
 result = subprocess.run(command + [pvbatch, "--symmetric",

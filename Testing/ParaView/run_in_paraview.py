@@ -5,8 +5,9 @@ pvpython run_in_paraview.py PLUGIN DATA_DIR OUT_DIR server:HOST:PORT
 Each output port goes to OUT_DIR/<case>_<port>.<extension>. With "distributed" (under
 mpiexec ... pvbatch --symmetric), the outputs are written by ParaView's parallel writers
 (.pvti, .pvtp, .pvtu: one piece a rank), and every rank prints the extent of each image it
-computed. With "server:HOST:PORT", pvpython connects to a pvserver there (mpiexec -n R
+computed, and the extent and a digest of each piece of a case's "pieces_port". With "server:HOST:PORT", pvpython connects to a pvserver there (mpiexec -n R
 pvserver) and the server's ranks run the cases and write them likewise."""
+import hashlib
 import os
 import sys
 
@@ -15,6 +16,7 @@ import sys
 sys.path = [p for p in sys.path if p.rstrip("/") != "//lib/python3/dist-packages"]
 
 from paraview import simple  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 from paraview.modules.vtkRemotingCore import vtkProcessModule  # noqa: E402
 
 plugin, data_dir, out_dir = sys.argv[1:4]
@@ -74,3 +76,16 @@ for case in CASES:
             path = os.path.join(out_dir, f"{case['name']}_{port}.{extension}")
             simple.SaveData(path, proxy=simple.OutputPort(proxy, port))
             print(f"{case['name']}: wrote {path}")
+    if "pieces_port" in case and distributed and not server:
+        # A vtkPartitionedDataSet: this rank's pieces, by extent and a digest of their
+        # arrays (check_distributed.py compares them with one rank's).
+        output = proxy.GetClientSideObject().GetOutputDataObject(case["pieces_port"])
+        for p in range(output.GetNumberOfPartitions()):
+            piece = output.GetPartition(p)
+            digest = hashlib.sha1()
+            data = piece.GetPointData()
+            for k in range(data.GetNumberOfArrays()):
+                digest.update(data.GetArray(k).GetName().encode())
+                digest.update(vtk_to_numpy(data.GetArray(k)).tobytes())
+            print(f"{case['name']}: rank {rank} piece {piece.GetExtent()} {digest.hexdigest()}",
+                  flush=True)

@@ -5,8 +5,10 @@ onto the grid's sample (i, j, k), whose active voxels are exactly the band's sam
 their distances bit for bit, and whose every other voxel is inactive at minus the
 background inside and plus it outside, by the sides; the closest points ride in a
 Vec3SGrid beside it. An anisotropic grid and pieces that are not the sparse filter's are
-errors, and write nothing."""
+errors, and write nothing. With vtkdf's path as an argument, vtkdf linfac --band K --vdb
+OUT.vdb writes the same level set."""
 import os
+import subprocess
 import sys
 import tempfile
 
@@ -108,6 +110,19 @@ with tempfile.TemporaryDirectory() as folder:
     check(points.activeVoxelCount() == grid.activeVoxelCount() and
           np.array_equal(copy[active].view(np.uint32), closest[active].view(np.uint32)),
           "the closest points of the band's samples")
+
+    # vtkdf linfac MESH --signed --band K --vdb OUT.vdb (no -o): the same level set.
+    if len(sys.argv) > 1:
+        target = os.path.join(folder, "vtkdf.vdb")
+        subprocess.run([sys.argv[1], "linfac", os.path.join(data, "bunny_small.vtp"),
+                        "--signed", "--band", str(band), "--brick-size", str(brick),
+                        "--resolution", "48", "--vdb", target], check=True)
+        theirs = vdb.read(target, "surface")
+        copy = np.zeros(dims, np.float32)
+        theirs.copyToArray(copy, ijk=(0, 0, 0))
+        check(theirs.activeVoxelCount() == grid.activeVoxelCount() and
+              np.array_equal(copy.view(np.uint32), dense.view(np.uint32)),
+              "vtkdf linfac --band --vdb: the same level set")
 
     # Errors: an anisotropic grid, and pieces without the sparse filter's field data.
     anisotropic = vtkSparseDistanceField()

@@ -19,6 +19,16 @@ namespace vtkdf
 using ParallelFor =
   std::function<void(int64_t n, int64_t grain, const std::function<void(int64_t, int64_t)>& body)>;
 
+/// A ParallelFor that runs the whole range at once on the calling thread: for work items
+/// small enough that their callers run many of them in parallel.
+inline void SerialFor(int64_t n, int64_t, const std::function<void(int64_t, int64_t)>& body)
+{
+  if (n > 0)
+  {
+    body(0, n);
+  }
+}
+
 /// Receives the fraction done; returns false to abort.
 using ProgressCallback = std::function<bool(double)>;
 

@@ -3,11 +3,14 @@
 #include "LinearFactor/LinearFactorScan.h"
 #include "LinearFactor/LocalSites.h"
 #include "LinearFactor/RangeCulling.h"
+#include "Winding/BrickWindingSigns.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <deque>
+#include <iterator>
+#include <memory>
 #include <new>
 #include <utility>
 
@@ -30,13 +33,7 @@ int64_t SparseBandField::Bytes() const
 namespace
 {
 /// A brick's arrays are small: one thread computes each, the bricks run in parallel.
-const ParallelFor Serial = [](int64_t n, int64_t, const std::function<void(int64_t, int64_t)>& body)
-{
-  if (n > 0)
-  {
-    body(0, n);
-  }
-};
+const ParallelFor Serial = SerialFor;
 
 /// The arrays a thread computes its bricks into (reused: fresh pages cost more than the
 /// scan), copied out to blocks of BlockArena.h for the bricks that hold band samples.
@@ -55,46 +52,6 @@ BrickArray<T> CopyToBlock(const std::vector<T>& from, int64_t count)
   std::copy(from.begin(), from.begin() + count, block.get());
   return block;
 }
-
-/// The grid of bricks over the whole grid.
-struct BrickGrid
-{
-  IndexBox Whole;
-  int Size = 32;
-  std::array<int, 3> Counts{ { 1, 1, 1 } };
-
-  int64_t Total() const { return int64_t(this->Counts[0]) * this->Counts[1] * this->Counts[2]; }
-  int64_t Id(int i, int j, int k) const
-  {
-    return i + int64_t(this->Counts[0]) * (j + int64_t(this->Counts[1]) * k);
-  }
-  std::array<int, 3> Indices(int64_t id) const
-  {
-    return { { static_cast<int>(id % this->Counts[0]),
-      static_cast<int>((id / this->Counts[0]) % this->Counts[1]),
-      static_cast<int>(id / (int64_t(this->Counts[0]) * this->Counts[1])) } };
-  }
-  /// A brick's samples: its last layer is its neighbour's first.
-  IndexBox Extent(const std::array<int, 3>& b) const
-  {
-    IndexBox box;
-    for (int a = 0; a < 3; ++a)
-    {
-      box.Lo[a] = this->Whole.Lo[a] + b[a] * this->Size;
-      box.Hi[a] = static_cast<int>(
-        std::min<int64_t>(int64_t(box.Lo[a]) + this->Size, int64_t(this->Whole.Hi[a])));
-    }
-    return box;
-  }
-  /// The bricks that hold some sample of [lo, hi] (whole-grid indices) along axis a.
-  void Range(int a, int lo, int hi, int& first, int& last) const
-  {
-    const int64_t l = int64_t(lo) - this->Whole.Lo[a], h = int64_t(hi) - this->Whole.Lo[a];
-    // Brick b holds samples b * Size .. (b + 1) * Size.
-    first = static_cast<int>(std::max<int64_t>(0, (l + this->Size - 1) / this->Size - 1));
-    last = static_cast<int>(std::min<int64_t>(this->Counts[a] - 1, h / this->Size));
-  }
-};
 
 /// Every brick's candidate sites (ascending): those whose band region reaches it.
 struct BrickSites
@@ -227,14 +184,41 @@ void BinSites(const MeshSites& sites,
   }
 }
 
+/// Every sample's side by the winding number (`inside`, scratch), and the distances
+/// signed by it as the dense field signs them; `side` the side of all the samples (-1
+/// inside, 1 outside), 0 when they differ.
+void WindingSign(const BrickWindingSigns& winding,
+  const IndexBox& extent,
+  const GridFrame& frame,
+  float* distance,
+  std::vector<uint8_t>& inside,
+  int8_t& side)
+{
+  const int64_t n = extent.Count();
+  inside.resize(n);
+  // Unsigned still, in world units: blocks near the surface split without trying.
+  winding.Decide(extent, inside.data(), distance, 1 / frame.Scale);
+  for (int64_t v = 0; v < n; ++v)
+  {
+    distance[v] = inside[v] ? -std::fabs(distance[v]) : std::fabs(distance[v]);
+  }
+  const bool uniform =
+    std::all_of(inside.begin(), inside.begin() + n, [&](uint8_t in) { return in == inside[0]; });
+  side = uniform ? (inside[0] ? -1 : 1) : 0;
+}
+
 /// One brick's field: the dense field's culling, scan and Finalize over its samples with
-/// its candidate sites. Its BandSamples stay 0 when every sample is beyond the band.
+/// its candidate sites, and the winding sign when `winding` is given. Its BandSamples
+/// stay 0 when every sample is beyond the band; its arrays are kept when it has band
+/// samples, or samples of both sides (`side` 0; otherwise `side` their side, 0 unsigned).
 SparseBrick ComputeBrick(const LocalSites& local,
   const BrickGrid& bricks,
   int64_t id,
   std::vector<uint32_t> candidates,
   const SparseBandRequest& request,
-  int64_t& evaluations)
+  const BrickWindingSigns* winding,
+  int64_t& evaluations,
+  int8_t& side)
 {
   SparseBrick brick;
   brick.Index = bricks.Indices(id);
@@ -266,7 +250,13 @@ SparseBrick ComputeBrick(const LocalSites& local,
   Finalize(local.Sites, piece, nearest, arrays, Serial);
   brick.BandSamples = static_cast<int64_t>(
     n - std::count(scratch.Feature.begin(), scratch.Feature.begin() + n, uint8_t(255)));
-  if (brick.BandSamples > 0)
+  side = 0;
+  if (winding)
+  {
+    thread_local std::vector<uint8_t> inside;
+    WindingSign(*winding, brick.Extent, local.Frame, scratch.Distance.data(), inside, side);
+  }
+  if (brick.BandSamples > 0 || (winding && side == 0))
   {
     brick.Distance = CopyToBlock(scratch.Distance, n);
     brick.ClosestFeature = CopyToBlock(scratch.Feature, n);
@@ -308,9 +298,37 @@ int8_t SharedFaceSide(const SparseBrick& brick, int a, int step)
   return 0;
 }
 
+/// The six sides of the samples each piece shares with its neighbours (SharedFaceSide:
+/// 2 a + (step > 0)), at 6 x its number among all pieces, summed over the processes.
+std::vector<int8_t> PieceFaceSides(const SparseBandRequest& request,
+  int64_t pieces,
+  SparseBandField& field)
+{
+  std::vector<int8_t> faces(static_cast<size_t>(6 * pieces), 0);
+  const BrickGrid bricks = BrickGrid::Over(request.Grid.Whole, request.BrickSize);
+  for (const SparseBrick& brick : field.Bricks)
+  {
+    const int32_t piece = field.BrickOf[bricks.Id(brick.Index[0], brick.Index[1], brick.Index[2])];
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int step = -1; step <= 1; step += 2)
+      {
+        faces[6 * size_t(piece) + 2 * a + (step > 0)] = SharedFaceSide(brick, a, step);
+      }
+    }
+  }
+  if (request.Pieces > 1)
+  {
+    request.SumOverPieces(faces);
+  }
+  return faces;
+}
+
 /// Sides of the bricks without band samples, flooded over the grid of bricks from the
-/// faces they share with the bricks that have some.
-void FloodBrickSides(const BrickGrid& bricks, SparseBandField& field)
+/// faces they share with the pieces (`faces`: PieceFaceSides).
+void FloodBrickSides(const BrickGrid& bricks,
+  const std::vector<int8_t>& faces,
+  SparseBandField& field)
 {
   std::deque<int64_t> queue;
   auto neighbours = [&](int64_t id, const auto& visit)
@@ -329,15 +347,19 @@ void FloodBrickSides(const BrickGrid& bricks, SparseBandField& field)
       }
     }
   };
-  for (const SparseBrick& brick : field.Bricks)
+  for (int64_t id = 0; id < bricks.Total(); ++id)
   {
-    const int64_t id = bricks.Id(brick.Index[0], brick.Index[1], brick.Index[2]);
+    const int32_t piece = field.BrickOf[id];
+    if (piece < 0)
+    {
+      continue;
+    }
     neighbours(id,
       [&](int64_t other, int a, int step)
       {
         if (field.BrickOf[other] < 0 && field.Sides[other] == 0)
         {
-          field.Sides[other] = SharedFaceSide(brick, a, step);
+          field.Sides[other] = faces[6 * size_t(piece) + 2 * a + (step > 0)];
           if (field.Sides[other] != 0)
           {
             queue.push_back(other);
@@ -361,6 +383,30 @@ void FloodBrickSides(const BrickGrid& bricks, SparseBandField& field)
   }
 }
 
+/// The sides and the pieces of all processes on every process: the sides each computed
+/// summed (each brick's by one process), the pieces numbered in the order of their index.
+/// Returns the number of pieces.
+int64_t ShareSides(const SparseBandRequest& request, SparseBandField& field)
+{
+  std::vector<int8_t> kept(field.Sides.size(), 0);
+  const BrickGrid bricks = BrickGrid::Over(request.Grid.Whole, request.BrickSize);
+  for (const SparseBrick& brick : field.Bricks)
+  {
+    kept[bricks.Id(brick.Index[0], brick.Index[1], brick.Index[2])] = 1;
+  }
+  if (request.Pieces > 1)
+  {
+    request.SumOverPieces(kept);
+    request.SumOverPieces(field.Sides);
+  }
+  int32_t next = 0;
+  for (size_t b = 0; b < kept.size(); ++b)
+  {
+    field.BrickOf[b] = kept[b] ? next++ : -1;
+  }
+  return next;
+}
+
 bool CheckRequest(const SparseBandRequest& request, std::string& error)
 {
   const double accuracy = 1e-3 * request.Grid.MinSpacing();
@@ -371,16 +417,17 @@ bool CheckRequest(const SparseBandRequest& request, std::string& error)
       ").";
     return false;
   }
+  if (request.Pieces < 1 || request.Piece < 0 || request.Piece >= request.Pieces ||
+    (request.Pieces > 1 && !request.SumOverPieces))
+  {
+    error = "Piece " + std::to_string(request.Piece) + " of " + std::to_string(request.Pieces) +
+      " is not a piece of a distributed run.";
+    return false;
+  }
   if (request.BrickSize < 2 || request.BrickSize > 1024)
   {
     error =
       "BrickSize must be between 2 and 1024; it is " + std::to_string(request.BrickSize) + ".";
-    return false;
-  }
-  if (request.Sign == SignMode::WindingNumber)
-  {
-    error = "The sparse band is unsigned or signed by pseudonormals; the winding number's sign "
-            "needs the dense field (vtkLinearFactorDistanceField with MaximumDistance).";
     return false;
   }
   return true;
@@ -389,15 +436,9 @@ bool CheckRequest(const SparseBandRequest& request, std::string& error)
 /// The grid of bricks; false and `error` when it would have too many bricks to index.
 bool MakeBrickGrid(const SampleGrid& grid, int size, BrickGrid& bricks, std::string& error)
 {
-  bricks.Whole = grid.Whole;
-  bricks.Size = size;
-  double total = 1;
-  for (int a = 0; a < 3; ++a)
-  {
-    const int64_t intervals = int64_t(grid.Whole.Hi[a]) - grid.Whole.Lo[a];
-    bricks.Counts[a] = static_cast<int>(std::max<int64_t>(1, (intervals + size - 1) / size));
-    total *= bricks.Counts[a];
-  }
+  bricks = BrickGrid::Over(grid.Whole, size);
+  const double total =
+    double(bricks.Counts[0]) * double(bricks.Counts[1]) * double(bricks.Counts[2]);
   if (total > double(int64_t(1) << 28))
   {
     error = "The grid would have " + FormatNumber(total) +
@@ -407,13 +448,13 @@ bool MakeBrickGrid(const SampleGrid& grid, int size, BrickGrid& bricks, std::str
   return true;
 }
 
-/// Whether the grid of bricks (its sides, pieces and binning offsets: 13 bytes a brick)
-/// fits the memory limit.
+/// Whether the grid of bricks (its sides, pieces, binning offsets, the pieces kept and the
+/// winding sign's proven sides: 15 bytes a brick) fits the memory limit.
 bool CheckBrickGridMemory(const SparseBandRequest& request,
   const BrickGrid& bricks,
   std::string& error)
 {
-  const double bytes = 13.0 * double(bricks.Total());
+  const double bytes = 15.0 * double(bricks.Total());
   if (request.MemoryLimit > 0 && bytes > request.MemoryLimit)
   {
     error = "The grid of " + std::to_string(bricks.Total()) + " bricks needs " +
@@ -447,6 +488,154 @@ bool CheckBrickMemory(const SparseBandRequest& request,
     return false;
   }
   return true;
+}
+} // namespace
+
+namespace
+{
+/// The bricks `ids` (with their binned sites, or none) in batches in parallel, progress
+/// from `from` to `to` and abort between batches: computed[t] and side[t] for ids[t].
+/// False when aborted.
+bool ComputeBricks(const LocalSites& local,
+  const BrickGrid& bricks,
+  const std::vector<int64_t>& ids,
+  const BrickSites* binned,
+  const SparseBandRequest& request,
+  const BrickWindingSigns* winding,
+  const Execution& execution,
+  double from,
+  double to,
+  std::vector<SparseBrick>& computed,
+  std::vector<int8_t>& side,
+  int64_t& evaluations)
+{
+  const int64_t count = static_cast<int64_t>(ids.size());
+  computed.resize(ids.size());
+  side.assign(ids.size(), 0);
+  std::atomic<int64_t> total{ 0 };
+  const int64_t batches = std::max<int64_t>(1, std::min<int64_t>(20, count / 16));
+  for (int64_t batch = 0; batch < batches; ++batch)
+  {
+    const int64_t first = count * batch / batches, last = count * (batch + 1) / batches;
+    execution.For(last - first,
+      1,
+      [&](int64_t begin, int64_t end)
+      {
+        int64_t brickEvaluations = 0;
+        for (int64_t t = first + begin; t < first + end; ++t)
+        {
+          const int64_t b = ids[t];
+          std::vector<uint32_t> candidates;
+          if (binned)
+          {
+            candidates.assign(binned->Sites.begin() + binned->Start[b],
+              binned->Sites.begin() + binned->Start[b + 1]);
+          }
+          computed[t] = ComputeBrick(
+            local, bricks, b, std::move(candidates), request, winding, brickEvaluations, side[t]);
+        }
+        total += brickEvaluations;
+      });
+    if (!execution.Report(from + (to - from) * double(batch + 1) / batches))
+    {
+      return false;
+    }
+  }
+  evaluations += total.load();
+  return true;
+}
+
+/// The winding sign's sides of the bricks that no site reached (all beyond the band) and
+/// this process owns (every Pieces-th): proven by BrickWindingSigns' test, or decided
+/// sample by sample; the bricks whose samples differ go to `mixed`. Progress from `from` to `to`;
+/// false when aborted.
+bool FarWindingSides(const BrickWindingSigns& winding,
+  const BrickGrid& bricks,
+  const BrickSites& binned,
+  const SparseBandRequest& request,
+  const Execution& execution,
+  double from,
+  double to,
+  SparseBandField& field,
+  std::vector<int64_t>& mixed)
+{
+  std::vector<int64_t> unproven;
+  for (int64_t b = 0; b < bricks.Total(); ++b)
+  {
+    if (binned.Start[b + 1] == binned.Start[b] && b % request.Pieces == request.Piece)
+    {
+      const int proven = winding.ProvenSide(b);
+      if (proven < 0)
+      {
+        unproven.push_back(b);
+      }
+      field.Sides[b] = proven < 0 ? 0 : (proven ? -1 : 1);
+    }
+  }
+  field.WindingBricksDecided = static_cast<int64_t>(unproven.size());
+  const int64_t count = static_cast<int64_t>(unproven.size());
+  const int64_t batches = std::max<int64_t>(1, std::min<int64_t>(10, count / 16));
+  std::vector<int8_t> found(unproven.size(), 0);
+  for (int64_t batch = 0; batch < batches; ++batch)
+  {
+    const int64_t first = count * batch / batches, last = count * (batch + 1) / batches;
+    execution.For(last - first,
+      1,
+      [&](int64_t begin, int64_t end)
+      {
+        std::vector<uint8_t> inside;
+        for (int64_t t = first + begin; t < first + end; ++t)
+        {
+          const IndexBox box = bricks.Extent(bricks.Indices(unproven[t]));
+          inside.resize(box.Count());
+          winding.Decide(box, inside.data());
+          const bool uniform =
+            std::all_of(inside.begin(), inside.end(), [&](uint8_t in) { return in == inside[0]; });
+          found[t] = uniform ? (inside[0] ? -1 : 1) : 0;
+        }
+      });
+    if (!execution.Report(from + (to - from) * double(batch + 1) / batches))
+    {
+      return false;
+    }
+  }
+  for (int64_t t = 0; t < count; ++t)
+  {
+    field.Sides[unproven[t]] = found[t];
+    if (found[t] == 0)
+    {
+      mixed.push_back(unproven[t]);
+    }
+  }
+  return true;
+}
+
+/// The kept bricks (`ids`[t] with computed[t]) into the field, in the order of their ids;
+/// the side of each brick left out (ShareSides numbers the pieces).
+void KeepBricks(const std::vector<int64_t>& ids,
+  std::vector<SparseBrick>& computed,
+  const std::vector<int8_t>& side,
+  SparseBandField& field)
+{
+  std::vector<size_t> order;
+  for (size_t t = 0; t < ids.size(); ++t)
+  {
+    if (computed[t].Distance)
+    {
+      order.push_back(t);
+    }
+    else
+    {
+      field.Sides[ids[t]] = side[t];
+    }
+  }
+  std::sort(order.begin(), order.end(), [&](size_t x, size_t y) { return ids[x] < ids[y]; });
+  for (const size_t t : order)
+  {
+    field.BandSamples += computed[t].BandSamples;
+    field.Sides[ids[t]] = 0;
+    field.Bricks.push_back(std::move(computed[t]));
+  }
 }
 } // namespace
 
@@ -492,67 +681,98 @@ bool ComputeSparseBand(MeshInput mesh,
   {
     return false;
   }
+  // This process's share: every Pieces-th brick the band may touch.
   std::vector<int64_t> todo;
-  for (int64_t b = 0; b < bricks.Total(); ++b)
+  for (int64_t b = 0, reached = 0; b < bricks.Total(); ++b)
   {
-    if (binned.Start[b + 1] > binned.Start[b])
+    if (binned.Start[b + 1] > binned.Start[b] && reached++ % request.Pieces == request.Piece)
     {
       todo.push_back(b);
     }
   }
   execution.EndStage("bricks");
+  // The winding sign: the mesh (moved to the local frame, kept by BuildLocalSites) on the
+  // local grid, as the dense field signs it.
+  std::unique_ptr<BrickWindingSigns> winding;
+  if (request.Sign == SignMode::WindingNumber)
+  {
+    winding = std::make_unique<BrickWindingSigns>();
+    winding->Prepare(mesh.Points, mesh.Triangles, local.Request.Grid, bricks, execution.For);
+    execution.EndStage("winding");
+  }
+  const double scanEnd = winding ? 0.8 : 0.95;
   if (!execution.Report(0.05))
   {
     field.Aborted = true;
     return true;
   }
-
-  // Batches of bricks in parallel, progress and abort between them.
-  std::vector<SparseBrick> computed(todo.size());
-  std::atomic<int64_t> evaluations{ 0 };
-  const int64_t count = static_cast<int64_t>(todo.size());
-  const int64_t batches = std::max<int64_t>(1, std::min<int64_t>(20, count / 16));
-  for (int64_t batch = 0; batch < batches; ++batch)
+  std::vector<SparseBrick> computed;
+  std::vector<int8_t> side;
+  if (!ComputeBricks(local,
+        bricks,
+        todo,
+        &binned,
+        request,
+        winding.get(),
+        execution,
+        0.05,
+        scanEnd,
+        computed,
+        side,
+        field.Evaluations))
   {
-    const int64_t first = count * batch / batches, last = count * (batch + 1) / batches;
-    execution.For(last - first,
-      1,
-      [&](int64_t begin, int64_t end)
-      {
-        int64_t brickEvaluations = 0;
-        for (int64_t t = first + begin; t < first + end; ++t)
-        {
-          const int64_t b = todo[t];
-          std::vector<uint32_t> candidates(
-            binned.Sites.begin() + binned.Start[b], binned.Sites.begin() + binned.Start[b + 1]);
-          computed[t] =
-            ComputeBrick(local, bricks, b, std::move(candidates), request, brickEvaluations);
-        }
-        evaluations += brickEvaluations;
-      });
-    if (!execution.Report(0.05 + 0.9 * double(batch + 1) / batches))
+    field.Aborted = true;
+    return true;
+  }
+  KeepBricks(todo, computed, side, field);
+  execution.EndStage("scan");
+  if (winding)
+  {
+    // Beyond the band: one side a brick where a test proves it, else sample by sample;
+    // a brick whose samples differ becomes a piece without band samples.
+    std::vector<int64_t> mixed;
+    if (!FarWindingSides(
+          *winding, bricks, binned, request, execution, scanEnd, 0.95, field, mixed) ||
+      !ComputeBricks(local,
+        bricks,
+        mixed,
+        nullptr,
+        request,
+        winding.get(),
+        execution,
+        0.95,
+        1,
+        computed,
+        side,
+        field.Evaluations))
     {
       field.Aborted = true;
       return true;
     }
-  }
-  binned = BrickSites();
-  for (int64_t t = 0; t < count; ++t)
-  {
-    if (computed[t].BandSamples > 0)
+    // Merged with the band's bricks in the order of their ids.
+    std::vector<int64_t> ids;
+    std::vector<SparseBrick> all;
+    std::vector<int8_t> sides;
+    for (size_t t = 0; t < field.Bricks.size(); ++t)
     {
-      field.BandSamples += computed[t].BandSamples;
-      field.BrickOf[todo[t]] = static_cast<int32_t>(field.Bricks.size());
-      field.Bricks.push_back(std::move(computed[t]));
+      const std::array<int, 3>& b = field.Bricks[t].Index;
+      ids.push_back(bricks.Id(b[0], b[1], b[2]));
+      all.push_back(std::move(field.Bricks[t]));
+      sides.push_back(0);
     }
+    ids.insert(ids.end(), mixed.begin(), mixed.end());
+    std::move(computed.begin(), computed.end(), std::back_inserter(all));
+    sides.insert(sides.end(), side.begin(), side.end());
+    field.Bricks.clear();
+    field.BandSamples = 0;
+    KeepBricks(ids, all, sides, field);
   }
-  field.Evaluations = evaluations.load();
-  execution.EndStage("scan");
+  const int64_t pieces = ShareSides(request, field);
   if (request.Sign == SignMode::PseudoNormal)
   {
-    FloodBrickSides(bricks, field);
-    execution.EndStage("sides");
+    FloodBrickSides(bricks, PieceFaceSides(request, pieces, field), field);
   }
+  execution.EndStage("sides");
   return true;
 }
 

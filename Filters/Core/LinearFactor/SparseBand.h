@@ -24,6 +24,7 @@
 #define vtkdf_SparseBand_h
 
 #include "Common/BlockArena.h"
+#include "Common/BrickGrid.h"
 #include "Common/MeshInput.h"
 #include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
@@ -31,6 +32,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,12 +52,20 @@ struct SparseBandRequest
   double BandWidth = 0;
   int BrickSize = 32; // samples per brick along each axis (the pieces have one more)
   DomainShape Domains = DomainShape::Auto;
-  SignMode Sign = SignMode::Unsigned; // Unsigned or PseudoNormal
+  SignMode Sign = SignMode::Unsigned;
   bool ClosestCellId = false;
   bool ClosestPoint = false;
   /// Refuses a run whose bricks (the arrays asked for, on every brick the band may
   /// touch) would need more bytes than this; 0: no limit.
   double MemoryLimit = 0;
+  /// A distributed run: this process computes its share of the bricks (Piece of Pieces:
+  /// every Pieces-th brick the band may touch, and of those beyond it), and
+  /// SumOverPieces, which every process calls alike, adds an array over all of them
+  /// (unused with one piece). The sides and the pieces' numbers are the whole grid's on
+  /// every process.
+  int Piece = 0;
+  int Pieces = 1;
+  std::function<void(std::vector<int8_t>&)> SumOverPieces;
 };
 
 /// A brick that holds band samples: its samples (global indices, x fastest) and arrays.
@@ -75,15 +85,20 @@ struct SparseBandField
 {
   int BrickSize = 0;
   std::array<int, 3> BrickCounts{ { 0, 0, 0 } }; // the grid of bricks, x fastest
-  /// The bricks that hold band samples, in the order of their index (x fastest).
+  /// The bricks that hold band samples (or, with the winding sign, samples of both
+  /// sides), in the order of their index (x fastest): this process's share of them.
   std::vector<SparseBrick> Bricks;
   /// Per brick of the grid: the side of its samples beyond the band (-1 inside, 1
-  /// outside, 0 unknown: an unsigned field, or no band anywhere), and the entry of
-  /// Bricks that holds it (-1: none, every sample beyond the band).
+  /// outside, 0 unknown: an unsigned field, or no band anywhere, or a piece), and the
+  /// number of its piece among all processes' pieces in the order of their index (-1:
+  /// none; one process: its entry of Bricks).
   std::vector<int8_t> Sides;
   std::vector<int32_t> BrickOf;
-  int64_t BandSamples = 0;     // counted once per brick that holds them
+  int64_t BandSamples = 0;     // counted once per brick that holds them (this process's)
   int64_t CandidateBricks = 0; // bricks that some site's band region reached
+  /// The winding sign: bricks beyond the band whose sides no single test proved, decided
+  /// sample by sample (BrickWindingSigns.h).
+  int64_t WindingBricksDecided = 0;
   int64_t Evaluations = 0;
   bool Aborted = false;
   bool NoUsableCell = false;

@@ -397,7 +397,8 @@ void TileMembers(const std::vector<Footprint>& footprints,
 /// The first sample index i of the line through q (q[1], q[2] set) whose point lies
 /// beyond the plane of (a, b, c), o * Orient3D > 0 (x above the crossing's), within
 /// [extent.Lo[0], extent.Hi[0] + 1]: from an estimate of the crossing, then by halving.
-/// `beyond(i)` is that sign at sample i.
+/// `beyond(i)` is that sign at sample i. The line runs through the triangle's closed
+/// projection, so that the crossing lies on the triangle, within its x range.
 template<typename Beyond>
 int FirstBeyond(const double* a,
   const double* b,
@@ -407,6 +408,14 @@ int FirstBeyond(const double* a,
   const IndexBox& extent,
   const Beyond& beyond)
 {
+  if (grid.Spacing[0] > 0 && grid.Coordinate(0, extent.Lo[0]) > std::max({ a[0], b[0], c[0] }))
+  {
+    return extent.Lo[0]; // the whole extent lies beyond it
+  }
+  if (grid.Spacing[0] > 0 && grid.Coordinate(0, extent.Hi[0]) < std::min({ a[0], b[0], c[0] }))
+  {
+    return extent.Hi[0] + 1;
+  }
   const double n[3] = { (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
     (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) };

@@ -198,9 +198,9 @@ bool CrossingsApply(const WindingSignOptions& options, const SampleGrid& grid)
     grid.Spacing[2] > 0;
 }
 
-/// WindingSigns' blocks with `winding`; with `offsets` (and `surface`), those of an open
-/// mesh closed by cones (Decider).
-WindingSignStatistics DecideBlocks(const WindingNumber& winding,
+} // namespace
+
+WindingSignStatistics DecideWindingBlocks(const WindingNumber& winding,
   const SampleGrid& grid,
   const IndexBox& extent,
   uint8_t* inside,
@@ -256,6 +256,45 @@ WindingSignStatistics DecideBlocks(const WindingNumber& winding,
   return stats;
 }
 
+int WindingBoxSide(const WindingNumber& winding,
+  const SampleGrid& grid,
+  const IndexBox& box,
+  const int* offset)
+{
+  double c[3], radius2 = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    c[a] = 0.5 * (grid.Coordinate(a, box.Lo[a]) + grid.Coordinate(a, box.Hi[a]));
+    const double half = 0.5 * (box.Hi[a] - box.Lo[a]) * std::fabs(grid.Spacing[a]);
+    radius2 += half * half;
+  }
+  const double radius = std::sqrt(radius2);
+  const double hessian = winding.HessianBound(c, radius);
+  if (!(hessian < HUGE_VAL))
+  {
+    return -1;
+  }
+  // Decider::Block's bound, for every y of the ball: |grad w(c) . (y - c)| <= |grad| r.
+  const WindingGradient w = winding.EvaluateWithGradient(c);
+  const double gradient = std::sqrt(
+    w.Gradient[0] * w.Gradient[0] + w.Gradient[1] * w.Gradient[1] + w.Gradient[2] * w.Gradient[2]);
+  const double spread =
+    w.Bound + radius * (gradient + w.GradientBound) + 0.5 * radius2 * hessian + RoundingSlack;
+  const double value = offset ? *offset - w.Value : w.Value;
+  if (value - spread > 0.5 || value + spread < -0.5)
+  {
+    return 1;
+  }
+  if (value - spread > -0.5 && value + spread < 0.5)
+  {
+    return 0;
+  }
+  return -1;
+}
+
+namespace
+{
+
 /// An open mesh's signs (options as CrossingsApply allows): its closure by cones
 /// (WindingCrossings.h), the closed chain's crossings counted along the lines, then
 /// WindingSigns' blocks on w = N - w_C; false (nothing written) where it cannot be closed.
@@ -278,7 +317,8 @@ bool OpenSigns(const WindingNumber& surface,
   cones.Build(closure.Points, closure.Cone);
   WindingSignOptions blocks = options;
   blocks.Distance = nullptr; // the mesh's own distance says nothing of the cones' w
-  stats = DecideBlocks(cones, grid, extent, inside, blocks, parallelFor, counts.data(), &surface);
+  stats =
+    DecideWindingBlocks(cones, grid, extent, inside, blocks, parallelFor, counts.data(), &surface);
   return true;
 }
 } // namespace
@@ -313,7 +353,7 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
       return stats;
     }
   }
-  return DecideBlocks(winding, grid, extent, inside, options, parallelFor, nullptr, nullptr);
+  return DecideWindingBlocks(winding, grid, extent, inside, options, parallelFor, nullptr, nullptr);
 }
 
 namespace
@@ -414,7 +454,8 @@ bool ComputeWindingSigns(const LargeVector<double>& points,
     return ok;
   }
   // The routes above could not take it (values, or a boundary used twice over).
-  stats = DecideBlocks(winding, grid, extent, inside, options, parallelFor, nullptr, nullptr);
+  stats =
+    DecideWindingBlocks(winding, grid, extent, inside, options, parallelFor, nullptr, nullptr);
   return true;
 }
 

@@ -70,6 +70,28 @@ WindingSignStatistics WindingSigns(const WindingNumber& winding,
   const WindingSignOptions& options,
   const ParallelFor& parallelFor);
 
+/// WindingSigns' blocks alone, without the crossings' routes: w from `winding`, or, with
+/// `offsets` (N at every sample of `extent`, WindingCrossings.h's CrossingCounts) and
+/// `surface`, w = N - w_C for an open mesh closed by cones C (`winding` the cones'), the
+/// samples that this does not decide decided by `surface`.
+WindingSignStatistics DecideWindingBlocks(const WindingNumber& winding,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  uint8_t* inside,
+  const WindingSignOptions& options,
+  const ParallelFor& parallelFor,
+  const int8_t* offsets = nullptr,
+  const WindingNumber* surface = nullptr);
+
+/// The side that one first-order bound about the centre of `box` proves for all its
+/// samples (WindingSigns' test of a block, over the box's ball): 1 inside, 0 outside, -1
+/// none. Of w, or with `offset` of offset - w (a chain closed by cones whose count N is
+/// `offset` throughout the box).
+int WindingBoxSide(const WindingNumber& winding,
+  const SampleGrid& grid,
+  const IndexBox& box,
+  const int* offset = nullptr);
+
 /// The family's entry point: on the CPU, WindingSigns (a closed mesh's crossings with the
 /// hierarchy of `triangles`, 3 ids each into xyz `points`, built only for samples on the
 /// surface); on the GPU when `gl` is given (but where the crossings decide, with
