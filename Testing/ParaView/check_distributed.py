@@ -46,9 +46,13 @@ def run(ranks):
     for case, rank, extent in re.findall(
             r"([a-z0-9_]+): rank (\d+) of \d+ computed extent (\([-0-9, ]+\))", result.stdout):
         extents.setdefault(case, {})[int(rank)] = ast.literal_eval(extent)
-    for case, rank, extent, digest in re.findall(
-            r"([a-z0-9_]+): rank (\d+) piece (\([-0-9, ]+\)) ([0-9a-f]{40})", result.stdout):
-        pieces.setdefault(case, []).append((int(rank), extent, digest))
+    for name in os.listdir(folder):
+        if ".pieces." in name:
+            case, _, rank = name.split(".")
+            with open(os.path.join(folder, name)) as listing:
+                for line in listing:
+                    extent, digest = line.rsplit(" ", 1)
+                    pieces.setdefault(case, []).append((int(rank), extent, digest.strip()))
     return folder, extents, pieces
 
 

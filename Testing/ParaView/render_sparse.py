@@ -52,14 +52,7 @@ view.CameraPosition = [0, 5, 40]
 view.CameraFocalPoint = [0, 5, 0]
 view.CameraViewUp = [0, 1, 0]
 simple.ResetCamera(view)
-rgb = screenshot.picture(view, png)
-white = (rgb >= 250).all(axis=2)
-red = (rgb[:, :, 0] > rgb[:, :, 1] + 40) & (rgb[:, :, 0] > rgb[:, :, 2] + 40)
-covered = (~white).mean()
-corners = all([white[0, 0], white[0, -1], white[-1, 0], white[-1, -1]])
-print(f"render: {covered:.1%} of the pixels covered, "
-      f"{red.sum() / max(1, (~white).sum()):.1%} of them red, corners white: {corners}")
-ok = ok and 0.1 <= covered <= 0.7 and red.sum() >= 0.8 * (~white).sum() and corners
+ok = screenshot.red_on_white(screenshot.picture(view, png), "render") and ok
 print("PASS" if ok else "FAIL")
 # The view goes before the interpreter ends (ParaView's finalization needs its context).
 simple.Delete(view)

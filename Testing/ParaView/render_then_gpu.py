@@ -37,14 +37,7 @@ def picture(path):
     return screenshot.picture(view, path)
 
 
-def check(rgb, label):
-    white = (rgb >= 250).all(axis=2)
-    red = (rgb[:, :, 0] > rgb[:, :, 1] + 40) & (rgb[:, :, 0] > rgb[:, :, 2] + 40)
-    covered = (~white).mean()
-    corners = [white[0, 0], white[0, -1], white[-1, 0], white[-1, -1]]
-    print(f"{label}: {covered:.1%} of the pixels covered, {red.sum() / max(1, (~white).sum()):.1%} "
-          f"of them red, corners white: {all(corners)}")
-    return 0.1 <= covered <= 0.7 and red.sum() >= 0.8 * (~white).sum() and all(corners)
+check = screenshot.red_on_white
 
 
 first = picture(png)

@@ -5,7 +5,8 @@ pvpython run_in_paraview.py PLUGIN DATA_DIR OUT_DIR server:HOST:PORT
 Each output port goes to OUT_DIR/<case>_<port>.<extension>. With "distributed" (under
 mpiexec ... pvbatch --symmetric), the outputs are written by ParaView's parallel writers
 (.pvti, .pvtp, .pvtu: one piece a rank), and every rank prints the extent of each image it
-computed, and the extent and a digest of each piece of a case's "pieces_port". With "server:HOST:PORT", pvpython connects to a pvserver there (mpiexec -n R
+computed, and writes the extent and a digest of each piece of a case's "pieces_port" to
+OUT_DIR/<case>.pieces.<rank>. With "server:HOST:PORT", pvpython connects to a pvserver there (mpiexec -n R
 pvserver) and the server's ranks run the cases and write them likewise."""
 import hashlib
 import os
@@ -78,14 +79,15 @@ for case in CASES:
             print(f"{case['name']}: wrote {path}")
     if "pieces_port" in case and distributed and not server:
         # A vtkPartitionedDataSet: this rank's pieces, by extent and a digest of their
-        # arrays (check_distributed.py compares them with one rank's).
+        # arrays, to OUT_DIR/<case>.pieces.<rank> (check_distributed.py compares them with
+        # one rank's; a file, as the ranks' standard outputs run together).
         output = proxy.GetClientSideObject().GetOutputDataObject(case["pieces_port"])
-        for p in range(output.GetNumberOfPartitions()):
-            piece = output.GetPartition(p)
-            digest = hashlib.sha1()
-            data = piece.GetPointData()
-            for k in range(data.GetNumberOfArrays()):
-                digest.update(data.GetArray(k).GetName().encode())
-                digest.update(vtk_to_numpy(data.GetArray(k)).tobytes())
-            print(f"{case['name']}: rank {rank} piece {piece.GetExtent()} {digest.hexdigest()}",
-                  flush=True)
+        with open(os.path.join(out_dir, f"{case['name']}.pieces.{rank}"), "w") as listing:
+            for p in range(output.GetNumberOfPartitions()):
+                piece = output.GetPartition(p)
+                digest = hashlib.sha1()
+                data = piece.GetPointData()
+                for k in range(data.GetNumberOfArrays()):
+                    digest.update(data.GetArray(k).GetName().encode())
+                    digest.update(vtk_to_numpy(data.GetArray(k)).tobytes())
+                listing.write(f"{piece.GetExtent()} {digest.hexdigest()}\n")

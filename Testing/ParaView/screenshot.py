@@ -1,5 +1,5 @@
-"""ParaView render views for the render tests (pvbatch, pvpython): a plain white one, and
-its screenshot as numbers."""
+"""ParaView render views for the render tests (pvbatch, pvpython): a plain white one, its
+screenshot as numbers, and the check of a red surface drawn on it."""
 from paraview import simple
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
@@ -30,3 +30,15 @@ def picture(view, path, size=(320, 320)):
     width, height, _ = image.GetDimensions()
     rgb = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int)
     return rgb.reshape(height, width, 3)
+
+
+def red_on_white(rgb, label):
+    """Whether a red (lit) surface on white covers a plausible share of the pixels (10 to
+    70 %), its pixels mostly red, the corners white; prints what it found."""
+    white = (rgb >= 250).all(axis=2)
+    red = (rgb[:, :, 0] > rgb[:, :, 1] + 40) & (rgb[:, :, 0] > rgb[:, :, 2] + 40)
+    covered = (~white).mean()
+    corners = all([white[0, 0], white[0, -1], white[-1, 0], white[-1, -1]])
+    print(f"{label}: {covered:.1%} of the pixels covered, "
+          f"{red.sum() / max(1, (~white).sum()):.1%} of them red, corners white: {corners}")
+    return 0.1 <= covered <= 0.7 and red.sum() >= 0.8 * (~white).sum() and corners

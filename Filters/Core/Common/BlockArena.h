@@ -28,21 +28,6 @@ namespace arena
 constexpr size_t SlabBytes = size_t(8) << 20;
 constexpr size_t HeaderBytes = 64; // the slab's count of blocks, on its own cache line
 
-/// `bytes` (a multiple of SlabBytes) aligned to SlabBytes and marked for huge pages; null
-/// when there is no memory.
-inline void* AllocateAligned(size_t bytes)
-{
-  void* block = nullptr;
-  if (posix_memalign(&block, SlabBytes, bytes) != 0)
-  {
-    return nullptr;
-  }
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  madvise(block, bytes, MADV_HUGEPAGE); // a hint: where it is refused, nothing changes
-#endif
-  return block;
-}
-
 /// The blocks of a slab not yet released, plus one while its thread carves from it.
 inline std::atomic<int64_t>& Blocks(char* slab)
 {
@@ -85,7 +70,7 @@ inline void* AcquireBlock(size_t bytes)
     {
       throw std::bad_alloc();
     }
-    void* block = AllocateAligned((bytes + SlabBytes - 1) / SlabBytes * SlabBytes);
+    void* block = AllocateHuge((bytes + SlabBytes - 1) / SlabBytes * SlabBytes, SlabBytes);
     if (!block)
     {
       throw std::bad_alloc();
@@ -95,7 +80,7 @@ inline void* AcquireBlock(size_t bytes)
   thread_local ThreadSlab current;
   if (!current.Slab || current.Used + bytes > SlabBytes)
   {
-    char* slab = static_cast<char*>(AllocateAligned(SlabBytes));
+    char* slab = static_cast<char*>(AllocateHuge(SlabBytes, SlabBytes));
     if (!slab)
     {
       throw std::bad_alloc();

@@ -27,6 +27,22 @@
 namespace vtkdf
 {
 
+/// A block of `bytes` (a multiple of `alignment`, itself a multiple of 2 MiB) aligned to
+/// `alignment` and marked for huge pages, to release with std::free; null when there is
+/// no memory.
+inline void* AllocateHuge(size_t bytes, size_t alignment)
+{
+  void* block = nullptr;
+  if (posix_memalign(&block, alignment, bytes) != 0)
+  {
+    return nullptr;
+  }
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  madvise(block, bytes, MADV_HUGEPAGE); // a hint: where it is refused, nothing changes
+#endif
+  return block;
+}
+
 /// A block of `bytes` (at least 1) to release with std::free, or null when there is no
 /// memory: 2 MiB-aligned and marked for huge pages from 2 MiB on (above), malloc's below.
 inline void* AllocateLarge(size_t bytes)
@@ -40,16 +56,7 @@ inline void* AllocateLarge(size_t bytes)
   {
     return nullptr;
   }
-  const size_t rounded = (bytes + HugePage - 1) / HugePage * HugePage;
-  void* block = nullptr;
-  if (posix_memalign(&block, HugePage, rounded) != 0)
-  {
-    return nullptr;
-  }
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  madvise(block, rounded, MADV_HUGEPAGE); // a hint: where it is refused, nothing changes
-#endif
-  return block;
+  return AllocateHuge((bytes + HugePage - 1) / HugePage * HugePage, HugePage);
 }
 
 template<typename T>
