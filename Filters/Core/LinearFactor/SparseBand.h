@@ -13,13 +13,19 @@
 // band's half-width, on the site scan). A brick whose samples are all beyond the band
 // is dropped.
 //
-// Sides beyond the band (a signed field): within a brick they are flooded from its band
+// Sides beyond the band, pseudonormal sign: within a brick they are flooded from its band
 // samples as the dense field floods them over the whole grid; the bricks without band
 // samples get one side each, flooded over the grid of bricks from the faces they share
 // with their neighbours. Where the band's sides agree (a closed mesh), that is the dense
 // field's side at every sample; where they do not (an open mesh under the pseudonormal
 // sign), a far sample takes the side of a band sample of its own brick, the dense field
-// that of the first band sample its breadth-first flood reaches.
+// that of the first band sample its breadth-first flood reaches. Winding-number sign:
+// every sample's side is the dense field's (Winding/BrickWindingSigns.h); a brick beyond
+// the band whose samples differ is kept, its samples all beyond the band.
+//
+// A distributed run splits the bricks among the processes (SparseBandRequest::Pieces);
+// the sides and the pieces' numbers are then summed over them, so that every process
+// holds the whole grid of sides.
 #ifndef vtkdf_SparseBand_h
 #define vtkdf_SparseBand_h
 
