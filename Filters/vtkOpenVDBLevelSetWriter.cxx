@@ -15,7 +15,10 @@
 
 #include "LevelSet/OpenVDBLevelSet.h"
 
+#include <dlfcn.h>
+
 #include <cmath>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -23,6 +26,38 @@ vtkStandardNewMacro(vtkOpenVDBLevelSetWriter);
 
 namespace
 {
+/// The level set's writer, from the module beside this library (DF_LEVELSET_MODULE,
+/// loaded once, never unloaded: OpenVDB keeps its registries for the process); null and
+/// `error` when it cannot be loaded.
+vtkdf::WriteOpenVDBLevelSetFunction LoadLevelSetWriter(std::string& error)
+{
+  static std::mutex mutex;
+  static vtkdf::WriteOpenVDBLevelSetFunction function = nullptr;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (function)
+  {
+    return function;
+  }
+  Dl_info self;
+  if (!dladdr(reinterpret_cast<void*>(&LoadLevelSetWriter), &self) || !self.dli_fname)
+  {
+    error = "Cannot find the folder of the library that holds the .vdb writer.";
+    return nullptr;
+  }
+  std::string path = self.dli_fname;
+  path = path.substr(0, path.rfind('/') + 1) + DF_LEVELSET_MODULE;
+  void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  void* symbol = module ? dlsym(module, vtkdf::WriteOpenVDBLevelSetSymbol) : nullptr;
+  if (!symbol)
+  {
+    const char* why = dlerror();
+    error = "Cannot load OpenVDB's writer " + path + " (" + (why ? why : "no entry point") + ").";
+    return nullptr;
+  }
+  function = reinterpret_cast<vtkdf::WriteOpenVDBLevelSetFunction>(symbol);
+  return function;
+}
+
 /// A piece as the core reads it; false and `error` when it lacks what a level set needs.
 bool PieceBrick(vtkImageData* piece,
   unsigned index,
@@ -161,8 +196,13 @@ void vtkOpenVDBLevelSetWriter::WriteData()
   {
     return fail(error);
   }
+  const vtkdf::WriteOpenVDBLevelSetFunction writeLevelSet = LoadLevelSetWriter(error);
+  if (!writeLevelSet)
+  {
+    return fail(error);
+  }
   vtkdf::LevelSetSummary summary;
-  if (!vtkdf::WriteOpenVDBLevelSet(this->FileName, grid, bricks, summary, error))
+  if (!writeLevelSet(this->FileName, grid, bricks, summary, error))
   {
     this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
     vtkErrorMacro(<< error);

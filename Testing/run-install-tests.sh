@@ -35,6 +35,14 @@ python_dir="$prefix/lib/python3/dist-packages"
 resolves "$prefix/bin/vtkdf" "$prefix/libexec/vtkdistancefields/MeshToFields" \
   "$python_dir/vtkdistancefields/"*.so
 env -u LD_LIBRARY_PATH "$prefix/bin/vtkdf" --help >/dev/null
+# The .vdb writer loads OpenVDB's module from beside the library when it first writes.
+with_openvdb=$(grep -c "^DF_USE_OPENVDB:BOOL=ON" build/CMakeCache.txt || true)
+if [ "$with_openvdb" = 1 ]; then
+  resolves "$prefix/lib/libvtkDistanceFieldsOpenVDB.so"
+  env -u LD_LIBRARY_PATH "$prefix/bin/vtkdf" linfac Testing/Data/bunny_small.vtp \
+    --resolution 32 --band 2 --vdb "$work/band.vdb" >/dev/null
+  [ -s "$work/band.vdb" ]
+fi
 env -u LD_LIBRARY_PATH "$prefix/libexec/vtkdistancefields/MeshToFields" \
   Testing/Data/bunny_small.vtp "$work/fields" 32
 ls "$work/fields"/*.vti >/dev/null
@@ -60,6 +68,11 @@ cleanup() {
 trap cleanup EXIT
 resolves /usr/bin/vtkdf
 env -i PATH=/usr/bin:/bin vtkdf --help >/dev/null
+if [ "$with_openvdb" = 1 ]; then
+  env -i PATH=/usr/bin:/bin vtkdf linfac Testing/Data/bunny_small.vtp --resolution 32 --band 2 \
+    --vdb "$work/band-deb.vdb" >/dev/null
+  [ -s "$work/band-deb.vdb" ]
+fi
 env -i PATH=/usr/bin:/bin /usr/bin/python3 -c \
   "import vtkdistancefields; print('import vtkdistancefields:', vtkdistancefields.__file__)"
 (cd "$work" && env -i PATH=/usr/bin:/bin /usr/bin/python3 "$root/Examples/Downstream/downstream_field.py")

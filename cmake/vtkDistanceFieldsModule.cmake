@@ -48,3 +48,10 @@ vtk_module_include(DistanceFields::vtkDistanceFields
 # The VTK-free cores (Filters/Core), one static library per family, linked into the
 # module's shared library.
 vtk_module_link(DistanceFields::vtkDistanceFields PRIVATE ${DF_CORE_LIBRARIES})
+# The .vdb writer loads OpenVDB's module (vtkdf_LevelSet) from the library's own folder.
+if (DF_USE_OPENVDB)
+  vtk_module_link(DistanceFields::vtkDistanceFields PRIVATE ${CMAKE_DL_LIBS})
+  set_property(SOURCE "${df_root}/Filters/vtkOpenVDBLevelSetWriter.cxx" APPEND PROPERTY
+    COMPILE_DEFINITIONS "DF_LEVELSET_MODULE=\"$<TARGET_FILE_NAME:vtkdf_LevelSet>\"")
+  vtk_module_depend(DistanceFields::vtkDistanceFields vtkdf_LevelSet)
+endif ()

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <type_traits>
 
 namespace vtkdf
 {
@@ -144,3 +145,16 @@ bool WriteOpenVDBLevelSet(const std::string& path,
 }
 
 } // namespace vtkdf
+
+// The module's entry point: a name dlsym can find, a type the caller checks against.
+extern "C" __attribute__((visibility("default"))) bool vtkdf_WriteOpenVDBLevelSet(
+  const std::string& path,
+  const vtkdf::LevelSetGrid& grid,
+  const std::vector<vtkdf::LevelSetBrick>& bricks,
+  vtkdf::LevelSetSummary& summary,
+  std::string& error)
+{
+  static_assert(std::is_same<decltype(&vtkdf_WriteOpenVDBLevelSet),
+    vtkdf::WriteOpenVDBLevelSetFunction>::value);
+  return vtkdf::WriteOpenVDBLevelSet(path, grid, bricks, summary, error);
+}

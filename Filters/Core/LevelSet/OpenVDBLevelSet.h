@@ -60,6 +60,15 @@ bool WriteOpenVDBLevelSet(const std::string& path,
   LevelSetSummary& summary,
   std::string& error);
 
+/// The family is a module of its own, loaded when a first .vdb is written (dlopen):
+/// WriteOpenVDBLevelSet is reached through this symbol, of this type.
+constexpr const char* WriteOpenVDBLevelSetSymbol = "vtkdf_WriteOpenVDBLevelSet";
+using WriteOpenVDBLevelSetFunction = bool (*)(const std::string& path,
+  const LevelSetGrid& grid,
+  const std::vector<LevelSetBrick>& bricks,
+  LevelSetSummary& summary,
+  std::string& error);
+
 } // namespace vtkdf
 
 #endif
