@@ -115,21 +115,18 @@ struct PrimitiveCorners
 namespace
 {
 
-/// Checks the primitives' corners (existing points, finite coordinates) and bounds them
-/// in lo, hi; false with `error`.
-bool BoundUsedPoints(const PrimitiveCorners& corners,
+/// Checks primitives [begin, end)'s corners (existing points, finite coordinates) and
+/// widens lo, hi over them; false with `error` at the first bad one.
+bool BoundCorners(const PrimitiveCorners& corners,
+  int64_t begin,
+  int64_t end,
   double lo[3],
   double hi[3],
   std::string& error)
 {
   const MeshInput& mesh = corners.Mesh;
   const int64_t numPoints = static_cast<int64_t>(mesh.Points.size() / 3);
-  for (int a = 0; a < 3; ++a)
-  {
-    lo[a] = HUGE_VAL;
-    hi[a] = -HUGE_VAL;
-  }
-  for (int64_t i = 0; i < corners.Count(); ++i)
+  for (int64_t i = begin; i < end; ++i)
   {
     int64_t c[3], cell;
     corners(i, c, cell);
@@ -152,6 +149,54 @@ bool BoundUsedPoints(const PrimitiveCorners& corners,
         lo[a] = std::min(lo[a], x[a]);
         hi[a] = std::max(hi[a], x[a]);
       }
+    }
+  }
+  return true;
+}
+
+/// Checks every primitive's corners and bounds them in lo, hi (chunks in parallel: a
+/// minimum and a maximum do not depend on the order); false with the first bad one's
+/// `error`.
+bool BoundUsedPoints(const PrimitiveCorners& corners,
+  double lo[3],
+  double hi[3],
+  const ParallelFor& parallelFor,
+  std::string& error)
+{
+  const int64_t n = corners.Count();
+  const int64_t chunk = 65536, chunks = (n + chunk - 1) / chunk;
+  std::vector<std::array<double, 6>> bounds(
+    chunks, { { HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL } });
+  std::atomic<bool> bad{ false };
+  auto bound = [&](int64_t begin, int64_t end)
+  {
+    std::string ignored;
+    for (int64_t k = begin; k < end; ++k)
+    {
+      std::array<double, 6>& b = bounds[k];
+      if (!BoundCorners(
+            corners, k * chunk, std::min(n, (k + 1) * chunk), b.data(), b.data() + 3, ignored))
+      {
+        bad = true;
+      }
+    }
+  };
+  parallelFor ? parallelFor(chunks, 1, bound) : bound(0, chunks);
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = HUGE_VAL;
+    hi[a] = -HUGE_VAL;
+  }
+  if (bad)
+  {
+    return BoundCorners(corners, 0, n, lo, hi, error); // finds the first bad corner
+  }
+  for (const std::array<double, 6>& b : bounds)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], b[a]);
+      hi[a] = std::max(hi[a], b[3 + a]);
     }
   }
   return true;
@@ -188,23 +233,48 @@ LargeVector<uint64_t> SortedMortonKeys(const PrimitiveCorners& corners,
     }
   };
   parallelFor ? parallelFor(n, 8192, code) : code(0, n);
+  // Three passes of a stable radix sort on the codes' 10-bit digits, each over fixed
+  // chunks of the keys in parallel: chunk c's keys of digit d go after every earlier
+  // chunk's of that digit, so the order is the serial sort's on any thread count.
   LargeVector<uint64_t> sorted(n);
+  const int64_t chunk = 65536, chunks = (n + chunk - 1) / chunk;
+  std::vector<std::array<int64_t, 1024>> start(chunks);
   for (int pass = 0; pass < 3; ++pass)
   {
     const int shift = 32 + 10 * pass;
-    std::vector<int64_t> start(1025, 0);
-    for (const uint64_t k : keys)
+    auto count = [&](int64_t begin, int64_t end)
     {
-      ++start[((k >> shift) & 1023) + 1];
-    }
-    for (int b = 0; b < 1024; ++b)
+      for (int64_t c = begin; c < end; ++c)
+      {
+        start[c].fill(0);
+        for (int64_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i)
+        {
+          ++start[c][(keys[i] >> shift) & 1023];
+        }
+      }
+    };
+    parallelFor ? parallelFor(chunks, 1, count) : count(0, chunks);
+    int64_t offset = 0;
+    for (int d = 0; d < 1024; ++d)
     {
-      start[b + 1] += start[b];
+      for (int64_t c = 0; c < chunks; ++c)
+      {
+        const int64_t size = start[c][d];
+        start[c][d] = offset;
+        offset += size;
+      }
     }
-    for (const uint64_t k : keys)
+    auto scatter = [&](int64_t begin, int64_t end)
     {
-      sorted[start[(k >> shift) & 1023]++] = k;
-    }
+      for (int64_t c = begin; c < end; ++c)
+      {
+        for (int64_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i)
+        {
+          sorted[start[c][(keys[i] >> shift) & 1023]++] = keys[i];
+        }
+      }
+    };
+    parallelFor ? parallelFor(chunks, 1, scatter) : scatter(0, chunks);
     keys.swap(sorted);
   }
   return keys;
@@ -223,7 +293,7 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
     return false;
   }
   double lo[3], hi[3];
-  if (!BoundUsedPoints(corners, lo, hi, error))
+  if (!BoundUsedPoints(corners, lo, hi, parallelFor, error))
   {
     return false;
   }
@@ -263,22 +333,34 @@ void QueryTree::GatherPrimitives(const PrimitiveCorners& corners,
   this->Sources.resize(n);
   this->Faces.resize(n);
   this->Codes.resize(n);
-  auto gather = [&](int64_t begin, int64_t end)
+  // The sorted order first (sequential), then each primitive read in the mesh's order,
+  // where consecutive cells share points and cache lines, and written to its place: a
+  // gather in the sorted order would chase two random reads a primitive.
+  LargeVector<uint32_t> place(n);
+  auto order = [&](int64_t begin, int64_t end)
   {
     for (int64_t i = begin; i < end; ++i)
     {
+      this->Sources[i] = static_cast<uint32_t>(keys[i] & 0xffffffffu);
+      this->Codes[i] = static_cast<uint32_t>(keys[i] >> 32);
+      place[this->Sources[i]] = static_cast<uint32_t>(i);
+    }
+  };
+  parallelFor ? parallelFor(n, 8192, order) : order(0, n);
+  auto gather = [&](int64_t begin, int64_t end)
+  {
+    for (int64_t source = begin; source < end; ++source)
+    {
+      const uint32_t i = place[source];
       Primitive& p = this->Primitives[i];
       int64_t c[3];
-      this->Sources[i] = static_cast<uint32_t>(keys[i] & 0xffffffffu);
-      corners(this->Sources[i], c, this->Cells[i]);
+      corners(source, c, this->Cells[i]);
       for (int k = 0; k < 3; ++k)
       {
         std::copy(&mesh.Points[3 * c[k]], &mesh.Points[3 * c[k]] + 3, p.X + 3 * k);
       }
-      const bool triangle = static_cast<int64_t>(this->Sources[i]) < corners.Triangles;
       double normal[3];
-      this->Faces[i] = triangle && FaceNormal(p.X, this->Degenerate, normal);
-      this->Codes[i] = static_cast<uint32_t>(keys[i] >> 32);
+      this->Faces[i] = source < corners.Triangles && FaceNormal(p.X, this->Degenerate, normal);
     }
   };
   parallelFor ? parallelFor(n, 8192, gather) : gather(0, n);
@@ -333,18 +415,21 @@ void BuildSubtree(LargeVector<Node>& nodes,
 {
   if (end - begin <= LeafSize)
   {
-    Node& leaf = nodes[slot];
-    for (int a = 0; a < 3; ++a)
-    {
-      leaf.Lo[a] = HUGE_VALF, leaf.Hi[a] = -HUGE_VALF;
-    }
+    // The corners' bounds in double, then rounded outward once (the rounding is
+    // monotonic: the same box as rounding every corner).
+    double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
     for (int32_t i = begin; i < end; ++i)
     {
       for (int k = 0; k < 9; ++k)
       {
-        leaf.Lo[k % 3] = std::min(leaf.Lo[k % 3], FloatBelow(primitives[i].X[k]));
-        leaf.Hi[k % 3] = std::max(leaf.Hi[k % 3], FloatAbove(primitives[i].X[k]));
+        lo[k % 3] = std::min(lo[k % 3], primitives[i].X[k]);
+        hi[k % 3] = std::max(hi[k % 3], primitives[i].X[k]);
       }
+    }
+    Node& leaf = nodes[slot];
+    for (int a = 0; a < 3; ++a)
+    {
+      leaf.Lo[a] = FloatBelow(lo[a]), leaf.Hi[a] = FloatAbove(hi[a]);
     }
     leaf.First = begin;
     leaf.Count = end - begin;
