@@ -24,7 +24,22 @@
 
 vtkStandardNewMacro(vtkLinearFactorDistanceField);
 
-vtkLinearFactorDistanceField::vtkLinearFactorDistanceField() = default;
+vtkLinearFactorDistanceField::vtkLinearFactorDistanceField()
+  : Workspace(new vtkdf::LinearFactorWorkspace)
+{
+}
+
+vtkLinearFactorDistanceField::~vtkLinearFactorDistanceField() = default;
+
+vtkTypeInt64 vtkLinearFactorDistanceField::GetWorkBufferBytes() const
+{
+  return this->Workspace->Bytes();
+}
+
+void vtkLinearFactorDistanceField::ReleaseWorkBuffers()
+{
+  this->Workspace->Release();
+}
 
 vtkdf::RunStatus vtkLinearFactorDistanceField::Execute(vtkInformationVector** inputVector,
   vtkInformationVector* outputVector,
@@ -81,6 +96,13 @@ vtkdf::RunStatus vtkLinearFactorDistanceField::Execute(vtkInformationVector** in
   request.Route = static_cast<vtkdf::FieldRoute>(this->Route);
   request.Sign = static_cast<vtkdf::SignMode>(this->SignMode);
   request.MaximumDistance = this->MaximumDistance;
+  if (input != this->WorkspaceInput || input->GetMTime() != this->WorkspaceInputTime)
+  {
+    this->Workspace->Release(); // a new input: nothing of the last one stays
+    this->WorkspaceInput = input;
+    this->WorkspaceInputTime = input->GetMTime();
+  }
+  request.Workspace = this->Workspace.get();
 
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   SetOutputExtent(output, request.Grid, request.Extent);
@@ -215,4 +237,5 @@ void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastWindingExactSamples: " << this->LastWindingExactSamples << "\n";
   os << indent << "LastSignBackend: " << this->LastSignBackend << "\n";
   os << indent << "LastCullingFactor: " << this->LastCullingFactor << "\n";
+  os << indent << "WorkBufferBytes: " << this->GetWorkBufferBytes() << "\n";
 }

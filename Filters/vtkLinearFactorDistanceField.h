@@ -30,6 +30,12 @@
  * Accuracy: at most 1e-4 of the smallest spacing from the exact distance (domains are
  * widened by that much so that neighbouring domains overlap despite rounding); the
  * value is recomputed in double precision from the winning site.
+ *
+ * Memory between executions: the site scan's nearest-site buffer (8 bytes a sample)
+ * stays with the filter, so that executing it again (a new resolution, new arrays) on a
+ * grid at most as large does not touch fresh pages for it; it goes when the grid needs
+ * less than half of it, when the input changes, when the filter is deleted, or with
+ * ReleaseWorkBuffers().
  */
 #ifndef vtkLinearFactorDistanceField_h
 #define vtkLinearFactorDistanceField_h
@@ -38,11 +44,14 @@
 #include "vtkDistanceFieldAlgorithm.h"
 #include "vtkDistanceFieldsModule.h" // For export macro
 
+#include <memory> // For std::unique_ptr
+
 class vtkImageData;
 #ifndef __VTK_WRAP__
 namespace vtkdf
 {
 struct LinearFactorArrays;
+class LinearFactorWorkspace;
 }
 #endif
 
@@ -195,9 +204,14 @@ public:
   /// the crossings decide them: on the CPU they cost less) or "none".
   const char* GetLastSignBackend() const { return this->LastSignBackend.c_str(); }
 
+  /// The bytes the filter keeps for its next execution (see the class's description).
+  vtkTypeInt64 GetWorkBufferBytes() const;
+  /// Frees them now.
+  void ReleaseWorkBuffers();
+
 protected:
   vtkLinearFactorDistanceField();
-  ~vtkLinearFactorDistanceField() override = default;
+  ~vtkLinearFactorDistanceField() override;
 
 #ifndef __VTK_WRAP__
   vtkdf::RunStatus Execute(vtkInformationVector** inputVector,
@@ -227,6 +241,12 @@ protected:
   vtkTypeInt64 LastWindingExactSamples = 0;
   std::string LastSignBackend = "none";
   std::string LastRoute = "none";
+#ifndef __VTK_WRAP__
+  // Kept between executions on one input (the input's address and time).
+  std::unique_ptr<vtkdf::LinearFactorWorkspace> Workspace;
+  const void* WorkspaceInput = nullptr;
+  vtkMTimeType WorkspaceInputTime = 0;
+#endif
 
 private:
   vtkLinearFactorDistanceField(const vtkLinearFactorDistanceField&) = delete;

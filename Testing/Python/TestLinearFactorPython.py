@@ -4,7 +4,8 @@ backends and by both CPU routes (the site scan and the per-sample queries), with
 closest point rebuilt from ClosestBarycentric and Gradient. And a
 triangle mesh whose cells are stored in 32-bit and in 64-bit arrays, all triangles (the
 parallel copy) or with a quad among them (the cell-by-cell copy): the same field and
-closest cells either way. And the peak memory a run reports."""
+closest cells either way. And the peak memory a run reports, and the scan's buffer kept
+from one execution to the next."""
 import sys
 
 import numpy as np
@@ -151,6 +152,54 @@ if sys.platform.startswith("linux"):
     if not written <= peak <= 4 * written + 64:
         print("FAIL: the peak memory does not hold the arrays, or is far above them")
         sys.exit(1)
+
+# The site scan's nearest-site buffer (8 bytes a sample) stays with the filter between
+# executions: reused by a grid at most as large (the same field as a new filter's), freed
+# when the grid needs less than half of it, when the input changes, or when asked.
+f = vtkLinearFactorDistanceField()
+f.SetInputData(triangle_mesh(False, True))
+f.SetBackendToCPU()
+f.SetRouteToSiteScan()
+
+
+def run_at(resolution):
+    f.SetResolution(resolution)
+    f.Update()
+    fresh = vtkLinearFactorDistanceField()
+    fresh.SetInputData(f.GetInput())
+    fresh.SetBackendToCPU()
+    fresh.SetRouteToSiteScan()
+    fresh.SetResolution(resolution)
+    fresh.Update()
+    same = np.array_equal(vtk_to_numpy(f.GetOutput().GetPointData().GetArray("Distance")),
+                          vtk_to_numpy(fresh.GetOutput().GetPointData().GetArray("Distance")))
+    return f.GetOutput().GetNumberOfPoints(), f.GetWorkBufferBytes(), same
+
+
+kept = []
+for resolution in (40, 36, 20):
+    kept.append(run_at(resolution))
+print("kept between executions (samples, bytes, same field):", kept)
+(n40, b40, s40), (n36, b36, s36), (n20, b20, s20) = kept
+if not (s40 and s36 and s20):
+    print("FAIL: a re-execution's field differs from a new filter's")
+    sys.exit(1)
+if not (b40 == 8 * n40 and b36 == b40 and b20 == 8 * n20):
+    print("FAIL: the buffer is not kept for a smaller grid, or kept for one under half of it")
+    sys.exit(1)
+f.ReleaseWorkBuffers()
+released = f.GetWorkBufferBytes()
+f.SetResolution(24)
+f.Update()
+kept24 = f.GetWorkBufferBytes()
+f.SetInputData(triangle_mesh(False, False))
+f.SetRouteToSampleQueries()  # the new input's run needs no buffer: none stays
+f.Update()
+print(f"released: {released} bytes; kept at 24: {kept24}; after a new input: "
+      f"{f.GetWorkBufferBytes()}")
+if released != 0 or kept24 != 8 * f.GetOutput().GetNumberOfPoints() or f.GetWorkBufferBytes():
+    print("FAIL: the buffer is not released when asked or when the input changes")
+    sys.exit(1)
 
 # Culling, the earlier name of DomainShape: its setters and getter still work, each call
 # with a DeprecationWarning that names the new one.

@@ -180,6 +180,23 @@ bool SurfaceCoordinatesIfAsked(const MeshInput& mesh,
 }
 } // namespace
 
+LinearFactorWorkspace::LinearFactorWorkspace()
+  : NearestSites(new NearestSiteBuffer)
+{
+}
+
+LinearFactorWorkspace::~LinearFactorWorkspace() = default;
+
+int64_t LinearFactorWorkspace::Bytes() const
+{
+  return this->NearestSites->Bytes();
+}
+
+void LinearFactorWorkspace::Release()
+{
+  this->NearestSites->Release();
+}
+
 bool ComputeLinearFactorField(MeshInput mesh,
   const LinearFactorRequest& request,
   HeadlessGL* gl,
@@ -278,8 +295,15 @@ bool ComputeLinearFactorField(MeshInput mesh,
     return true;
   }
 
-  NearestSiteBuffer nearest;
-  nearest.Reset(local.Request.Extent.Count(), execution.For);
+  // A kept block more than twice the size needed goes: the memory follows the output.
+  NearestSiteBuffer own;
+  NearestSiteBuffer& nearest = request.Workspace ? request.Workspace->Nearest() : own;
+  const int64_t samples = local.Request.Extent.Count();
+  if (nearest.Bytes() > 2 * samples * int64_t(sizeof(uint64_t)))
+  {
+    nearest.Release();
+  }
+  nearest.Reset(samples, execution.For);
   const ProgressCallback scanProgress = execution.Part(0.1, 0.9).Progress;
   ScanStatistics stats;
   if (gl)

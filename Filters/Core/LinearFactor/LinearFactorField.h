@@ -24,12 +24,37 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace vtkdf
 {
 class HeadlessGL;
+class NearestSiteBuffer;
+
+/// Memory a host keeps from one run to the next (a filter executed again for a new
+/// resolution or new arrays): the site scan's nearest-site buffer, 8 bytes a sample,
+/// whose block a run reuses when it is large enough, so that its pages are not touched
+/// for the first time again (on some machines that costs more than the scan writing
+/// them). Empty until a run uses it.
+class LinearFactorWorkspace
+{
+public:
+  LinearFactorWorkspace();
+  ~LinearFactorWorkspace();
+  LinearFactorWorkspace(const LinearFactorWorkspace&) = delete;
+  LinearFactorWorkspace& operator=(const LinearFactorWorkspace&) = delete;
+
+  /// The bytes held now.
+  int64_t Bytes() const;
+  /// Frees what is held.
+  void Release();
+  NearestSiteBuffer& Nearest() { return *this->NearestSites; }
+
+private:
+  std::unique_ptr<NearestSiteBuffer> NearestSites;
+};
 
 /// Which domains bound the sites' Voronoi regions.
 enum class DomainShape
@@ -71,6 +96,8 @@ struct LinearFactorRequest
   HeadlessGL* SignContext = nullptr;
   /// The site scan or per-sample queries (Auto: by the counts of cells and samples).
   FieldRoute Route = FieldRoute::Auto;
+  /// Where the scan's buffers come from and stay after the run (null: the run's own).
+  LinearFactorWorkspace* Workspace = nullptr;
 };
 
 /// Where the field goes: any pointer may be null. Each array covers the request's

@@ -35,6 +35,7 @@ public:
   {
     if (count > this->Capacity || !this->Values)
     {
+      this->Values.reset(); // the old block first: never both at once
       this->Values.reset(DefaultInitAllocator<std::atomic<uint64_t>>().allocate(count));
       this->Capacity = count;
     }
@@ -70,6 +71,14 @@ public:
     {
     }
   }
+  /// Frees the block.
+  void Release()
+  {
+    this->Values.reset();
+    this->Count = this->Capacity = 0;
+  }
+  /// The block's bytes.
+  int64_t Bytes() const { return this->Capacity * int64_t(sizeof(uint64_t)); }
   uint64_t Get(int64_t at) const { return this->Values[at].load(std::memory_order_relaxed); }
   void Set(int64_t at, uint64_t v) { this->Values[at].store(v, std::memory_order_relaxed); }
   int64_t Size() const { return this->Count; }
