@@ -7,17 +7,10 @@ namespace sites
 void SiteBuilder::VertexNormals()
 {
   const auto& corners = this->Out.FaceCorners;
-  double volume = 0;
-  for (const auto& f : corners)
-  {
-    const Vec a = Sub(this->X(f[0]), this->X(0)), b = Sub(this->X(f[1]), this->X(0)),
-              c = Sub(this->X(f[2]), this->X(0));
-    volume += Dot(a, Cross(b, c));
-  }
-  const double orientation = volume < 0 ? -1.0 : 1.0;
-  this->Out.Orientation = orientation;
-  // The corner angles in parallel, then summed in face order (the same sums either way).
-  std::vector<double> cornerAngle(3 * this->NumFaces);
+  // Each face's volume term and corner angles in parallel; the terms then summed in face
+  // order (the same sum as a serial loop's).
+  LargeVector<double> volumes(this->NumFaces);
+  LargeVector<double> cornerAngle(3 * this->NumFaces);
   Run(this->For,
     this->NumFaces,
     4096,
@@ -26,6 +19,9 @@ void SiteBuilder::VertexNormals()
       for (int64_t fi = begin; fi < end; ++fi)
       {
         const auto& f = corners[fi];
+        const Vec a = Sub(this->X(f[0]), this->X(0)), b = Sub(this->X(f[1]), this->X(0)),
+                  c = Sub(this->X(f[2]), this->X(0));
+        volumes[fi] = Dot(a, Cross(b, c));
         for (int k = 0; k < 3; ++k)
         {
           const Vec u = Sub(this->X(f[(k + 1) % 3]), this->X(f[k]));
@@ -34,6 +30,13 @@ void SiteBuilder::VertexNormals()
         }
       }
     });
+  double volume = 0;
+  for (const double term : volumes)
+  {
+    volume += term;
+  }
+  const double orientation = volume < 0 ? -1.0 : 1.0;
+  this->Out.Orientation = orientation;
   std::vector<Vec> sum(this->NumVertices, Vec{ 0, 0, 0 });
   for (int64_t fi = 0; fi < this->NumFaces; ++fi)
   {

@@ -51,12 +51,26 @@ bool SiteBuilder::MergePoints(std::string& error)
     return true;
   }
   this->SortAlongCurve(order);
+  // Which points equal the one before them on the curve (in parallel: two random reads
+  // each), then their canonical numbers in order.
+  const int64_t numUsed = static_cast<int64_t>(order.size());
+  std::vector<uint8_t> repeats(numUsed, 0);
+  Run(this->For,
+    numUsed,
+    8192,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t k = std::max<int64_t>(begin, 1); k < end; ++k)
+      {
+        repeats[k] = std::equal(P + 3 * order[k], P + 3 * order[k] + 3, P + 3 * order[k - 1]);
+      }
+    });
   this->Canonical.assign(numPoints, -1);
   std::vector<int64_t> merged; // canonical index -> input point id
-  for (size_t k = 0; k < order.size(); ++k)
+  for (int64_t k = 0; k < numUsed; ++k)
   {
     const int64_t id = order[k];
-    if (k > 0 && std::equal(P + 3 * id, P + 3 * id + 3, P + 3 * order[k - 1]))
+    if (repeats[k])
     {
       this->Canonical[id] = this->Canonical[order[k - 1]];
       ++this->Out.Statistics.MergedPoints;
@@ -75,24 +89,42 @@ bool SiteBuilder::MergePoints(std::string& error)
   }
   this->NumVertices = nv;
   // The merged points, contiguous in curve order: every later pass reads them there.
+  // Copied and bounded in fixed chunks in parallel (a minimum does not depend on the
+  // order).
   this->Out.SitePoints.resize(3 * nv);
-  for (int64_t c = 0; c < nv; ++c)
-  {
-    std::copy(P + 3 * merged[c], P + 3 * merged[c] + 3, &this->Out.SitePoints[3 * c]);
-  }
+  const int64_t chunk = 65536, chunks = (nv + chunk - 1) / chunk;
+  std::vector<std::array<double, 6>> chunkBounds(chunks);
+  Run(this->For,
+    chunks,
+    1,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t k = begin; k < end; ++k)
+      {
+        std::array<double, 6>& b = chunkBounds[k];
+        b = { HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL, HUGE_VAL, -HUGE_VAL };
+        for (int64_t c = k * chunk; c < std::min(nv, (k + 1) * chunk); ++c)
+        {
+          const double* x = P + 3 * merged[c];
+          std::copy(x, x + 3, &this->Out.SitePoints[3 * c]);
+          for (int a = 0; a < 3; ++a)
+          {
+            b[2 * a] = std::min(b[2 * a], x[a]);
+            b[2 * a + 1] = std::max(b[2 * a + 1], x[a]);
+          }
+        }
+      }
+    });
   this->Points = this->Out.SitePoints.data();
   double* bounds = this->Out.Bounds;
   for (int a = 0; a < 3; ++a)
   {
     bounds[2 * a] = this->X(0)[a];
     bounds[2 * a + 1] = this->X(0)[a];
-  }
-  for (int64_t c = 0; c < nv; ++c)
-  {
-    for (int a = 0; a < 3; ++a)
+    for (const std::array<double, 6>& b : chunkBounds)
     {
-      bounds[2 * a] = std::min(bounds[2 * a], this->X(c)[a]);
-      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], this->X(c)[a]);
+      bounds[2 * a] = std::min(bounds[2 * a], b[2 * a]);
+      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], b[2 * a + 1]);
     }
   }
   const double diagonal =
@@ -170,15 +202,23 @@ void SiteBuilder::OrderTriangles()
   const LargeVector<int64_t>& triangles = this->In.Triangles;
   const int64_t numTriangles = static_cast<int64_t>(triangles.size() / 3);
   this->TriangleOrder.resize(numTriangles);
+  // The keys in parallel (three random reads each), then counted and placed in order.
+  LargeVector<uint32_t> keys(numTriangles);
+  Run(this->For,
+    numTriangles,
+    8192,
+    [&](int64_t begin, int64_t end)
+    {
+      for (int64_t t = begin; t < end; ++t)
+      {
+        keys[t] = static_cast<uint32_t>(std::min(this->Canonical[triangles[3 * t]],
+          std::min(this->Canonical[triangles[3 * t + 1]], this->Canonical[triangles[3 * t + 2]])));
+      }
+    });
   std::vector<int64_t> start(this->NumVertices + 1, 0);
-  auto key = [&](int64_t t)
-  {
-    return std::min(this->Canonical[triangles[3 * t]],
-      std::min(this->Canonical[triangles[3 * t + 1]], this->Canonical[triangles[3 * t + 2]]));
-  };
   for (int64_t t = 0; t < numTriangles; ++t)
   {
-    ++start[key(t) + 1];
+    ++start[keys[t] + 1];
   }
   for (int64_t v = 0; v < this->NumVertices; ++v)
   {
@@ -186,7 +226,7 @@ void SiteBuilder::OrderTriangles()
   }
   for (int64_t t = 0; t < numTriangles; ++t)
   {
-    this->TriangleOrder[start[key(t)]++] = t;
+    this->TriangleOrder[start[keys[t]]++] = t;
   }
 }
 
