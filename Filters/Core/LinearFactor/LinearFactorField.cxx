@@ -197,6 +197,15 @@ void LinearFactorWorkspace::Release()
   this->NearestSites->Release();
 }
 
+NearestSiteBuffer& LinearFactorWorkspace::Nearest(int64_t samples)
+{
+  if (this->NearestSites->Bytes() > 2 * samples * int64_t(sizeof(uint64_t)))
+  {
+    this->NearestSites->Release();
+  }
+  return *this->NearestSites;
+}
+
 bool ComputeLinearFactorField(MeshInput mesh,
   const LinearFactorRequest& request,
   HeadlessGL* gl,
@@ -295,14 +304,9 @@ bool ComputeLinearFactorField(MeshInput mesh,
     return true;
   }
 
-  // A kept block more than twice the size needed goes: the memory follows the output.
-  NearestSiteBuffer own;
-  NearestSiteBuffer& nearest = request.Workspace ? request.Workspace->Nearest() : own;
   const int64_t samples = local.Request.Extent.Count();
-  if (nearest.Bytes() > 2 * samples * int64_t(sizeof(uint64_t)))
-  {
-    nearest.Release();
-  }
+  NearestSiteBuffer own;
+  NearestSiteBuffer& nearest = request.Workspace ? request.Workspace->Nearest(samples) : own;
   nearest.Reset(samples, execution.For);
   const ProgressCallback scanProgress = execution.Part(0.1, 0.9).Progress;
   ScanStatistics stats;

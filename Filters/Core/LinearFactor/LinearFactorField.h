@@ -50,7 +50,9 @@ public:
   int64_t Bytes() const;
   /// Frees what is held.
   void Release();
-  NearestSiteBuffer& Nearest() { return *this->NearestSites; }
+  /// The nearest-site buffer for a run of `samples` samples: the kept one, freed first
+  /// when it is more than twice that size (the memory follows the output).
+  NearestSiteBuffer& Nearest(int64_t samples);
 
 private:
   std::unique_ptr<NearestSiteBuffer> NearestSites;
