@@ -290,11 +290,12 @@ bool CoverBound::ProjectFaces(const Piece& piece,
   scratch.Edges.clear();
   for (const int32_t i : scratch.Found)
   {
-    const double* x = this->Target.Get(i).X;
+    const nearest::Primitive corners = this->Target.Get(i);
+    const double* x = corners.X;
     CoverScratch::Face face;
     for (int c = 0; c < 3; ++c)
     {
-      face.X[c] = x + 3 * c;
+      face.X[c] = this->Target.Corner(i, c); // kept past this loop
       frame.Project(face.X[c], face.U[c]);
     }
     const double area = (face.U[1][0] - face.U[0][0]) * (face.U[2][1] - face.U[0][1]) -

@@ -292,6 +292,12 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
     error = "the mesh has " + std::to_string(n) + " cells, more than 2^31 - 1";
     return false;
   }
+  if (mesh.Points.size() / 3 > std::numeric_limits<uint32_t>::max())
+  {
+    error =
+      "the mesh has " + std::to_string(mesh.Points.size() / 3) + " points, more than 2^32 - 1";
+    return false;
+  }
   double lo[3], hi[3];
   if (!BoundUsedPoints(corners, lo, hi, parallelFor, error))
   {
@@ -328,7 +334,7 @@ void QueryTree::GatherPrimitives(const PrimitiveCorners& corners,
 {
   const MeshInput& mesh = corners.Mesh;
   const int64_t n = corners.Count();
-  this->Primitives.resize(n);
+  this->Corners.resize(n);
   this->Cells.resize(n);
   this->Sources.resize(n);
   this->Faces.resize(n);
@@ -352,32 +358,66 @@ void QueryTree::GatherPrimitives(const PrimitiveCorners& corners,
     for (int64_t source = begin; source < end; ++source)
     {
       const uint32_t i = place[source];
-      Primitive& p = this->Primitives[i];
       int64_t c[3];
       corners(source, c, this->Cells[i]);
+      this->Corners[i] = {
+        static_cast<uint32_t>(c[0]), static_cast<uint32_t>(c[1]), static_cast<uint32_t>(c[2])
+      };
+      double normal[3];
+      Primitive t;
       for (int k = 0; k < 3; ++k)
       {
-        std::copy(&mesh.Points[3 * c[k]], &mesh.Points[3 * c[k]] + 3, p.X + 3 * k);
+        std::copy(&mesh.Points[3 * c[k]], &mesh.Points[3 * c[k]] + 3, t.X + 3 * k);
       }
-      double normal[3];
-      this->Faces[i] = source < corners.Triangles && FaceNormal(p.X, this->Degenerate, normal);
+      this->Faces[i] = source < corners.Triangles && FaceNormal(t.X, this->Degenerate, normal);
     }
   };
   parallelFor ? parallelFor(n, 8192, gather) : gather(0, n);
+  // The points in the order the sorted primitives first use them: a leaf's corners then
+  // share cache lines, as they would if the tree held them itself.
+  const int64_t numPoints = static_cast<int64_t>(mesh.Points.size() / 3);
+  LargeVector<uint32_t> renumber(numPoints);
+  std::fill(renumber.begin(), renumber.end(), std::numeric_limits<uint32_t>::max());
+  uint32_t next = 0;
+  for (CornerIds& c : this->Corners)
+  {
+    for (uint32_t& id : c)
+    {
+      uint32_t& to = renumber[id];
+      if (to == std::numeric_limits<uint32_t>::max())
+      {
+        to = next++;
+      }
+      id = to;
+    }
+  }
+  this->Points.resize(3 * int64_t(next));
+  auto copy = [&](int64_t begin, int64_t end)
+  {
+    for (int64_t p = begin; p < end; ++p)
+    {
+      if (renumber[p] != std::numeric_limits<uint32_t>::max())
+      {
+        std::copy(
+          &mesh.Points[3 * p], &mesh.Points[3 * p] + 3, &this->Points[3 * int64_t(renumber[p])]);
+      }
+    }
+  };
+  parallelFor ? parallelFor(numPoints, 1 << 14, copy) : copy(0, numPoints);
 }
 
 double QueryTree::FacesVolume(const double lo[3]) const
 {
   double volume = 0;
-  for (int64_t i = 0; i < static_cast<int64_t>(this->Primitives.size()); ++i)
+  for (int64_t i = 0; i < this->Size(); ++i)
   {
-    const Primitive& p = this->Primitives[i];
     if (this->Faces[i])
     {
+      const double *pa = this->Corner(i, 0), *pb = this->Corner(i, 1), *pc = this->Corner(i, 2);
       double a[3], b[3], c[3], bc[3];
       for (int k = 0; k < 3; ++k)
       {
-        a[k] = p.X[k] - lo[k], b[k] = p.X[3 + k] - lo[k], c[k] = p.X[6 + k] - lo[k];
+        a[k] = pa[k] - lo[k], b[k] = pb[k] - lo[k], c[k] = pc[k] - lo[k];
       }
       Cross(b, c, bc);
       volume += Dot(a, bc);
@@ -408,7 +448,7 @@ int32_t SplitCodes(const LargeVector<uint32_t>& codes, int32_t begin, int32_t en
 /// appended to `nodes` (children after their parent, siblings side by side).
 void BuildSubtree(LargeVector<Node>& nodes,
   const LargeVector<uint32_t>& codes,
-  const LargeVector<Primitive>& primitives,
+  const QueryTree& tree,
   int32_t slot,
   int32_t begin,
   int32_t end)
@@ -420,10 +460,14 @@ void BuildSubtree(LargeVector<Node>& nodes,
     double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
     for (int32_t i = begin; i < end; ++i)
     {
-      for (int k = 0; k < 9; ++k)
+      for (int k = 0; k < 3; ++k)
       {
-        lo[k % 3] = std::min(lo[k % 3], primitives[i].X[k]);
-        hi[k % 3] = std::max(hi[k % 3], primitives[i].X[k]);
+        const double* x = tree.Corner(i, k);
+        for (int a = 0; a < 3; ++a)
+        {
+          lo[a] = std::min(lo[a], x[a]);
+          hi[a] = std::max(hi[a], x[a]);
+        }
       }
     }
     Node& leaf = nodes[slot];
@@ -439,8 +483,8 @@ void BuildSubtree(LargeVector<Node>& nodes,
   const int32_t left = static_cast<int32_t>(nodes.size());
   nodes.emplace_back();
   nodes.emplace_back();
-  BuildSubtree(nodes, codes, primitives, left, begin, split);
-  BuildSubtree(nodes, codes, primitives, left + 1, split, end);
+  BuildSubtree(nodes, codes, tree, left, begin, split);
+  BuildSubtree(nodes, codes, tree, left + 1, split, end);
   nodes[slot].First = left;
   nodes[slot].Count = 0;
   UniteChildren(nodes, slot);
@@ -489,7 +533,7 @@ void QueryTree::BuildNodes(int32_t n, const ParallelFor& parallelFor)
       Subtree& t = subtrees[k];
       t.Nodes.reserve(2 * static_cast<size_t>((t.End - t.Begin) / LeafSize + 1));
       t.Nodes.emplace_back();
-      BuildSubtree(t.Nodes, this->Codes, this->Primitives, 0, t.Begin, t.End);
+      BuildSubtree(t.Nodes, this->Codes, *this, 0, t.Begin, t.End);
     }
   };
   parallelFor ? parallelFor(static_cast<int64_t>(subtrees.size()), 1, build)
@@ -613,14 +657,14 @@ void QueryTree::FrameLeaves(const ParallelFor& parallelFor)
              hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
       for (int32_t i = leaf.First; i < leaf.First + leaf.Count; ++i)
       {
-        const double* x = this->Primitives[i].X;
+        const double* x[3] = { this->Corner(i, 0), this->Corner(i, 1), this->Corner(i, 2) };
         double e1[3], e2[3], c[3];
         for (int a = 0; a < 3; ++a)
         {
-          e1[a] = x[3 + a] - x[a], e2[a] = x[6 + a] - x[a];
+          e1[a] = x[1][a] - x[0][a], e2[a] = x[2][a] - x[0][a];
           for (int k = 0; k < 3; ++k)
           {
-            lo[a] = std::min(lo[a], x[3 * k + a]), hi[a] = std::max(hi[a], x[3 * k + a]);
+            lo[a] = std::min(lo[a], x[k][a]), hi[a] = std::max(hi[a], x[k][a]);
           }
         }
         Cross(e1, e2, c);
@@ -664,8 +708,7 @@ void QueryTree::FrameLeaves(const ParallelFor& parallelFor)
             double along = 0;
             for (int a = 0; a < 3; ++a)
             {
-              along += (this->Primitives[i].X[3 * c + a] - double(leaf.Centre[a])) *
-                double(leaf.Axes[k][a]);
+              along += (this->Corner(i, c)[a] - double(leaf.Centre[a])) * double(leaf.Axes[k][a]);
             }
             extent = std::max(extent, std::fabs(along));
           }

@@ -12,6 +12,7 @@
 #include "Common/Parallel.h"
 #include "Common/PointTriangleDistance.h"
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,6 +29,11 @@ struct Primitive
 {
   double X[9];
 };
+
+/// A primitive as the tree stores it: its corners' indices into the tree's points (12
+/// bytes where the corners themselves take 72: a fine mesh's tree is written to fresh
+/// memory once, and most of it is read a few times).
+using CornerIds = std::array<uint32_t, 3>;
 
 /// A node's box is rounded outward to float; a leaf holds primitives [First, First +
 /// Count), an inner node has its children at First and First + 1.
@@ -123,16 +129,31 @@ public:
   /// form a closed chain. False when p may lie on a triangle (then undecided).
   bool CrossingCount(const double p[3], int64_t& count) const;
 
-  const Primitive& Get(int64_t i) const { return this->Primitives[i]; }
+  /// The corners of primitive i.
+  Primitive Get(int64_t i) const
+  {
+    Primitive t;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* x = this->Corner(i, k);
+      t.X[3 * k] = x[0], t.X[3 * k + 1] = x[1], t.X[3 * k + 2] = x[2];
+    }
+    return t;
+  }
+  /// Corner k of primitive i.
+  const double* Corner(int64_t i, int k) const
+  {
+    return this->Points.data() + 3 * int64_t(this->Corners[i][k]);
+  }
   /// The squared distance from p to primitive i (its edges only where it is not a proper
   /// triangle), as Nearest computes it.
   double Distance2(int64_t i, const double p[3]) const
   {
-    const Primitive& t = this->Primitives[i];
-    return this->Faces[i] ? SquaredDistanceToTriangle(p, t.X, t.X + 3, t.X + 6)
-                          : SquaredDistanceToTriangleEdges(p, t.X, t.X + 3, t.X + 6);
+    const double *a = this->Corner(i, 0), *b = this->Corner(i, 1), *c = this->Corner(i, 2);
+    return this->Faces[i] ? SquaredDistanceToTriangle(p, a, b, c)
+                          : SquaredDistanceToTriangleEdges(p, a, b, c);
   }
-  int64_t Size() const { return static_cast<int64_t>(this->Primitives.size()); }
+  int64_t Size() const { return static_cast<int64_t>(this->Corners.size()); }
   /// Whether primitive i is a proper triangle (else only its edges count).
   bool IsFace(int64_t i) const { return this->Faces[i] != 0; }
   int64_t Cell(int64_t i) const { return this->Cells[i]; }
@@ -142,7 +163,7 @@ public:
   /// A face's pseudonormal: its unit normal, turned by the mesh's orientation.
   void FaceNormalOf(int64_t i, double normal[3]) const
   {
-    FaceNormal(this->Primitives[i].X, this->Degenerate, normal);
+    FaceNormal(this->Get(i).X, this->Degenerate, normal);
     for (int k = 0; k < 3; ++k)
     {
       normal[k] *= this->Orientation;
@@ -157,7 +178,8 @@ public:
   double Tolerance2 = 0; // absolute slack on squared distances (coordinates' rounding)
 
 private:
-  /// The primitives, cells, face flags and codes in the order of the sorted `keys`.
+  /// The points, and the primitives' corners, cells, face flags and codes in the order of
+  /// the sorted `keys`.
   void GatherPrimitives(const PrimitiveCorners& corners,
     const LargeVector<uint64_t>& keys,
     const ParallelFor& parallelFor);
@@ -171,10 +193,12 @@ private:
   template<typename InBox, typename Visit>
   bool VisitPrimitives(const InBox& inBox, const Visit& visit) const;
 
-  // Per primitive, in the tree's order: its corners, input cell, index in the mesh's
-  // order, whether it is a proper triangle (MeshSites' rule; otherwise only its edges
-  // count) and, while the tree is built, its Morton code.
-  LargeVector<Primitive> Primitives;
+  // The points the primitives use (xyz, in the order the tree's primitives first use
+  // them), and per primitive, in the tree's order: its corners, input
+  // cell, index in the mesh's order, whether it is a proper triangle (MeshSites' rule;
+  // otherwise only its edges count) and, while the tree is built, its Morton code.
+  LargeVector<double> Points;
+  LargeVector<CornerIds> Corners;
   LargeVector<int64_t> Cells;
   LargeVector<uint32_t> Sources;
   LargeVector<uint8_t> Faces;

@@ -115,10 +115,8 @@ int64_t QueryTree::Nearest(const double p[3],
       }
       for (int32_t i = leaf.First; i < leaf.First + leaf.Count; ++i)
       {
-        const Primitive& t = this->Primitives[i];
         // The closest point and feature only for the winner, afterwards.
-        const double d2 = this->Faces[i] ? SquaredDistanceToTriangle(p, t.X, t.X + 3, t.X + 6)
-                                         : SquaredDistanceToTriangleEdges(p, t.X, t.X + 3, t.X + 6);
+        const double d2 = this->Distance2(i, p);
         ++evaluations;
         const bool better = index < 0
           ? d2 <= best2
@@ -143,7 +141,7 @@ int64_t QueryTree::Nearest(const double p[3],
   }
   if (index >= 0)
   {
-    const Primitive& t = this->Primitives[index];
+    const Primitive t = this->Get(index);
     if (this->Faces[index])
     {
       SquaredDistanceToTriangle(p, t.X, t.X + 3, t.X + 6, closest, &feature);
@@ -174,13 +172,10 @@ int64_t QueryTree::NearestToAll(const double* points,
   // reaches `limit` (the primitive cannot win then).
   auto farthest2 = [&](int32_t i, double limit)
   {
-    const Primitive& t = this->Primitives[i];
     double worst = 0;
     for (int j = 0; j < count && worst < limit; ++j)
     {
-      const double* p = points + 3 * j;
-      const double d2 = this->Faces[i] ? SquaredDistanceToTriangle(p, t.X, t.X + 3, t.X + 6)
-                                       : SquaredDistanceToTriangleEdges(p, t.X, t.X + 3, t.X + 6);
+      const double d2 = this->Distance2(i, points + 3 * j);
       ++evaluations;
       worst = std::max(worst, d2);
     }
@@ -308,11 +303,11 @@ bool QueryTree::GatherFaces(const double lo[3],
     {
       return true;
     }
-    const double* x = this->Primitives[i].X;
+    const double *x = this->Corner(i, 0), *y = this->Corner(i, 1), *z = this->Corner(i, 2);
     for (int a = 0; a < 3; ++a)
     {
-      if (std::min(std::min(x[a], x[3 + a]), x[6 + a]) > hi[a] ||
-        std::max(std::max(x[a], x[3 + a]), x[6 + a]) < lo[a])
+      if (std::min(std::min(x[a], y[a]), z[a]) > hi[a] ||
+        std::max(std::max(x[a], y[a]), z[a]) < lo[a])
       {
         return true;
       }
@@ -341,7 +336,7 @@ void QueryTree::FeatureCellAndNormal(const double* a,
   this->VisitPrimitives(holdsA,
     [&](int32_t i)
     {
-      const Primitive& t = this->Primitives[i];
+      const Primitive t = this->Get(i);
       int atA = -1;
       bool hasB = !b;
       for (int k = 0; k < 3; ++k)
@@ -407,7 +402,7 @@ bool QueryTree::CrossingCount(const double p[3], int64_t& count) const
       {
         return true; // a segment or a point: not part of w
       }
-      const Primitive& t = this->Primitives[i];
+      const Primitive t = this->Get(i);
       int delta = 0;
       const bool decided = RayCrossing(t.X, t.X + 3, t.X + 6, p, delta);
       count += delta;
