@@ -194,9 +194,9 @@ private:
   bool VisitPrimitives(const InBox& inBox, const Visit& visit) const;
 
   // The points the primitives use (xyz, in the order the tree's primitives first use
-  // them), and per primitive, in the tree's order: its corners, input
-  // cell, index in the mesh's order, whether it is a proper triangle (MeshSites' rule;
-  // otherwise only its edges count) and, while the tree is built, its Morton code.
+  // them), and per primitive, in the tree's order: its corners, input cell, index in the
+  // mesh's order, whether it is a proper triangle (MeshSites' rule; otherwise only its
+  // edges count) and, while the tree is built, its Morton code.
   LargeVector<double> Points;
   LargeVector<CornerIds> Corners;
   LargeVector<int64_t> Cells;
