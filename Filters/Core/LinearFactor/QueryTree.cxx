@@ -58,18 +58,6 @@ uint32_t SpreadBits(uint32_t x)
   return x;
 }
 
-/// An inner node's box: the union of its children's.
-void UniteChildren(LargeVector<Node>& nodes, int32_t slot)
-{
-  Node& node = nodes[slot];
-  const Node &left = nodes[node.First], &right = nodes[node.First + 1];
-  for (int a = 0; a < 3; ++a)
-  {
-    node.Lo[a] = std::min(left.Lo[a], right.Lo[a]);
-    node.Hi[a] = std::max(left.Hi[a], right.Hi[a]);
-  }
-}
-
 } // namespace
 
 /// The corner ids and input cell of primitive i of a mesh: a triangle's, a segment's
@@ -320,9 +308,8 @@ bool QueryTree::Build(const MeshInput& mesh, const ParallelFor& parallelFor, std
   this->Tolerance2 = std::pow(1e3 * std::numeric_limits<double>::epsilon() * (1 + magnitude), 2);
   this->GatherPrimitives(corners, SortedMortonKeys(corners, lo, hi, parallelFor), parallelFor);
   this->Orientation = this->FacesVolume(lo) < 0 ? -1.0 : 1.0;
-  this->BuildNodes(static_cast<int32_t>(n), parallelFor);
+  this->BuildWideNodes(static_cast<int32_t>(n), parallelFor);
   this->Codes = LargeVector<uint32_t>(); // only the build needs them
-  this->Widen();
   this->Margin = 1e-12 * (1 + magnitude);
   this->FrameLeaves(parallelFor);
   return true;
@@ -444,205 +431,254 @@ int32_t SplitCodes(const LargeVector<uint32_t>& codes, int32_t begin, int32_t en
     codes.begin());
 }
 
-/// Builds the subtree of primitives [begin, end) at nodes[slot], its descendants
-/// appended to `nodes` (children after their parent, siblings side by side).
-void BuildSubtree(LargeVector<Node>& nodes,
-  const LargeVector<uint32_t>& codes,
-  const QueryTree& tree,
-  int32_t slot,
-  int32_t begin,
-  int32_t end)
+/// Primitives [Begin, End) in the tree's order: a node of the binary tree that splits
+/// ranges by SplitCodes down to leaves of at most LeafSize primitives.
+struct Range
 {
-  if (end - begin <= LeafSize)
+  int32_t Begin, End;
+  bool Leaf() const { return this->End - this->Begin <= LeafSize; }
+};
+
+/// The children of the wide node at `range`: the binary node's children, each inner one
+/// replaced by its own two (a leaf root is its own only child).
+int WideChildren(const LargeVector<uint32_t>& codes, const Range& range, Range kids[4])
+{
+  if (range.Leaf())
   {
-    // The corners' bounds in double, then rounded outward once (the rounding is
-    // monotonic: the same box as rounding every corner).
-    double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
-    for (int32_t i = begin; i < end; ++i)
+    kids[0] = range;
+    return 1;
+  }
+  const int32_t split = SplitCodes(codes, range.Begin, range.End);
+  int count = 0;
+  for (const Range half : { Range{ range.Begin, split }, Range{ split, range.End } })
+  {
+    if (half.Leaf())
+    {
+      kids[count++] = half;
+      continue;
+    }
+    const int32_t quarter = SplitCodes(codes, half.Begin, half.End);
+    kids[count++] = Range{ half.Begin, quarter };
+    kids[count++] = Range{ quarter, half.End };
+  }
+  return count;
+}
+
+/// How many wide nodes and leaves the subtree of the wide node at `range` holds.
+struct WideSize
+{
+  int32_t Wide = 0, Leaves = 0;
+};
+WideSize CountWide(const LargeVector<uint32_t>& codes, const Range& range)
+{
+  WideSize size{ 1, 0 };
+  Range kids[4];
+  const int count = WideChildren(codes, range, kids);
+  for (int k = 0; k < count; ++k)
+  {
+    if (kids[k].Leaf())
+    {
+      ++size.Leaves;
+      continue;
+    }
+    const WideSize below = CountWide(codes, kids[k]);
+    size.Wide += below.Wide;
+    size.Leaves += below.Leaves;
+  }
+  return size;
+}
+
+/// Writes the wide nodes and leaves of a subtree into arrays sized for them: a node's
+/// inner children at consecutive slots, then their subtrees in turn (depth first).
+struct WideFill
+{
+  const QueryTree& Tree;
+  const LargeVector<uint32_t>& Codes;
+  WideNode* Wide;
+  Leaf* Leaves;
+  int32_t NextWide, NextLeaf;
+  /// Children whose ranges hold at most this many primitives are left to other fills
+  /// (Deferred: the node's slot and child), unless it is 0.
+  int32_t Defer = 0;
+  std::vector<std::array<int32_t, 4>>* Deferred = nullptr; // slot, child, begin, end
+
+  /// The leaf of `range` at slot `at`, its box rounded outward to float once from the
+  /// corners' double bounds (the rounding is monotonic: the box of rounded corners).
+  void MakeLeaf(const Range& range, int32_t at, float lo[3], float hi[3]) const
+  {
+    double dlo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, dhi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+    for (int32_t i = range.Begin; i < range.End; ++i)
     {
       for (int k = 0; k < 3; ++k)
       {
-        const double* x = tree.Corner(i, k);
+        const double* x = this->Tree.Corner(i, k);
         for (int a = 0; a < 3; ++a)
         {
-          lo[a] = std::min(lo[a], x[a]);
-          hi[a] = std::max(hi[a], x[a]);
+          dlo[a] = std::min(dlo[a], x[a]);
+          dhi[a] = std::max(dhi[a], x[a]);
         }
       }
     }
-    Node& leaf = nodes[slot];
     for (int a = 0; a < 3; ++a)
     {
-      leaf.Lo[a] = FloatBelow(lo[a]), leaf.Hi[a] = FloatAbove(hi[a]);
+      lo[a] = FloatBelow(dlo[a]), hi[a] = FloatAbove(dhi[a]);
     }
-    leaf.First = begin;
-    leaf.Count = end - begin;
-    return;
+    Leaf leaf{};
+    leaf.First = range.Begin, leaf.Count = range.End - range.Begin;
+    this->Leaves[at] = leaf;
   }
-  const int32_t split = SplitCodes(codes, begin, end);
-  const int32_t left = static_cast<int32_t>(nodes.size());
-  nodes.emplace_back();
-  nodes.emplace_back();
-  BuildSubtree(nodes, codes, tree, left, begin, split);
-  BuildSubtree(nodes, codes, tree, left + 1, split, end);
-  nodes[slot].First = left;
-  nodes[slot].Count = 0;
-  UniteChildren(nodes, slot);
-}
 
-} // namespace
-
-void QueryTree::BuildNodes(int32_t n, const ParallelFor& parallelFor)
-{
-  // The top levels here, down to subtrees of at most 1/64 of the primitives (or leaves);
-  // the subtrees in parallel, each in its own array, then appended in order: the same
-  // tree on any number of threads.
-  struct Subtree
+  /// Fills the wide node at `slot` for `range` and its subtree; its box into lo, hi (the
+  /// union of its children's).
+  void Fill(const Range& range, int32_t slot, float lo[3], float hi[3])
   {
-    int32_t Slot, Begin, End;
-    LargeVector<Node> Nodes;
-  };
-  std::vector<Subtree> subtrees;
-  const int32_t small = std::max<int32_t>(LeafSize, n / 64);
-  this->Nodes.assign(1, Node{});
-  std::vector<int32_t> inner; // top nodes that are split here, parents first
-  std::vector<std::array<int32_t, 3>> pending{ { 0, 0, n } };
-  while (!pending.empty())
-  {
-    const auto range = pending.back();
-    pending.pop_back();
-    if (range[2] - range[1] <= small)
-    {
-      subtrees.push_back(Subtree{ range[0], range[1], range[2], {} });
-      continue;
-    }
-    const int32_t split = SplitCodes(this->Codes, range[1], range[2]);
-    const int32_t left = static_cast<int32_t>(this->Nodes.size());
-    this->Nodes.emplace_back();
-    this->Nodes.emplace_back();
-    this->Nodes[range[0]].First = left;
-    this->Nodes[range[0]].Count = 0;
-    inner.push_back(range[0]);
-    pending.push_back({ left + 1, split, range[2] });
-    pending.push_back({ left, range[1], split });
-  }
-  auto build = [&](int64_t begin, int64_t end)
-  {
-    for (int64_t k = begin; k < end; ++k)
-    {
-      Subtree& t = subtrees[k];
-      t.Nodes.reserve(2 * static_cast<size_t>((t.End - t.Begin) / LeafSize + 1));
-      t.Nodes.emplace_back();
-      BuildSubtree(t.Nodes, this->Codes, *this, 0, t.Begin, t.End);
-    }
-  };
-  parallelFor ? parallelFor(static_cast<int64_t>(subtrees.size()), 1, build)
-              : build(0, static_cast<int64_t>(subtrees.size()));
-  size_t total = this->Nodes.size();
-  for (const Subtree& t : subtrees)
-  {
-    total += t.Nodes.size() - 1;
-  }
-  this->Nodes.reserve(total);
-  for (const Subtree& t : subtrees)
-  {
-    // Node j > 0 of the subtree goes to offset + j - 1; its root to t.Slot.
-    const int32_t offset = static_cast<int32_t>(this->Nodes.size());
-    auto place = [offset](Node node)
-    {
-      if (node.Count == 0)
-      {
-        node.First += offset - 1;
-      }
-      return node;
-    };
-    this->Nodes[t.Slot] = place(t.Nodes[0]);
-    for (size_t j = 1; j < t.Nodes.size(); ++j)
-    {
-      this->Nodes.push_back(place(t.Nodes[j]));
-    }
-  }
-  for (size_t k = inner.size(); k-- > 0;)
-  {
-    UniteChildren(this->Nodes, inner[k]);
-  }
-}
-
-void QueryTree::Widen()
-{
-  this->WideNodes.clear();
-  this->Leaves.clear();
-  if (this->Nodes.empty())
-  {
-    return;
-  }
-  // Wide node w gathers binary node b's children, each inner one replaced by its own two.
-  std::vector<std::pair<int32_t, int32_t>> pending{ { 0, 0 } }; // (b, w)
-  // About a third as many wide nodes as binary ones, and half as many leaves.
-  this->WideNodes.reserve(this->Nodes.size() / 3 + 1);
-  this->Leaves.reserve(this->Nodes.size() / 2 + 1);
-  this->WideNodes.emplace_back();
-  while (!pending.empty())
-  {
-    const auto [b, w] = pending.back();
-    pending.pop_back();
-    int32_t kids[4], count = 0;
-    const Node& node = this->Nodes[b];
-    if (node.Count > 0)
-    {
-      kids[count++] = b; // a leaf root
-    }
-    else
-    {
-      for (const int32_t child : { node.First, node.First + 1 })
-      {
-        const Node& c = this->Nodes[child];
-        if (c.Count > 0)
-        {
-          kids[count++] = child;
-        }
-        else
-        {
-          kids[count++] = c.First;
-          kids[count++] = c.First + 1;
-        }
-      }
-    }
+    Range kids[4];
+    const int count = WideChildren(this->Codes, range, kids);
+    WideNode& node = this->Wide[slot];
     for (int k = 0; k < 4; ++k)
     {
-      WideNode& wide = this->WideNodes[w];
-      if (k >= count)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          wide.Lo[a][k] = HUGE_VALF, wide.Hi[a][k] = -HUGE_VALF;
-        }
-        wide.First[k] = 0, wide.Count[k] = -1;
-        continue;
-      }
-      const Node& c = this->Nodes[kids[k]];
+      node.First[k] = 0, node.Count[k] = -1;
       for (int a = 0; a < 3; ++a)
       {
-        wide.Lo[a][k] = c.Lo[a], wide.Hi[a][k] = c.Hi[a];
+        node.Lo[a][k] = HUGE_VALF, node.Hi[a][k] = -HUGE_VALF;
       }
-      if (c.Count > 0)
+    }
+    for (int k = 0; k < count; ++k)
+    {
+      if (kids[k].Leaf())
       {
-        wide.First[k] = static_cast<int32_t>(this->Leaves.size()), wide.Count[k] = c.Count;
-        Leaf leaf{};
-        leaf.First = c.First, leaf.Count = c.Count;
-        this->Leaves.push_back(leaf);
+        node.First[k] = this->NextLeaf++, node.Count[k] = kids[k].End - kids[k].Begin;
+      }
+      else if (kids[k].End - kids[k].Begin <= this->Defer)
+      {
+        this->Deferred->push_back({ slot, k, kids[k].Begin, kids[k].End });
+        node.Count[k] = 0;
       }
       else
       {
-        const int32_t slot = static_cast<int32_t>(this->WideNodes.size());
-        this->WideNodes.emplace_back(); // invalidates `wide`
-        this->WideNodes[w].First[k] = slot, this->WideNodes[w].Count[k] = 0;
-        pending.emplace_back(kids[k], slot);
+        node.First[k] = this->NextWide++, node.Count[k] = 0;
+      }
+    }
+    for (int k = 0; k < count; ++k)
+    {
+      float klo[3], khi[3];
+      if (kids[k].Leaf())
+      {
+        this->MakeLeaf(kids[k], node.First[k], klo, khi);
+      }
+      else if (kids[k].End - kids[k].Begin <= this->Defer)
+      {
+        continue; // its box once its fill has run
+      }
+      else
+      {
+        this->Fill(kids[k], node.First[k], klo, khi);
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        node.Lo[a][k] = klo[a], node.Hi[a][k] = khi[a];
+      }
+    }
+    UniteBoxes(node, lo, hi);
+  }
+
+  static void UniteBoxes(const WideNode& node, float lo[3], float hi[3])
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] =
+        std::min(std::min(node.Lo[a][0], node.Lo[a][1]), std::min(node.Lo[a][2], node.Lo[a][3]));
+      hi[a] =
+        std::max(std::max(node.Hi[a][0], node.Hi[a][1]), std::max(node.Hi[a][2], node.Hi[a][3]));
+    }
+  }
+};
+
+} // namespace
+
+void QueryTree::BuildWideNodes(int32_t n, const ParallelFor& parallelFor)
+{
+  // The top wide nodes here, down to children of at most 1/64 of the primitives, into
+  // small arrays; those children's subtrees counted, then filled in parallel at slots that
+  // follow from the counts: the same arrays on any number of threads.
+  std::vector<WideNode> topWide(1);
+  std::vector<Leaf> topLeaves;
+  std::vector<std::array<int32_t, 4>> deferred;
+  {
+    // A top node other than the root holds more than n / 64 primitives (or the whole tree
+    // is at the top when n < 64 * LeafSize, at most n nodes): at most 64 on each of the
+    // wide tree's at most 32 levels, each with at most 4 leaves.
+    topWide.resize(64 * 32 + 1);
+    topLeaves.resize(4 * topWide.size());
+    WideFill top{ *this, this->Codes, topWide.data(), topLeaves.data(), 1, 0 };
+    top.Defer = std::max<int32_t>(LeafSize, n / 64);
+    top.Deferred = &deferred;
+    float lo[3], hi[3];
+    top.Fill(Range{ 0, n }, 0, lo, hi);
+    topWide.resize(top.NextWide);
+    topLeaves.resize(top.NextLeaf);
+  }
+  const int64_t tasks = static_cast<int64_t>(deferred.size());
+  std::vector<WideSize> sizes(tasks);
+  auto count = [&](int64_t begin, int64_t end)
+  {
+    for (int64_t t = begin; t < end; ++t)
+    {
+      sizes[t] = CountWide(this->Codes, Range{ deferred[t][2], deferred[t][3] });
+    }
+  };
+  parallelFor ? parallelFor(tasks, 1, count) : count(0, tasks);
+  std::vector<WideSize> offsets(tasks);
+  WideSize total{ static_cast<int32_t>(topWide.size()), static_cast<int32_t>(topLeaves.size()) };
+  for (int64_t t = 0; t < tasks; ++t)
+  {
+    offsets[t] = total;
+    total.Wide += sizes[t].Wide;
+    total.Leaves += sizes[t].Leaves;
+  }
+  this->WideNodes.resize(total.Wide);
+  this->Leaves.resize(total.Leaves);
+  std::copy(topWide.begin(), topWide.end(), this->WideNodes.begin());
+  std::copy(topLeaves.begin(), topLeaves.end(), this->Leaves.begin());
+  auto fill = [&](int64_t begin, int64_t end)
+  {
+    for (int64_t t = begin; t < end; ++t)
+    {
+      WideFill below{ *this,
+        this->Codes,
+        this->WideNodes.data(),
+        this->Leaves.data(),
+        offsets[t].Wide + 1,
+        offsets[t].Leaves };
+      float lo[3], hi[3];
+      below.Fill(Range{ deferred[t][2], deferred[t][3] }, offsets[t].Wide, lo, hi);
+      WideNode& parent = this->WideNodes[deferred[t][0]];
+      const int k = deferred[t][1];
+      parent.First[k] = offsets[t].Wide;
+      for (int a = 0; a < 3; ++a)
+      {
+        parent.Lo[a][k] = lo[a], parent.Hi[a][k] = hi[a];
+      }
+    }
+  };
+  parallelFor ? parallelFor(tasks, 1, fill) : fill(0, tasks);
+  // The top nodes' boxes of deferred children's ancestors, children (later slots) first.
+  for (size_t w = topWide.size(); w-- > 0;)
+  {
+    WideNode& node = this->WideNodes[w];
+    for (int k = 0; k < 4; ++k)
+    {
+      if (node.Count[k] == 0 && node.First[k] < static_cast<int32_t>(topWide.size()))
+      {
+        float lo[3], hi[3];
+        WideFill::UniteBoxes(this->WideNodes[node.First[k]], lo, hi);
+        for (int a = 0; a < 3; ++a)
+        {
+          node.Lo[a][k] = lo[a], node.Hi[a][k] = hi[a];
+        }
       }
     }
   }
-  this->Nodes.clear();
-  this->Nodes.shrink_to_fit();
 }
 
 void QueryTree::FrameLeaves(const ParallelFor& parallelFor)

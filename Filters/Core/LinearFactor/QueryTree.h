@@ -35,17 +35,9 @@ struct Primitive
 /// memory once, and most of it is read a few times).
 using CornerIds = std::array<uint32_t, 3>;
 
-/// A node's box is rounded outward to float; a leaf holds primitives [First, First +
-/// Count), an inner node has its children at First and First + 1.
-struct Node
-{
-  float Lo[3], Hi[3];
-  int32_t First;
-  int32_t Count; // 0 for an inner node
-};
-
 /// The tree the queries descend: up to four children's boxes side by side (a binary
-/// node's grandchildren), so that one node's memory holds every box the next step tests.
+/// node's grandchildren, their boxes rounded outward to float), so that one node's memory
+/// holds every box the next step tests.
 /// Child c is a wide node (Count[c] == 0, at First[c]), leaf First[c] (Count[c] > 0,
 /// its number of primitives), or absent (Count[c] < 0).
 struct WideNode
@@ -186,8 +178,9 @@ private:
   /// The faces' signed volume (times 6) seen from `lo`, in a fixed order (the same sum on
   /// any thread count).
   double FacesVolume(const double lo[3]) const;
-  void BuildNodes(int32_t n, const ParallelFor& parallelFor);
-  void Widen();
+  /// The wide nodes and leaves of the binary tree that splits the primitives where their
+  /// Morton codes differ (SplitCodes), down to leaves of at most LeafSize.
+  void BuildWideNodes(int32_t n, const ParallelFor& parallelFor);
   void FrameLeaves(const ParallelFor& parallelFor);
   double LeafDistance2(const Leaf& leaf, const double p[3]) const;
   template<typename InBox, typename Visit>
@@ -203,7 +196,6 @@ private:
   LargeVector<uint32_t> Sources;
   LargeVector<uint8_t> Faces;
   LargeVector<uint32_t> Codes;
-  LargeVector<Node> Nodes; // the binary tree, widened into WideNodes
   LargeVector<WideNode> WideNodes;
   LargeVector<Leaf> Leaves;
   double Margin = 0; // how far the leaves' frames are widened beyond rounding
