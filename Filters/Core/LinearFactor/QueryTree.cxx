@@ -18,22 +18,8 @@ namespace nearest
 /// `degenerate` times the longest side.
 bool FaceNormal(const double* x, double degenerate, double normal[3])
 {
-  const double *a = x, *b = x + 3, *c = x + 6;
-  if (SamePoint(a, b) || SamePoint(b, c) || SamePoint(c, a))
-  {
-    return false;
-  }
-  double e1[3], e2[3], e3[3];
-  for (int k = 0; k < 3; ++k)
-  {
-    e1[k] = b[k] - a[k], e2[k] = c[k] - a[k], e3[k] = c[k] - b[k];
-  }
-  double n[3];
-  Cross(e1, e2, n);
-  const double area2 = std::sqrt(Dot(n, n));
-  const double longest =
-    std::max(std::sqrt(Dot(e1, e1)), std::max(std::sqrt(Dot(e2, e2)), std::sqrt(Dot(e3, e3))));
-  if (!(area2 > degenerate * longest))
+  double n[3], area2;
+  if (!IsProperFace(x, degenerate, n, area2))
   {
     return false;
   }
@@ -42,6 +28,13 @@ bool FaceNormal(const double* x, double degenerate, double normal[3])
     normal[k] = n[k] * (1.0 / area2);
   }
   return true;
+}
+
+bool IsProperFace(const double* x, double degenerate, double n[3], double& area2)
+{
+  const double *a = x, *b = x + 3, *c = x + 6;
+  return !SamePoint(a, b) && !SamePoint(b, c) && !SamePoint(c, a) &&
+    ProperFace(a, b, c, degenerate, n, area2);
 }
 
 namespace
@@ -350,13 +343,13 @@ void QueryTree::GatherPrimitives(const PrimitiveCorners& corners,
       this->Corners[i] = {
         static_cast<uint32_t>(c[0]), static_cast<uint32_t>(c[1]), static_cast<uint32_t>(c[2])
       };
-      double normal[3];
       Primitive t;
       for (int k = 0; k < 3; ++k)
       {
         std::copy(&mesh.Points[3 * c[k]], &mesh.Points[3 * c[k]] + 3, t.X + 3 * k);
       }
-      this->Faces[i] = source < corners.Triangles && FaceNormal(t.X, this->Degenerate, normal);
+      double n[3], area2;
+      this->Faces[i] = source < corners.Triangles && IsProperFace(t.X, this->Degenerate, n, area2);
     }
   };
   parallelFor ? parallelFor(n, 8192, gather) : gather(0, n);

@@ -62,6 +62,8 @@ struct Leaf
 /// MeshSites' face test and unit normal: distinct corners, and twice the area above
 /// `degenerate` times the longest side.
 bool FaceNormal(const double* x, double degenerate, double normal[3]);
+/// The same test alone (ProperFace), with the normal not normalized and its length.
+bool IsProperFace(const double* x, double degenerate, double n[3], double& area2);
 
 struct PrimitiveCorners;
 

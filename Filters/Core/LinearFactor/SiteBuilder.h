@@ -235,7 +235,7 @@ private:
   void CountFacesAndEdges(std::vector<int64_t>& chunkFaces);
   void WriteFacesAndEdges(const std::vector<int64_t>& chunkFaces);
   void Corners(int64_t i, int64_t c[3]) const;
-  bool FaceNormal(const int64_t c[3], Vec& normal) const;
+  bool IsFaceTriangle(const int64_t c[3]) const;
   void UseVertex(int64_t v, int64_t cell);
   void AddEdge(int64_t a, int64_t b, uint32_t source);
   bool IsFaceRecord(const EdgeRecord& r) const { return r.Source < this->NumFaces; }

@@ -1,6 +1,7 @@
 #include "LinearFactor/SiteBuilder.h"
 
 #include "Common/FloatBounds.h"
+#include "Common/Vector3.h"
 
 #include <numeric>
 
@@ -237,24 +238,12 @@ void SiteBuilder::Corners(int64_t i, int64_t c[3]) const
   c[0] = this->Canonical[ids[0]], c[1] = this->Canonical[ids[1]], c[2] = this->Canonical[ids[2]];
 }
 
-/// Whether corners c make a face, and then its unit normal.
-bool SiteBuilder::FaceNormal(const int64_t c[3], Vec& normal) const
+/// Whether merged corners c make a face (ProperFace).
+bool SiteBuilder::IsFaceTriangle(const int64_t c[3]) const
 {
-  if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
-  {
-    return false;
-  }
-  const Vec e1 = Sub(this->X(c[1]), this->X(c[0])), e2 = Sub(this->X(c[2]), this->X(c[0]));
-  const Vec e3 = Sub(this->X(c[2]), this->X(c[1]));
-  const Vec n = Cross(e1, e2);
-  const double area2 = Norm(n);
-  const double longest = std::max(Norm(e1), std::max(Norm(e2), Norm(e3)));
-  if (!(area2 > this->Degenerate * longest))
-  {
-    return false;
-  }
-  normal = Scale(n, 1.0 / area2);
-  return true;
+  double n[3], area2;
+  return c[0] != c[1] && c[1] != c[2] && c[2] != c[0] &&
+    ProperFace(this->X(c[0]), this->X(c[1]), this->X(c[2]), this->Degenerate, n, area2);
 }
 
 void SiteBuilder::UseVertex(int64_t v, int64_t cell)
@@ -366,8 +355,7 @@ void SiteBuilder::CountFacesAndEdges(std::vector<int64_t>& chunkFaces)
         {
           int64_t c[3];
           this->Corners(i, c);
-          Vec normal;
-          this->IsFace[i] = this->FaceNormal(c, normal);
+          this->IsFace[i] = this->IsFaceTriangle(c);
           count += this->IsFace[i];
           for (int k = 0; k < 3; ++k)
           {
