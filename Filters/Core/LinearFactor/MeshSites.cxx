@@ -159,25 +159,6 @@ void MeshSites::SetPlane(HalfSpace& h,
 namespace
 {
 /// Starts a site's box at its anchor.
-void StartBox(Site& s)
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    s.BoundsMin[a] = FloatBelow(s.Anchor[a]);
-    s.BoundsMax[a] = FloatAbove(s.Anchor[a]);
-  }
-}
-
-/// Grows a site's box to hold x.
-void Grow(Site& s, const double* x)
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    s.BoundsMin[a] = std::min(s.BoundsMin[a], FloatBelow(x[a]));
-    s.BoundsMax[a] = std::max(s.BoundsMax[a], FloatAbove(x[a]));
-  }
-}
-
 /// The corner of face `corners` that is neither a nor b.
 uint32_t ThirdCorner(const std::array<uint32_t, 3>& corners, uint32_t a, uint32_t b)
 {
@@ -212,15 +193,18 @@ void MeshSites::BoxOf(int64_t s, float lo[3], float hi[3]) const
   {
     points[0] = static_cast<uint32_t>(s - faces - edges);
   }
+  // The corners' bounds in double, rounded once: the rounding is monotonic, so this is
+  // the box of the rounded corners.
   for (int a = 0; a < 3; ++a)
   {
-    lo[a] = FloatBelow(this->X(points[0])[a]);
-    hi[a] = FloatAbove(this->X(points[0])[a]);
+    double dlo = this->X(points[0])[a], dhi = dlo;
     for (int k = 1; k < count; ++k)
     {
-      lo[a] = std::min(lo[a], FloatBelow(this->X(points[k])[a]));
-      hi[a] = std::max(hi[a], FloatAbove(this->X(points[k])[a]));
+      dlo = std::min(dlo, this->X(points[k])[a]);
+      dhi = std::max(dhi, this->X(points[k])[a]);
     }
+    lo[a] = FloatBelow(dlo);
+    hi[a] = FloatAbove(dhi);
   }
 }
 
@@ -240,14 +224,6 @@ void MeshSites::Describe(int64_t s, Site& site, bool box, bool normal) const
     site.Type = FaceSite;
     site.CellId = this->FaceCells[s];
     std::copy(this->X(c[0]), this->X(c[0]) + 3, site.Anchor);
-    if (box)
-    {
-      StartBox(site);
-      for (int k = 0; k < 3; ++k)
-      {
-        Grow(site, this->X(c[k]));
-      }
-    }
     this->FaceNormal(s, site.Axis);
     for (int a = 0; a < 3; ++a)
     {
@@ -262,11 +238,6 @@ void MeshSites::Describe(int64_t s, Site& site, bool box, bool normal) const
     site.Type = EdgeSite;
     site.CellId = this->EdgeCells[e];
     std::copy(this->X(this->EdgeEnds[e][0]), this->X(this->EdgeEnds[e][0]) + 3, site.Anchor);
-    if (box)
-    {
-      StartBox(site);
-      Grow(site, this->X(this->EdgeEnds[e][1]));
-    }
     this->EdgeTangent(e, site.Axis);
     // The pseudonormal: the sum of the faces' normals.
     sites::Vec pseudo{ 0, 0, 0 };
@@ -290,14 +261,14 @@ void MeshSites::Describe(int64_t s, Site& site, bool box, bool normal) const
     site.Type = VertexSite;
     site.CellId = this->VertexCells[v];
     std::copy(this->X(v), this->X(v) + 3, site.Anchor);
-    if (box)
-    {
-      StartBox(site);
-    }
     std::copy(this->VertexNormals[v].begin(), this->VertexNormals[v].end(), site.Normal);
     site.PlaneCount = this->VertexDomains[v] == sites::Polar
       ? static_cast<int>(this->VertexEdgeStart[v + 1] - this->VertexEdgeStart[v])
       : (this->VertexDomains[v] == sites::Pyramid ? 4 : 0);
+  }
+  if (box)
+  {
+    this->BoxOf(s, site.BoundsMin, site.BoundsMax);
   }
 }
 
