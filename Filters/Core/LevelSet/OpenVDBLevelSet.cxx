@@ -79,7 +79,6 @@ void WriteBrick(const LevelSetBrick& brick,
     }
   }
 }
-} // namespace
 
 bool WriteOpenVDBLevelSet(const std::string& path,
   const LevelSetGrid& grid,
@@ -143,7 +142,7 @@ bool WriteOpenVDBLevelSet(const std::string& path,
   }
   return true;
 }
-
+} // namespace
 } // namespace vtkdf
 
 // The module's entry point: a name dlsym can find, a type the caller checks against.

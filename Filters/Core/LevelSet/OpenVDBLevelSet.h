@@ -51,17 +51,11 @@ struct LevelSetSummary
   int64_t LeafNodes = 0;
 };
 
-/// Writes `bricks` as a level set (and their closest points as a Vec3SGrid named
-/// "closest_point" when every brick has them) to `path`. False and `error` when the file
-/// cannot be written or the grid cannot be a VDB's (a voxel index beyond 32 bits).
-bool WriteOpenVDBLevelSet(const std::string& path,
-  const LevelSetGrid& grid,
-  const std::vector<LevelSetBrick>& bricks,
-  LevelSetSummary& summary,
-  std::string& error);
-
-/// The family is a module of its own, loaded when a first .vdb is written (dlopen):
-/// WriteOpenVDBLevelSet is reached through this symbol, of this type.
+/// The family is a module of its own, loaded when a first .vdb is written (dlopen); its
+/// one entry point is this symbol, of this type: it writes `bricks` as a level set (and
+/// their closest points as a Vec3SGrid named "closest_point" when every brick has them)
+/// to `path`. False and `error` when the file cannot be written or the grid cannot be a
+/// VDB's (a voxel index beyond 32 bits).
 constexpr const char* WriteOpenVDBLevelSetSymbol = "vtkdf_WriteOpenVDBLevelSet";
 using WriteOpenVDBLevelSetFunction = bool (*)(const std::string& path,
   const LevelSetGrid& grid,
