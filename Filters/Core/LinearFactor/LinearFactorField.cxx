@@ -291,7 +291,6 @@ bool ComputeLinearFactorField(MeshInput mesh,
   }
 
   RangeCulling range;
-  range.ReachLevel = gl ? 0 : 1;
   range.Build(local.Sites,
     local.Request.Grid,
     local.Request.Extent,
@@ -312,7 +311,15 @@ bool ComputeLinearFactorField(MeshInput mesh,
   ScanStatistics stats;
   if (gl)
   {
-    if (!ScanSitesGPU(*gl, local.Sites, range, local.Request, nearest, scanProgress, stats, error))
+    if (!ScanSitesGPU(*gl,
+          local.Sites,
+          range,
+          local.Request,
+          nearest,
+          execution.For,
+          scanProgress,
+          stats,
+          error))
     {
       error = gl->Failure(error);
       return false;
@@ -360,7 +367,6 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
     return true;
   }
   RangeCulling range;
-  range.ReachLevel = 0; // the GPU scan
   range.Build(local.Sites, local.Request.Grid, local.Request.Extent, HUGE_VAL, execution.For);
 
   HeadlessGL::Scope scope(gl);
@@ -387,8 +393,16 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
   field.SiteIds = buffers[2];
   NearestSiteBuffer unused;
   ScanStatistics stats;
-  bool ok = ScanSitesGPU(
-    gl, local.Sites, range, local.Request, unused, execution.Progress, stats, error, field.SiteIds);
+  bool ok = ScanSitesGPU(gl,
+    local.Sites,
+    range,
+    local.Request,
+    unused,
+    execution.For,
+    execution.Progress,
+    stats,
+    error,
+    field.SiteIds);
   if (!ok)
   {
     error = gl.Failure(error);

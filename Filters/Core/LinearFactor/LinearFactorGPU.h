@@ -1,6 +1,7 @@
-// LinearFactorGPU: the scan pass of LinearFactorField on the GPU. Domain polygons are
-// built by a geometry shader, many slices per draw (layered rendering into texture
-// arrays); the depth test keeps the nearest site; the field is read back once per batch.
+// LinearFactorGPU: the scan pass of LinearFactorField on the GPU, in compute shaders. The
+// CPU walks the sites' domains as its own scan does and hands the GPU the rows of
+// samples each site is offered to; the GPU evaluates them with the CPU's arithmetic and
+// keeps, per sample, the least (squared distance, site) pair: the CPU's nearest sites.
 #ifndef vtkdf_LinearFactorGPU_h
 #define vtkdf_LinearFactorGPU_h
 
@@ -12,21 +13,18 @@
 namespace vtkdf
 {
 
-/// Fills `nearest` like ScanSitesCPU; false (and `error`) when the GPU cannot run it.
-/// With `residentIds` (a GL buffer of one int per sample of the extent), the nearest
-/// site ids stay on the GPU, in that buffer, and `nearest` is not touched.
-/// With a progress callback, the scan's first batch holds 1/MinimumBatches of the
-/// slices and later ones what the measured rate scans in BatchSeconds (at most twice the
-/// last); `progress` is
-/// called after each batch, once the GPU has finished it.
-constexpr int MinimumBatches = 16;
-constexpr double BatchSeconds = 0.25;
-
+/// Fills `nearest` like ScanSitesCPU, with its bits: the CPU walks the sites' domains
+/// (CollectScanRows) and the GPU evaluates the rows. False (and `error`) when the GPU
+/// cannot run it. With `residentIds` (a GL buffer of one int per sample of the extent),
+/// the nearest site ids (-1 for none) stay on the GPU, in that buffer, and `nearest` is
+/// not touched. `progress` is called after each batch of sites, once the GPU has
+/// evaluated it.
 bool ScanSitesGPU(HeadlessGL& gl,
   const MeshSites& sites,
   const RangeCulling& culling,
   const LocalFieldRequest& request,
   NearestSiteBuffer& nearest,
+  const ParallelFor& parallelFor,
   const ProgressCallback& progress,
   ScanStatistics& stats,
   std::string& error,

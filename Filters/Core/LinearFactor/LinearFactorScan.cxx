@@ -98,14 +98,12 @@ public:
     uint32_t siteIndex,
     const IndexBox& region,
     const RangeCulling& culling,
-    const LocalFieldRequest& request,
-    NearestSiteBuffer& nearest)
+    const LocalFieldRequest& request)
     : TheSite(site)
     , SiteIndex(siteIndex)
     , Culling(culling)
     , Region(region)
     , Grid(request.Grid)
-    , Nearest(nearest)
   {
     const ScanAxes axes = ChooseScanAxes(site);
     this->U = axes.Inner, this->V = axes.Row, this->W = axes.Slice;
@@ -147,11 +145,14 @@ public:
     std::fill(this->CacheKey, this->CacheKey + CacheSize, int64_t(-1));
   }
 
-  /// Scans the domain's slices; returns the distance evaluations. The domain contains
-  /// the anchor, so (when the anchor is in the region's rectangle) the slices it covers
-  /// are one run of slices around the anchor's: the scan runs outward from there and
-  /// stops at the first empty slice on each side.
-  int64_t Run()
+  /// Scans the domain's slices, calling visit(*this, dk, j, k, i0, i1, at) for every
+  /// row of samples i0..i1 (the first at `at`) of row j of slice k (dk: the distance
+  /// vector's part up to the slice); returns the distance evaluations. The domain
+  /// contains the anchor, so (when the anchor is in the region's rectangle) the slices it
+  /// covers are one run of slices around the anchor's: the scan runs outward from there
+  /// and stops at the first empty slice on each side.
+  template<class RowVisitor>
+  int64_t Run(RowVisitor& visit)
   {
     const int u = this->U, v = this->V, w = this->W;
     const IndexBox& region = this->Region;
@@ -166,19 +167,19 @@ public:
     {
       for (int k = region.Lo[w]; k <= region.Hi[w]; ++k)
       {
-        this->Slice(k);
+        this->Slice(k, visit);
       }
       return this->Evaluations;
     }
     auto clampSlice = [&](double z)
     { return static_cast<int>(std::min<double>(std::max<double>(z, region.Lo[w]), region.Hi[w])); };
     int start = clampSlice(std::round(anchor[w]));
-    bool found = this->Slice(start);
+    bool found = this->Slice(start, visit);
     if (!found)
     {
       for (int k : { clampSlice(std::floor(anchor[w])), clampSlice(std::ceil(anchor[w])) })
       {
-        if (k != start && this->Slice(k))
+        if (k != start && this->Slice(k, visit))
         {
           start = k;
           found = true;
@@ -188,14 +189,49 @@ public:
     }
     if (found)
     {
-      for (int k = start + 1; k <= region.Hi[w] && this->Slice(k); ++k)
+      for (int k = start + 1; k <= region.Hi[w] && this->Slice(k, visit); ++k)
       {
       }
-      for (int k = start - 1; k >= region.Lo[w] && this->Slice(k); --k)
+      for (int k = start - 1; k >= region.Lo[w] && this->Slice(k, visit); --k)
       {
       }
     }
     return this->Evaluations;
+  }
+
+  /// Offers the site to samples i0..i1 of row j (the first at `at`). Each sample's
+  /// vector to the site is evaluated from the row's start in double and rounded to float
+  /// once: its bits do not depend on where the row's run begins (a piece of the grid or
+  /// a culling region clips it), so a piece and the whole grid break ties alike.
+  /// Shaders/LinearFactorRows.comp.glsl evaluates the same expressions.
+  void Offer(NearestSiteBuffer& nearest, const double dk[3], int j, int i0, int i1, int64_t at)
+    const
+  {
+    const double* du = this->Du;
+    const double row[3] = {
+      dk[0] + j * this->Dv[0], dk[1] + j * this->Dv[1], dk[2] + j * this->Dv[2]
+    };
+    for (int i = i0; i <= i1; ++i, at += this->StrideU)
+    {
+      const float dx = static_cast<float>(row[0] + i * du[0]);
+      const float dy = static_cast<float>(row[1] + i * du[1]);
+      const float dz = static_cast<float>(row[2] + i * du[2]);
+      nearest.Offer(at, NearestSiteBuffer::Pack(dx * dx + dy * dy + dz * dz, this->SiteIndex));
+    }
+  }
+
+  /// The site's distance vector along the scan's axes, for the GPU's rows.
+  ScanFrame Frame() const
+  {
+    ScanFrame f;
+    for (int a = 0; a < 3; ++a)
+    {
+      f.D0[a] = this->D0[a], f.Du[a] = this->Du[a], f.Dv[a] = this->Dv[a], f.Dw[a] = this->Dw[a];
+    }
+    f.D0[3] = this->SiteIndex;
+    f.Du[3] = static_cast<double>(this->StrideU);
+    f.Dv[3] = f.Dw[3] = 0;
+    return f;
   }
 
 private:
@@ -226,7 +262,8 @@ private:
   /// such slivers: 8 % less scan time for the dragon of 871k triangles at 64 samples).
   /// Going on where a dead sliver would have stopped the walk only adds slices where the
   /// site may win, so the nearest sites are the same.
-  bool Slice(int k)
+  template<class RowVisitor>
+  bool Slice(int k, RowVisitor& visit)
   {
     const int u = this->U, v = this->V, w = this->W;
     double box[4];
@@ -279,30 +316,10 @@ private:
       {
         continue;
       }
-      this->Row(dk, j, i0, i1, sliceStart + j * this->StrideV + i0 * this->StrideU);
+      visit(*this, dk, j, k, i0, i1, sliceStart + j * this->StrideV + i0 * this->StrideU);
+      this->Evaluations += i1 - i0 + 1;
     }
     return true;
-  }
-
-  /// Offers the site to samples i0..i1 of row j (the first at `at`). Each sample's
-  /// vector to the site is evaluated from the row's start in double and rounded to float
-  /// once: its bits do not depend on where the row's run begins (a piece of the grid or
-  /// a culling region clips it), so a piece and the whole grid break ties alike.
-  void Row(const double dk[3], int j, int i0, int i1, int64_t at)
-  {
-    const double* du = this->Du;
-    const double row[3] = {
-      dk[0] + j * this->Dv[0], dk[1] + j * this->Dv[1], dk[2] + j * this->Dv[2]
-    };
-    for (int i = i0; i <= i1; ++i, at += this->StrideU)
-    {
-      const float dx = static_cast<float>(row[0] + i * du[0]);
-      const float dy = static_cast<float>(row[1] + i * du[1]);
-      const float dz = static_cast<float>(row[2] + i * du[2]);
-      this->Nearest.Offer(
-        at, NearestSiteBuffer::Pack(dx * dx + dy * dy + dz * dz, this->SiteIndex));
-    }
-    this->Evaluations += i1 - i0 + 1;
   }
 
   static constexpr int CacheSize = 64;
@@ -311,7 +328,6 @@ private:
   const RangeCulling& Culling;
   const IndexBox Region;
   const SampleGrid& Grid;
-  NearestSiteBuffer& Nearest;
   int U, V, W;
   DomainSpans Domain;
   double D0[3], Du[3], Dv[3], Dw[3];
@@ -354,9 +370,12 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites,
             const IndexBox region = culling.Region(reach, site);
             if (!region.Empty())
             {
-              local +=
-                SiteScan(sites, site, static_cast<uint32_t>(id), region, culling, request, nearest)
-                  .Run();
+              auto offer =
+                [&nearest](
+                  const SiteScan& scan, const double dk[3], int j, int, int i0, int i1, int64_t at)
+              { scan.Offer(nearest, dk, j, i0, i1, at); };
+              local += SiteScan(sites, site, static_cast<uint32_t>(id), region, culling, request)
+                         .Run(offer);
             }
           });
         evaluations += local;
@@ -369,6 +388,79 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites,
   }
   stats.Evaluations = evaluations.load();
   return stats;
+}
+
+void CollectScanRows(const MeshSites& sites,
+  const RangeCulling& culling,
+  const LocalFieldRequest& request,
+  int64_t first,
+  int64_t last,
+  const ParallelFor& parallelFor,
+  ScanRows& out)
+{
+  // Chunks of sites collect their rows apart, then join in chunk order: the same list
+  // whatever the thread schedule.
+  const int64_t numChunks = std::max<int64_t>(1, std::min<int64_t>(256, (last - first) / 64));
+  std::vector<ScanRows> chunks(static_cast<size_t>(numChunks));
+  parallelFor(numChunks,
+    1,
+    [&](int64_t chunkBegin, int64_t chunkEnd)
+    {
+      Site site;
+      for (int64_t c = chunkBegin; c < chunkEnd; ++c)
+      {
+        ScanRows& mine = chunks[c];
+        culling.ForEachSite(first + (last - first) * c / numChunks,
+          first + (last - first) * (c + 1) / numChunks,
+          [&](int64_t id, const IndexBox& reach)
+          {
+            sites.Describe(id, site);
+            const IndexBox region = culling.Region(reach, site);
+            if (region.Empty())
+            {
+              return;
+            }
+            const uint32_t frame = static_cast<uint32_t>(mine.Frames.size());
+            bool framed = false;
+            auto record =
+              [&](const SiteScan& scan, const double*, int j, int k, int i0, int i1, int64_t at)
+            {
+              if (!framed)
+              {
+                mine.Frames.push_back(scan.Frame());
+                framed = true;
+              }
+              mine.Rows.push_back({ frame, static_cast<int32_t>(at), j, k, i0, i1 });
+            };
+            mine.Evaluations +=
+              SiteScan(sites, site, static_cast<uint32_t>(id), region, culling, request)
+                .Run(record);
+          });
+      }
+    });
+  size_t frames = 0, rows = 0;
+  for (const ScanRows& c : chunks)
+  {
+    frames += c.Frames.size();
+    rows += c.Rows.size();
+  }
+  out.Frames.clear();
+  out.Rows.clear();
+  out.Frames.reserve(frames);
+  out.Rows.reserve(rows);
+  out.Evaluations = 0;
+  for (ScanRows& c : chunks)
+  {
+    const uint32_t offset = static_cast<uint32_t>(out.Frames.size());
+    out.Frames.insert(out.Frames.end(), c.Frames.begin(), c.Frames.end());
+    for (ScanRow r : c.Rows)
+    {
+      r.Frame += offset;
+      out.Rows.push_back(r);
+    }
+    out.Evaluations += c.Evaluations;
+    c = ScanRows();
+  }
 }
 
 void Finalize(const MeshSites& sites,

@@ -142,6 +142,41 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress);
 
+/// A site's distance vector along its scan axes (SiteScan, LinearFactorScan.cxx): at
+/// sample i of row j of slice k it is D0 + k Dw + j Dv + i Du, each term in double, and
+/// rounded to float. The fourth components: the site's index (D0) and the extent's
+/// stride along the inner axis (Du). Laid out for Shaders/LinearFactorRows.comp.glsl.
+struct ScanFrame
+{
+  double D0[4], Du[4], Dv[4], Dw[4];
+};
+
+/// Samples I0..I1 of row J of slice K of a frame's site, the first at index At of the
+/// extent.
+struct ScanRow
+{
+  uint32_t Frame;
+  int32_t At, J, K, I0, I1;
+};
+
+struct ScanRows
+{
+  std::vector<ScanFrame> Frames;
+  std::vector<ScanRow> Rows;
+  int64_t Evaluations = 0; // the samples of the rows
+};
+
+/// The rows ScanSitesCPU offers the sites at culling.Order[first .. last) to, for a GPU
+/// to evaluate: the same walk, so the same offers. The extent must have fewer than
+/// 2^31 samples.
+void CollectScanRows(const MeshSites& sites,
+  const RangeCulling& culling,
+  const LocalFieldRequest& request,
+  int64_t first,
+  int64_t last,
+  const ParallelFor& parallelFor,
+  ScanRows& out);
+
 /// With a MaximumDistance and a sign: the sides (+1 outside, -1 inside, 0 unknown) of the
 /// samples beyond the band, flooded from those within it (the surface lies in the band,
 /// so a side cannot change beyond it); the distances of those found inside become

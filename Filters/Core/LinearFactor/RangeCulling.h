@@ -28,11 +28,10 @@ class RangeCulling
 public:
   static constexpr int BlockSize = 4;
 
-  /// The pyramid level where the search for a group's reach stops: 1 (pairs of blocks)
-  /// for the CPU scan, which tests single blocks anyway and gains more from a cheaper
-  /// search than it loses to a block-wider reach; 0 (single blocks) for the GPU, whose
-  /// geometry shader runs once per slice of a region (7 % faster on llvmpipe).
-  int ReachLevel = 1;
+  /// The pyramid level where the search for a group's reach stops: pairs of blocks (the
+  /// scan tests single blocks anyway and gains more from a cheaper search than it loses
+  /// to a block-wider reach).
+  static constexpr int ReachLevel = 1;
 
   /// Computes Order (site indices grouped by the block of their anchor, for memory
   /// locality), GroupStart and every group's Reach (in sample indices, within `extent`).

@@ -7,8 +7,8 @@
 // the outer ones: the box of the slice's polygon (x and y ranges as affine functions of
 // the slice k) and the span of a row (x range as an affine function of y and k). The
 // projection that elimination computes is exact, so the rows and spans are those of
-// the clipped polygon; each costs a few multiply-adds. The GPU path clips the same
-// half-spaces into polygons for its rasterizer (Shaders/LinearFactorDomain.geom.glsl).
+// the clipped polygon; each costs a few multiply-adds. The GPU path evaluates the rows
+// this walk gives (CollectScanRows).
 #ifndef vtkdf_SliceDomain_h
 #define vtkdf_SliceDomain_h
 
