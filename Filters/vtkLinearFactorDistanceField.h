@@ -185,9 +185,9 @@ public:
   vtkBooleanMacro(ComputeGradient, bool);
   ///@}
 
-  /// Distance evaluations of the last run (samples covered by a domain, or with
-  /// SampleQueries point-triangle distances; -1 when the GPU could not count them) and
-  /// that number divided by the number of samples.
+  /// Distance evaluations of the last run (samples covered by a domain, the same on both
+  /// backends, or with SampleQueries point-triangle distances) and that number divided by
+  /// the number of samples.
   vtkGetMacro(LastEvaluations, vtkTypeInt64);
   vtkGetMacro(LastCullingFactor, double);
   /// Samples whose winding-number sign a block decided at once in the last run (the rest

@@ -1,7 +1,7 @@
 // The scan's rows on the GPU: each invocation offers one site to one row of samples, with
 // the CPU's arithmetic (LinearFactorScan.cxx, SiteScan::Offer): the distance vector in
-// double from the site's frame, each product and sum rounded apart (`precise`), rounded
-// to float, its squared length in float. The nearest site of a sample is the least
+// double from the row's start (the CPU's) and the site's step, the product and the sum
+// rounded apart (`precise`), rounded to float, its squared length in float. The nearest site of a sample is the least
 // (squared distance, site) pair, whatever the order of the offers:
 // - ONE_PASS: one 64-bit atomic minimum of the packed pair (NearestSiteBuffer::Pack);
 // - otherwise two passes over the same rows: DISTANCE_PASS keeps the least squared
@@ -11,21 +11,15 @@
 //   its distance is still the least.
 // Prepended by LinearFactorGPU.cxx: #version, the extensions and the pass's #define.
 layout(local_size_x = 64) in;
-struct Frame
-{
-  dvec4 D0; // w: the site's index
-  dvec4 Du; // w: the extent's stride along the row
-  dvec4 Dv;
-  dvec4 Dw;
-};
 struct Row
 {
+  double StartX, StartY, StartZ; // the distance vector at i = 0
   uint Frame;
-  int At, J, K, I0, I1;
+  int At, I0, I1, Stride;
 };
 layout(std430, binding = 0) readonly buffer Frames
 {
-  Frame frames[];
+  dvec4 frames[]; // xyz: the distance vector's step along the row; w: the site's index
 };
 layout(std430, binding = 1) readonly buffer Rows
 {
@@ -57,15 +51,13 @@ void main()
     return;
   }
   Row row = rows[r];
-  Frame f = frames[row.Frame];
-  precise dvec3 slice = f.D0.xyz + double(row.K) * f.Dw.xyz;
-  precise dvec3 start = slice + double(row.J) * f.Dv.xyz;
-  uint id = uint(f.D0.w);
-  int stride = int(f.Du.w);
+  dvec4 step = frames[row.Frame];
+  dvec3 start = dvec3(row.StartX, row.StartY, row.StartZ);
+  uint id = uint(step.w);
   int at = row.At - SampleBase;
-  for (int i = row.I0; i <= row.I1; ++i, at += stride)
+  for (int i = row.I0; i <= row.I1; ++i, at += row.Stride)
   {
-    precise dvec3 d = start + double(i) * f.Du.xyz;
+    precise dvec3 d = start + double(i) * step.xyz;
     precise float dx = float(d.x), dy = float(d.y), dz = float(d.z);
     precise float d2 = dx * dx + dy * dy + dz * dz;
     uint bits = floatBitsToUint(d2);

@@ -143,7 +143,7 @@ void RowScan::CutRows(const ScanRows& batch)
   const int64_t n = this->SlabSamples;
   for (const ScanRow& row : batch.Rows)
   {
-    const int64_t stride = static_cast<int64_t>(batch.Frames[row.Frame].Du[3]);
+    const int64_t stride = row.Stride;
     ScanRow piece = row;
     for (int i = row.I0; i <= row.I1; ++i)
     {

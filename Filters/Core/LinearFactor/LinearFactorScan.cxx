@@ -208,9 +208,8 @@ public:
     const
   {
     const double* du = this->Du;
-    const double row[3] = {
-      dk[0] + j * this->Dv[0], dk[1] + j * this->Dv[1], dk[2] + j * this->Dv[2]
-    };
+    double row[3];
+    this->RowStart(dk, j, row);
     for (int i = i0; i <= i1; ++i, at += this->StrideU)
     {
       const float dx = static_cast<float>(row[0] + i * du[0]);
@@ -220,19 +219,22 @@ public:
     }
   }
 
-  /// The site's distance vector along the scan's axes, for the GPU's rows.
-  ScanFrame Frame() const
+  /// The distance vector at i = 0 of row j (dk: its part up to the slice).
+  void RowStart(const double dk[3], int j, double row[3]) const
   {
-    ScanFrame f;
     for (int a = 0; a < 3; ++a)
     {
-      f.D0[a] = this->D0[a], f.Du[a] = this->Du[a], f.Dv[a] = this->Dv[a], f.Dw[a] = this->Dw[a];
+      row[a] = dk[a] + j * this->Dv[a];
     }
-    f.D0[3] = this->SiteIndex;
-    f.Du[3] = static_cast<double>(this->StrideU);
-    f.Dv[3] = f.Dw[3] = 0;
-    return f;
   }
+
+  /// The site's step along its rows, for the GPU's rows.
+  ScanFrame Frame() const
+  {
+    return { { this->Du[0], this->Du[1], this->Du[2], static_cast<double>(this->SiteIndex) } };
+  }
+
+  int64_t RowStride() const { return this->StrideU; }
 
 private:
   /// Whether the site may be the nearest one in a block's cell (RangeCulling's bound),
@@ -423,14 +425,21 @@ void CollectScanRows(const MeshSites& sites,
             const uint32_t frame = static_cast<uint32_t>(mine.Frames.size());
             bool framed = false;
             auto record =
-              [&](const SiteScan& scan, const double*, int j, int k, int i0, int i1, int64_t at)
+              [&](const SiteScan& scan, const double* dk, int j, int, int i0, int i1, int64_t at)
             {
               if (!framed)
               {
                 mine.Frames.push_back(scan.Frame());
                 framed = true;
               }
-              mine.Rows.push_back({ frame, static_cast<int32_t>(at), j, k, i0, i1 });
+              ScanRow row;
+              scan.RowStart(dk, j, row.Start);
+              row.Frame = frame;
+              row.At = static_cast<int32_t>(at);
+              row.I0 = i0;
+              row.I1 = i1;
+              row.Stride = static_cast<int32_t>(scan.RowStride());
+              mine.Rows.push_back(row);
             };
             mine.Evaluations +=
               SiteScan(sites, site, static_cast<uint32_t>(id), region, culling, request)

@@ -142,22 +142,24 @@ ScanStatistics ScanSitesCPU(const MeshSites& sites,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress);
 
-/// A site's distance vector along its scan axes (SiteScan, LinearFactorScan.cxx): at
-/// sample i of row j of slice k it is D0 + k Dw + j Dv + i Du, each term in double, and
-/// rounded to float. The fourth components: the site's index (D0) and the extent's
-/// stride along the inner axis (Du). Laid out for Shaders/LinearFactorRows.comp.glsl.
+/// A site's step along its rows for the GPU (Shaders/LinearFactorRows.comp.glsl): the
+/// distance vector of sample i of a row is Start + i Du (SiteScan, LinearFactorScan.cxx),
+/// in double, rounded to float. The fourth component: the site's index.
 struct ScanFrame
 {
-  double D0[4], Du[4], Dv[4], Dw[4];
+  double Du[4];
 };
 
-/// Samples I0..I1 of row J of slice K of a frame's site, the first at index At of the
-/// extent.
+/// Samples I0..I1 of a row of a frame's site: the first at index At of the extent, the
+/// next ones Stride apart; Start is the distance vector at i = 0, computed as the CPU
+/// scan computes it.
 struct ScanRow
 {
+  double Start[3];
   uint32_t Frame;
-  int32_t At, J, K, I0, I1;
+  int32_t At, I0, I1, Stride;
 };
+static_assert(sizeof(ScanRow) == 48, "the layout of Shaders/LinearFactorRows.comp.glsl's Row");
 
 struct ScanRows
 {
