@@ -1,6 +1,7 @@
 #version 450 core
 // The field from the nearest site of every voxel, on the GPU (LinearFactorScan.cxx
-// Finalize, the same double arithmetic): signed distance and closest point.
+// Finalize, the same double arithmetic, `precise`, with IEEE's square root): signed
+// distance and closest point in world units, the CPU's floats.
 layout(local_size_x = 64) in;
 struct Site
 {
@@ -26,8 +27,11 @@ layout(std430, binding = 3) writeonly buffer ClosestPoints
 };
 //DF::SampleGrid
 uniform int Signed;
+uniform dvec3 FrameOrigin; // the local frame (GridFrame): world = origin + scale local
+uniform double FrameScale;
 uniform int First, Last;                      // voxels of this dispatch
 uniform int IdBase, DistanceBase, ClosestBase; // first elements of the bound ranges
+//DF::CorrectlyRounded
 
 void main()
 {
@@ -63,15 +67,16 @@ void main()
     precise double across = r.x * s.axis.x + r.y * s.axis.y + r.z * s.axis.z;
     r = s.axis.xyz * across;
   }
-  precise double length = sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
-  float value = float(length);
+  precise double length = SqrtRN(r.x * r.x + r.y * r.y + r.z * r.z);
+  precise double world = length * FrameScale;
+  float value = float(world);
   if (Signed != 0)
   {
     precise double side = r.x * s.normal.x + r.y * s.normal.y + r.z * s.normal.z;
     value = side > 0.0lf ? -value : value;
   }
   distance[at - DistanceBase] = value;
-  precise dvec3 point = x + r;
+  precise dvec3 point = FrameOrigin + FrameScale * (x + r);
   closest[c] = float(point.x);
   closest[c + 1] = float(point.y);
   closest[c + 2] = float(point.z);

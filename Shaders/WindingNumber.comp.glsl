@@ -1,12 +1,13 @@
 #version 450 core
 // The winding-number sign per sample (Filters/Core/Winding/WindingNumber.h, Inside): the
 // hierarchy's order-1 expansions with their error bound at CoarseAccuracy, then at
-// Accuracy, then the exact sum, in double precision. GLSL has no double atan, so the
-// exact solid angles are summed as the argument of a product of complex numbers, one
-// per triangle (Van Oosterom and Strackee: a triangle's angle is 2 arg(den + i det)),
-// counting the turns the product makes: w = Turns + arg(Product) / 2 pi. The sign of
-// the exact sum needs no atan at all (|w| > 1/2 exactly when Turns is not 0, but for
-// w = -1/2); the approximate ones take arg() in single precision, covered by AtanSlack.
+// Accuracy, then the exact sum, in double precision: the CPU's expressions in the CPU's
+// order, `precise`, with IEEE's square roots and quotients (SqrtRN, DivRN) and the CPU's
+// arctangent (ArcTangent2), so that the decisions, the signs and the values are the
+// CPU's bits. The exact solid angles are summed as the argument of a product of complex
+// numbers, one per triangle (Van Oosterom and Strackee: a triangle's angle is
+// 2 arg(den + i det)), counting the turns the product makes (AngleProduct):
+// w = Turns + arg(Product) / 2 pi.
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer NodeValues
 {
@@ -32,72 +33,80 @@ layout(std430, binding = 4) writeonly buffer Values
 uniform int First; // sample index of invocation 0
 uniform int Last;  // one past the last sample of this dispatch
 uniform int TriangleCount;
-uniform double CoarseAccuracy, Accuracy, ValueAccuracy;
+uniform double CoarseAccuracy, Accuracy, ValueAccuracy, RoundingSlack;
+uniform double TwoPi, FourPi; // 2 M_PI and 4 M_PI, the CPU's doubles
 uniform int WantValues;
+//DF::CorrectlyRounded
+//DF::ArcTangent2
 
-const double Pi = 3.141592653589793LF;
-const double TwoPi = 6.283185307179586LF;
-const double FourPi = 12.566370614359172LF;
-// Single-precision atan errs by far less than 1e-5 rad; in w that is 1e-5 / 2 pi.
-const double AtanSlack = 2e-6LF;
-
-dvec2 Product; // the running product, scaled to keep it in range (scaling keeps arg)
+dvec2 Product; // the running product, kept near 1 by powers of two (which keep arg)
 int Turns;     // full turns its argument made
 
-void MultiplyAngle(dvec2 z)
+double Dot(dvec3 a, dvec3 b)
 {
-  if (z.x == 0.0LF && z.y == 0.0LF)
+  precise double c = a.x * b.x + a.y * b.y + a.z * b.z;
+  return c;
+}
+
+void MultiplyAngle(double re, double im)
+{
+  if (re == 0.0lf && im == 0.0lf)
   {
     return; // q at a corner: atan2(0, 0) = 0
   }
-  dvec2 p = dvec2(Product.x * z.x - Product.y * z.y, Product.x * z.y + Product.y * z.x);
-  // Arguments in (-pi, pi]: the sum wrapped when both halves agree and the product's
-  // imaginary part changed side.
-  if (Product.y >= 0.0LF && z.y >= 0.0LF)
+  precise double pr = Product.x * re - Product.y * im;
+  precise double pi = Product.x * im + Product.y * re;
+  // Arguments in (-pi, pi]: the sum wrapped when both lie on one side and the product on
+  // the other.
+  if (Product.y >= 0.0lf && im >= 0.0lf)
   {
-    if (p.y < 0.0LF || (p.y == 0.0LF && p.x > 0.0LF && Product.x < 0.0LF && z.x < 0.0LF))
+    if (pi < 0.0lf || (pi == 0.0lf && pr > 0.0lf && Product.x < 0.0lf && re < 0.0lf))
     {
       Turns += 1;
     }
   }
-  else if (Product.y < 0.0LF && z.y < 0.0LF && p.y >= 0.0LF)
+  else if (Product.y < 0.0lf && im < 0.0lf && pi >= 0.0lf)
   {
     Turns -= 1;
   }
-  Product = p / max(abs(p.x), abs(p.y));
+  Product = dvec2(pr, pi);
+  double m = max(abs(pr), abs(pi));
+  if (m > ldexp(1.0lf, 100) || m < ldexp(1.0lf, -100))
+  {
+    int e;
+    frexp(m, e);
+    Product = dvec2(ldexp(pr, -e), ldexp(pi, -e));
+  }
 }
 
 void AddTriangle(int t, dvec3 q)
 {
   int b = 9 * t;
-  dvec3 u = dvec3(corner[b], corner[b + 1], corner[b + 2]) - q;
-  dvec3 v = dvec3(corner[b + 3], corner[b + 4], corner[b + 5]) - q;
-  dvec3 w = dvec3(corner[b + 6], corner[b + 7], corner[b + 8]) - q;
-  double lu = sqrt(dot(u, u)), lv = sqrt(dot(v, v)), lw = sqrt(dot(w, w));
-  double det = dot(u, cross(v, w));
-  double den = lu * lv * lw + dot(u, v) * lw + dot(u, w) * lv + dot(v, w) * lu;
-  MultiplyAngle(dvec2(den, det));
+  precise dvec3 u = dvec3(corner[b], corner[b + 1], corner[b + 2]) - q;
+  precise dvec3 v = dvec3(corner[b + 3], corner[b + 4], corner[b + 5]) - q;
+  precise dvec3 w = dvec3(corner[b + 6], corner[b + 7], corner[b + 8]) - q;
+  precise double lu = SqrtRN(Dot(u, u)), lv = SqrtRN(Dot(v, v)), lw = SqrtRN(Dot(w, w));
+  precise double det = u.x * (v.y * w.z - v.z * w.y) + u.y * (v.z * w.x - v.x * w.z) +
+    u.z * (v.x * w.y - v.y * w.x);
+  precise double den = lu * lv * lw + Dot(u, v) * lw + Dot(u, w) * lv + Dot(v, w) * lu;
+  MultiplyAngle(den, det);
 }
 
-// arg(Product) in (-pi, pi], an imaginary part of 0 counting as the upper side (as the
-// turns count it), also where single precision rounds a tiny one to 0.
-double Angle()
+// Turns + arg(Product) / 2 pi (AngleProduct::Winding).
+double Winding()
 {
-  float y = float(Product.y), x = float(Product.x);
-  if (y == 0.0)
-  {
-    return Product.x >= 0.0LF ? 0.0LF : (Product.y >= 0.0LF ? Pi : -Pi);
-  }
-  return double(atan(y, x));
+  precise double w = double(Turns) + DivRN(ArcTangent2(Product.y, Product.x), TwoPi);
+  return w;
 }
 
-// The approximation at `accuracy`: returns w, with its bound in `bound`.
+// The approximation at `accuracy` (WindingNumber::Evaluate): returns w, with its bound
+// in `bound`.
 double Evaluate(dvec3 q, double accuracy, out double bound)
 {
-  Product = dvec2(1.0LF, 0.0LF);
+  Product = dvec2(1.0lf, 0.0lf);
   Turns = 0;
-  double far = 0.0LF;
-  bound = 0.0LF;
+  precise double far = 0.0lf;
+  precise double sum = 0.0lf;
   int stack[64];
   int depth = 0;
   stack[depth++] = 0;
@@ -105,22 +114,26 @@ double Evaluate(dvec3 q, double accuracy, out double bound)
   {
     int n = stack[--depth];
     int b = 17 * n;
-    dvec3 d = dvec3(node[b], node[b + 1], node[b + 2]) - q;
+    precise dvec3 d = dvec3(node[b], node[b + 1], node[b + 2]) - q;
     double radius = node[b + 3];
-    double r2 = dot(d, d);
-    double r = sqrt(r2);
-    double gap = r - radius;
+    precise double r2 = Dot(d, d);
+    precise double reach = accuracy * accuracy * radius * radius;
+    precise double r = SqrtRN(r2);
+    precise double gap = r - radius;
     ivec4 l = link[n];
-    if (r2 > accuracy * accuracy * radius * radius && gap > 0.0LF)
+    if (r2 > reach && gap > 0.0lf)
     {
+      // FarTerm: M . d / r^3 + (tr T - 3 d.T.d / r^2) / r^3, over 4 pi.
       dvec3 moment = dvec3(node[b + 4], node[b + 5], node[b + 6]);
-      dvec3 td = dvec3(node[b + 7] * d.x + node[b + 8] * d.y + node[b + 9] * d.z,
+      precise dvec3 td = dvec3(node[b + 7] * d.x + node[b + 8] * d.y + node[b + 9] * d.z,
         node[b + 10] * d.x + node[b + 11] * d.y + node[b + 12] * d.z,
         node[b + 13] * d.x + node[b + 14] * d.y + node[b + 15] * d.z);
-      double trace = node[b + 7] + node[b + 11] + node[b + 15];
-      far += (dot(moment, d) + trace - 3.0LF * dot(d, td) / r2) / (FourPi * r2 * r);
-      double gap2 = gap * gap;
-      bound += 3.0LF * node[b + 16] / (FourPi * gap2 * gap2);
+      precise double r3 = r2 * r;
+      precise double numerator =
+        Dot(moment, d) + node[b + 7] + node[b + 11] + node[b + 15] - DivRN(3.0lf * Dot(d, td), r2);
+      far = far + DivRN(numerator, FourPi * r3);
+      precise double gap2 = gap * gap;
+      sum = sum + DivRN(3.0lf * node[b + 16], FourPi * gap2 * gap2);
     }
     else if (l.z < 0)
     {
@@ -135,7 +148,16 @@ double Evaluate(dvec3 q, double accuracy, out double bound)
       stack[depth++] = l.w;
     }
   }
-  return far + double(Turns) + Angle() / TwoPi;
+  bound = sum;
+  precise double w = far + Winding();
+  return w;
+}
+
+bool Decides(double w, double bound)
+{
+  precise double margin = abs(abs(w) - 0.5lf);
+  precise double needed = bound + RoundingSlack;
+  return margin > needed;
 }
 
 void main()
@@ -148,39 +170,39 @@ void main()
   int i = s % Dims.x;
   int j = (s / Dims.x) % Dims.y;
   int k = s / (Dims.x * Dims.y);
-  dvec3 q = Origin + dvec3(Lo + ivec3(i, j, k)) * Spacing;
+  precise dvec3 q = Origin + dvec3(Lo + ivec3(i, j, k)) * Spacing;
   bool decided = false, inside = false;
-  double w = 0.0LF, bound = 0.0LF;
+  double w = 0.0lf, bound = 0.0lf;
   if (WantValues != 0)
   {
     w = Evaluate(q, max(Accuracy, ValueAccuracy), bound);
-    decided = abs(abs(w) - 0.5LF) > bound + AtanSlack;
+    decided = Decides(w, bound);
   }
   else
   {
     w = Evaluate(q, min(CoarseAccuracy, Accuracy), bound);
-    decided = abs(abs(w) - 0.5LF) > bound + AtanSlack;
+    decided = Decides(w, bound);
     if (!decided)
     {
       w = Evaluate(q, Accuracy, bound);
-      decided = abs(abs(w) - 0.5LF) > bound + AtanSlack;
+      decided = Decides(w, bound);
     }
   }
   if (decided)
   {
-    inside = abs(w) > 0.5LF;
+    inside = abs(w) > 0.5lf;
   }
   else
   {
-    Product = dvec2(1.0LF, 0.0LF);
+    Product = dvec2(1.0lf, 0.0lf);
     Turns = 0;
     for (int t = 0; t < TriangleCount; ++t)
     {
       AddTriangle(t, q);
     }
     // w = Turns + arg / 2 pi with arg in (-pi, pi]: |w| > 1/2 but for w = -1/2.
-    inside = Turns != 0 && !(Turns == -1 && Product.y == 0.0LF && Product.x < 0.0LF);
-    w = double(Turns) + Angle() / TwoPi;
+    inside = Turns != 0 && !(Turns == -1 && Product.y == 0.0lf && Product.x < 0.0lf);
+    w = Winding();
   }
   answer[s - First] = (inside ? 1u : 0u) | (decided ? 0u : 2u);
   if (WantValues != 0)

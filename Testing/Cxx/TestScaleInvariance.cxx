@@ -10,6 +10,7 @@
 // counted and checked to be ties: two cells equally near (within 1e-3 h), a voxel
 // centre at half a cell diagonal from the mesh (within 1e-9 relative), a solid voxel
 // next to the surface, a medial pair at the angle threshold or between equal radii.
+// On the GPU, at 1 and 2^+-100, every array also equals the CPU backend's, bit for bit.
 #include "vtkCell.h"
 #include "vtkChamferVoxelDistance.h"
 #include "vtkDataArray.h"
@@ -32,6 +33,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -90,14 +92,11 @@ void Configure(Filter* filter, vtkPolyData* mesh, const std::string& backend)
   vtkdf::testing::UseBackend(filter, backend);
 }
 
-Output LinearFactor(vtkPolyData* mesh, const std::string& backend, bool queries)
+Output LinearFactor(vtkPolyData* mesh, const std::string& backend, int route)
 {
   vtkNew<vtkLinearFactorDistanceField> filter;
   Configure(filter.Get(), mesh, backend);
-  if (queries)
-  {
-    filter->SetRouteToSampleQueries();
-  }
+  filter->SetRoute(route);
   filter->SetSignModeToPseudoNormal();
   filter->ComputeClosestFeatureOn();
   filter->ComputeClosestPointOn();
@@ -109,7 +108,10 @@ Output Run(const std::string& name, vtkPolyData* mesh, const std::string& backen
 {
   if (name == "linfac" || name == "linfac-queries")
   {
-    return LinearFactor(mesh, backend, name == "linfac-queries");
+    return LinearFactor(mesh,
+      backend,
+      name == "linfac-queries" ? vtkLinearFactorDistanceField::ROUTE_SAMPLE_QUERIES
+                               : vtkLinearFactorDistanceField::ROUTE_AUTO);
   }
   if (name == "voxelize")
   {
@@ -155,6 +157,31 @@ Arrays ArraysOf(const std::string& name)
   return { { "Radius" }, { "Medial", "SeparationAngle" } };
 }
 
+/// A GPU run's every array equal to the CPU backend's, bit for bit (linfac: the CPU's
+/// scan, the route the GPU takes).
+void CheckSameAsCPU(const std::string& name, vtkPolyData* mesh, const Output& gpu, double k)
+{
+  const Output cpu = name == "linfac"
+    ? LinearFactor(mesh, "cpu", vtkLinearFactorDistanceField::ROUTE_SITE_SCAN)
+    : Run(name, mesh, "cpu");
+  const Arrays arrays = ArraysOf(name);
+  for (const auto* list : { &arrays.Scaling, &arrays.Discrete })
+  {
+    for (const char* array : *list)
+    {
+      vtkDataArray* a = gpu.Get(array);
+      vtkDataArray* b = cpu.Get(array);
+      const bool same = a && b && a->GetDataType() == b->GetDataType() &&
+        a->GetNumberOfTuples() == b->GetNumberOfTuples() &&
+        a->GetNumberOfComponents() == b->GetNumberOfComponents() &&
+        std::memcmp(a->GetVoidPointer(0),
+          b->GetVoidPointer(0),
+          a->GetNumberOfValues() * a->GetDataTypeSize()) == 0;
+      CHECK(same, "scale %g: the GPU's %s is not the CPU backend's", k, array);
+    }
+  }
+}
+
 /// The world position of sample v of `image`.
 void Position(vtkImageData* image, vtkIdType v, double x[3])
 {
@@ -181,6 +208,10 @@ int main(int argc, char* argv[])
   {
     return vtkdf::testing::Verdict();
   }
+  if (backend == "gpu")
+  {
+    CheckSameAsCPU(name, mesh, base, 1);
+  }
   const double h = base.Image->GetSpacing()[0];
   const vtkIdType n = base.Image->GetNumberOfPoints();
   const Arrays arrays = ArraysOf(name);
@@ -188,7 +219,7 @@ int main(int argc, char* argv[])
   Output baseField;
   if (name == "medial")
   {
-    baseField = LinearFactor(mesh, backend, false);
+    baseField = LinearFactor(mesh, backend, vtkLinearFactorDistanceField::ROUTE_AUTO);
   }
 
   const double scales[] = {
@@ -200,6 +231,10 @@ int main(int argc, char* argv[])
     const bool exact = std::frexp(k, &exponent) == 0.5; // a power of two
     vtkSmartPointer<vtkPolyData> scaled = Scaled(mesh, k);
     const Output out = Run(name, scaled, backend);
+    if (backend == "gpu" && exact)
+    {
+      CheckSameAsCPU(name, scaled, out, k);
+    }
     CHECK(out.Image->GetNumberOfPoints() == n,
       "scale %g: %lld samples instead of %lld",
       k,

@@ -30,6 +30,7 @@ namespace vtkdf
   X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                                                         \
   X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                                                 \
   X(PFNGLUNIFORM1DPROC, Uniform1d)                                                                 \
+  X(PFNGLUNIFORM2UIVPROC, Uniform2uiv)                                                             \
   X(PFNGLUNIFORM3DPROC, Uniform3d)                                                                 \
   X(PFNGLUNIFORM3IPROC, Uniform3i)                                                                 \
   X(PFNGLATTACHSHADERPROC, AttachShader)                                                           \

@@ -24,8 +24,14 @@ void SetGridUniforms(const GLFunctions& gl,
 /// //DF::TriangleDistance line by Shaders/TriangleDistance.glsl (the exact point-to-
 /// triangle distance that the voxelizer and the proximity searches share), and its
 /// //DF::CorrectlyRounded line by Shaders/CorrectlyRounded.glsl (IEEE's double sqrt and
-/// division, for the passes that must branch as the CPU does).
+/// division, for the passes that must branch as the CPU does), and its //DF::ArcTangent2
+/// line by Shaders/ArcTangent2.glsl (Common/ArcTangent.h's ArcTangent2, after
+/// //DF::CorrectlyRounded).
 std::string WithSharedCode(const char* source);
+
+/// The constants of Shaders/ArcTangent2.glsl (ArcTangentConstants()) on `program`, which
+/// must be in use.
+void SetArcTangentUniforms(const GLFunctions& gl, GLuint program);
 
 } // namespace vtkdf
 

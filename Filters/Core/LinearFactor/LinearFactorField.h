@@ -153,15 +153,23 @@ bool ComputeLinearFactorField(MeshInput mesh,
   LinearFactorReport& report,
   std::string& error);
 
+/// The units of a GPU field's distances and closest points: the local frame's (for a
+/// pass that works there), or the world's (the CPU backend's output floats, bit for bit).
+enum class GPUFieldUnits
+{
+  Local,
+  World
+};
+
 /// The field as GL buffers on the GPU, for passes that read it where it lies (the medial
 /// axis, the segmented field's side labels): per sample of the extent (x fastest) the
-/// distance (float, the local frame's units), the closest point (3 floats, local frame)
-/// and the nearest site's index (int); per site, its cell id and type (0 vertex, 1 edge,
-/// 2 face).
+/// distance (float) and the closest point (3 floats), in `Units`, and the nearest site's
+/// index (int); per site, its cell id and type (0 vertex, 1 edge, 2 face).
 struct GPUField
 {
   unsigned Distance = 0, ClosestPoint = 0, SiteIds = 0;
-  SampleGrid Grid; // the request's grid in the local frame
+  GPUFieldUnits Units = GPUFieldUnits::Local;
+  SampleGrid Grid; // the request's grid in the local frame, whatever the Units
   IndexBox Extent;
   GridFrame Frame;
   std::vector<int64_t> SiteCells;
@@ -177,6 +185,7 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
   MeshInput mesh,
   const LinearFactorRequest& request,
   const Execution& execution,
+  GPUFieldUnits units,
   const std::function<bool(const GPUField&, std::string&)>& use,
   LinearFactorReport& report,
   std::string& error);

@@ -326,6 +326,7 @@ bool ScanSitesGPU(HeadlessGL& context,
 bool FinalizeGPU(HeadlessGL& context,
   const MeshSites& sites,
   const LocalFieldRequest& request,
+  const GridFrame& frame,
   unsigned residentIds,
   bool signedField,
   unsigned distanceBuffer,
@@ -381,6 +382,8 @@ bool FinalizeGPU(HeadlessGL& context,
   const SampleGrid& grid = request.Grid;
   SetGridUniforms(gl, program, grid, ext);
   gl.Uniform1i(uniform("Signed"), signedField);
+  gl.Uniform3d(uniform("FrameOrigin"), frame.Origin[0], frame.Origin[1], frame.Origin[2]);
+  gl.Uniform1d(uniform("FrameScale"), frame.Scale);
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
   const int64_t perDispatch = int64_t(65535) * 64;
   for (int64_t z0 = 0; z0 < nz; z0 += slab)

@@ -13,10 +13,9 @@ namespace vtkdf
 namespace
 {
 /// The separation angle (degrees) and the radius (world units) of every voxel, from the
-/// cosines of the pass and the distances (times `scale` into world units).
+/// cosines of the pass and the distances.
 void AnglesAndRadii(const std::vector<double>& cosine,
   const float* distance,
-  double scale,
   const MedialArrays& arrays,
   const ParallelFor& parallelFor)
 {
@@ -31,7 +30,7 @@ void AnglesAndRadii(const std::vector<double>& cosine,
         angle[v] = cosine[v] <= 1
           ? static_cast<float>(std::acos(std::max(-1.0, cosine[v])) * 180.0 / M_PI)
           : 0.0f;
-        radius[v] = static_cast<float>(std::fabs(distance[v]) * scale);
+        radius[v] = std::fabs(distance[v]);
       }
     });
 }
@@ -56,7 +55,7 @@ bool ComputeMedialAxis(const MedialInput& field,
   {
     arrays.Count = MedialAxisCPU(field, arrays.Medial, cosine.data(), execution.For);
   }
-  AnglesAndRadii(cosine, field.Distance, 1, arrays, execution.For);
+  AnglesAndRadii(cosine, field.Distance, arrays, execution.For);
   execution.EndStage("medial");
   return true;
 }
@@ -83,13 +82,11 @@ bool ComputeMedialAxis(MeshInput mesh,
     // The field and the medial pass, all on the GPU (only distances and cosines return).
     std::vector<float> distance(voxels);
     std::vector<double> cosine(voxels);
-    double scale = 1;
     auto medialPass = [&](const GPUField& field, std::string& passError)
     {
+      // The field's buffers are in world units: the CPU's pass over them.
       MedialInput local = parameters;
-      local.Grid = field.Grid;
       local.Grid.Whole = field.Extent; // the voxels in the buffers
-      scale = field.Frame.Scale;
       if (!MedialAxisOnGPUField(*gl,
             field,
             local,
@@ -109,7 +106,7 @@ bool ComputeMedialAxis(MeshInput mesh,
     Execution quiet;
     quiet.For = execution.For;
     if (!ComputeLinearFactorFieldOnGPU(
-          *gl, std::move(mesh), request, quiet, medialPass, report, error))
+          *gl, std::move(mesh), request, quiet, GPUFieldUnits::World, medialPass, report, error))
     {
       return false;
     }
@@ -124,7 +121,7 @@ bool ComputeMedialAxis(MeshInput mesh,
       return true;
     }
     execution.EndStage("field+medial");
-    AnglesAndRadii(cosine, distance.data(), scale, arrays, execution.For);
+    AnglesAndRadii(cosine, distance.data(), arrays, execution.For);
     execution.EndStage("outputs");
     return true;
   }

@@ -152,8 +152,14 @@ bool FieldOnGPU(HeadlessGL& gl,
   field.Grid = request.Grid;
   field.Extent = extent;
   LinearFactorReport fieldReport;
-  if (!ComputeLinearFactorFieldOnGPU(
-        gl, FieldMesh(surface), field, execution.Part(0.05, 0.55), labels, fieldReport, error))
+  if (!ComputeLinearFactorFieldOnGPU(gl,
+        FieldMesh(surface),
+        field,
+        execution.Part(0.05, 0.55),
+        GPUFieldUnits::Local,
+        labels,
+        fieldReport,
+        error))
   {
     error = "The GPU field and side labels failed: " + error;
     return false;

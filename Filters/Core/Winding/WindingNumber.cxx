@@ -1,5 +1,6 @@
 #include "Winding/WindingNumber.h"
 
+#include "Common/ArcTangent.h"
 #include "Common/Vector3.h"
 
 #include <algorithm>
@@ -60,8 +61,8 @@ void AngleProduct::Multiply(double re, double im)
 
 double AngleProduct::Argument() const
 {
-  // +0 for either zero, as the turns count it.
-  return std::atan2(this->Im == 0 ? 0.0 : this->Im, this->Re);
+  // ArcTangent2 takes an imaginary part of 0, either sign, as +0, as the turns count it.
+  return ArcTangent2(this->Im, this->Re);
 }
 
 double AngleProduct::Winding() const
@@ -506,9 +507,6 @@ double WindingNumber::Exact(const double q[3]) const
 
 bool WindingNumber::Inside(const double q[3], double* value, bool* exact) const
 {
-  // A sample is decided by the approximation when its margin exceeds the bound plus what
-  // rounding may have added to w (sums of a few thousand terms of at most a few units).
-  constexpr double RoundingSlack = 1e-12;
   auto decides = [](const WindingValue& w)
   { return std::fabs(std::fabs(w.Value) - 0.5) > w.Bound + RoundingSlack; };
   if (exact)

@@ -44,8 +44,9 @@ void TriangleSolidAngleGradient(const double a[3],
 /// A sum of triangles' solid angles kept as the argument of a product of complex
 /// numbers, den + i det per triangle (Van Oosterom and Strackee: the angle is twice its
 /// argument), with a count of the full turns the product makes: no atan2 per triangle,
-/// and the sign of the sum (|w| > 1/2) from the count alone. The GPU does the same
-/// (Shaders/WindingNumber.comp.glsl).
+/// and the sign of the sum (|w| > 1/2) from the count alone. The argument is
+/// ArcTangent2's, whose bits a shader can give: the GPU does the same, operation for
+/// operation (Shaders/WindingNumber.comp.glsl).
 class AngleProduct
 {
 public:
@@ -89,6 +90,9 @@ public:
   /// Inside() with a value evaluates at this accuracy at least: the values users read
   /// are then within about 1e-3 of the exact ones (order 1, Testing/Cxx/TestWindingSign).
   static constexpr double ValueAccuracy = 8;
+  /// An approximation decides a sample when its margin exceeds its bound plus what
+  /// rounding may have added to w (sums of a few thousand terms of at most a few units).
+  static constexpr double RoundingSlack = 1e-12;
 
   /// Builds the hierarchy over the triangles (3 point ids each into xyz `points`).
   /// Accuracy must exceed 1.

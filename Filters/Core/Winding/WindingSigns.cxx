@@ -14,8 +14,9 @@ namespace vtkdf
 namespace
 {
 constexpr int TopBlock = 8;
-// Covers the rounding of the first-order prediction (its terms are at most a few units).
-constexpr double RoundingSlack = 1e-12;
+// Covers the rounding of the first-order prediction too (its terms are at most a few
+// units).
+constexpr double RoundingSlack = WindingNumber::RoundingSlack;
 constexpr double SkipFactor = 2;
 
 struct Decider

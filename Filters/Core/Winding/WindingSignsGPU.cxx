@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 
 namespace vtkdf
 {
@@ -105,6 +106,10 @@ bool WindingSignsGPU(HeadlessGL& context,
   gl.Uniform1d(uniform("CoarseAccuracy"), WindingNumber::CoarseAccuracy);
   gl.Uniform1d(uniform("Accuracy"), winding.GetAccuracy());
   gl.Uniform1d(uniform("ValueAccuracy"), WindingNumber::ValueAccuracy);
+  gl.Uniform1d(uniform("RoundingSlack"), WindingNumber::RoundingSlack);
+  gl.Uniform1d(uniform("TwoPi"), 2 * M_PI);
+  gl.Uniform1d(uniform("FourPi"), 4 * M_PI);
+  SetArcTangentUniforms(gl, program);
   gl.Uniform1i(uniform("WantValues"), options.Value ? 1 : 0);
   std::vector<uint32_t> answers(chunk);
   stats = WindingSignStatistics();
