@@ -1,7 +1,8 @@
 #version 450 core
 // The side label of every sample (Filters/Core/Segment/SegmentRegions.cxx SideLabel, the
-// same arithmetic in double precision, `precise`; a GL's sqrt may differ from IEEE's by an
-// ulp or two, NVIDIA's does, which can change a label only at a near tie): among the triangles at the sample's
+// same arithmetic in double precision, `precise`, with IEEE's square roots and quotients,
+// SqrtRN and DivRN, from the closest points the CPU's regions read: the world floats
+// taken to the local frame): among the triangles at the sample's
 // closest feature, the one whose wedge is nearest in angle to the direction from the
 // closest point to the sample; the label is 2 patch + side (-1: no site, or a triangle
 // without a patch). Reads the nearest sites and closest points that the GPU scan and its
@@ -39,6 +40,9 @@ layout(std430, binding = 6) readonly buffer CornerTriangles
 uniform int KeyCount;
 uniform int First, Last;                     // voxels of this dispatch
 uniform int SiteBase, ClosestBase, LabelBase; // first elements of the bound ranges
+uniform dvec3 FrameOrigin;  // the local frame (GridFrame): local = (world - origin) / scale
+uniform double FrameInverse; // 1 / scale, a power of two
+//DF::CorrectlyRounded
 
 int Key(int t, int k)
 {
@@ -69,12 +73,12 @@ dvec3 Cross(dvec3 a, dvec3 b)
 
 bool Normalize(inout dvec3 v)
 {
-  precise double length = sqrt(Dot(v, v));
+  precise double length = SqrtRN(Dot(v, v));
   if (!(length > 0.0lf))
   {
     return false;
   }
-  v = dvec3(v.x / length, v.y / length, v.z / length);
+  v = dvec3(DivRN(v.x, length), DivRN(v.y, length), DivRN(v.z, length));
   return true;
 }
 
@@ -90,7 +94,7 @@ double SegmentDistance2(dvec3 a, dvec3 b, dvec3 c)
   precise dvec3 e = b - a;
   precise dvec3 f = c - a;
   double ee = Dot(e, e);
-  double s = ee > 0.0lf ? min(1.0lf, max(0.0lf, Dot(e, f) / ee)) : 0.0lf;
+  double s = ee > 0.0lf ? min(1.0lf, max(0.0lf, DivRN(Dot(e, f), ee))) : 0.0lf;
   dvec3 g = Less(f, s, e);
   return Dot(g, g);
 }
@@ -137,7 +141,7 @@ double VertexWedgeCosine(int f, int kv, dvec3 u, out int edgeEnd)
   if (Dot(Cross(e1, projection), n) >= 0.0lf && Dot(Cross(projection, e2), n) >= 0.0lf)
   {
     precise double rest = 1.0lf - un * un;
-    return sqrt(max(0.0lf, rest)); // the projection lies in the wedge
+    return SqrtRN(max(0.0lf, rest)); // the projection lies in the wedge
   }
   bool first = Dot(u, e1) >= Dot(u, e2);
   edgeEnd = Key(f, first ? (k + 1) % 3 : (k + 2) % 3);
@@ -201,7 +205,9 @@ void main()
   ivec3 ijk = ivec3(at % Dims.x, (at / Dims.x) % Dims.y, at / (Dims.x * Dims.y));
   precise dvec3 p = Origin + dvec3(Lo + ijk) * Spacing;
   int cb = 3 * at - ClosestBase;
-  dvec3 c = dvec3(closest[cb], closest[cb + 1], closest[cb + 2]);
+  // Times a power of two: exact, as the CPU's quotient (GridFrame::ToLocal).
+  precise dvec3 c =
+    (dvec3(closest[cb], closest[cb + 1], closest[cb + 2]) - FrameOrigin) * FrameInverse;
   precise dvec3 u = p - c;
   bool away = Normalize(u);
   int chosen = t;
@@ -263,8 +269,8 @@ void main()
     }
   }
   precise dvec3 n = Cross(Corner(chosen, 1) - Corner(chosen, 0), Corner(chosen, 2) - Corner(chosen, 0));
-  precise double length = sqrt(Dot(n, n));
-  double scale = (triangle[5 * chosen + 4] != 0 ? -1.0lf : 1.0lf) / (length > 0.0lf ? length : 1.0lf);
+  precise double length = SqrtRN(Dot(n, n));
+  double scale = DivRN(triangle[5 * chosen + 4] != 0 ? -1.0lf : 1.0lf, length > 0.0lf ? length : 1.0lf);
   n = dvec3(n.x * scale, n.y * scale, n.z * scale);
   // On the sheet (u = 0) or in its plane: the front, by convention.
   int side = away && Dot(u, n) < 0.0lf ? 1 : 0;

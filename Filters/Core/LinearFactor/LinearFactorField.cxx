@@ -351,7 +351,6 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
   MeshInput mesh,
   const LinearFactorRequest& request,
   const Execution& execution,
-  GPUFieldUnits units,
   const std::function<bool(const GPUField&, std::string&)>& use,
   LinearFactorReport& report,
   std::string& error)
@@ -380,7 +379,6 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
   field.Grid = local.Request.Grid;
   field.Extent = local.Request.Extent;
   field.Frame = local.Frame;
-  field.Units = units;
   const int64_t samples = local.Request.Extent.Count();
   GLuint buffers[3] = { 0, 0, 0 };
   functions.GenBuffers(3, buffers);
@@ -416,7 +414,7 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
     ok = FinalizeGPU(gl,
       local.Sites,
       local.Request,
-      units == GPUFieldUnits::World ? local.Frame : GridFrame(),
+      local.Frame,
       field.SiteIds,
       request.Sign == SignMode::PseudoNormal,
       field.Distance,

@@ -153,23 +153,15 @@ bool ComputeLinearFactorField(MeshInput mesh,
   LinearFactorReport& report,
   std::string& error);
 
-/// The units of a GPU field's distances and closest points: the local frame's (for a
-/// pass that works there), or the world's (the CPU backend's output floats, bit for bit).
-enum class GPUFieldUnits
-{
-  Local,
-  World
-};
-
 /// The field as GL buffers on the GPU, for passes that read it where it lies (the medial
 /// axis, the segmented field's side labels): per sample of the extent (x fastest) the
-/// distance (float) and the closest point (3 floats), in `Units`, and the nearest site's
-/// index (int); per site, its cell id and type (0 vertex, 1 edge, 2 face).
+/// distance (float) and the closest point (3 floats), in world units (the CPU backend's
+/// output floats, bit for bit), and the nearest site's index (int); per site, its cell id
+/// and type (0 vertex, 1 edge, 2 face).
 struct GPUField
 {
   unsigned Distance = 0, ClosestPoint = 0, SiteIds = 0;
-  GPUFieldUnits Units = GPUFieldUnits::Local;
-  SampleGrid Grid; // the request's grid in the local frame, whatever the Units
+  SampleGrid Grid; // the request's grid in the local frame
   IndexBox Extent;
   GridFrame Frame;
   std::vector<int64_t> SiteCells;
@@ -185,7 +177,6 @@ bool ComputeLinearFactorFieldOnGPU(HeadlessGL& gl,
   MeshInput mesh,
   const LinearFactorRequest& request,
   const Execution& execution,
-  GPUFieldUnits units,
   const std::function<bool(const GPUField&, std::string&)>& use,
   LinearFactorReport& report,
   std::string& error);

@@ -31,7 +31,7 @@ bool ScanSitesGPU(HeadlessGL& gl,
   unsigned residentIds = 0);
 
 /// Finalize on the GPU, from resident ids: the (signed) distance and closest point of
-/// every sample, in the units of `frame` (the identity: the local frame's), into GL buffers
+/// every sample, in world units (`frame` takes the local frame's there), into GL buffers
 /// of 1 and 3 floats per sample, with the same double arithmetic as Finalize: the same
 /// floats. No narrow band (MaximumDistance) here.
 bool FinalizeGPU(HeadlessGL& gl,

@@ -106,7 +106,7 @@ bool ComputeMedialAxis(MeshInput mesh,
     Execution quiet;
     quiet.For = execution.For;
     if (!ComputeLinearFactorFieldOnGPU(
-          *gl, std::move(mesh), request, quiet, GPUFieldUnits::World, medialPass, report, error))
+          *gl, std::move(mesh), request, quiet, medialPass, report, error))
     {
       return false;
     }

@@ -95,6 +95,9 @@ bool SideLabelsOnGPUField(HeadlessGL& context,
   const SampleGrid& grid = field.Grid;
   SetGridUniforms(gl, program, grid, extent);
   gl.Uniform1i(uniform("KeyCount"), static_cast<int>(corners.size() - patches.CornerCount() - 1));
+  const GridFrame& frame = field.Frame;
+  gl.Uniform3d(uniform("FrameOrigin"), frame.Origin[0], frame.Origin[1], frame.Origin[2]);
+  gl.Uniform1d(uniform("FrameInverse"), 1 / frame.Scale);
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
   // The per-sample buffers a slab of z at a time (within the storage block limit).
   GLint alignment = 1;

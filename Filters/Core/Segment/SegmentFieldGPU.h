@@ -19,10 +19,12 @@ namespace vtkdf
 {
 
 /// The side label of every sample of `field` (ComputeLinearFactorFieldOnGPU, unsigned, in
-/// the grid's local frame as `patches`), computed where the field lies; `siteTriangle`
-/// gives per site its triangle in `patches` (-1: none) and its type. Fills, per sample
-/// (x fastest), `distance` (unsigned), `closest` (xyz, the local frame) and `label`
-/// (2 patch + side, -1 when the sample has none). False and `error` when the GPU cannot.
+/// world units: the CPU backend's floats; `patches` in the grid's local frame), computed
+/// where the field lies from the closest points taken to the local frame as the CPU's
+/// regions take them; `siteTriangle` gives per site its triangle in `patches` (-1: none)
+/// and its type. Fills, per sample (x fastest), `distance` (unsigned, world units),
+/// `closest` (xyz, world) and `label` (2 patch + side, -1 when the sample has none).
+/// False and `error` when the GPU cannot.
 bool SideLabelsOnGPUField(HeadlessGL& context,
   const GPUField& field,
   const SurfacePatches& patches,

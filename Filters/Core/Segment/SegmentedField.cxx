@@ -114,8 +114,8 @@ struct LocalField
   std::vector<double> Closest;
 };
 
-/// The field on the GPU, the side labels computed where it lies; the world arrays from
-/// the local ones.
+/// The field on the GPU, the side labels computed where it lies; the distances in the
+/// local frame from the world ones, as FieldOnCPU has them.
 bool FieldOnGPU(HeadlessGL& gl,
   const Surface& surface,
   const SegmentedFieldRequest& request,
@@ -127,7 +127,7 @@ bool FieldOnGPU(HeadlessGL& gl,
 {
   const IndexBox& extent = request.Extent;
   const int64_t n = extent.Count();
-  std::vector<float> closest(3 * static_cast<size_t>(n));
+  std::vector<float> scratch(arrays.ClosestPoint ? 0 : 3 * static_cast<size_t>(n));
   local.Labels.resize(n);
   GridFrame frame;
   auto labels = [&](const GPUField& field, std::string& labelError)
@@ -143,8 +143,8 @@ bool FieldOnGPU(HeadlessGL& gl,
       field,
       surface.Patches,
       siteTriangle,
-      local.Distance.data(),
-      closest.data(),
+      arrays.Distance,
+      arrays.ClosestPoint ? arrays.ClosestPoint : scratch.data(),
       local.Labels.data(),
       labelError);
   };
@@ -152,14 +152,8 @@ bool FieldOnGPU(HeadlessGL& gl,
   field.Grid = request.Grid;
   field.Extent = extent;
   LinearFactorReport fieldReport;
-  if (!ComputeLinearFactorFieldOnGPU(gl,
-        FieldMesh(surface),
-        field,
-        execution.Part(0.05, 0.55),
-        GPUFieldUnits::Local,
-        labels,
-        fieldReport,
-        error))
+  if (!ComputeLinearFactorFieldOnGPU(
+        gl, FieldMesh(surface), field, execution.Part(0.05, 0.55), labels, fieldReport, error))
   {
     error = "The GPU field and side labels failed: " + error;
     return false;
@@ -174,19 +168,15 @@ bool FieldOnGPU(HeadlessGL& gl,
   {
     return true;
   }
-  float* d = arrays.Distance;
-  float* x = arrays.ClosestPoint;
+  // The regions read the distances in the local frame, as FieldOnCPU gives them.
+  const float* d = arrays.Distance;
   execution.For(n,
     4096,
     [&](int64_t begin, int64_t end)
     {
       for (int64_t v = begin; v < end; ++v)
       {
-        d[v] = static_cast<float>(local.Distance[v] * frame.Scale);
-        for (int a = 0; x && a < 3; ++a)
-        {
-          x[3 * v + a] = static_cast<float>(frame.ToWorld(a, closest[3 * v + a]));
-        }
+        local.Distance[v] = static_cast<float>(d[v] / frame.Scale);
       }
     });
   return true;
