@@ -92,45 +92,6 @@ std::vector<double> Points()
   return pairs;
 }
 
-bool RunShader(HeadlessGL& context, const std::vector<double>& pairs, std::vector<double>& out)
-{
-  HeadlessGL::Scope scope(context);
-  std::string error;
-  if (!scope.Ok(error))
-  {
-    std::printf("FAIL: %s\n", error.c_str());
-    return false;
-  }
-  const GLFunctions& gl = context.GL();
-  std::string log;
-  const GLuint program = context.BuildProgram({ { GL_COMPUTE_SHADER, Shader } }, log);
-  if (!program)
-  {
-    std::printf("FAIL: the program does not build: %s\n", log.c_str());
-    return false;
-  }
-  const int count = static_cast<int>(pairs.size() / 2);
-  GLuint buffers[2];
-  gl.GenBuffers(2, buffers);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[0]);
-  gl.BufferData(GL_SHADER_STORAGE_BUFFER, pairs.size() * 8, pairs.data(), GL_STATIC_DRAW);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[1]);
-  gl.BufferData(GL_SHADER_STORAGE_BUFFER, int64_t(count) * 8, nullptr, GL_DYNAMIC_READ);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
-  gl.UseProgram(program);
-  gl.Uniform1i(gl.GetUniformLocation(program, "Count"), count);
-  SetArcTangentUniforms(gl, program);
-  gl.DispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
-  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
-  out.assign(count, 0);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[1]);
-  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, int64_t(count) * 8, out.data());
-  gl.DeleteBuffers(2, buffers);
-  gl.DeleteProgram(program);
-  return NoGLError(gl, "in the arctangent's test", error) ||
-    (std::printf("FAIL: %s\n", error.c_str()), false);
-}
 } // namespace
 
 int main()
@@ -174,7 +135,14 @@ int main()
     return 1;
   }
   std::vector<double> gpu;
-  if (!RunShader(*gl, pairs, gpu))
+  if (!coretest::RunDoubleShader(*gl,
+        Shader,
+        pairs,
+        static_cast<int>(count),
+        1,
+        gpu,
+        [](const GLFunctions& functions, GLuint program)
+        { SetArcTangentUniforms(functions, program); }))
   {
     return coretest::Verdict();
   }

@@ -139,43 +139,10 @@ bool Run(HeadlessGL& context,
   const std::vector<double>& pairs,
   std::vector<double>& results)
 {
-  HeadlessGL::Scope scope(context);
-  std::string error;
-  if (!scope.Ok(error))
-  {
-    std::printf("FAIL: %s\n", error.c_str());
-    return false;
-  }
-  const GLFunctions& gl = context.GL();
   const std::string source = std::string(Shader).replace(
     std::string(Shader).find('\n') + 1, 0, "#define SEEDS " + std::to_string(seeds) + "\n");
-  std::string log;
-  const GLuint program = context.BuildProgram({ { GL_COMPUTE_SHADER, source.c_str() } }, log);
-  if (!program)
-  {
-    std::printf("FAIL: the program does not build: %s\n", log.c_str());
-    return false;
-  }
-  const int count = static_cast<int>(pairs.size() / 2);
-  GLuint buffers[2];
-  gl.GenBuffers(2, buffers);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[0]);
-  gl.BufferData(GL_SHADER_STORAGE_BUFFER, pairs.size() * 8, pairs.data(), GL_STATIC_DRAW);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[1]);
-  gl.BufferData(GL_SHADER_STORAGE_BUFFER, int64_t(count) * 32, nullptr, GL_DYNAMIC_READ);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
-  gl.UseProgram(program);
-  gl.Uniform1i(gl.GetUniformLocation(program, "Count"), count);
-  gl.DispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
-  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
-  results.assign(size_t(count) * 4, 0);
-  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[1]);
-  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, int64_t(count) * 32, results.data());
-  gl.DeleteBuffers(2, buffers);
-  gl.DeleteProgram(program);
-  return NoGLError(gl, "in the correctly rounded functions' test", error) ||
-    (std::printf("FAIL: %s\n", error.c_str()), false);
+  return coretest::RunDoubleShader(
+    context, source, pairs, static_cast<int>(pairs.size() / 2), 4, results);
 }
 } // namespace
 
