@@ -8,12 +8,11 @@
 #include "VoxelizeCombine_comp.h"
 #include "VoxelizeCommon.h"
 #include "VoxelizeFill_comp.h"
-#include "VoxelizeRaster_frag.h"
-#include "VoxelizeRaster_geom.h"
-#include "VoxelizeRaster_vert.h"
+#include "VoxelizeLanes_comp.h"
 #include "Voxels/VoxelizerRules.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -181,26 +180,25 @@ public:
   int Nx = 0, Ny = 0, Texels = 0;
 };
 
-/// Buffers, vertex array, framebuffer and programs of one run.
+/// Buffers and programs of one run.
 struct Objects
 {
   explicit Objects(const GLFunctions& gl)
     : GL(gl)
   {
+    gl.GenBuffers(6, this->Buffers);
   }
   ~Objects()
   {
-    this->GL.DeleteBuffers(4, this->Buffers);
-    this->GL.DeleteVertexArrays(1, &this->VAO);
-    this->GL.DeleteFramebuffers(1, &this->FBO);
+    this->GL.DeleteBuffers(6, this->Buffers);
     for (GLuint p : this->Programs)
     {
       this->GL.DeleteProgram(p);
     }
   }
   const GLFunctions& GL;
-  GLuint Buffers[4] = { 0, 0, 0, 0 }; // triangles, distances, counts, boundary triangles
-  GLuint VAO = 0, FBO = 0;
+  // triangles, distances, counts, boundary triangles, first and second lane words
+  GLuint Buffers[6] = { 0, 0, 0, 0, 0, 0 };
   std::vector<GLuint> Programs;
 };
 
@@ -260,6 +258,88 @@ bool CheckLimits(const GLFunctions& gl, int nx, int ny, int texels, std::string&
       " or GL_MAX_ARRAY_TEXTURE_LAYERS " + std::to_string(maxLayers);
     return false;
   }
+  return true;
+}
+
+/// Runs Shaders/VoxelizeLanes.comp.glsl (`program`, its view's uniforms set) over
+/// `count` triangles in `mode` into the lane textures `first` (and `second`, of the same
+/// size), through the buffers `laneBuffers`: in passes of as many texel layers as one
+/// storage block holds, each clearing the buffers, running every triangle and copying
+/// the buffers into the textures' layers (as a pixel unpack buffer: on the GPU).
+bool SetLaneBits(const GLFunctions& gl,
+  GLuint program,
+  int mode,
+  int64_t count,
+  const Lanes& first,
+  const Lanes* second,
+  const GLuint laneBuffers[2],
+  std::string& error)
+{
+  const int64_t layerBytes = int64_t(first.Nx) * first.Ny * 16;
+  const int64_t maxBytes = std::min<int64_t>(MaxStorageBlock(gl), INT_MAX);
+  const int layers = static_cast<int>(std::min<int64_t>(first.Texels, maxBytes / layerBytes));
+  if (layers < 1)
+  {
+    error = "a layer of " + std::to_string(first.Nx) + " x " + std::to_string(first.Ny) +
+      " lanes (" + std::to_string(layerBytes / 1048576) +
+      " MiB) exceeds GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
+      std::to_string(MaxStorageBlock(gl) / 1048576) + " MiB)";
+    return false;
+  }
+  const Lanes* targets[2] = { &first, second };
+  for (int t = 0; t < 2; ++t)
+  {
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, laneBuffers[t]);
+    gl.BufferData(
+      GL_SHADER_STORAGE_BUFFER, targets[t] ? layers * layerBytes : 4, nullptr, GL_DYNAMIC_COPY);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2 + t, laneBuffers[t]);
+  }
+  gl.Uniform1i(Uniform(gl, program, "Mode"), mode);
+  gl.Uniform1i(Uniform(gl, program, "Count"), static_cast<GLint>(count));
+  gl.Uniform1i(Uniform(gl, program, "Layers"), layers);
+  const int64_t perDispatch = int64_t(65535) * 64; // GL's least work group count
+  for (int layer0 = 0; layer0 < first.Texels; layer0 += layers)
+  {
+    const int passLayers = std::min(layers, first.Texels - layer0);
+    const uint32_t zero = 0;
+    for (int t = 0; t < 2; ++t)
+    {
+      if (targets[t])
+      {
+        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, laneBuffers[t]);
+        gl.ClearBufferData(
+          GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      }
+    }
+    gl.Uniform1i(Uniform(gl, program, "FirstLayer"), layer0);
+    for (int64_t base = 0; base < count; base += perDispatch)
+    {
+      gl.Uniform1i(Uniform(gl, program, "Base"), static_cast<GLint>(base));
+      gl.DispatchCompute(
+        static_cast<GLuint>((std::min(perDispatch, count - base) + 63) / 64), 1, 1);
+    }
+    gl.MemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);
+    for (int t = 0; t < 2; ++t)
+    {
+      if (targets[t])
+      {
+        gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, laneBuffers[t]);
+        gl.TextureSubImage3D(targets[t]->Id,
+          0,
+          0,
+          0,
+          layer0,
+          first.Nx,
+          first.Ny,
+          passLayers,
+          GL_RGBA_INTEGER,
+          GL_UNSIGNED_INT,
+          nullptr);
+      }
+    }
+    gl.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  }
+  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
   return true;
 }
 
@@ -332,13 +412,14 @@ public:
     }
   }
 
-  /// View `a`: its uniforms, then the boundary lanes (when wanted) and the solid's front
-  /// and back lanes and intervals (when wanted). False and `error` when a framebuffer is
-  /// incomplete.
+  /// View `a`: the boundary lanes (when wanted), the solid's front and back lanes and
+  /// their intervals (when wanted). False and `error` when a layer of lanes exceeds a
+  /// storage block.
   bool Rasterize(int a,
-    GLuint raster,
+    GLuint lanes,
     GLuint fill,
-    const std::vector<GpuTriangle>& records,
+    const GLuint laneBuffers[2],
+    int64_t numSolid,
     bool wantBoundary,
     bool wantSolid,
     std::string& error)
@@ -346,29 +427,22 @@ public:
     const GLFunctions& gl = this->GL;
     const int* n = this->N;
     const int b = (a + 1) % 3, c = (a + 2) % 3;
-    gl.UseProgram(raster);
-    gl.Uniform1i(Uniform(gl, raster, "Nb"), n[b]);
-    gl.Uniform1i(Uniform(gl, raster, "Nc"), n[c]);
-    gl.Uniform1i(Uniform(gl, raster, "Na"), n[a]);
-    gl.Uniform3i(Uniform(gl, raster, "Axes"), a, b, c);
-    SetGridUniforms(gl, raster, this->Grid, this->Grid.Whole);
-    gl.Uniform1d(Uniform(gl, raster, "Limit2"), BoundaryLimit2(this->Grid));
-    gl.Uniform1d(Uniform(gl, raster, "Reach"), BoundaryReach(this->Grid, a));
-    gl.Viewport(0, 0, n[b], n[c]);
-    const GLenum buffers[2] = { GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1 };
+    gl.UseProgram(lanes);
+    gl.Uniform1i(Uniform(gl, lanes, "Nb"), n[b]);
+    gl.Uniform1i(Uniform(gl, lanes, "Nc"), n[c]);
+    gl.Uniform1i(Uniform(gl, lanes, "Na"), n[a]);
+    gl.Uniform3i(Uniform(gl, lanes, "Axes"), a, b, c);
+    SetGridUniforms(gl, lanes, this->Grid, this->Grid.Whole);
+    gl.Uniform1d(Uniform(gl, lanes, "Limit2"), BoundaryLimit2(this->Grid));
+    gl.Uniform1d(Uniform(gl, lanes, "Reach"), BoundaryReach(this->Grid, a));
     if (wantBoundary)
     {
       this->Boundary[a].Create(n[b], n[c], n[a]);
-      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, this->Boundary[a].Id, 0);
-      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, 0, 0);
-      gl.DrawBuffers(1, buffers);
-      if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      const auto count = static_cast<int64_t>(this->BoundaryRecords[a].size());
+      if (!SetLaneBits(gl, lanes, 0, count, this->Boundary[a], nullptr, laneBuffers, error))
       {
-        error = "the boundary lane framebuffer is incomplete";
         return false;
       }
-      gl.Uniform1i(Uniform(gl, raster, "Mode"), 0);
-      gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(this->BoundaryRecords[a].size()));
     }
     if (wantSolid)
     {
@@ -376,17 +450,10 @@ public:
       Lanes& back = this->Back[a];
       front.Create(n[b], n[c], SolidBins(n[a]));
       back.Create(n[b], n[c], SolidBins(n[a]));
-      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, front.Id, 0);
-      gl.FramebufferTexture(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, back.Id, 0);
-      gl.DrawBuffers(2, buffers);
-      if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      if (!SetLaneBits(gl, lanes, 1, numSolid, front, &back, laneBuffers, error))
       {
-        error = "the solid lane framebuffer is incomplete";
         return false;
       }
-      gl.Uniform1i(Uniform(gl, raster, "Mode"), 1);
-      gl.DrawArrays(GL_POINTS, 0, static_cast<GLsizei>(records.size()));
-      gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
       // The [front, back] intervals of this view.
       this->Solid[a].Create(n[b], n[c], SolidBins(n[a]));
       gl.UseProgram(fill);
@@ -451,19 +518,6 @@ public:
   Lanes Boundary[3], Front[3], Back[3], Solid[3];
 };
 
-/// Geometry invocations per triangle for this grid. Each covers up to 8 lane layers (its 32
-/// vertices), so the deepest lanes (the solid's half-voxel bins) fix how many are needed;
-/// more would start idle invocations, which still cost the triangle's set-up.
-int RasterInvocations(const SampleGrid& grid)
-{
-  int layers = 1;
-  for (int a = 0; a < 3; ++a)
-  {
-    layers = std::max(layers, LaneTexels(SolidBins(grid.Whole.Size(a))));
-  }
-  return (layers + 7) / 8;
-}
-
 /// Whether the GPU can voxelize the mesh on the grid; else false and `error`.
 bool CheckVoxelizer(HeadlessGL& context,
   const MeshInput& mesh,
@@ -483,13 +537,6 @@ bool CheckVoxelizer(HeadlessGL& context,
   }
   const IndexBox& whole = grid.Whole;
   const int n[3] = { whole.Size(0), whole.Size(1), whole.Size(2) };
-  if (RasterInvocations(grid) > 32) // GL_MAX_GEOMETRY_SHADER_INVOCATIONS is at least 32
-  {
-    error = "the GPU voxelizer takes at most 16382 samples along an axis (256 lane layers of "
-            "128 half-voxel bins); this grid has " +
-      std::to_string(std::max(n[0], std::max(n[1], n[2])));
-    return false;
-  }
   for (int a = 0; a < 3; ++a)
   {
     if (!CheckLimits(gl, n[(a + 1) % 3], n[(a + 2) % 3], LaneTexels(SolidBins(n[a])), error))
@@ -519,35 +566,18 @@ bool VoxelizeToLanes(HeadlessGL& context,
   statistics.Triangles = static_cast<int64_t>(mesh.Triangles.size() / 3);
   ViewRaster views(gl, mesh, grid);
   statistics.FlippedOrientation = views.Orientation < 0;
-  const std::string common = VoxelizeCommon;
-  const GLuint raster = Build(context,
+  const GLuint lanes = Build(context,
     objects,
-    { { GL_VERTEX_SHADER, common + VoxelizeRaster_vert },
-      { GL_GEOMETRY_SHADER,
-        common + "#define RasterInvocations " + std::to_string(RasterInvocations(grid)) + "\n" +
-          VoxelizeRaster_geom },
-      { GL_FRAGMENT_SHADER, common + VoxelizeRaster_frag } },
+    { { GL_COMPUTE_SHADER, std::string(VoxelizeCommon) + VoxelizeLanes_comp } },
     error);
   const GLuint fill =
     solidZ ? Build(context, objects, { { GL_COMPUTE_SHADER, VoxelizeFill_comp } }, error) : 1;
   const GLuint combine =
     Build(context, objects, { { GL_COMPUTE_SHADER, VoxelizeCombine_comp } }, error);
-  if (!raster || !fill || !combine)
+  if (!lanes || !fill || !combine)
   {
     return false;
   }
-  if (!objects.VAO)
-  {
-    gl.GenVertexArrays(1, &objects.VAO);
-    gl.GenBuffers(4, objects.Buffers);
-    gl.GenFramebuffers(1, &objects.FBO);
-  }
-  gl.BindVertexArray(objects.VAO);
-  gl.BindFramebuffer(GL_FRAMEBUFFER, objects.FBO);
-  gl.Disable(GL_DEPTH_TEST);
-  gl.Disable(GL_BLEND);
-  gl.Enable(GL_COLOR_LOGIC_OP);
-  gl.LogicOp(GL_OR);
   if (boundaryZ)
   {
     views.SetUpBoundary();
@@ -562,12 +592,12 @@ bool VoxelizeToLanes(HeadlessGL& context,
     }
     UploadRecords(gl, objects.Buffers[0], 0, records);
     UploadRecords(gl, objects.Buffers[3], 1, views.BoundaryRecords[a]);
-    if (!views.Rasterize(a, raster, fill, records, boundaryZ, solidZ, error))
+    const auto numSolid = static_cast<int64_t>(records.size());
+    if (!views.Rasterize(a, lanes, fill, objects.Buffers + 4, numSolid, boundaryZ, solidZ, error))
     {
       return false;
     }
   }
-  gl.Disable(GL_COLOR_LOGIC_OP);
   statistics.FarTriangles = views.Far / 3;
   views.Combine(combine, boundaryZ, solidZ);
   return NoGLError(gl, "while voxelizing", error);
@@ -669,12 +699,6 @@ public:
     if (!this->Seed || !this->Layer)
     {
       return false;
-    }
-    if (!objects.VAO)
-    {
-      gl.GenVertexArrays(1, &objects.VAO);
-      gl.GenBuffers(4, objects.Buffers);
-      gl.GenFramebuffers(1, &objects.FBO);
     }
     this->Distances = objects.Buffers[1];
     this->Counts = objects.Buffers[2];

@@ -1,0 +1,146 @@
+// The bits the triangles of one view set on its lanes, by the CPU's rules
+// (Filters/Core/Voxels/Voxelizer.cxx, RasterizeBoundaryTriangle and
+// RasterizeSolidTriangle): one invocation per triangle walks the lanes of its rectangle.
+// - boundary (Mode 0): the candidate voxels of each lane whose centre is within the
+//   distance limit, into FirstLanes;
+// - solid (Mode 1): the half-voxel bin of the crossing at each lane centre the triangle
+//   covers, into FirstLanes (a triangle facing the view) or SecondLanes.
+// The words are laid out as the lane textures' texels (texel (layer, q, p), four 32-bit
+// words, 128 bits along the lane) so that the buffers copy into them as they are. A
+// pass holds the layers [FirstLayer, FirstLayer + Layers): what one storage block holds.
+layout(local_size_x = 64) in;
+
+uniform int Mode; // 0: boundary, 1: solid
+uniform int Nb, Nc, Na;
+uniform ivec3 Axes; // the view's A, B, C
+//DF::SampleGrid
+uniform double Limit2, Reach;
+uniform int Count, Base; // the view's triangles; the first of this dispatch
+uniform int FirstLayer, Layers;
+
+layout(std430, binding = 2) buffer FirstLanes
+{
+  uint firstLanes[];
+};
+layout(std430, binding = 3) buffer SecondLanes
+{
+  uint secondLanes[];
+};
+
+// The word holding bit `bit` of lane (p, q), or -1 outside this pass's layers.
+int Word(int p, int q, int bit)
+{
+  int layer = (bit >> 7) - FirstLayer;
+  if (layer < 0 || layer >= Layers)
+  {
+    return -1;
+  }
+  return 4 * ((layer * Nc + q) * Nb + p) + ((bit >> 5) & 3);
+}
+
+void Solid(int index)
+{
+  Tri t = tris[index];
+  int64_t xmin = min(t.X.x, min(t.X.y, t.X.z)), xmax = max(t.X.x, max(t.X.y, t.X.z));
+  int64_t ymin = min(t.Y.x, min(t.Y.y, t.Y.z)), ymax = max(t.Y.x, max(t.Y.y, t.Y.z));
+  int p0 = int(max(0l, -FloorDiv(-xmin, Subpixel)));
+  int p1 = int(min(int64_t(Nb - 1), FloorDiv(xmax, Subpixel)));
+  int q0 = int(max(0l, -FloorDiv(-ymin, Subpixel)));
+  int q1 = int(min(int64_t(Nc - 1), FloorDiv(ymax, Subpixel)));
+  for (int q = q0; q <= q1; ++q)
+  {
+    for (int p = p0; p <= p1; ++p)
+    {
+      i64vec3 e;
+      if (!CoversCentre(t, int64_t(p), int64_t(q), e))
+      {
+        continue;
+      }
+      int at = SolidBit(DepthAt(t, e), Na);
+      int word = Word(p, q, at);
+      if (word < 0)
+      {
+        continue;
+      }
+      uint bit = 1u << uint(at & 31);
+      if (t.Flags.x != 0)
+      {
+        atomicOr(firstLanes[word], bit);
+      }
+      else
+      {
+        atomicOr(secondLanes[word], bit);
+      }
+    }
+  }
+}
+
+void Boundary(int index)
+{
+  BoundaryTri b = btris[index];
+  const ivec3 axis = ivec3(0, 1, 2);
+  for (int q = b.Rect.z; q <= b.Rect.w; ++q)
+  {
+    for (int p = b.Rect.x; p <= b.Rect.y; ++p)
+    {
+      int k0, k1;
+      if (!BoundaryLaneCandidates(b, p, q, Reach, k0, k1))
+      {
+        continue;
+      }
+      k0 = max(k0, FirstLayer * 128);
+      k1 = min(k1, (FirstLayer + Layers) * 128 - 1);
+      // The bits of one word gather before one atomic; a bit another triangle has set
+      // already is not evaluated again (as on the CPU: a stale read only costs work).
+      int word = -1;
+      uint bits = 0u, known = 0u;
+      for (int k = k0; k <= k1; ++k)
+      {
+        int w = Word(p, q, k);
+        if (w != word)
+        {
+          if (bits != 0u)
+          {
+            atomicOr(firstLanes[word], bits);
+          }
+          word = w;
+          bits = 0u;
+          known = firstLanes[w];
+        }
+        uint bit = 1u << uint(k & 31);
+        if ((known & bit) != 0u)
+        {
+          continue;
+        }
+        ivec3 ijk = k * ivec3(equal(axis, ivec3(Axes.x))) + p * ivec3(equal(axis, ivec3(Axes.y))) +
+          q * ivec3(equal(axis, ivec3(Axes.z)));
+        precise dvec3 centre = Origin + dvec3(Lo + ijk) * Spacing;
+        if (SquaredDistanceToTriangle(centre, b.P0.xyz, b.P1.xyz, b.P2.xyz) <= Limit2)
+        {
+          bits |= bit;
+        }
+      }
+      if (bits != 0u)
+      {
+        atomicOr(firstLanes[word], bits);
+      }
+    }
+  }
+}
+
+void main()
+{
+  int index = Base + int(gl_GlobalInvocationID.x);
+  if (index >= Count)
+  {
+    return;
+  }
+  if (Mode == 0)
+  {
+    Boundary(index);
+  }
+  else
+  {
+    Solid(index);
+  }
+}
