@@ -1,21 +1,24 @@
-// The bits the triangles of one view set on its lanes, by the CPU's rules
+// The bits the triangles set on the lanes of one view, by the CPU's rules
 // (Filters/Core/Voxels/Voxelizer.cxx, RasterizeBoundaryTriangle and
-// RasterizeSolidTriangle): one invocation per triangle walks the lanes of its rectangle.
-// - boundary (Mode 0): the candidate voxels of each lane whose centre is within the
-//   distance limit, into FirstLanes;
+// RasterizeSolidTriangle): one invocation per triangle sets it up (VoxelizeCommon.glsl)
+// and walks the lanes of its rectangle.
+// - boundary (Mode 0): of the triangles whose plane faces this view most, the candidate
+//   voxels of each lane whose centre is within the distance limit, into FirstLanes;
 // - solid (Mode 1): the half-voxel bin of the crossing at each lane centre the triangle
-//   covers, into FirstLanes (a triangle facing the view) or SecondLanes.
+//   covers, into FirstLanes (a triangle facing the view) or SecondLanes; the triangles
+//   too far from the grid to snap are counted in FarCount.
 // The words are laid out as the lane textures' texels (texel (layer, q, p), four 32-bit
 // words, 128 bits along the lane) so that the buffers copy into them as they are. A
 // pass holds the layers [FirstLayer, FirstLayer + Layers): what one storage block holds.
 layout(local_size_x = 64) in;
 
-uniform int Mode; // 0: boundary, 1: solid
+uniform int Mode; // 0: boundary, 1: solid, 2: the points into voxel units (PointUnits)
 uniform int Nb, Nc, Na;
 uniform ivec3 Axes; // the view's A, B, C
-//DF::SampleGrid
 uniform double Limit2, Reach;
-uniform int Count, Base; // the view's triangles; the first of this dispatch
+uniform dvec3 Reaches;      // the reach along x, y, z (BoundaryReach)
+uniform double Orientation; // the mesh's: +1 when its triangles face outward
+uniform int Count, Base;    // the triangles (points); the first of this dispatch
 uniform int FirstLayer, Layers;
 
 layout(std430, binding = 2) buffer FirstLanes
@@ -25,6 +28,10 @@ layout(std430, binding = 2) buffer FirstLanes
 layout(std430, binding = 3) buffer SecondLanes
 {
   uint secondLanes[];
+};
+layout(std430, binding = 4) buffer FarCount
+{
+  uint farCount;
 };
 
 // The word holding bit `bit` of lane (p, q), or -1 outside this pass's layers.
@@ -40,7 +47,16 @@ int Word(int p, int q, int bit)
 
 void Solid(int index)
 {
-  Tri t = tris[index];
+  Tri t;
+  bool far;
+  if (!ProjectTriangle(index, Axes.x, Orientation, t, far))
+  {
+    if (far)
+    {
+      atomicAdd(farCount, 1u);
+    }
+    return;
+  }
   int64_t xmin = min(t.X.x, min(t.X.y, t.X.z)), xmax = max(t.X.x, max(t.X.y, t.X.z));
   int64_t ymin = min(t.Y.x, min(t.Y.y, t.Y.z)), ymax = max(t.Y.x, max(t.Y.y, t.Y.z));
   int p0 = int(max(0l, -FloorDiv(-xmin, Subpixel)));
@@ -77,7 +93,11 @@ void Solid(int index)
 
 void Boundary(int index)
 {
-  BoundaryTri b = btris[index];
+  BoundaryTri b;
+  if (!SetupBoundaryTriangle(index, Axes.x, Reaches, b))
+  {
+    return;
+  }
   const ivec3 axis = ivec3(0, 1, 2);
   for (int q = b.Rect.z; q <= b.Rect.w; ++q)
   {
@@ -139,8 +159,16 @@ void main()
   {
     Boundary(index);
   }
-  else
+  else if (Mode == 1)
   {
     Solid(index);
+  }
+  else
+  {
+    uint at = 3u * uint(index);
+    dvec3 v = VoxelUnits(dvec3(points[at], points[at + 1u], points[at + 2u]));
+    units[at] = v.x;
+    units[at + 1u] = v.y;
+    units[at + 2u] = v.z;
   }
 }

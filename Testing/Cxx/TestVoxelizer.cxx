@@ -8,6 +8,7 @@
 // - A closed box crossed by open sheets (flat and tilted; the paper's potted plant):
 //   Solid is the box's interior only.
 // - Mode Both gives the same masks as Boundary and Solid alone.
+// - Triangles too far from the grid to snap are counted in a warning.
 //
 // - On the GPU backend, every mask equals the CPU backend's, bit for bit, also on a
 //   150^3 grid whose lanes span several layers (run in passes of one layer each with
@@ -400,6 +401,45 @@ int main(int argc, char* argv[])
         box,
         Voxelize(PottedPlant(sheet), vtkPolyDataVoxelizer::SOLID, resolution, &grid));
     }
+  }
+  {
+    // Triangles with a vertex beyond the snapping range (2^22 cells from the grid along
+    // every axis) are left out of the solid with a warning that counts them, on either
+    // backend (Voxelize compares the GPU's masks with the CPU's).
+    auto mesh = vtkSmartPointer<vtkPolyData>::New();
+    mesh->DeepCopy(Load(data + "/bunny_small.vtp"));
+    double bounds[6];
+    mesh->GetBounds(bounds);
+    Explicit grid;
+    for (int a = 0; a < 3; ++a)
+    {
+      grid.Spacing[a] = (bounds[2 * a + 1] - bounds[2 * a]) / 39;
+      grid.Origin[a] = bounds[2 * a];
+      grid.Dims[a] = 40;
+    }
+    const vtkIdType far = mesh->GetPoints()->InsertNextPoint(bounds[1] + 1e7 * grid.Spacing[0],
+      bounds[3] + 1e7 * grid.Spacing[1],
+      bounds[5] + 1e7 * grid.Spacing[2]);
+    for (vtkIdType first : { 0, 2 })
+    {
+      const vtkIdType ids[3] = { first, first + 1, far };
+      mesh->GetPolys()->InsertNextCell(3, ids);
+    }
+    vtkNew<vtkPolyDataVoxelizer> v;
+    v->SetInputData(mesh);
+    v->SetMode(vtkPolyDataVoxelizer::SOLID);
+    vtkdf::testing::UseBackend(v.GetPointer(), Backend);
+    v->ExplicitGridOn();
+    v->SetGridOrigin(grid.Origin);
+    v->SetGridSpacing(grid.Spacing);
+    v->SetGridDimensions(grid.Dims);
+    vtkdf::testing::MessageRecorder messages(v);
+    v->Update();
+    std::printf("far triangles: %s\n", messages.Warnings.c_str());
+    CHECK(
+      messages.Warnings.find("2 triangles with a vertex more than 2^22 cells") != std::string::npos,
+      "the two far triangles are not reported");
+    Voxelize(mesh, vtkPolyDataVoxelizer::SOLID, resolution, &grid);
   }
   if (Backend == "gpu")
   {

@@ -26,7 +26,6 @@ namespace vtkdf
   X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)                                                   \
   X(PFNGLGETINTEGER64VPROC, GetInteger64v)                                                         \
   X(PFNGLGETTEXTUREIMAGEPROC, GetTextureImage)                                                     \
-  X(PFNGLLOGICOPPROC, LogicOp)                                                                     \
   X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                                                         \
   X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                                                 \
   X(PFNGLUNIFORM1DPROC, Uniform1d)                                                                 \
@@ -56,9 +55,7 @@ namespace vtkdf
   X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                                               \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                                                 \
   X(PFNGLDISABLEPROC, Disable)                                                                     \
-  X(PFNGLDRAWARRAYSPROC, DrawArrays)                                                               \
   X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)                                             \
-  X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                                                             \
   X(PFNGLENABLEPROC, Enable)                                                                       \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)                                     \
   X(PFNGLENDQUERYPROC, EndQuery)                                                                   \

@@ -22,55 +22,6 @@ namespace vtkdf
 using namespace voxelizer;
 namespace
 {
-/// Shaders/VoxelizeCommon.glsl's `Tri` (std430: 224 bytes, 32-byte aligned).
-struct alignas(32) GpuTriangle
-{
-  int64_t X[4];
-  int64_t Y[4];
-  double Z[4];
-  double P[3][4];
-  int32_t Flags[4];
-  int32_t Pad[4];
-};
-static_assert(sizeof(GpuTriangle) == 224, "std430 layout of Tri");
-
-/// Shaders/VoxelizeCommon.glsl's `BoundaryTri` (std430: 256 bytes).
-struct alignas(32) GpuBoundaryTriangle
-{
-  double X[4], Y[4], Z[4], Slack[4];
-  double P[3][4];
-  int32_t Rect[4];
-  int32_t Depth[4];
-};
-static_assert(sizeof(GpuBoundaryTriangle) == 256, "std430 layout of BoundaryTri");
-
-GpuBoundaryTriangle Pack(const BoundaryTriangle& t)
-{
-  GpuBoundaryTriangle g{};
-  for (int k = 0; k < 3; ++k)
-  {
-    g.X[k] = t.X[k];
-    g.Y[k] = t.Y[k];
-    g.Z[k] = t.Z[k];
-    g.Slack[k] = t.Slack[k];
-    for (int d = 0; d < 3; ++d)
-    {
-      g.P[k][d] = t.P[k][d];
-    }
-  }
-  g.X[3] = t.Orientation;
-  g.Y[3] = t.GradP;
-  g.Z[3] = t.GradQ;
-  g.Slack[3] = t.Spread;
-  g.Rect[0] = t.P0;
-  g.Rect[1] = t.P1;
-  g.Rect[2] = t.Q0;
-  g.Rect[3] = t.Q1;
-  g.Depth[0] = t.K0;
-  g.Depth[1] = t.K1;
-  return g;
-}
-
 /// Texels of 128 bits along a lane of `bits` bits.
 int LaneTexels(int bits)
 {
@@ -186,19 +137,20 @@ struct Objects
   explicit Objects(const GLFunctions& gl)
     : GL(gl)
   {
-    gl.GenBuffers(6, this->Buffers);
+    gl.GenBuffers(8, this->Buffers);
   }
   ~Objects()
   {
-    this->GL.DeleteBuffers(6, this->Buffers);
+    this->GL.DeleteBuffers(8, this->Buffers);
     for (GLuint p : this->Programs)
     {
       this->GL.DeleteProgram(p);
     }
   }
   const GLFunctions& GL;
-  // triangles, distances, counts, boundary triangles, first and second lane words
-  GLuint Buffers[6] = { 0, 0, 0, 0, 0, 0 };
+  // points, distances, counts, triangles' point ids, first and second lane words, far
+  // count, points in voxel units
+  GLuint Buffers[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
   std::vector<GLuint> Programs;
 };
 
@@ -225,19 +177,18 @@ GLuint Build(HeadlessGL& context,
   return program;
 }
 
-/// `records` into `buffer` (one record's worth at least: an empty buffer cannot be
+/// `count` records into `buffer` (one record's worth at least: an empty buffer cannot be
 /// bound), bound at shader storage binding `binding`.
 template<typename Record>
 void UploadRecords(const GLFunctions& gl,
   GLuint buffer,
   GLuint binding,
-  const std::vector<Record>& records)
+  size_t count,
+  const Record* records)
 {
   gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
-  gl.BufferData(GL_SHADER_STORAGE_BUFFER,
-    std::max<size_t>(1, records.size()) * sizeof(Record),
-    records.data(),
-    GL_STATIC_DRAW);
+  const size_t bytes = std::max<size_t>(1, count) * sizeof(Record);
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER, bytes, count ? records : nullptr, GL_STATIC_DRAW);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer);
 }
 
@@ -259,6 +210,20 @@ bool CheckLimits(const GLFunctions& gl, int nx, int ny, int texels, std::string&
     return false;
   }
   return true;
+}
+
+/// Runs Shaders/VoxelizeLanes.comp.glsl (`program`) in `mode` over `count` triangles or
+/// points, in dispatches of at most GL's least work group count.
+void RunLanesProgram(const GLFunctions& gl, GLuint program, int mode, int64_t count)
+{
+  gl.Uniform1i(Uniform(gl, program, "Mode"), mode);
+  gl.Uniform1i(Uniform(gl, program, "Count"), static_cast<GLint>(count));
+  const int64_t perDispatch = int64_t(65535) * 64;
+  for (int64_t base = 0; base < count; base += perDispatch)
+  {
+    gl.Uniform1i(Uniform(gl, program, "Base"), static_cast<GLint>(base));
+    gl.DispatchCompute(static_cast<GLuint>((std::min(perDispatch, count - base) + 63) / 64), 1, 1);
+  }
 }
 
 /// Runs Shaders/VoxelizeLanes.comp.glsl (`program`, its view's uniforms set) over
@@ -294,10 +259,7 @@ bool SetLaneBits(const GLFunctions& gl,
       GL_SHADER_STORAGE_BUFFER, targets[t] ? layers * layerBytes : 4, nullptr, GL_DYNAMIC_COPY);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2 + t, laneBuffers[t]);
   }
-  gl.Uniform1i(Uniform(gl, program, "Mode"), mode);
-  gl.Uniform1i(Uniform(gl, program, "Count"), static_cast<GLint>(count));
   gl.Uniform1i(Uniform(gl, program, "Layers"), layers);
-  const int64_t perDispatch = int64_t(65535) * 64; // GL's least work group count
   for (int layer0 = 0; layer0 < first.Texels; layer0 += layers)
   {
     const int passLayers = std::min(layers, first.Texels - layer0);
@@ -312,12 +274,7 @@ bool SetLaneBits(const GLFunctions& gl,
       }
     }
     gl.Uniform1i(Uniform(gl, program, "FirstLayer"), layer0);
-    for (int64_t base = 0; base < count; base += perDispatch)
-    {
-      gl.Uniform1i(Uniform(gl, program, "Base"), static_cast<GLint>(base));
-      gl.DispatchCompute(
-        static_cast<GLuint>((std::min(perDispatch, count - base) + 63) / 64), 1, 1);
-    }
+    RunLanesProgram(gl, program, mode, count);
     gl.MemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);
     for (int t = 0; t < 2; ++t)
     {
@@ -365,53 +322,6 @@ public:
     }
   }
 
-  /// Each triangle in its boundary view (VoxelizerRules.h, BoundaryTriangle).
-  void SetUpBoundary()
-  {
-    const int64_t numTriangles = static_cast<int64_t>(this->Mesh.Triangles.size() / 3);
-    const BoundaryReaches reaches(this->Grid);
-    for (int64_t t = 0; t < numTriangles; ++t)
-    {
-      BoundaryTriangle setup;
-      if (SetupBoundaryTriangle(this->Mesh, t, this->Grid, reaches, setup))
-      {
-        this->BoundaryRecords[setup.View].push_back(Pack(setup));
-      }
-    }
-  }
-
-  /// The triangles as view `a` sees them for the solid; counts the far ones.
-  void SetUpSolid(int a, std::vector<GpuTriangle>& records)
-  {
-    const int64_t numTriangles = static_cast<int64_t>(this->Mesh.Triangles.size() / 3);
-    records.clear();
-    for (int64_t t = 0; t < numTriangles; ++t)
-    {
-      ProjectedTriangle p;
-      bool isFar = false;
-      if (!ProjectTriangle(this->Mesh, t, this->Grid, a, this->Orientation, p, isFar))
-      {
-        this->Far += isFar;
-        continue;
-      }
-      GpuTriangle g{};
-      for (int k = 0; k < 3; ++k)
-      {
-        g.X[k] = p.X[k];
-        g.Y[k] = p.Y[k];
-        g.Z[k] = p.Z[k];
-        for (int d = 0; d < 3; ++d)
-        {
-          g.P[k][d] = p.P[k][d];
-        }
-        g.Flags[k + 1] = p.Owns[k];
-      }
-      g.X[3] = p.Area;
-      g.Flags[0] = p.Entering;
-      records.push_back(g);
-    }
-  }
-
   /// View `a`: the boundary lanes (when wanted), the solid's front and back lanes and
   /// their intervals (when wanted). False and `error` when a layer of lanes exceeds a
   /// storage block.
@@ -419,7 +329,6 @@ public:
     GLuint lanes,
     GLuint fill,
     const GLuint laneBuffers[2],
-    int64_t numSolid,
     bool wantBoundary,
     bool wantSolid,
     std::string& error)
@@ -435,11 +344,14 @@ public:
     SetGridUniforms(gl, lanes, this->Grid, this->Grid.Whole);
     gl.Uniform1d(Uniform(gl, lanes, "Limit2"), BoundaryLimit2(this->Grid));
     gl.Uniform1d(Uniform(gl, lanes, "Reach"), BoundaryReach(this->Grid, a));
+    const BoundaryReaches reaches(this->Grid);
+    gl.Uniform3d(Uniform(gl, lanes, "Reaches"), reaches.R[0], reaches.R[1], reaches.R[2]);
+    gl.Uniform1d(Uniform(gl, lanes, "Orientation"), this->Orientation);
+    const auto numTriangles = static_cast<int64_t>(this->Mesh.Triangles.size() / 3);
     if (wantBoundary)
     {
       this->Boundary[a].Create(n[b], n[c], n[a]);
-      const auto count = static_cast<int64_t>(this->BoundaryRecords[a].size());
-      if (!SetLaneBits(gl, lanes, 0, count, this->Boundary[a], nullptr, laneBuffers, error))
+      if (!SetLaneBits(gl, lanes, 0, numTriangles, this->Boundary[a], nullptr, laneBuffers, error))
       {
         return false;
       }
@@ -450,7 +362,7 @@ public:
       Lanes& back = this->Back[a];
       front.Create(n[b], n[c], SolidBins(n[a]));
       back.Create(n[b], n[c], SolidBins(n[a]));
-      if (!SetLaneBits(gl, lanes, 1, numSolid, front, &back, laneBuffers, error))
+      if (!SetLaneBits(gl, lanes, 1, numTriangles, front, &back, laneBuffers, error))
       {
         return false;
       }
@@ -513,8 +425,6 @@ public:
   const SampleGrid& Grid;
   const double Orientation;
   int N[3];
-  int64_t Far = 0; // vertices beyond the snapping range, three per far triangle
-  std::vector<GpuBoundaryTriangle> BoundaryRecords[3];
   Lanes Boundary[3], Front[3], Back[3], Solid[3];
 };
 
@@ -533,6 +443,20 @@ bool CheckVoxelizer(HeadlessGL& context,
   {
     error =
       "the GPU voxelizer needs GL_ARB_gpu_shader_int64, which " + context.Renderer() + " lacks";
+    return false;
+  }
+  // The shaders read the mesh as it is: its points and its triangles' 32-bit point ids
+  // each in one storage block.
+  const auto points = static_cast<GLint64>(mesh.Points.size() / 3);
+  const auto triangles = static_cast<GLint64>(mesh.Triangles.size() / 3);
+  const GLint64 maxBlock = MaxStorageBlock(gl);
+  if (points > UINT32_MAX || triangles > INT_MAX / 3 || points * 24 > maxBlock ||
+    triangles * 12 > maxBlock)
+  {
+    error = "the GPU voxelizer takes at most 2^32 points and 2^31 / 3 triangles, "
+            "their coordinates and ids each within GL_MAX_SHADER_STORAGE_BLOCK_SIZE (" +
+      std::to_string(maxBlock / 1048576) + " MiB); the mesh has " + std::to_string(points) +
+      " points and " + std::to_string(triangles) + " triangles";
     return false;
   }
   const IndexBox& whole = grid.Whole;
@@ -578,27 +502,35 @@ bool VoxelizeToLanes(HeadlessGL& context,
   {
     return false;
   }
-  if (boundaryZ)
-  {
-    views.SetUpBoundary();
-  }
-  std::vector<GpuTriangle> records;
-  records.reserve(solidZ ? mesh.Triangles.size() / 3 : 0);
+  // The mesh as it is (the shaders set up each triangle), and the far triangles' count.
+  std::vector<uint32_t> ids(mesh.Triangles.begin(), mesh.Triangles.end());
+  UploadRecords(gl, objects.Buffers[0], 0, mesh.Points.size(), mesh.Points.data());
+  UploadRecords(gl, objects.Buffers[3], 1, ids.size(), ids.data());
+  const uint32_t zero = 0;
+  UploadRecords(gl, objects.Buffers[6], 4, 1, &zero);
+  // The points in voxel units, once for every view and rule.
+  const auto numPoints = static_cast<int64_t>(mesh.Points.size() / 3);
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, objects.Buffers[7]);
+  gl.BufferData(GL_SHADER_STORAGE_BUFFER,
+    std::max<size_t>(1, mesh.Points.size()) * 8,
+    nullptr,
+    GL_DYNAMIC_COPY);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, objects.Buffers[7]);
+  gl.UseProgram(lanes);
+  SetGridUniforms(gl, lanes, grid, grid.Whole);
+  RunLanesProgram(gl, lanes, 2, numPoints);
+  gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   for (int a = 0; a < 3; ++a)
   {
-    if (solidZ)
-    {
-      views.SetUpSolid(a, records);
-    }
-    UploadRecords(gl, objects.Buffers[0], 0, records);
-    UploadRecords(gl, objects.Buffers[3], 1, views.BoundaryRecords[a]);
-    const auto numSolid = static_cast<int64_t>(records.size());
-    if (!views.Rasterize(a, lanes, fill, objects.Buffers + 4, numSolid, boundaryZ, solidZ, error))
+    if (!views.Rasterize(a, lanes, fill, objects.Buffers + 4, boundaryZ, solidZ, error))
     {
       return false;
     }
   }
-  statistics.FarTriangles = views.Far / 3;
+  uint32_t far = 0;
+  gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, objects.Buffers[6]);
+  gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(far), &far);
+  statistics.FarTriangles = far / 3; // once per view
   views.Combine(combine, boundaryZ, solidZ);
   return NoGLError(gl, "while voxelizing", error);
 }

@@ -1,7 +1,7 @@
 // VoxelizerRules: the per-triangle setup and the per-lane rules of the voxelizer, shared
 // by the CPU pass (Voxelizer.cxx) and the GPU pass (VoxelGPU.cxx, whose shaders in
-// Shaders/Voxelize*.glsl repeat the per-lane arithmetic operation for operation, in
-// integers and IEEE doubles, so that both backends set the same bits).
+// Shaders/Voxelize*.glsl repeat the set-ups and the per-lane arithmetic operation for
+// operation, in integers and IEEE doubles, so that both backends set the same bits).
 //
 // A view looks along axis A; its lanes are indexed by the other two axes B = A+1 and
 // C = A+2 (mod 3), so (B, C, A) is a cyclic permutation of (x, y, z).
