@@ -14,8 +14,9 @@
 // - a distributed run's split: the sums built in 2, 3 and 7 shares, each packed, the
 //   packs read back in order, give Compute's answer bit for bit; a failed share and
 //   truncated packs are refused;
-// - with the argument gpu, all of it with the union query on the GPU, certified (and the
-//   tori's image-only depth never below the exact one).
+// - with the argument gpu, all of it with the union query on the GPU, certified, the
+//   pairs' and the tori's answers the CPU's bit for bit (and the tori's image-only depth
+//   never below the exact one).
 #include "CoreTest.h"
 #include "GLCoreTest.h"
 #include "RaySpans.h"
@@ -42,6 +43,32 @@ UnionGPUSettings Settings()
   UnionGPUSettings settings;
   settings.Resolution = 64;
   return settings;
+}
+
+/// On the GPU: the certified answer equals the CPU's bit for bit.
+void CheckSameAsCPU(const std::string& name,
+  const PenetrationDepth& depth,
+  const std::vector<ConvexPiece>& p,
+  const std::vector<ConvexPiece>& q,
+  const double origin[3],
+  const PenetrationAnswer& answer)
+{
+  if (!GPU)
+  {
+    return;
+  }
+  PenetrationAnswer cpu;
+  std::string error;
+  Check(depth.Compute(p, q, origin, cpu, error, nullptr, Settings()),
+    "%s",
+    std::string(name + ", on the CPU: " + error).c_str());
+  Check(answer.Distance == cpu.Distance && answer.Intersecting == cpu.Intersecting &&
+      std::equal(answer.Translation, answer.Translation + 3, cpu.Translation) &&
+      answer.PieceP == cpu.PieceP && answer.PieceQ == cpu.PieceQ,
+    "%s (%.17g, the CPU's %.17g)",
+    std::string(name + ": the GPU's certified answer is the CPU's bit for bit").c_str(),
+    answer.Distance,
+    cpu.Distance);
 }
 
 double Dot(const double* a, const double* b)
@@ -286,6 +313,7 @@ void ConvexPairs()
       static_cast<double>(trial));
     const double reference = AxisDepth(p[0], q[0]);
     const std::string name = "pair " + std::to_string(trial);
+    CheckSameAsCPU(name, depth, p, q, origin, answer);
     if (std::fabs(reference) < 1e-6)
     {
       continue; // touching: either flag is right
@@ -411,6 +439,7 @@ void Tori()
   Check(depth.Compute(p, q, origin, answer, error, GPU, Settings()),
     "%s",
     std::string("tori: " + error).c_str());
+  CheckSameAsCPU("tori", depth, p, q, origin, answer);
   if (GPU)
   {
     // Not certified: the image's depth, never below the exact one.

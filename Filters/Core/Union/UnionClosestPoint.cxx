@@ -244,6 +244,8 @@ public:
 
 private:
   bool CutToLimit(double limit);
+  /// The face as far as the limit matters: the window when cut, else the outline.
+  const std::vector<V2>& Cut() const { return this->Window.empty() ? this->Outline : this->Window; }
   void Bound();
   bool CoversFace(size_t j) const;
   bool CoveredByRecentOrAny();
@@ -265,6 +267,12 @@ private:
   const int64_t Piece;
   const Frame& FacePlane; // the face's plane, the frame of its 2D coordinates
   std::vector<V2> Outline;
+  // The face cut to the square around P that holds every point nearer than the limit
+  // (empty without a limit): it bounds which pieces are asked about the face. The face's
+  // sections and nearest point are taken on the whole outline all the same, so that a
+  // face's answer has the same bits whatever limit it was searched with (a seeded search
+  // and the unseeded one, the serial search and the chunked one).
+  std::vector<V2> Window;
   V2 P;
   double H;
   // The (cut) face's box and bounding sphere, in 3D.
@@ -311,14 +319,14 @@ bool FaceSearch::CutToLimit(double limit)
       return false;
     }
   }
-  this->Outline = cut.Corners;
+  this->Window = cut.Corners;
   return true;
 }
 
 /// The (cut) face's box and bounding sphere, in 3D.
 void FaceSearch::Bound()
 {
-  const std::vector<V2>& outline = this->Outline;
+  const std::vector<V2>& outline = this->Cut();
   std::vector<std::array<double, 3>> corners3;
   for (const V2& c : outline)
   {
@@ -366,7 +374,7 @@ bool FaceSearch::CoversFace(size_t j) const
       }
       continue;
     }
-    for (const V2& c : this->Outline)
+    for (const V2& c : this->Cut())
     {
       if (!(a[0] * c.X + a[1] * c.Y < b - tol))
       {
