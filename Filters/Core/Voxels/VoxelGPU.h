@@ -1,9 +1,10 @@
 // VoxelGPU: the voxelizer and the chamfer transform on the GPU (OpenGL 4.5 core with
 // GL_ARB_gpu_shader_int64, in HeadlessGL's context). Voxel lanes live in RGBA32UI 2D
-// array textures, 128 bits per texel, as many texture slices as a lane needs (Martinek et al. (VMV
-// 2011) §3); compute shaders set each triangle up and set its bits (Shaders/VoxelizeLanes.comp.glsl).
-// The results equal the CPU passes bit for bit (same integer and IEEE double arithmetic,
-// see VoxelizerRules.h and Shaders/VoxelizeCommon.glsl).
+// array textures, 128 bits per texel, as many texture slices as a lane needs (Martinek,
+// Grosso and Greiner, "Fast and Efficient 3D Chamfer Distance Transform for Polygonal
+// Meshes", VMV 2011, section 3); compute shaders set each triangle up and set its bits
+// (Shaders/VoxelizeLanes.comp.glsl). The results equal the CPU passes bit for bit (same
+// integer and IEEE double arithmetic, see VoxelizerRules.h and Shaders/VoxelizeCommon.glsl).
 #ifndef vtkdf_VoxelGPU_h
 #define vtkdf_VoxelGPU_h
 
