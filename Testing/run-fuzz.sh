@@ -9,10 +9,12 @@ cd "$(dirname "$0")/.."
 seconds=${1:-120}
 shift || true
 # Line tables only (-gline-tables-only): a finding's stack trace keeps its files and
-# lines, and the build writes and links far less debug information.
+# lines, and the build writes and links far less debug information. -O1, as the
+# sanitized suite: on a 2-core machine the build took 369 s instead of about 420 s at
+# -O2, and the fuzzing ran as many inputs a second (224 against 219).
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDF_FUZZ=ON \
-  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
   -DBUILD_TESTING=OFF -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
 cmake --build build-fuzz -j "$(nproc)" --target FuzzFilters
 mkdir -p build-fuzz/corpus
