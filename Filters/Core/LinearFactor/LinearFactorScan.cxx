@@ -255,15 +255,13 @@ private:
 
   /// Scans slice k when it is alive: when its domain polygon meets a cell where the site
   /// may win. The site's Voronoi region is star-shaped about the site, so the slices that
-  /// hold a part of it form one run around the anchor's. The test is per slice only: a
-  /// block holds a sample or two of a typical domain, so testing the blocks of every row
-  /// costs more than the evaluations it saves (measured: testing them where a slice
-  /// spans more than two blocks cut the evaluations up to 3 times and cost 6-20 % more).
-  /// A polygon with no whole row or column inside the region holds no sample: the walk
-  /// goes on past it without the block tests (a fine mesh on a coarse grid has mostly
-  /// such slivers: 8 % less scan time for the dragon of 871k triangles at 64 samples).
-  /// Going on where a dead sliver would have stopped the walk only adds slices where the
-  /// site may win, so the nearest sites are the same.
+  /// hold a part of it form one run around the anchor's. Where the slice's box spans
+  /// more than RowTestBlocks blocks, each row is also narrowed to its blocks where the
+  /// site may win (TrimToLiveBlocks). A polygon with no whole row or column inside the
+  /// region holds no sample: the walk goes on past it without the block tests (a fine
+  /// mesh on a coarse grid has mostly such slivers: 8 % less scan time for the dragon of
+  /// 871k triangles at 64 samples). Going on where a dead sliver would have stopped the
+  /// walk only adds slices where the site may win, so the nearest sites are the same.
   template<class RowVisitor>
   bool Slice(int k, RowVisitor& visit)
   {
@@ -300,6 +298,7 @@ private:
     {
       return false;
     }
+    const bool testRows = int64_t(bu1 - bu0 + 1) * (bv1 - bv0 + 1) > RowTestBlocks;
     this->Domain.BeginSlice(k);
     const double dk[3] = {
       this->D0[0] + k * this->Dw[0], this->D0[1] + k * this->Dw[1], this->D0[2] + k * this->Dw[2]
@@ -312,9 +311,9 @@ private:
       {
         continue;
       }
-      const int i0 = std::max(region.Lo[u], CeilToInt(xl));
-      const int i1 = std::min(region.Hi[u], FloorToInt(xr));
-      if (i1 < i0)
+      int i0 = std::max(region.Lo[u], CeilToInt(xl));
+      int i1 = std::min(region.Hi[u], FloorToInt(xr));
+      if (i1 < i0 || (testRows && !this->TrimToLiveBlocks(block, j, i0, i1)))
       {
         continue;
       }
@@ -323,6 +322,43 @@ private:
     }
     return true;
   }
+
+  /// Narrows samples i0..i1 of row j (block[w]: its slice's layer) to the blocks from
+  /// the first to the last where the site may win; false when there is none. The rows
+  /// skip only cells where the site cannot be nearest, so the nearest sites are the same.
+  bool TrimToLiveBlocks(int block[3], int j, int& i0, int& i1)
+  {
+    const int u = this->U, v = this->V;
+    block[v] = this->Culling.BlockOfSample(v, j);
+    int first = this->Culling.BlockOfSample(u, i0), last = this->Culling.BlockOfSample(u, i1);
+    for (block[u] = first; !this->MayWin(block); block[u] = first)
+    {
+      if (++first > last)
+      {
+        return false;
+      }
+    }
+    for (block[u] = last; last > first && !this->MayWin(block); block[u] = last)
+    {
+      --last;
+    }
+    const int lo = this->Culling.BlockExtent.Lo[u], size = RangeCulling::BlockSize;
+    i0 = std::max(i0, lo + first * size);
+    if (last < this->Culling.BlockCounts[u] - 1) // the last block holds the extent's rest
+    {
+      i1 = std::min(i1, lo + last * size + size - 1);
+    }
+    return true;
+  }
+
+  /// The slices whose box spans more blocks than this test their rows' blocks. A block
+  /// test costs the CPU about what a few distance evaluations do, and a thin domain's
+  /// slice of a few blocks rarely has a row in a dead one; a slice of many blocks (a
+  /// vertex's cone far from a bumpy surface) has many. At 128 samples, rows tested in
+  /// slices of more than 8 blocks: distances a sample armadillo 11.99 -> 4.60, dragon
+  /// 12.51 -> 5.36, bunny 2.66 -> 2.10, the CPU scan within -7 % to +4 %, the GPU's
+  /// (which evaluates every offer twice on llvmpipe) a third faster for the armadillo.
+  static constexpr int64_t RowTestBlocks = 8;
 
   static constexpr int CacheSize = 64;
   const Site& TheSite;
