@@ -127,9 +127,6 @@ void vtkConvexQueryAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "UseConvexHulls: " << this->UseConvexHulls << "\n";
   os << indent << "Backend: " << vtkdf::enums::Backend.Name(this->Backend) << "\n";
-  os << indent << "ViewResolution: " << this->ViewResolution << "\n";
-  os << indent << "Certify: " << this->Certify << "\n";
   os << indent << "LastBackend: " << this->LastBackend << "\n";
-  os << indent << "LastPasses: " << this->LastPasses << "\n";
   os << indent << "LastFacesVisited: " << this->LastFacesVisited << "\n";
 }

@@ -3,9 +3,8 @@
  * @brief   Base of the filters that query unions of convex pieces.
  *
  * Holds what vtkUnionClosestPoint and vtkPenetrationDepth share: how their inputs become
- * convex pieces (PieceArray, UseConvexHulls), where the query runs (Backend; on the GPU,
- * ViewResolution and Certify) and what the last run used (LastBackend, LastRenderer,
- * LastPasses, LastFacesVisited).
+ * convex pieces (PieceArray, UseConvexHulls), where the query runs (Backend) and what the
+ * last run used (LastBackend, LastRenderer, LastFacesVisited).
  *
  * An input of pieces is a vtkPolyData whose connected components (cells sharing point
  * ids: touching pieces that repeat their shared corners stay apart) are the pieces, in
@@ -22,6 +21,7 @@
 #ifndef vtkConvexQueryAlgorithm_h
 #define vtkConvexQueryAlgorithm_h
 
+#include "vtkDeprecation.h" // For VTK_DEPRECATION
 #include "vtkDistanceFieldPolyDataAlgorithm.h"
 #include "vtkDistanceFieldsModule.h" // For export macro
 
@@ -67,8 +67,8 @@ public:
   };
   ///@{
   /// Where the query runs (default Auto). The CPU is exact, in double precision; the GPU
-  /// renders six cube-face views of ViewResolution pixels around each query point
-  /// (Kim et al.'s Algorithm 2.1), whose answer Certify then makes exact on the CPU.
+  /// bounds each answer in a compute pass, from which the CPU's exact search starts: the
+  /// same answers, bit for bit.
   vtkSetMacro(Backend, int);
   vtkGetMacro(Backend, int);
   void SetBackendToAuto() { this->SetBackend(BACKEND_AUTO); }
@@ -77,25 +77,32 @@ public:
   ///@}
 
   ///@{
-  /// GPU: pixels a side of each of the six cube-face views (default 256, 8 to 8192).
-  vtkSetMacro(ViewResolution, int);
-  vtkGetMacro(ViewResolution, int);
-  ///@}
-
-  ///@{
-  /// GPU: search the faces nearer than the images' answer exactly on the CPU (default on),
-  /// so that the answer is exact; off, the image-space answer alone (ErrorBound then
-  /// holds an image-space estimate that a gap narrower than a pixel can exceed).
-  vtkSetMacro(Certify, bool);
-  vtkGetMacro(Certify, bool);
-  vtkBooleanMacro(Certify, bool);
+  /**
+   * The settings of the GPU's rendered cube-face views, which the GPU backend no longer
+   * renders: a compute pass bounds each answer and every answer is exact, so these do
+   * nothing (ViewResolution reads 256, Certify on, LastPasses 0).
+   * @deprecated Nothing replaces them: every backend's answer is exact.
+   */
+  VTK_DEPRECATION("The GPU backend renders no views: ViewResolution does nothing")
+  void SetViewResolution(int) {}
+  VTK_DEPRECATION("The GPU backend renders no views: ViewResolution does nothing")
+  int GetViewResolution() { return 256; }
+  VTK_DEPRECATION("Every answer is exact: Certify does nothing")
+  void SetCertify(bool) {}
+  VTK_DEPRECATION("Every answer is exact: Certify does nothing")
+  bool GetCertify() { return true; }
+  VTK_DEPRECATION("Every answer is exact: Certify does nothing")
+  void CertifyOn() {}
+  VTK_DEPRECATION("Every answer is exact: Certify does nothing")
+  void CertifyOff() {}
+  VTK_DEPRECATION("The GPU backend renders no views: LastPasses is 0")
+  vtkTypeInt64 GetLastPasses() { return 0; }
   ///@}
 
   /// The backend the last run used (BACKEND_GPU or BACKEND_CPU; its renderer and
-  /// platform: GetLastRenderer, GetLastPlatform), its rendering rounds (summed over the
-  /// queries), and the faces the exact search visited.
+  /// platform: GetLastRenderer, GetLastPlatform) and the faces the exact search visited
+  /// (on the GPU, from its bounds).
   vtkGetMacro(LastBackend, int);
-  vtkGetMacro(LastPasses, vtkTypeInt64);
   vtkGetMacro(LastFacesVisited, vtkTypeInt64);
 
 protected:
@@ -131,10 +138,7 @@ protected:
   std::string PieceArray;
   bool UseConvexHulls = false;
   int Backend = BACKEND_AUTO;
-  int ViewResolution = 256;
-  bool Certify = true;
   int LastBackend = BACKEND_CPU;
-  vtkTypeInt64 LastPasses = 0;
   vtkTypeInt64 LastFacesVisited = 0;
 
 private:

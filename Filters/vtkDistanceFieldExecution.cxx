@@ -72,14 +72,7 @@ HeadlessGL* SignContext(const ExecutionPlan& plan)
     {
       return nullptr;
     }
-    std::string renderer = gl->Renderer();
-    std::transform(renderer.begin(), renderer.end(), renderer.begin(), ::tolower);
-    bool software = gl->Platform() == "OSMesa";
-    for (const char* name : { "llvmpipe", "softpipe", "swrast", "software", "svga3d" })
-    {
-      software = software || renderer.find(name) != std::string::npos;
-    }
-    return !software || anyDevice ? gl : nullptr;
+    return !gl->IsSoftware() || anyDevice ? gl : nullptr;
   }();
   return chosen;
 }

@@ -37,8 +37,6 @@ vtkdf::RunStatus vtkPenetrationDepth::Execute(vtkInformationVector** inputVector
   this->LastPenetrationDepth = this->LastSeparationDistance = 0;
   this->LastDirection[0] = this->LastDirection[1] = this->LastDirection[2] = 0;
   this->LastIntersecting = false;
-  this->LastErrorBound = 0;
-  this->LastPasses = 0;
   this->LastPairsTotal = this->LastPairsKept = this->LastPairsBuilt = this->LastFacesVisited = 0;
   vtkdf::ConvexPieceInput solids[2];
   // A distributed run: every rank builds its block of the sums, rank 0 gathers them all
@@ -103,10 +101,7 @@ vtkdf::RunStatus vtkPenetrationDepth::Execute(vtkInformationVector** inputVector
   vtkdf::HeadlessGL* gl = run.Context();
 
   vtkdf::PenetrationAnswer answer;
-  vtkdf::UnionGPUSettings settings;
-  settings.Resolution = this->ViewResolution;
-  settings.Certify = this->Certify;
-  if (!depth.Query(sums, pairs, total, origin, answer, error, gl, settings))
+  if (!depth.Query(sums, pairs, total, origin, answer, error, gl))
   {
     return run.Fail((gl ? "The GPU query failed: " : "No answer: ") + error + ".");
   }
@@ -119,8 +114,6 @@ void vtkPenetrationDepth::WriteAnswer(const vtkdf::PenetrationAnswer& answer,
   const vtkdf::ConvexPieceInput& q,
   vtkPolyData* output)
 {
-  this->LastPasses = answer.Passes;
-  this->LastErrorBound = answer.ErrorBound;
   const double length = answer.Distance;
   double n[3] = { 0, 0, 0 };
   for (int a = 0; a < 3; ++a)
@@ -173,8 +166,6 @@ void vtkPenetrationDepth::WriteAnswer(const vtkdf::PenetrationAnswer& answer,
     fields->AddArray(array);
   };
   scalar("PenetrationDepth", this->LastPenetrationDepth);
-  scalar("ErrorBound", answer.ErrorBound);
-  scalar("Certified", answer.Certified ? 1 : 0);
   if (!answer.Intersecting)
   {
     scalar("SeparationDistance", this->LastSeparationDistance);
@@ -199,7 +190,6 @@ void vtkPenetrationDepth::WriteAnswer(const vtkdf::PenetrationAnswer& answer,
 void vtkPenetrationDepth::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "LastErrorBound: " << this->LastErrorBound << "\n";
   os << indent << "LastPenetrationDepth: " << this->LastPenetrationDepth << "\n";
   os << indent << "LastSeparationDistance: " << this->LastSeparationDistance << "\n";
   os << indent << "LastDirection: " << this->LastDirection[0] << " " << this->LastDirection[1]

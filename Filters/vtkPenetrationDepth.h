@@ -15,9 +15,9 @@
  * Tools 7(4), 2002) without building the union. Unlike a
  * per-pair depth (FCL, Bullet, libccd), it is the global one: the deepest pair is only a
  * lower bound. Pairs whose sums cannot reach the answer are skipped before their hulls
- * are built. P and Q are in one frame. Backend, ViewResolution and Certify choose where the
- * query runs, as for vtkUnionClosestPoint: the CPU (exact), or the GPU's six views
- * certified on the CPU (exact) or not (ErrorBound then holds the image-space estimate).
+ * are built. P and Q are in one frame. Backend chooses where the query runs, as for
+ * vtkUnionClosestPoint: the CPU, or the GPU's bound from which the CPU's exact search
+ * starts; the same answer either way.
  *
  * For two arbitrary (non-convex, open, deforming) meshes, vtkDistanceFieldProximity
  * gives a different answer: each surface's maximum penetration into the other and the
@@ -31,7 +31,7 @@
  * farthest against Direction, the one that leaves P last, to that point translated), and
  * field data `PenetrationDepth` (0 when P and Q do not intersect), `Direction` (unit:
  * translating Q by PenetrationDepth x Direction separates it from P, up to touching),
- * `Intersecting` (0/1), `ErrorBound` (0: exact), `WitnessPieces` (the pair of pieces, P's
+ * `Intersecting` (0/1), `WitnessPieces` (the pair of pieces, P's
  * then Q's, whose sum holds the answer) and, when P and Q do not intersect,
  * `SeparationDistance` (translating Q by it along Direction brings them into contact).
  */
@@ -67,8 +67,15 @@ public:
   vtkGetMacro(LastSeparationDistance, double);
   vtkGetVector3Macro(LastDirection, double);
   vtkGetMacro(LastIntersecting, bool);
-  vtkGetMacro(LastErrorBound, double);
   ///@}
+
+  /**
+   * The image-space error of the GPU's rendered views, which the GPU backend no longer
+   * renders: 0, every answer is exact.
+   * @deprecated Nothing replaces it.
+   */
+  VTK_DEPRECATION("Every answer is exact: LastErrorBound is 0")
+  double GetLastErrorBound() { return 0; }
 
   ///@{
   /// The last run's work: pairs of pieces and those whose sums were built (the faces of
@@ -100,7 +107,6 @@ protected:
   double LastSeparationDistance = 0;
   double LastDirection[3] = { 0, 0, 0 };
   bool LastIntersecting = false;
-  double LastErrorBound = 0;
   vtkTypeInt64 LastPairsTotal = 0;
   vtkTypeInt64 LastPairsKept = 0;
   vtkTypeInt64 LastPairsBuilt = 0;

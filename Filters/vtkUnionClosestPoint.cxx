@@ -1,10 +1,7 @@
 #include "vtkUnionClosestPoint.h"
 
 #include "vtkCellArray.h"
-#include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
-#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
@@ -49,46 +46,28 @@ int vtkUnionClosestPoint::FillOutputPortInformation(int port, vtkInformation* in
   return this->Superclass::FillOutputPortInformation(port, info);
 }
 
-void vtkUnionClosestPoint::WriteViewImages(const std::vector<float>& images,
-  const std::vector<double>& frames,
-  const double query[3],
-  vtkInformationVector* outputVector)
+void vtkUnionClosestPoint::ChangeGenerateViewImages(bool value)
 {
-  auto* views = vtkPartitionedDataSet::GetData(outputVector, 1);
-  if (!views)
+  if (this->GenerateViewImages != value)
   {
-    return;
+    this->GenerateViewImages = value;
+    this->Modified();
   }
-  const int n = this->ViewResolution;
-  views->SetNumberOfPartitions(6);
-  for (int v = 0; v < 6; ++v)
-  {
-    vtkNew<vtkImageData> image;
-    image->SetDimensions(n, n, 1);
-    image->SetOrigin(-1 + 1.0 / n, -1 + 1.0 / n, 0);
-    image->SetSpacing(2.0 / n, 2.0 / n, 1);
-    vtkNew<vtkFloatArray> distance;
-    distance->SetName("Distance");
-    distance->SetNumberOfTuples(static_cast<vtkIdType>(n) * n);
-    std::copy(images.begin() + static_cast<size_t>(v) * n * n,
-      images.begin() + static_cast<size_t>(v + 1) * n * n,
-      distance->GetPointer(0));
-    image->GetPointData()->SetScalars(distance);
-    vtkNew<vtkDoubleArray> frame;
-    frame->SetName("ViewFrame");
-    frame->SetNumberOfComponents(3);
-    for (int k = 0; k < 3; ++k)
-    {
-      frame->InsertNextTuple(&frames[9 * v + 3 * k]);
-    }
-    image->GetFieldData()->AddArray(frame);
-    vtkNew<vtkDoubleArray> origin;
-    origin->SetName("QueryPoint");
-    origin->SetNumberOfComponents(3);
-    origin->InsertNextTuple(query);
-    image->GetFieldData()->AddArray(origin);
-    views->SetPartition(v, image);
-  }
+}
+
+void vtkUnionClosestPoint::SetGenerateViewImages(bool value)
+{
+  this->ChangeGenerateViewImages(value);
+}
+
+void vtkUnionClosestPoint::GenerateViewImagesOn()
+{
+  this->ChangeGenerateViewImages(true);
+}
+
+void vtkUnionClosestPoint::GenerateViewImagesOff()
+{
+  this->ChangeGenerateViewImages(false);
 }
 
 int vtkUnionClosestPoint::FillInputPortInformation(int port, vtkInformation* info)
@@ -135,7 +114,6 @@ vtkdf::RunStatus vtkUnionClosestPoint::Execute(vtkInformationVector** inputVecto
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   this->LastPieceCount = 0;
   this->LastFacesVisited = 0;
-  this->LastPasses = 0;
   vtkdf::ConvexPieceInput pieces;
   std::vector<double> o;
   if (!this->ReadPieces(vtkDataObject::GetData(inputVector[0], 0), nullptr, 0, pieces) ||
@@ -152,25 +130,14 @@ vtkdf::RunStatus vtkUnionClosestPoint::Execute(vtkInformationVector** inputVecto
   query.Tolerance = pieces.Tolerance;
   query.Pieces = std::move(pieces.Pieces);
   this->LastPieceCount = static_cast<int>(query.Pieces.size());
-  if (this->GenerateViewImages && !gl)
+  if (this->GenerateViewImages)
   {
-    vtkWarningMacro("GenerateViewImages: the views come from the GPU backend, which this run "
-                    "does not use (Backend "
-      << (this->Backend == BACKEND_CPU ? "CPU" : "Auto without a hardware GPU")
-      << "): output 1 is empty.");
+    vtkWarningMacro("GenerateViewImages is deprecated: the GPU backend renders no views, "
+                    "so output 1 is empty.");
   }
   run.Progress(0.1);
   vtkdf::UnionQueryOptions options;
-  options.ViewResolution = this->ViewResolution;
-  options.Certify = this->Certify;
   options.Threads = vtkSMPTools::GetEstimatedNumberOfThreads();
-  std::vector<float> images;
-  std::vector<double> frames;
-  if (this->GenerateViewImages)
-  {
-    options.Images = &images;
-    options.Frames = &frames;
-  }
   std::vector<vtkdf::UnionGPUAnswer> answers;
   bool aborted = false;
   std::string error;
@@ -181,14 +148,6 @@ vtkdf::RunStatus vtkUnionClosestPoint::Execute(vtkInformationVector** inputVecto
   if (aborted)
   {
     return run.Empty();
-  }
-  for (const auto& answer : answers)
-  {
-    this->LastPasses += answer.Passes;
-  }
-  if (gl && this->GenerateViewImages && !o.empty())
-  {
-    this->WriteViewImages(images, frames, &o[o.size() - 3], outputVector);
   }
   run.Progress(0.9);
   this->WriteAnswers(o, answers, output);
@@ -204,16 +163,14 @@ void vtkUnionClosestPoint::WriteAnswers(const std::vector<double>& o,
   out->SetDataTypeToDouble();
   out->SetNumberOfPoints(2 * n);
   vtkNew<vtkCellArray> lines;
-  vtkNew<vtkFloatArray> distance, closest, direction, bound;
-  vtkNew<vtkUnsignedCharArray> inside, certified;
+  vtkNew<vtkFloatArray> distance, closest, direction;
+  vtkNew<vtkUnsignedCharArray> inside;
   vtkNew<vtkIntArray> piece;
-  certified->SetName("Certified");
   distance->SetName("Distance");
   closest->SetName("ClosestPoint");
   closest->SetNumberOfComponents(3);
   direction->SetName("Direction");
   direction->SetNumberOfComponents(3);
-  bound->SetName("ErrorBound");
   inside->SetName("Inside");
   piece->SetName("ClosestPiece");
   for (vtkIdType k = 0; k < 2 * n; ++k)
@@ -230,8 +187,6 @@ void vtkUnionClosestPoint::WriteAnswers(const std::vector<double>& o,
     distance->InsertNextValue(static_cast<float>(a.Distance));
     closest->InsertNextTuple(a.Closest);
     direction->InsertNextTuple(d);
-    bound->InsertNextValue(static_cast<float>(answers[i].ErrorBound));
-    certified->InsertNextValue(answers[i].Certified ? 1 : 0);
     inside->InsertNextValue(a.Inside ? 1 : 0);
     piece->InsertNextValue(static_cast<int>(a.Piece));
     if (k < n)
@@ -249,8 +204,6 @@ void vtkUnionClosestPoint::WriteAnswers(const std::vector<double>& o,
   pd->AddArray(direction);
   pd->AddArray(inside);
   pd->AddArray(piece);
-  pd->AddArray(bound);
-  pd->AddArray(certified);
 }
 
 void vtkUnionClosestPoint::PrintSelf(ostream& os, vtkIndent indent)

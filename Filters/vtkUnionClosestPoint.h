@@ -12,16 +12,14 @@
  *
  * Backend CPU: exact, in double precision (vtkSMPTools over the queries, or over each
  * query's faces when there are few); see Filters/Core/Union/UnionClosestPoint.h.
- * Progress is reported, and an abort heard, per twentieth of the queries (CPU) or per
- * batch and per 64 certified queries (GPU); an aborted run leaves an empty output.
- * Backend GPU: the paper's Algorithm 2.1 on six cube-face views of ViewResolution pixels
- * around each query (stencil windows, the Euclidean distance as the depth, rounds until
- * one changes nothing; Filters/Core/Union/UnionClosestPointGPU.h), whose smallest distance
- * U is a boundary point; with Certify (default) the faces nearer than U are then searched
- * exactly on the CPU and the answer is exact (ErrorBound 0, Certified 1); without it the
- * answer is U's point, with an image-space estimate in ErrorBound that a gap of free space
- * narrower than a pixel can exceed (Certified 0). Auto: the CPU (on an NVIDIA H100 the GPU's
- * batches of queries were 50-60 times slower than the CPU's, docs/benchmarks.md).
+ * Backend GPU: a compute pass gives each query an upper bound U (the nearest face point
+ * that is certainly on the boundary; all the queries in one dispatch), and the CPU's exact
+ * search then visits only the faces nearer than U: the CPU backend's answers, bit for
+ * bit (Filters/Core/Union/UnionClosestPointGPU.h). The paper renders six cube-face views
+ * around each query to find U instead. Auto: the CPU (the exact search runs on the CPU
+ * either way). Progress is reported, and an abort heard, per twentieth of the queries
+ * (CPU) or per dispatch and per 64 certified queries (GPU); an aborted run leaves an empty
+ * output.
  *
  * Input 0, the pieces, in the forms vtkConvexQueryAlgorithm describes.
  * Input 1 (optional): a vtkPointSet whose points are the queries; without it, the
@@ -30,12 +28,9 @@
  * Output: vtkPolyData whose first points are the queries (point i is query i), followed
  * by their closest points, with a line from each query to its closest point, and the
  * point data `Distance`, `ClosestPoint` (float x3), `Direction` (unit, O to the closest
- * point), `Inside` (uint8), `ClosestPiece` (int), `ErrorBound` (0: exact) and
- * `Certified` (uint8: 1 when exact), the same on a query and on its closest point.
- * Output 1 (GenerateViewImages, GPU backend): the last query's six cube-face views as a
- * vtkPartitionedDataSet of six vtkImageData, ViewResolution pixels a side over [-1, 1]^2
- * (tangent-plane coordinates), point data `Distance` (NaN where no boundary was seen),
- * field data `ViewFrame` (right, up, forward) and `QueryPoint`.
+ * point), `Inside` (uint8) and `ClosestPiece` (int), the same on a query and on its
+ * closest point. Output 1, an empty vtkPartitionedDataSet, is kept for the pipelines that
+ * took the GPU's rendered views from it (GenerateViewImages, deprecated).
  */
 #ifndef vtkUnionClosestPoint_h
 #define vtkUnionClosestPoint_h
@@ -68,10 +63,19 @@ public:
   void SetQueryData(vtkDataObject* data) { this->SetInputData(1, data); }
 
   ///@{
-  /// GPU: the last query's six views on output 1 (default off).
-  vtkSetMacro(GenerateViewImages, bool);
-  vtkGetMacro(GenerateViewImages, bool);
-  vtkBooleanMacro(GenerateViewImages, bool);
+  /**
+   * The GPU's rendered views of the last query on output 1: the GPU backend no longer
+   * renders views, so output 1 stays empty (a warning says so when this is on).
+   * @deprecated Nothing replaces it.
+   */
+  VTK_DEPRECATION("The GPU backend renders no views: output 1 stays empty")
+  void SetGenerateViewImages(bool value);
+  VTK_DEPRECATION("The GPU backend renders no views: output 1 stays empty")
+  bool GetGenerateViewImages() { return this->GenerateViewImages; }
+  VTK_DEPRECATION("The GPU backend renders no views: output 1 stays empty")
+  void GenerateViewImagesOn();
+  VTK_DEPRECATION("The GPU backend renders no views: output 1 stays empty")
+  void GenerateViewImagesOff();
   ///@}
 
   /// The pieces of the last run (its faces visited, summed over the queries, are
@@ -99,17 +103,13 @@ protected:
     const std::vector<vtkdf::UnionGPUAnswer>& answers,
     vtkPolyData* output);
 #endif
-  /// The six views of the last query onto output 1.
-  void WriteViewImages(const std::vector<float>& images,
-    const std::vector<double>& frames,
-    const double query[3],
-    vtkInformationVector* outputVector);
 
   double QueryPoint[3] = { 0, 0, 0 };
   bool GenerateViewImages = false;
   int LastPieceCount = 0;
 
 private:
+  void ChangeGenerateViewImages(bool value); // the deprecated setters' one body
   vtkUnionClosestPoint(const vtkUnionClosestPoint&) = delete;
   void operator=(const vtkUnionClosestPoint&) = delete;
 };

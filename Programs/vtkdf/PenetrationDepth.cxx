@@ -50,25 +50,23 @@ int PenetrationDepth(int argc, char* argv[])
   }
   const double* n = filter->GetLastDirection();
   std::printf("vtkdf: pd intersecting=%d penetration_depth=%.17g separation_distance=%.17g "
-              "direction=%.9f,%.9f,%.9f error_bound=%.3g\n",
+              "direction=%.9f,%.9f,%.9f\n",
     filter->GetLastIntersecting() ? 1 : 0,
     filter->GetLastPenetrationDepth(),
     filter->GetLastSeparationDistance(),
     n[0],
     n[1],
-    n[2],
-    filter->GetLastErrorBound());
+    n[2]);
   if (where.Timing)
   {
     std::printf("vtkdf: pd pairs=%lld pairs_kept=%lld backend=%s renderer=\"%s\" time_s=%.6f "
-                "faces_visited=%lld passes=%lld\n",
+                "faces_visited=%lld\n",
       static_cast<long long>(filter->GetLastPairsTotal()),
       static_cast<long long>(filter->GetLastPairsKept()),
       filter->GetLastBackend() == vtkPenetrationDepth::BACKEND_GPU ? "gpu" : "cpu",
       filter->GetLastRenderer(),
       seconds,
-      static_cast<long long>(filter->GetLastFacesVisited()),
-      static_cast<long long>(filter->GetLastPasses()));
+      static_cast<long long>(filter->GetLastFacesVisited()));
   }
   return WriteXML<vtkXMLPolyDataWriter>(filter->GetOutput(), where.Output) ? 0 : 1;
 }

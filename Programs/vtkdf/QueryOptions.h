@@ -5,6 +5,7 @@
 #include "Options.h"
 #include "vtkDistanceFieldEnums.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -18,8 +19,6 @@ struct QueryOptions
   std::string Output, PieceArray;
   bool Timing = false, Hulls = false;
   std::string Backend = "auto";
-  int Pixels = 256;
-  bool Uncertified = false;
 
   /// The usage error for an option Parse did not take: a value missing, or unknown.
   static std::string Refuse(const std::string& option)
@@ -39,11 +38,19 @@ struct QueryOptions
   bool Parse(int argc, char* argv[], int& a)
   {
     const std::string option = argv[a];
-    if (option == "--uncertified" || option == "--timing" || option == "--convex-hulls")
+    if (option == "--timing" || option == "--convex-hulls")
     {
-      (option == "--uncertified" ? this->Uncertified
-          : option == "--timing" ? this->Timing
-                                 : this->Hulls) = true;
+      (option == "--timing" ? this->Timing : this->Hulls) = true;
+      return true;
+    }
+    // The options of the GPU's rendered views, which it no longer renders.
+    if (option == "--uncertified" || (option == "--pixels" && a + 1 < argc))
+    {
+      a += option == "--pixels" ? 1 : 0;
+      std::fprintf(stderr,
+        "vtkdf: %s is deprecated and does nothing: the GPU backend renders no views and "
+        "every answer is exact\n",
+        option.c_str());
       return true;
     }
     if ((option == "-o" || option == "--piece-array") && a + 1 < argc)
@@ -51,16 +58,9 @@ struct QueryOptions
       (option == "-o" ? this->Output : this->PieceArray) = argv[++a];
       return true;
     }
-    if ((option == "--backend" || option == "--pixels") && a + 1 < argc)
+    if (option == "--backend" && a + 1 < argc)
     {
-      if (option == "--backend")
-      {
-        this->Backend = argv[++a];
-      }
-      else
-      {
-        this->Pixels = ParseInt("--pixels", argv[++a]);
-      }
+      this->Backend = argv[++a];
       return true;
     }
     return false;
@@ -70,8 +70,6 @@ struct QueryOptions
   void Apply(Filter* filter) const
   {
     filter->SetBackend(EnumWord("--backend", this->Backend, vtkdf::enums::Backend));
-    filter->SetViewResolution(this->Pixels);
-    filter->SetCertify(!this->Uncertified);
     filter->SetPieceArray(this->PieceArray.c_str());
     filter->SetUseConvexHulls(this->Hulls);
   }

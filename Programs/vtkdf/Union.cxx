@@ -70,14 +70,13 @@ int Union(int argc, char* argv[])
   if (where.Timing)
   {
     std::printf("vtkdf: union pieces=%d queries=%lld backend=%s renderer=\"%s\" time_s=%.6f "
-                "faces_visited=%lld passes=%lld\n",
+                "faces_visited=%lld\n",
       filter->GetLastPieceCount(),
       static_cast<long long>(result->GetNumberOfPoints() / 2),
       filter->GetLastBackend() == vtkUnionClosestPoint::BACKEND_GPU ? "gpu" : "cpu",
       filter->GetLastRenderer(),
       seconds,
-      static_cast<long long>(filter->GetLastFacesVisited()),
-      static_cast<long long>(filter->GetLastPasses()));
+      static_cast<long long>(filter->GetLastFacesVisited()));
   }
   return WriteXML<vtkXMLPolyDataWriter>(result, where.Output) ? 0 : 1;
 }

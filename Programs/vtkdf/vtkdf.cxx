@@ -17,9 +17,9 @@
 //         [--surface OUT.vtp] [--feature-angle A] [--paper-vertices]
 //   vtkdf blend A.vti B.vti -t T -o OUT.vti [--png SLICE.png]
 //   vtkdf union POLYTOPES -o OUT.vtp [--query X Y Z | --queries POINTS] [--piece-array NAME]
-//         [--convex-hulls] [--backend ...] [--pixels N] [--uncertified] [--timing]
+//         [--convex-hulls] [--backend ...] [--timing]
 //   vtkdf pd P Q -o OUT.vtp [--piece-array NAME] [--convex-hulls] [--backend ...]
-//         [--pixels N] [--uncertified] [--timing]
+//         [--timing]
 //         (penetration depth; P, Q: convex pieces in the forms union takes)
 //   vtkdf proximity A B -o OUT.vtp [--contacts OUT.vtp] [--models A.vtp B.vtp]
 //         [--resolution N | --spacing H] [--margin M] [--sign winding|pseudonormal]

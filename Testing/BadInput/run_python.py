@@ -103,8 +103,6 @@ def configure(f, sub, options, contour=None):
             f.SetMaximumLayers(number(value, int))
         elif option == "--angle":
             f.SetSeparationAngle(number(value, float))
-        elif option == "--pixels":
-            f.SetViewResolution(number(value, int))
         elif option == "--piece-array":
             f.SetPieceArray(value)
         elif option == "--delta":

@@ -36,13 +36,11 @@ using namespace vtkdf::coretest;
 
 namespace
 {
-/// With the argument gpu: the union query on the GPU, certified (64 pixels a side).
+/// With the argument gpu: the union query with the GPU's bound.
 HeadlessGL* GPU = nullptr;
 UnionGPUSettings Settings()
 {
-  UnionGPUSettings settings;
-  settings.Resolution = 64;
-  return settings;
+  return UnionGPUSettings();
 }
 
 /// On the GPU: the certified answer equals the CPU's bit for bit.
@@ -308,8 +306,8 @@ void ConvexPairs()
       "%s (%.17g)",
       std::string("a convex pair: " + error).c_str(),
       static_cast<double>(trial));
-    Check(answer.Certified && answer.ErrorBound == 0,
-      "a convex pair: certified (%.17g)",
+    Check(!GPU || answer.Estimate >= answer.Distance - 1e-12,
+      "a convex pair: the GPU's bound above the answer (%.17g)",
       static_cast<double>(trial));
     const double reference = AxisDepth(p[0], q[0]);
     const std::string name = "pair " + std::to_string(trial);
@@ -442,21 +440,11 @@ void Tori()
   CheckSameAsCPU("tori", depth, p, q, origin, answer);
   if (GPU)
   {
-    // Not certified: the image's depth, never below the exact one.
-    UnionGPUSettings image = Settings();
-    image.Certify = false;
-    PenetrationAnswer estimate;
-    Check(depth.Compute(p, q, origin, estimate, error, GPU, image),
-      "%s",
-      std::string("tori: " + error).c_str());
-    std::printf("tori on the GPU: certified %.9f, image %.9f (error bound %.3g, %d passes)\n",
-      answer.Distance,
-      estimate.Distance,
-      estimate.ErrorBound,
-      estimate.Passes);
-    Check(!estimate.Certified && estimate.Distance >= answer.Distance - 1e-9,
-      "tori: the image's depth is never below the exact one (%.17g)",
-      static_cast<double>(estimate.Distance));
+    std::printf(
+      "tori on the GPU: depth %.9f, the GPU's bound %.9f\n", answer.Distance, answer.Estimate);
+    Check(answer.Estimate >= answer.Distance - 1e-9,
+      "tori: the GPU's bound is never below the depth (%.17g)",
+      static_cast<double>(answer.Estimate));
   }
   Check(answer.Intersecting, "tori intersect (%.17g)", static_cast<double>(answer.Distance));
   double pairMax = 0;

@@ -1,17 +1,18 @@
-// The union closest-point query on the GPU (Filters/Core/Union/UnionClosestPointGPU.h)
-// against the exact CPU query (checked against brute forces by Core.Union), on llvmpipe
-// in CI:
+// The union closest-point query with the GPU's bounds (Filters/Core/Union/
+// UnionClosestPointGPU.h) against the exact CPU query (checked against brute forces by
+// Core.Union), on llvmpipe in CI:
 // - random unions (seeded) of 5 to 70 convex pieces of 8 to 40 faces (hulls of random
-//   points on ellipsoids), queries inside and outside: the certified GPU answer equals the
-//   CPU answer bit for bit (distance, point, piece), and the uncertified U is never
-//   below it (it is a point of the boundary); a batch of queries gives the same images
-//   as one query a batch;
-// - the paper's hard cases: touching cubes (the shared face is not boundary: 0.5, not
-//   0.1; U too), blocks of 27 and 125 touching or overlapping cubes (one and two hops), O
-//   exactly on a shared face and on an outer face, a sub-pixel slot of free space pointing
-//   at O (U misses it, the certified answer does not), a piece holding O alone, nested
-//   pieces;
-// - the six images: every pixel's distance is a boundary point's (at least the answer).
+//   points on ellipsoids), queries inside and outside: the GPU backend's answer equals the
+//   CPU's bit for bit (distance, point, piece, side); its bound U is never below the
+//   answer (it is a boundary point's distance), equals it from outside, and never made
+//   the full search run again; other splits of the faces into blocks and of the queries
+//   into dispatches give the same U, bit for bit; a pass cut short by its loop budget
+//   says so and changes no answer;
+// - the publication's hard cases: touching cubes (the shared face is not boundary: 0.5,
+//   not 0.1), blocks of 27 and 125 touching or overlapping cubes, O exactly on a shared
+//   face and on an outer face, a slot of free space too narrow for a rendered view to see
+//   (U finds its tip), a piece holding O alone, nested pieces, a bound that misses (every
+//   face point nearest O touches another piece: the full search runs, the same answer).
 #include "CoreTest.h"
 #include "GLCoreTest.h"
 #include "Union/ConvexHull.h"
@@ -69,89 +70,71 @@ double Diagonal(const UnionClosestPoint& u)
 
 struct Totals
 {
-  int Queries = 0, Inside = 0, Passes = 0, MaxPasses = 0;
+  int Queries = 0, Inside = 0, Reseeded = 0;
   double WorstGap = 0; // (U - exact) / diagonal
-  int Beyond = 0;      // uncertified answers off by more than their ErrorBound
-  long long CertifyFaces = 0, CpuFaces = 0;
+  long long GpuFaces = 0, CpuFaces = 0;
 } totals;
 
-/// GPU (certified and not) against the CPU at every query; returns the certified answers.
+/// The GPU backend against the CPU at every query; returns the GPU's answers. With
+/// `settings` that let the pass test every face (the default), U is complete.
 std::vector<UnionGPUAnswer> Compare(HeadlessGL& gl,
   const UnionClosestPoint& u,
   const std::vector<double>& queries,
   const std::string& name,
-  int resolution = 64,
-  std::vector<float>* images = nullptr,
-  std::vector<double>* frames = nullptr)
+  const UnionGPUSettings& settings = UnionGPUSettings())
 {
-  const double tolerance = 1e-6 * Diagonal(u);
-  UnionGPUSettings settings;
-  settings.Resolution = resolution;
-  std::vector<UnionGPUAnswer> certified, estimated;
+  const double tolerance = 1e-12 * Diagonal(u);
+  std::vector<UnionGPUAnswer> answers;
   std::string error;
-  Check(QueryUnionGPU(gl, u, queries, settings, certified, error, images, frames),
-    "%s",
-    std::string(name + ": " + error).c_str());
-  settings.Certify = false;
-  Check(QueryUnionGPU(gl, u, queries, settings, estimated, error),
-    "%s",
-    std::string(name + ": " + error).c_str());
-  if (certified.size() != queries.size() / 3 || estimated.size() != certified.size())
+  const bool ok = QueryUnionGPU(gl, u, queries, settings, answers, error);
+  Check(ok, "%s", std::string(name + ": " + error).c_str());
+  if (answers.size() != queries.size() / 3)
   {
     Check(false, "%s", std::string(name + ": answers missing").c_str());
-    return certified;
+    return answers;
   }
-  for (size_t q = 0; q < certified.size(); ++q)
+  for (size_t q = 0; q < answers.size(); ++q)
   {
     const UnionAnswer exact = u.Query(&queries[3 * q]);
     const std::string at = name + " query " + std::to_string(q);
-    const UnionGPUAnswer& c = certified[q];
-    Check(c.Certified && c.ErrorBound == 0,
+    const UnionGPUAnswer& g = answers[q];
+    // The CPU's answer bit for bit: the bounded search's faces give the bits the full
+    // search's do (UnionClosestPoint's window).
+    Check(g.Answer.Distance == exact.Distance,
       "%s (%.17g)",
-      std::string(at + ": certified").c_str(),
-      static_cast<double>(c.ErrorBound));
-    // The certified answer is the CPU's bit for bit: the seeded search's faces give the
-    // bits the unseeded search's do (UnionClosestPoint's window).
-    Check(c.Answer.Distance == exact.Distance,
-      "%s (%.17g)",
-      std::string(at + ": certified GPU = CPU (" + std::to_string(exact.Distance) + ")").c_str(),
-      static_cast<double>(c.Answer.Distance));
-    Check(std::equal(c.Answer.Closest, c.Answer.Closest + 3, exact.Closest) &&
-        c.Answer.Piece == exact.Piece,
+      std::string(at + ": GPU = CPU (" + std::to_string(exact.Distance) + ")").c_str(),
+      static_cast<double>(g.Answer.Distance));
+    Check(std::equal(g.Answer.Closest, g.Answer.Closest + 3, exact.Closest) &&
+        g.Answer.Piece == exact.Piece && g.Answer.Inside == exact.Inside,
       "%s (piece %lld, %lld)",
-      std::string(at + ": the same point and piece").c_str(),
-      static_cast<long long>(c.Answer.Piece),
+      std::string(at + ": the same point, piece and side").c_str(),
+      static_cast<long long>(g.Answer.Piece),
       static_cast<long long>(exact.Piece));
-    const UnionGPUAnswer& e = estimated[q];
-    Check(!e.Certified && e.Estimate >= std::fabs(exact.Distance) - tolerance,
+    const double d = std::fabs(exact.Distance);
+    const bool complete = !g.Stopped;
+    Check(complete == (settings.IterationBudget == 0),
+      "%s (%d)",
+      std::string(at + ": the pass ran out of iterations only when its budget was cut").c_str(),
+      g.Stopped ? 1 : 0);
+    Check(g.Estimate >= d - tolerance && (exact.Inside || !complete || g.Estimate <= d + tolerance),
       "%s (%.17g)",
       std::string(
-        at + ": U never below the answer (" + std::to_string(std::fabs(exact.Distance)) + ")")
+        at + ": U above the answer, and equal to it from outside (" + std::to_string(d) + ")")
         .c_str(),
-      static_cast<double>(e.Estimate));
-    Check(e.Answer.Inside == exact.Inside,
-      "%s (%.17g)",
-      std::string(at + ": the same side").c_str(),
-      static_cast<double>(e.Answer.Inside));
-    if (e.Estimate - std::fabs(exact.Distance) > e.ErrorBound)
+      static_cast<double>(g.Estimate));
+    // U is a boundary point's distance, so the search bounded by it finds the answer.
+    Check(!g.Reseeded, "%s", std::string(at + ": U sufficed").c_str());
+    if (g.Estimate < HUGE_VAL)
     {
-      ++totals.Beyond;
-      std::printf("beyond its ErrorBound: %s: U %.9g, exact %.9g, ErrorBound %.3g\n",
-        at.c_str(),
-        e.Estimate,
-        std::fabs(exact.Distance),
-        e.ErrorBound);
+      totals.WorstGap = std::max(totals.WorstGap, (g.Estimate - d) / Diagonal(u));
     }
-    totals.WorstGap =
-      std::max(totals.WorstGap, (e.Estimate - std::fabs(exact.Distance)) / Diagonal(u));
     ++totals.Queries;
     totals.Inside += exact.Inside;
-    totals.Passes += c.Passes;
-    totals.MaxPasses = std::max(totals.MaxPasses, c.Passes);
-    totals.CertifyFaces += c.Answer.FacesVisited;
+    totals.Reseeded += g.Reseeded;
+    totals.GpuFaces += g.Answer.FacesVisited;
     totals.CpuFaces += exact.FacesVisited;
   }
-  return certified;
+  return answers;
 }
 
 void RandomUnions(HeadlessGL& gl)
@@ -209,24 +192,28 @@ void RandomUnions(HeadlessGL& gl)
         "random union " + std::to_string(trial) + " (" + std::to_string(m) + " pieces)");
       if (trial == 2)
       {
-        // One query a batch: the same images, so the same U.
-        UnionGPUSettings settings;
-        settings.Resolution = 64;
-        settings.Certify = false;
+        // Other splits of the faces and the queries: the same bounds, bit for bit.
         std::vector<UnionGPUAnswer> together, apart;
         std::string error;
-        Check(QueryUnionGPU(gl, u, queries, settings, together, error),
+        Check(QueryUnionGPU(gl, u, queries, UnionGPUSettings(), together, error),
           "%s",
-          std::string("batched: " + error).c_str());
-        settings.BatchBytes = 1;
-        Check(QueryUnionGPU(gl, u, queries, settings, apart, error),
+          std::string("split: " + error).c_str());
+        UnionGPUSettings split;
+        split.DispatchTests = 1; // one query a dispatch
+        split.BlockFaces = 7;
+        Check(QueryUnionGPU(gl, u, queries, split, apart, error),
           "%s",
-          std::string("one a batch: " + error).c_str());
-        Check(together.size() == apart.size() && !apart.empty(), "batched and alone: answers");
+          std::string("split: " + error).c_str());
+        Check(together.size() == apart.size() && !apart.empty(), "split: answers");
+        // A budget of 40 loop iterations an invocation: every block stops early, U is
+        // larger or none, the answers are the same.
+        UnionGPUSettings cut;
+        cut.IterationBudget = 40;
+        Compare(gl, u, queries, "a cut budget", cut);
         for (size_t q = 0; q < together.size() && together.size() == apart.size(); ++q)
         {
           Check(together[q].Estimate == apart[q].Estimate,
-            "batched and alone: the same U (%.17g)",
+            "split: the same U (%.17g)",
             static_cast<double>(together[q].Estimate - apart[q].Estimate));
         }
       }
@@ -277,27 +264,25 @@ void HardCases(HeadlessGL& gl)
       Check(!answers.empty() && std::fabs(answers[0].Answer.Distance + expected) < 1e-9,
         "block: the outer boundary (%.17g)",
         static_cast<double>(answers.empty() ? 0 : answers[0].Answer.Distance));
-      Check(!answers.empty() && answers[0].Passes >= (k - 1) / 2 + 1,
-        "block: the hops need passes (%.17g)",
-        static_cast<double>(answers.empty() ? 0 : answers[0].Passes));
+      Check(!answers.empty() && std::fabs(answers[0].Estimate - expected) < 1e-12,
+        "block: U is the outer boundary's distance (%.17g)",
+        static_cast<double>(answers.empty() ? 0 : answers[0].Estimate));
     }
   }
   {
     // A slot of free space, 2e-4 wide, from the outside to 0.2 of O: narrower than a
-    // pixel seen from O, so U misses it; the certified answer is 0.2.
+    // pixel of a rendered view from O, but its tip is a face point outside the other
+    // pieces, so U is its distance.
     const double w = 1e-4;
     UnionClosestPoint u;
     u.Pieces = {
       Box(-3, 3, -3, 3, -3, -w), Box(-3, 3, -3, 3, w, 3), Box(-3, 0.2, -3, 3, -2 * w, 2 * w)
     };
-    const int beyond = totals.Beyond;
-    const auto answers = Compare(gl, u, { 0, 0, 0 }, "sub-pixel slot");
-    Check(totals.Beyond == beyond + 1,
-      "slot: U misses it, beyond its ErrorBound (%.17g)",
-      static_cast<double>(totals.Beyond));
-    Check(!answers.empty() && std::fabs(answers[0].Answer.Distance + 0.2) < 1e-9,
-      "slot: the certified answer is its tip (%.17g)",
-      static_cast<double>(answers.empty() ? 0 : answers[0].Answer.Distance));
+    const auto answers = Compare(gl, u, { 0, 0, 0 }, "narrow slot");
+    Check(!answers.empty() && std::fabs(answers[0].Answer.Distance + 0.2) < 1e-9 &&
+        answers[0].Estimate == 0.2,
+      "slot: the answer and U are its tip (%.17g)",
+      static_cast<double>(answers.empty() ? 0 : answers[0].Estimate));
   }
   {
     UnionClosestPoint u;
@@ -315,71 +300,16 @@ void HardCases(HeadlessGL& gl)
       static_cast<double>(answers.empty() ? 0 : answers[0].Answer.Distance));
   }
   {
-    // The images: every seen pixel is a boundary point (the ray's point is in the closed
-    // union, and a little farther along the ray it is out).
+    // No bound: two copies of one cube. Every face's point nearest O lies on the other
+    // copy's face, not outside it by more than the tolerance, so the pass finds no point
+    // certainly on the boundary; the full search gives the answer.
     UnionClosestPoint u;
-    u.Pieces = { Box(0, 1, 0, 1, 0, 1), Box(0.5, 1.5, 0.2, 0.8, 0.2, 0.8) };
-    std::vector<float> images;
-    std::vector<double> frames;
-    const double o[3] = { 0.6, 0.5, 0.5 };
-    Compare(gl, u, { o[0], o[1], o[2] }, "images", 32, &images, &frames);
-    int bad = 0, seen = 0;
-    double worst = 0;
-    for (size_t p = 0; p < images.size() && frames.size() == 54; ++p)
-    {
-      const int view = static_cast<int>(p / (32 * 32)), row = static_cast<int>(p / 32 % 32),
-                column = static_cast<int>(p % 32);
-      const double x = 2.0 * (column + 0.5) / 32 - 1, y = 2.0 * (row + 0.5) / 32 - 1;
-      double d[3], length = 0;
-      for (int a = 0; a < 3; ++a)
-      {
-        d[a] = x * frames[9 * view + a] + y * frames[9 * view + 3 + a] + frames[9 * view + 6 + a];
-        length += d[a] * d[a];
-      }
-      length = std::sqrt(length);
-      double before[3], after[3];
-      for (int a = 0; a < 3; ++a)
-      {
-        before[a] = o[a] + d[a] / length * (images[p] - 2e-5);
-        after[a] = o[a] + d[a] / length * (images[p] + 2e-5);
-      }
-      ++seen;
-      const bool boundary = u.Contains(before) && !u.Contains(after);
-      bad += !boundary;
-      // Where the ray leaves each box (both hold O): the image holds the farther.
-      const double lo[2][3] = { { 0, 0, 0 }, { 0.5, 0.2, 0.2 } },
-                   hi[2][3] = { { 1, 1, 1 }, { 1.5, 0.8, 0.8 } };
-      double exits[2];
-      for (int b = 0; b < 2; ++b)
-      {
-        exits[b] = HUGE_VAL;
-        for (int a = 0; a < 3; ++a)
-        {
-          if (d[a] != 0)
-          {
-            exits[b] =
-              std::min(exits[b], ((d[a] > 0 ? hi[b][a] : lo[b][a]) - o[a]) / (d[a] / length));
-          }
-        }
-      }
-      const double exact = std::max(exits[0], exits[1]);
-      worst = std::max(worst, std::fabs(images[p] - exact));
-      if (!boundary && bad <= 3)
-      {
-        std::printf("images: view %d row %d column %d holds %.9g; the boxes are left at %.9g "
-                    "and %.9g\n",
-          view,
-          row,
-          column,
-          static_cast<double>(images[p]),
-          exits[0],
-          exits[1]);
-      }
-    }
-    std::printf("images: the distances within %.3g of the exact ones\n", worst);
-    Check(seen == 6 * 32 * 32 && bad == 0,
-      "images: every pixel a boundary point (bad pixels) (%.17g)",
-      static_cast<double>(bad));
+    u.Pieces = { Box(-1, 1, -1, 1, -1, 1), Box(-1, 1, -1, 1, -1, 1) };
+    const auto answers = Compare(gl, u, { 0.25, 0, 0 }, "two copies of a cube");
+    Check(answers.size() == 1 && answers[0].Estimate == HUGE_VAL &&
+        std::fabs(answers[0].Answer.Distance + 0.75) < 1e-12,
+      "copies: no bound from inside, the full search's answer (%.17g)",
+      static_cast<double>(answers.empty() ? 0 : answers[0].Answer.Distance));
   }
 }
 } // namespace
@@ -393,16 +323,14 @@ int main()
   }
   HardCases(*gl);
   RandomUnions(*gl);
-  std::printf("%d queries (%d inside): passes %.2f on average, at most %d; U above the answer "
-              "by at most %.3g of the diagonal at 64 pixels, beyond its ErrorBound in %d; faces "
-              "searched: %lld certifying, %lld by the CPU alone\n",
+  std::printf("%d queries (%d inside): U above the answer by at most %.3g of the diagonal, "
+              "the full search rerun %d times; faces searched: %lld from U, %lld by the CPU "
+              "alone\n",
     totals.Queries,
     totals.Inside,
-    double(totals.Passes) / std::max(1, totals.Queries),
-    totals.MaxPasses,
     totals.WorstGap,
-    totals.Beyond,
-    totals.CertifyFaces,
+    totals.Reseeded,
+    totals.GpuFaces,
     totals.CpuFaces);
   if (Failures == 0)
   {

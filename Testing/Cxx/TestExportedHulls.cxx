@@ -173,7 +173,6 @@ vtkSmartPointer<vtkPolyData> Union(vtkPolyData* pieces, vtkPolyData* queries, st
   f->SetInputData(0, pieces);
   f->SetQueryData(queries);
   vtkdf::testing::UseBackend(f.Get(), Backend);
-  f->SetViewResolution(64);
   f->Update();
   errors = recorder.Errors;
   auto out = vtkSmartPointer<vtkPolyData>::New();
@@ -219,7 +218,6 @@ Depth Penetration(vtkPolyData* p, vtkPolyData* q)
   f->SetSolidPData(p);
   f->SetSolidQData(q);
   vtkdf::testing::UseBackend(f.Get(), Backend);
-  f->SetViewResolution(64);
   f->Update();
   Depth d;
   d.Ok = f->GetErrorCode() == 0 && f->GetOutput()->GetNumberOfPoints() == 2;

@@ -63,7 +63,6 @@ int main(int argc, char* argv[])
   query->SetQueryPoint(0, 0.01, 0.01);
   query->SetBackend(
     backend == "gpu" ? vtkUnionClosestPoint::BACKEND_GPU : vtkUnionClosestPoint::BACKEND_CPU);
-  query->SetViewResolution(64);
   query->Update();
   vtkPolyData* answer = query->GetOutput();
   if (answer->GetNumberOfPoints() != 2)

@@ -241,6 +241,18 @@ bool HeadlessGL::CreateEGLContext(void* display, std::string& why)
   return true;
 }
 
+bool HeadlessGL::IsSoftware() const
+{
+  std::string renderer = this->RendererName;
+  std::transform(renderer.begin(), renderer.end(), renderer.begin(), ::tolower);
+  bool software = this->PlatformName == "OSMesa";
+  for (const char* name : { "llvmpipe", "softpipe", "swrast", "software", "svga3d" })
+  {
+    software = software || renderer.find(name) != std::string::npos;
+  }
+  return software;
+}
+
 bool HeadlessGL::HasHardwareDevice()
 {
   if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") &&

@@ -38,6 +38,8 @@ public:
   }
   /// The route that gave the context: "EGL device", "EGL surfaceless" or "OSMesa".
   const std::string& Platform() const { return this->PlatformName; }
+  /// Whether the renderer is a software one (Mesa's llvmpipe, softpipe, OSMesa...).
+  bool IsSoftware() const;
 
   /// Makes the context current on this thread for the lifetime of the scope, after
   /// saving and releasing whatever GLX or EGL context was current (VTK's render window,

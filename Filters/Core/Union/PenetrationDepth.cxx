@@ -196,9 +196,7 @@ bool PenetrationDepth::Query(UnionClosestPoint& sums,
       return false;
     }
     closest = gpu[0].Answer;
-    answer.ErrorBound = gpu[0].ErrorBound;
-    answer.Certified = gpu[0].Certified;
-    answer.Passes = gpu[0].Passes;
+    answer.Estimate = gpu[0].Estimate;
   }
   else
   {

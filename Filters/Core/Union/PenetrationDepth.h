@@ -41,10 +41,9 @@ struct PenetrationAnswer
   int64_t PieceP = -1, PieceQ = -1;
   int64_t PairsTotal = 0, PairsKept = 0;
   int64_t FacesVisited = 0;
-  /// 0 when exact (the CPU, or the GPU certified); else the image-space estimate.
-  double ErrorBound = 0;
-  bool Certified = true;
-  int Passes = 0; // the GPU's rendering rounds
+  /// The GPU's upper bound of Distance, which the exact search started from (HUGE_VAL
+  /// on the CPU, or when the GPU found none).
+  double Estimate = HUGE_VAL;
 };
 
 class PenetrationDepth
@@ -72,7 +71,7 @@ public:
     std::string& error) const;
 
   /// The answer for P and Q (convex pieces each), from `origin`: on the CPU, or with `gl`
-  /// on the GPU (QueryUnionGPU with `settings`).
+  /// with the GPU's bound (QueryUnionGPU with `settings`): the same answer.
   bool Compute(const std::vector<ConvexPiece>& p,
     const std::vector<ConvexPiece>& q,
     const double origin[3],

@@ -1,26 +1,22 @@
-// UnionClosestPointGPU: Kim et al.'s query on the GPU (Algorithm 2.1), certified on the
-// CPU. Without VTK types.
+// UnionClosestPointGPU: the closest point on a union of convex pieces with the GPU's help,
+// certified on the CPU. Without VTK types.
 //
-// Six 90-degree views on the faces of a cube around O, rendered at once into the layers
-// of a depth-stencil texture array (a geometry shader sends each triangle to the six
-// layers), for a batch of queries per draw (instance k draws query k's six layers): the
-// draws do not grow with the number of queries. The depth written is the Euclidean
-// distance |x - O| over Far, monotone along each ray, so the depth tests compare
-// distances and no 1/cos conversion is needed.
-// - O outside the union: one pass with the less test gives the nearest surface.
-// - O inside: the pieces that contain O (found exactly on the CPU) draw their back faces
-//   once with the greater test; then, round after round, every other piece draws its front
-//   faces where they pierce or touch the current boundary (less-or-equal, the front faces
-//   brought nearer by a small bias so that touching pieces join), which opens a stencil
-//   window, and its back faces into that window with the greater test, closing it. An
-//   occlusion query per piece tells whether a round changed any pixel; the rounds stop at
-//   the first that changes none. Queries inside and outside are batched apart.
-// The smallest distance in the six images is a point of the boundary, an upper bound U of
-// the answer; a gap of free space narrower than a pixel's angle can be missed, so no
-// image-space bound is guaranteed. Certification runs the exact CPU query
-// (UnionClosestPoint) seeded with U: only faces nearer than U are searched. If U was not
-// above the answer (a gap closed by the touching bias), the seeded search finds nothing
-// and the full search runs: the certified answer is exact either way.
+// A compute pass (Shaders/UnionBound.comp.glsl) gives each query O an upper bound U of
+// its answer: the distance to the nearest point of the pieces' faces that is certainly a
+// boundary point (on a face of its piece and outside every other piece by more than the
+// tolerance), all the queries in one dispatch, one invocation a query and block of faces.
+// From outside the union U is the answer itself (up to rounding); from inside, the
+// nearest such face point. The exact CPU query (UnionClosestPoint) then searches only the
+// faces nearer than U, and gives the CPU backend's answer bit for bit: the search's
+// answer does not depend on its bound. Where U is not above the answer (the face points
+// nearest O all touch other pieces, or rounding), the bounded search finds nothing and
+// the full search runs.
+//
+// Y. J. Kim, K. Hoff, M. C. Lin and D. Manocha, "Closest Point Query Among the Union of
+// Convex Polytopes Using Rasterization Hardware", Journal of Graphics Tools 7(4), 2002,
+// find U in six rendered cube-face views around each query instead; that path ran on the
+// small graphics part of a data-centre GPU and gave an image-space estimate unless
+// certified, so the compute pass replaced it.
 #ifndef vtkdf_UnionClosestPointGPU_h
 #define vtkdf_UnionClosestPointGPU_h
 
@@ -37,44 +33,44 @@ namespace vtkdf
 
 struct UnionGPUAnswer
 {
-  UnionAnswer Answer;  // the certified answer, or the image-space one
-  double Estimate = 0; // U: the smallest distance in the images
-  /// 0 when certified; else the image-space estimate U tan(alpha), alpha half a pixel's
-  /// diagonal at the view's centre (plus the float depth's rounding): not guaranteed.
-  double ErrorBound = 0;
-  bool Certified = false;
-  int Passes = 0; // rendering rounds of its batch (1 from outside; zero hops not counted)
+  UnionAnswer Answer; // exact: the CPU backend's answer
+  /// U, the GPU's upper bound (HUGE_VAL when it found no face point certainly on the
+  /// boundary).
+  double Estimate = HUGE_VAL;
+  /// Whether U was not above the answer, so that the full search ran after the bounded one.
+  bool Reseeded = false;
+  /// Whether an invocation of the pass ran out of loop iterations (UnionGPUSettings::
+  /// IterationBudget) before it had tested all its faces: U may then be larger.
+  bool Stopped = false;
 };
 
 struct UnionGPUSettings
 {
-  int Resolution = 256; // pixels a side of each cube-face view
-  bool Certify = true;
-  /// The most GPU memory for the views of one batch of queries (8 bytes a pixel, 6
-  /// views a query; at least one query a batch).
-  int64_t BatchBytes = int64_t(256) << 20;
+  /// The most face tests a dispatch makes (queries times faces; at least one query a
+  /// dispatch): progress is told and an abort heard between dispatches.
+  int64_t DispatchTests = int64_t(1) << 24;
+  /// Faces an invocation tests (a query's faces are split among its invocations).
+  int BlockFaces = 16;
+  /// The loop iterations an invocation may run; one that runs out keeps the points it
+  /// finished testing (a larger U, the same answers). 0: as the context allows (2000 on a
+  /// software renderer, as Mesa's llvmpipe silently ends a shader's loops after 65535
+  /// iterations of a SIMD vector; no limit on a hardware GPU).
+  int IterationBudget = 0;
   /// A parallel loop for the certification, over the queries (serial when empty).
   ParallelFor For;
-  /// Told the fraction done after each batch rendered and each block of certified
-  /// queries; returning false stops the run (QueryUnionGPU then returns false, with
-  /// `error` "aborted").
+  /// Told the fraction done after each dispatch and each block of certified queries;
+  /// returning false stops the run (QueryUnionGPU then returns false, with `error`
+  /// "aborted").
   ProgressCallback Progress;
-  /// The front faces' bias, relative to Far: how close a piece must come to the current
-  /// boundary to join it.
-  double TouchBias = 1e-6;
 };
 
-/// Answers `queries` (xyz triples) over the pieces of `u`. `images`, when given, receives
-/// the last query's six views: Resolution^2 distances each (rows bottom-up), NaN where no
-/// boundary was seen; `frames` their view frames (9 numbers per view: right, up, forward).
+/// Answers `queries` (xyz triples) over the pieces of `u`.
 bool QueryUnionGPU(HeadlessGL& context,
   const UnionClosestPoint& u,
   const std::vector<double>& queries,
   const UnionGPUSettings& settings,
   std::vector<UnionGPUAnswer>& answers,
-  std::string& error,
-  std::vector<float>* images = nullptr,
-  std::vector<double>* frames = nullptr);
+  std::string& error);
 
 } // namespace vtkdf
 

@@ -29,8 +29,6 @@ bool QueryUnion(UnionClosestPoint& query,
   if (gl)
   {
     UnionGPUSettings settings;
-    settings.Resolution = options.ViewResolution;
-    settings.Certify = options.Certify;
     if (!fewQueries)
     {
       settings.For = execution.For;
@@ -41,15 +39,7 @@ bool QueryUnion(UnionClosestPoint& query,
       stopped = !execution.Report(0.1 + 0.8 * fraction);
       return !stopped;
     };
-    const bool views = options.Images && n > 0;
-    if (!QueryUnionGPU(*gl,
-          query,
-          queries,
-          settings,
-          answers,
-          error,
-          views ? options.Images : nullptr,
-          views ? options.Frames : nullptr))
+    if (!QueryUnionGPU(*gl, query, queries, settings, answers, error))
     {
       aborted = stopped;
       return stopped;
@@ -68,7 +58,6 @@ bool QueryUnion(UnionClosestPoint& query,
         for (int64_t i = first + begin; i < first + end; ++i)
         {
           answers[i].Answer = query.Query(&queries[3 * i]);
-          answers[i].Certified = true;
         }
       });
     if (!execution.Report(0.1 + 0.8 * double(last) / double(n)))

@@ -2,9 +2,9 @@
 // K. Hoff, M. C. Lin and D. Manocha, "Closest Point Query Among the Union of Convex
 // Polytopes Using Rasterization Hardware", Journal of Graphics Tools 7(4), 2002: for each
 // query point, the closest point on the boundary of a union of convex pieces, without
-// building the union. Exact on the CPU (UnionClosestPoint), or the paper's passes on the
-// GPU (UnionClosestPointGPU), certified on the CPU. The penetration depth of two such
-// unions is PenetrationDepth's Compute.
+// building the union. Exact on the CPU (UnionClosestPoint), or with a GPU pass's upper
+// bounds that the exact CPU search starts from (UnionClosestPointGPU), the same answers.
+// The penetration depth of two such unions is PenetrationDepth's Compute.
 #ifndef vtkdf_UnionQuery_h
 #define vtkdf_UnionQuery_h
 
@@ -21,19 +21,14 @@ class HeadlessGL;
 
 struct UnionQueryOptions
 {
-  int ViewResolution = 256; // GPU: pixels a side of each cube-face view
-  bool Certify = true;      // GPU: the exact search below the images' answer
   /// How many threads the host's loop runs: below four queries a thread, each query's
   /// faces are searched in parallel instead of the queries.
   int Threads = 1;
-  /// GPU: the last query's six views (UnionClosestPointGPU's `images` and `frames`).
-  std::vector<float>* Images = nullptr;
-  std::vector<double>* Frames = nullptr;
 };
 
 /// Answers `queries` (xyz triples) over `query`'s pieces, on the GPU when `gl` is given.
-/// Progress from 0.1 to 0.9 (per twentieth of the queries on the CPU, per batch and block
-/// of certified queries on the GPU); an abort leaves `aborted` set and the answers
+/// Progress from 0.1 to 0.9 (per twentieth of the queries on the CPU, per dispatch and
+/// block of certified queries on the GPU); an abort leaves `aborted` set and the answers
 /// incomplete. False and `error` when the GPU fails.
 bool QueryUnion(UnionClosestPoint& query,
   const std::vector<double>& queries,
