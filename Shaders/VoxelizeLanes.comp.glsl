@@ -1,7 +1,13 @@
 // The bits the triangles set on the lanes of one view, by the CPU's rules
 // (Filters/Core/Voxels/Voxelizer.cxx, RasterizeBoundaryTriangle and
-// RasterizeSolidTriangle): one invocation per triangle sets it up (VoxelizeCommon.glsl)
-// and walks the lanes of its rectangle.
+// RasterizeSolidTriangle): an invocation sets a triangle up (VoxelizeCommon.glsl) and
+// walks the lanes of its rectangle. No invocation walks a large triangle alone: Mesa's
+// llvmpipe silently ends a shader's loops after 65535 iterations of a SIMD vector (a
+// 12-triangle box at 256^3 lost half its boundary voxels that way). So a rectangle is cut
+// in tiles of TileSide x TileSide lanes; the first pass (TilePass 0, an invocation a
+// triangle) walks the rectangles of a single tile, the second (TilePass 1) those of more,
+// over the triangles the host listed as possibly that large (LargeTriangles, a superset),
+// with tile gl_GlobalInvocationID.y, then every gl_NumWorkGroups.y-th after it.
 // - boundary (Mode 0): of the triangles whose plane faces this view most, the candidate
 //   voxels of each lane whose centre is within the distance limit, into FirstLanes;
 // - solid (Mode 1): the half-voxel bin of the crossing at each lane centre the triangle
@@ -20,6 +26,9 @@ uniform dvec3 Reaches;      // the reach along x, y, z (BoundaryReach)
 uniform double Orientation; // the mesh's: +1 when its triangles face outward
 uniform int Count, Base;    // the triangles (points); the first of this dispatch
 uniform int FirstLayer, Layers;
+uniform int TilePass; // 0: every triangle, a rectangle of one tile; 1: LargeTriangles
+
+const int TileSide = 16;
 
 layout(std430, binding = 2) buffer FirstLanes
 {
@@ -33,6 +42,10 @@ layout(std430, binding = 4) buffer FarCount
 {
   uint farCount;
 };
+layout(std430, binding = 6) readonly buffer LargeTriangles
+{
+  int largeTriangle[];
+};
 
 // The word holding bit `bit` of lane (p, q), or -1 outside this pass's layers.
 int Word(int p, int q, int bit)
@@ -45,13 +58,60 @@ int Word(int p, int q, int bit)
   return 4 * ((layer * Nc + q) * Nb + p) + ((bit >> 5) & 3);
 }
 
+// The tiles of a lane rectangle (p0, p1, q0, q1): how many, and tile t's lanes.
+int TileCount(ivec4 rect)
+{
+  return rect.y < rect.x || rect.w < rect.z
+    ? 0
+    : ((rect.y - rect.x) / TileSide + 1) * ((rect.w - rect.z) / TileSide + 1);
+}
+
+// The tiles of `rect` this invocation walks: [first, tiles) by `step`; none when the
+// rectangle belongs to the other pass.
+void TileRange(ivec4 rect, out int first, out int tiles, out int step)
+{
+  tiles = TileCount(rect);
+  const bool mine = TilePass == 0 ? tiles <= 1 : tiles > 1;
+  first = TilePass == 0 ? 0 : int(gl_GlobalInvocationID.y);
+  step = TilePass == 0 ? 1 : int(gl_NumWorkGroups.y);
+  tiles = mine ? tiles : 0;
+}
+
+ivec4 Tile(int t, ivec4 rect)
+{
+  const int along = (rect.y - rect.x) / TileSide + 1;
+  const int p = rect.x + (t % along) * TileSide, q = rect.z + (t / along) * TileSide;
+  return ivec4(p, min(rect.y, p + TileSide - 1), q, min(rect.w, q + TileSide - 1));
+}
+
+// The solid rule at lane (p, q): the bin of triangle t's crossing, when it covers the
+// lane's centre.
+void SolidLane(Tri t, int p, int q)
+{
+  i64vec3 e;
+  if (CoversCentre(t, int64_t(p), int64_t(q), e))
+  {
+    const int at = SolidBit(DepthAt(t, e), Na);
+    const int word = Word(p, q, at);
+    const uint bit = 1u << uint(at & 31);
+    if (word >= 0 && t.Flags.x != 0)
+    {
+      atomicOr(firstLanes[word], bit);
+    }
+    else if (word >= 0)
+    {
+      atomicOr(secondLanes[word], bit);
+    }
+  }
+}
+
 void Solid(int index)
 {
   Tri t;
   bool far;
   if (!ProjectTriangle(index, Axes.x, Orientation, t, far))
   {
-    if (far)
+    if (far && TilePass == 0)
     {
       atomicAdd(farCount, 1u);
     }
@@ -63,30 +123,65 @@ void Solid(int index)
   int p1 = int(min(int64_t(Nb - 1), FloorDiv(xmax, Subpixel)));
   int q0 = int(max(0l, -FloorDiv(-ymin, Subpixel)));
   int q1 = int(min(int64_t(Nc - 1), FloorDiv(ymax, Subpixel)));
-  for (int q = q0; q <= q1; ++q)
+  const ivec4 rect = ivec4(p0, p1, q0, q1);
+  int first, tiles, step;
+  TileRange(rect, first, tiles, step);
+  for (int tile = first; tile < tiles; tile += step)
   {
-    for (int p = p0; p <= p1; ++p)
+    const ivec4 r = Tile(tile, rect);
+    for (int q = r.z; q <= r.w; ++q)
     {
-      i64vec3 e;
-      if (!CoversCentre(t, int64_t(p), int64_t(q), e))
+      for (int p = r.x; p <= r.y; ++p)
+      {
+        SolidLane(t, p, q);
+      }
+    }
+  }
+}
+
+// The boundary rule along lane (p, q): the candidate voxels within the distance limit
+// of triangle b.
+void BoundaryLane(BoundaryTri b, int p, int q)
+{
+  int k0, k1;
+  if (BoundaryLaneCandidates(b, p, q, Reach, k0, k1))
+  {
+    const ivec3 axis = ivec3(0, 1, 2);
+    k0 = max(k0, FirstLayer * 128);
+    k1 = min(k1, (FirstLayer + Layers) * 128 - 1);
+    // The bits of one word gather before one atomic; a bit another triangle has set
+    // already is not evaluated again (as on the CPU: a stale read only costs work).
+    int word = -1;
+    uint bits = 0u, known = 0u;
+    for (int k = k0; k <= k1; ++k)
+    {
+      int w = Word(p, q, k);
+      if (w != word)
+      {
+        if (bits != 0u)
+        {
+          atomicOr(firstLanes[word], bits);
+        }
+        word = w;
+        bits = 0u;
+        known = firstLanes[w];
+      }
+      uint bit = 1u << uint(k & 31);
+      if ((known & bit) != 0u)
       {
         continue;
       }
-      int at = SolidBit(DepthAt(t, e), Na);
-      int word = Word(p, q, at);
-      if (word < 0)
+      ivec3 ijk = k * ivec3(equal(axis, ivec3(Axes.x))) +
+        p * ivec3(equal(axis, ivec3(Axes.y))) + q * ivec3(equal(axis, ivec3(Axes.z)));
+      precise dvec3 centre = Origin + dvec3(Lo + ijk) * Spacing;
+      if (SquaredDistanceToTriangle(centre, b.P0.xyz, b.P1.xyz, b.P2.xyz) <= Limit2)
       {
-        continue;
+        bits |= bit;
       }
-      uint bit = 1u << uint(at & 31);
-      if (t.Flags.x != 0)
-      {
-        atomicOr(firstLanes[word], bit);
-      }
-      else
-      {
-        atomicOr(secondLanes[word], bit);
-      }
+    }
+    if (bits != 0u)
+    {
+      atomicOr(firstLanes[word], bits);
     }
   }
 }
@@ -98,51 +193,17 @@ void Boundary(int index)
   {
     return;
   }
-  const ivec3 axis = ivec3(0, 1, 2);
-  for (int q = b.Rect.z; q <= b.Rect.w; ++q)
+  const ivec4 rect = ivec4(b.Rect);
+  int first, tiles, step;
+  TileRange(rect, first, tiles, step);
+  for (int tile = first; tile < tiles; tile += step)
   {
-    for (int p = b.Rect.x; p <= b.Rect.y; ++p)
+    const ivec4 r = Tile(tile, rect);
+    for (int q = r.z; q <= r.w; ++q)
     {
-      int k0, k1;
-      if (!BoundaryLaneCandidates(b, p, q, Reach, k0, k1))
+      for (int p = r.x; p <= r.y; ++p)
       {
-        continue;
-      }
-      k0 = max(k0, FirstLayer * 128);
-      k1 = min(k1, (FirstLayer + Layers) * 128 - 1);
-      // The bits of one word gather before one atomic; a bit another triangle has set
-      // already is not evaluated again (as on the CPU: a stale read only costs work).
-      int word = -1;
-      uint bits = 0u, known = 0u;
-      for (int k = k0; k <= k1; ++k)
-      {
-        int w = Word(p, q, k);
-        if (w != word)
-        {
-          if (bits != 0u)
-          {
-            atomicOr(firstLanes[word], bits);
-          }
-          word = w;
-          bits = 0u;
-          known = firstLanes[w];
-        }
-        uint bit = 1u << uint(k & 31);
-        if ((known & bit) != 0u)
-        {
-          continue;
-        }
-        ivec3 ijk = k * ivec3(equal(axis, ivec3(Axes.x))) + p * ivec3(equal(axis, ivec3(Axes.y))) +
-          q * ivec3(equal(axis, ivec3(Axes.z)));
-        precise dvec3 centre = Origin + dvec3(Lo + ijk) * Spacing;
-        if (SquaredDistanceToTriangle(centre, b.P0.xyz, b.P1.xyz, b.P2.xyz) <= Limit2)
-        {
-          bits |= bit;
-        }
-      }
-      if (bits != 0u)
-      {
-        atomicOr(firstLanes[word], bits);
+        BoundaryLane(b, p, q);
       }
     }
   }
@@ -155,6 +216,7 @@ void main()
   {
     return;
   }
+  index = TilePass == 0 ? index : largeTriangle[index];
   if (Mode == 0)
   {
     Boundary(index);

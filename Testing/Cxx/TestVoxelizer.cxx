@@ -12,7 +12,8 @@
 //
 // - On the GPU backend, every mask equals the CPU backend's, bit for bit, also on a
 //   150^3 grid whose lanes span several layers (run in passes of one layer each with
-//   VTKDF_MAX_SSBO_BYTES small).
+//   VTKDF_MAX_SSBO_BYTES small), and for a 12-triangle box on a 300^3 grid (triangles
+//   of many lane tiles).
 //
 // usage: TestVoxelizer DATA_DIR cpu|gpu
 #include "vtkPolyDataVoxelizer.h"
@@ -35,6 +36,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace
@@ -447,6 +449,31 @@ int main(int argc, char* argv[])
     // Voxelizer.Masks.gpu.slabs run sets in passes of one layer at a time: the GPU's
     // masks against the CPU's (Voxelize compares them).
     Voxelize(Load(data + "/bunny_small.vtp"), vtkPolyDataVoxelizer::BOTH, 150);
+    // A box of 12 triangles on a 300^3 grid: a face spans up to 300 x 280 lanes, which
+    // many invocations walk in tiles (llvmpipe ends a shader's loops after 65535
+    // iterations of a SIMD vector: one invocation a triangle lost half the boundary).
+    vtkNew<vtkPoints> corners;
+    for (int k = 0; k < 8; ++k)
+    {
+      corners->InsertNextPoint(k & 1 ? 0.9 : 0.1, k & 2 ? 0.87 : 0.13, k & 4 ? 0.8 : 0.2);
+    }
+    vtkNew<vtkCellArray> triangles;
+    const vtkIdType quads[6][4] = {
+      { 0, 4, 6, 2 }, { 1, 3, 7, 5 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 }, { 0, 2, 3, 1 }, { 4, 5, 7, 6 }
+    };
+    for (const auto& q : quads)
+    {
+      const vtkIdType first[3] = { q[0], q[1], q[2] }, second[3] = { q[0], q[2], q[3] };
+      triangles->InsertNextCell(3, first);
+      triangles->InsertNextCell(3, second);
+    }
+    vtkNew<vtkPolyData> box;
+    box->SetPoints(corners);
+    box->SetPolys(triangles);
+    if (!std::getenv("VTKDF_MAX_SSBO_BYTES")) // a layer of 300 x 280 lanes needs 1.3 MB
+    {
+      Voxelize(box, vtkPolyDataVoxelizer::BOTH, 300);
+    }
     std::printf("%d masks identical on the GPU and the CPU\n", Identical);
   }
   return vtkdf::testing::Verdict();

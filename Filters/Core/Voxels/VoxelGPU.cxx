@@ -137,11 +137,11 @@ struct Objects
   explicit Objects(const GLFunctions& gl)
     : GL(gl)
   {
-    gl.GenBuffers(8, this->Buffers);
+    gl.GenBuffers(9, this->Buffers);
   }
   ~Objects()
   {
-    this->GL.DeleteBuffers(8, this->Buffers);
+    this->GL.DeleteBuffers(9, this->Buffers);
     for (GLuint p : this->Programs)
     {
       this->GL.DeleteProgram(p);
@@ -149,8 +149,8 @@ struct Objects
   }
   const GLFunctions& GL;
   // points, distances, counts, triangles' point ids, first and second lane words, far
-  // count, points in voxel units
-  GLuint Buffers[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
+  // count, points in voxel units, the large triangles of a view
+  GLuint Buffers[9] = { 0, 0, 0, 0, 0, 0, 0, 0, 0 };
   std::vector<GLuint> Programs;
 };
 
@@ -212,29 +212,82 @@ bool CheckLimits(const GLFunctions& gl, int nx, int ny, int texels, std::string&
   return true;
 }
 
+/// Shaders/VoxelizeLanes.comp.glsl's tiles of lanes a side.
+constexpr int LaneTileSide = 16;
+
+/// The triangles of `mesh` whose lane rectangle in the view along axis `a` may span more
+/// than one tile (their boxes along the other two axes, grown by the boundary rule's
+/// reach and more than a lane of rounding: a superset of those the shader finds), and the
+/// most tiles one of them may span: the second pass of VoxelizeLanes walks those.
+struct LargeTriangles
+{
+  std::vector<int32_t> Ids;
+  GLuint Tiles = 0; // at most GL's least work group count: the invocations a triangle gets
+
+  LargeTriangles(const MeshInput& mesh, const SampleGrid& grid, int a)
+  {
+    const int axes[2] = { (a + 1) % 3, (a + 2) % 3 };
+    const double reach[2] = { BoundaryReach(grid, axes[0]), BoundaryReach(grid, axes[1]) };
+    const auto& x = mesh.Points;
+    int64_t most = 0;
+    for (size_t t = 0; t + 2 < mesh.Triangles.size(); t += 3)
+    {
+      int64_t tiles = 1;
+      for (int k = 0; k < 2; ++k)
+      {
+        const int c = axes[k];
+        const double u = x[3 * mesh.Triangles[t] + c], v = x[3 * mesh.Triangles[t + 1] + c],
+                     w = x[3 * mesh.Triangles[t + 2] + c];
+        const double lanes = std::min<double>(grid.Whole.Size(c),
+          (std::max({ u, v, w }) - std::min({ u, v, w })) / grid.Spacing[c] + 2 * reach[k] + 3);
+        tiles *= static_cast<int64_t>(lanes) / LaneTileSide + 1;
+      }
+      if (tiles > 1)
+      {
+        this->Ids.push_back(static_cast<int32_t>(t / 3));
+        most = std::max(most, tiles);
+      }
+    }
+    this->Tiles = static_cast<GLuint>(std::min<int64_t>(most, 65535));
+  }
+};
+
 /// Runs Shaders/VoxelizeLanes.comp.glsl (`program`) in `mode` over `count` triangles or
-/// points, in dispatches of at most GL's least work group count.
-void RunLanesProgram(const GLFunctions& gl, GLuint program, int mode, int64_t count)
+/// points, in dispatches of at most GL's least work group count; with `large`, then its
+/// second pass over the large triangles, `large->Tiles` invocations each.
+void RunLanesProgram(const GLFunctions& gl,
+  GLuint program,
+  int mode,
+  int64_t count,
+  const LargeTriangles* large = nullptr)
 {
   gl.Uniform1i(Uniform(gl, program, "Mode"), mode);
-  gl.Uniform1i(Uniform(gl, program, "Count"), static_cast<GLint>(count));
-  const int64_t perDispatch = int64_t(65535) * 64;
-  for (int64_t base = 0; base < count; base += perDispatch)
+  for (int pass = 0; pass < (large && !large->Ids.empty() ? 2 : 1); ++pass)
   {
-    gl.Uniform1i(Uniform(gl, program, "Base"), static_cast<GLint>(base));
-    gl.DispatchCompute(static_cast<GLuint>((std::min(perDispatch, count - base) + 63) / 64), 1, 1);
+    const int64_t n = pass == 0 ? count : static_cast<int64_t>(large->Ids.size());
+    gl.Uniform1i(Uniform(gl, program, "TilePass"), pass);
+    gl.Uniform1i(Uniform(gl, program, "Count"), static_cast<GLint>(n));
+    const int64_t perDispatch = int64_t(65535) * 64;
+    for (int64_t base = 0; base < n; base += perDispatch)
+    {
+      gl.Uniform1i(Uniform(gl, program, "Base"), static_cast<GLint>(base));
+      gl.DispatchCompute(static_cast<GLuint>((std::min(perDispatch, n - base) + 63) / 64),
+        pass == 0 ? 1 : large->Tiles,
+        1);
+    }
   }
 }
 
 /// Runs Shaders/VoxelizeLanes.comp.glsl (`program`, its view's uniforms set) over
-/// `count` triangles in `mode` into the lane textures `first` (and `second`, of the same
-/// size), through the buffers `laneBuffers`: in passes of as many texel layers as one
-/// storage block holds, each clearing the buffers, running every triangle and copying
-/// the buffers into the textures' layers (as a pixel unpack buffer: on the GPU).
+/// `count` triangles (then `large` again, tile by tile) in `mode` into the lane textures
+/// `first` (and `second`, of the same size), through the buffers `laneBuffers`: in passes of as
+/// many texel layers as one storage block holds, each clearing the buffers, running every triangle
+/// and copying the buffers into the textures' layers (as a pixel unpack buffer: on the GPU).
 bool SetLaneBits(const GLFunctions& gl,
   GLuint program,
   int mode,
   int64_t count,
+  const LargeTriangles& large,
   const Lanes& first,
   const Lanes* second,
   const GLuint laneBuffers[2],
@@ -274,7 +327,7 @@ bool SetLaneBits(const GLFunctions& gl,
       }
     }
     gl.Uniform1i(Uniform(gl, program, "FirstLayer"), layer0);
-    RunLanesProgram(gl, program, mode, count);
+    RunLanesProgram(gl, program, mode, count, &large);
     gl.MemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);
     for (int t = 0; t < 2; ++t)
     {
@@ -329,6 +382,7 @@ public:
     GLuint lanes,
     GLuint fill,
     const GLuint laneBuffers[2],
+    GLuint largeBuffer,
     bool wantBoundary,
     bool wantSolid,
     std::string& error)
@@ -348,10 +402,13 @@ public:
     gl.Uniform3d(Uniform(gl, lanes, "Reaches"), reaches.R[0], reaches.R[1], reaches.R[2]);
     gl.Uniform1d(Uniform(gl, lanes, "Orientation"), this->Orientation);
     const auto numTriangles = static_cast<int64_t>(this->Mesh.Triangles.size() / 3);
+    const LargeTriangles large(this->Mesh, this->Grid, a);
+    UploadRecords(gl, largeBuffer, 6, large.Ids.size(), large.Ids.data());
     if (wantBoundary)
     {
       this->Boundary[a].Create(n[b], n[c], n[a]);
-      if (!SetLaneBits(gl, lanes, 0, numTriangles, this->Boundary[a], nullptr, laneBuffers, error))
+      if (!SetLaneBits(
+            gl, lanes, 0, numTriangles, large, this->Boundary[a], nullptr, laneBuffers, error))
       {
         return false;
       }
@@ -362,7 +419,7 @@ public:
       Lanes& back = this->Back[a];
       front.Create(n[b], n[c], SolidBins(n[a]));
       back.Create(n[b], n[c], SolidBins(n[a]));
-      if (!SetLaneBits(gl, lanes, 1, numTriangles, front, &back, laneBuffers, error))
+      if (!SetLaneBits(gl, lanes, 1, numTriangles, large, front, &back, laneBuffers, error))
       {
         return false;
       }
@@ -522,7 +579,8 @@ bool VoxelizeToLanes(HeadlessGL& context,
   gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   for (int a = 0; a < 3; ++a)
   {
-    if (!views.Rasterize(a, lanes, fill, objects.Buffers + 4, boundaryZ, solidZ, error))
+    if (!views.Rasterize(
+          a, lanes, fill, objects.Buffers + 4, objects.Buffers[8], boundaryZ, solidZ, error))
     {
       return false;
     }
