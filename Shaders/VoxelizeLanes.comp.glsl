@@ -186,6 +186,8 @@ void BoundaryLane(BoundaryTri b, int p, int q)
   }
 }
 
+// The same tile loop as Solid's: one function holding both rules' triangles ran 15-20 %
+// slower on llvmpipe.
 void Boundary(int index)
 {
   BoundaryTri b;
