@@ -129,6 +129,7 @@ vtkdf::RunStatus vtkLinearFactorDistanceField::Execute(vtkInformationVector** in
   this->LastWindingBlockSamples = report.WindingBlockSamples;
   this->LastWindingLineSamples = report.WindingLineSamples;
   this->LastWindingExactSamples = report.WindingExactSamples;
+  this->LastWindingCPUSamples = report.WindingCPUSamples;
   this->LastSignBackend = !winding ? "none" : (report.WindingOnGPU ? "gpu" : "cpu");
   return vtkdf::RunStatus::Done;
 }
@@ -235,6 +236,7 @@ void vtkLinearFactorDistanceField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastWindingBlockSamples: " << this->LastWindingBlockSamples << "\n";
   os << indent << "LastWindingLineSamples: " << this->LastWindingLineSamples << "\n";
   os << indent << "LastWindingExactSamples: " << this->LastWindingExactSamples << "\n";
+  os << indent << "LastWindingCPUSamples: " << this->LastWindingCPUSamples << "\n";
   os << indent << "LastSignBackend: " << this->LastSignBackend << "\n";
   os << indent << "LastCullingFactor: " << this->LastCullingFactor << "\n";
   os << indent << "WorkBufferBytes: " << this->GetWorkBufferBytes() << "\n";

@@ -199,6 +199,10 @@ public:
   /// Samples whose winding number the last run had to sum exactly, triangle by triangle
   /// (the hierarchy's error bound reached |w| = 1/2).
   vtkGetMacro(LastWindingExactSamples, vtkTypeInt64);
+  /// Samples of a GPU winding pass that the renderer could not finish within its loop
+  /// limit and the CPU decided by the same function (only on a software renderer:
+  /// Mesa's llvmpipe silently ends a shader's loops after 65,535 iterations).
+  vtkGetMacro(LastWindingCPUSamples, vtkTypeInt64);
   /// Where the last run computed the winding-number sign: "cpu", "gpu" (Backend GPU, or
   /// Auto beside a hardware GPU, vtkDistanceFieldExecution.h, but for signs alone where
   /// the crossings decide them: on the CPU they cost less) or "none".
@@ -239,6 +243,7 @@ protected:
   vtkTypeInt64 LastWindingBlockSamples = 0;
   vtkTypeInt64 LastWindingLineSamples = 0;
   vtkTypeInt64 LastWindingExactSamples = 0;
+  vtkTypeInt64 LastWindingCPUSamples = 0;
   std::string LastSignBackend = "none";
   std::string LastRoute = "none";
 #ifndef __VTK_WRAP__

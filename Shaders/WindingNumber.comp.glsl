@@ -8,6 +8,9 @@
 // numbers, one per triangle (Van Oosterom and Strackee: a triangle's angle is
 // 2 arg(den + i det)), counting the turns the product makes (AngleProduct):
 // w = Turns + arg(Product) / 2 pi.
+// A sample whose loops would run past IterationBudget (Mesa's llvmpipe silently ends a
+// shader's loops after 65,535 iterations of a SIMD vector; no limit on hardware) stops
+// and is answered "unfinished": the host decides it with the CPU's same function.
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer NodeValues
 {
@@ -23,7 +26,7 @@ layout(std430, binding = 2) readonly buffer Corners
 };
 layout(std430, binding = 3) writeonly buffer Answers
 {
-  uint answer[]; // bit 0: inside; bit 1: the exact sum was needed
+  uint answer[]; // bit 0: inside; bit 1: the exact sum was needed; bit 2: unfinished
 };
 layout(std430, binding = 4) writeonly buffer Values
 {
@@ -36,11 +39,13 @@ uniform int TriangleCount;
 uniform double CoarseAccuracy, Accuracy, ValueAccuracy, RoundingSlack;
 uniform double TwoPi, FourPi; // 2 M_PI and 4 M_PI, the CPU's doubles
 uniform int WantValues;
+uniform int IterationBudget; // an invocation's loop iterations and loop entries
 //DF::CorrectlyRounded
 //DF::ArcTangent2
 
 dvec2 Product; // the running product, kept near 1 by powers of two (which keep arg)
 int Turns;     // full turns its argument made
+int Spent;     // loop iterations and entries so far, against IterationBudget
 
 double Dot(dvec3 a, dvec3 b)
 {
@@ -112,6 +117,12 @@ double Evaluate(dvec3 q, double accuracy, out double bound)
   stack[depth++] = 0;
   while (depth > 0)
   {
+    // A node: an iteration, and the entry of the leaf loop the other lanes may run.
+    Spent += 2;
+    if (Spent > IterationBudget)
+    {
+      break;
+    }
     int n = stack[--depth];
     int b = 17 * n;
     precise dvec3 d = dvec3(node[b], node[b + 1], node[b + 2]) - q;
@@ -137,6 +148,7 @@ double Evaluate(dvec3 q, double accuracy, out double bound)
     }
     else if (l.z < 0)
     {
+      Spent += l.y;
       for (int t = l.x; t < l.x + l.y; ++t)
       {
         AddTriangle(t, q);
@@ -171,6 +183,7 @@ void main()
   int j = (s / Dims.x) % Dims.y;
   int k = s / (Dims.x * Dims.y);
   precise dvec3 q = Origin + dvec3(Lo + ivec3(i, j, k)) * Spacing;
+  Spent = 0;
   bool decided = false, inside = false;
   double w = 0.0lf, bound = 0.0lf;
   if (WantValues != 0)
@@ -187,6 +200,13 @@ void main()
       w = Evaluate(q, Accuracy, bound);
       decided = Decides(w, bound);
     }
+  }
+  // A walk cut short, or an exact sum (an iteration a triangle, and its entry) that the
+  // budget cannot hold.
+  if (Spent > IterationBudget || (!decided && TriangleCount >= IterationBudget - Spent))
+  {
+    answer[s - First] = 4u;
+    return;
   }
   if (decided)
   {

@@ -126,14 +126,15 @@ int Linfac(int argc, char* argv[])
         std::string(filter->GetLastRoute()) == "sample queries" ? "queries" : "scan");
       if (filter->GetSignMode() == vtkLinearFactorDistanceField::WINDING_NUMBER)
       {
-        char blocks[160];
+        char blocks[200];
         std::snprintf(blocks,
           sizeof(blocks),
           " winding_block_samples=%lld winding_line_samples=%lld winding_exact_samples=%lld "
-          "sign_backend=%s",
+          "winding_cpu_samples=%lld sign_backend=%s",
           static_cast<long long>(filter->GetLastWindingBlockSamples()),
           static_cast<long long>(filter->GetLastWindingLineSamples()),
           static_cast<long long>(filter->GetLastWindingExactSamples()),
+          static_cast<long long>(filter->GetLastWindingCPUSamples()),
           filter->GetLastSignBackend());
         return std::string(extra) + blocks;
       }

@@ -247,8 +247,14 @@ int CheckMesh(const char* name,
 /// mesh whose samples fall on some of its planes (z = 0, x = 0): the same arithmetic, so
 /// the same bits: every sign, every value, and the same samples taken to the exact sum.
 /// With accuracy 1.01 nearly every sample goes to the exact sum, the GPU's product of
-/// complex numbers with its count of turns.
-void CheckGPU(HeadlessGL& gl, const char* name, const Mesh& mesh, double accuracy)
+/// complex numbers with its count of turns. A `budget` of loop iterations (0: the
+/// context's) below what the samples need sends some to the CPU: the same bits again.
+/// Returns how many went there.
+int64_t CheckGPU(HeadlessGL& gl,
+  const char* name,
+  const Mesh& mesh,
+  double accuracy,
+  int budget = 0)
 {
   WindingNumber w;
   w.Build(mesh.Points, mesh.Triangles, accuracy);
@@ -258,6 +264,7 @@ void CheckGPU(HeadlessGL& gl, const char* name, const Mesh& mesh, double accurac
   grid.Whole.Lo = { 0, 0, 0 };
   grid.Whole.Hi = { 20, 20, 20 };
   const int64_t n = grid.Whole.Count();
+  int64_t toCPU = 0;
   for (const bool values : { false, true })
   {
     std::vector<uint8_t> cpu(n), gpu(n);
@@ -265,6 +272,7 @@ void CheckGPU(HeadlessGL& gl, const char* name, const Mesh& mesh, double accurac
     WindingSignOptions single;
     single.Blocks = false;
     WindingSignOptions gpuOptions;
+    gpuOptions.IterationBudget = budget;
     if (values)
     {
       single.Value = cpuValues.data();
@@ -277,7 +285,7 @@ void CheckGPU(HeadlessGL& gl, const char* name, const Mesh& mesh, double accurac
     if (!WindingSignsGPU(gl, w, grid, grid.Whole, gpu.data(), gpuOptions, b, error))
     {
       Check(false, "%s", std::string(("the GPU pass failed: " + error).c_str()).c_str());
-      return;
+      return toCPU;
     }
     int64_t signsDiffer = 0, valuesDiffer = 0;
     for (int64_t v = 0; v < n; ++v)
@@ -285,14 +293,16 @@ void CheckGPU(HeadlessGL& gl, const char* name, const Mesh& mesh, double accurac
       signsDiffer += cpu[v] != gpu[v];
       valuesDiffer += std::memcmp(&cpuValues[v], &gpuValues[v], sizeof(float)) != 0;
     }
-    std::printf("%-22s GPU at accuracy %.2f%s: %lld samples, %lld (CPU) and %lld (GPU) exact; "
-                "%lld signs and %lld values differ\n",
+    std::printf("%-22s GPU at accuracy %.2f%s, budget %d: %lld samples, %lld (CPU) and %lld "
+                "(GPU) exact, %lld left to the CPU; %lld signs and %lld values differ\n",
       name,
       accuracy,
       values ? " with values" : "",
+      budget,
       static_cast<long long>(n),
       static_cast<long long>(a.Exact),
       static_cast<long long>(b.Exact),
+      static_cast<long long>(b.CPUSamples),
       static_cast<long long>(signsDiffer),
       static_cast<long long>(valuesDiffer));
     Check(signsDiffer == 0,
@@ -305,7 +315,19 @@ void CheckGPU(HeadlessGL& gl, const char* name, const Mesh& mesh, double accurac
       "the GPU took other samples to the exact sum (%.17g)",
       static_cast<double>(b.Exact));
     Check(b.Evaluated == n, "the GPU missed samples (%.17g)", static_cast<double>(b.Evaluated));
+    // At the context's budget only exact sums over more triangles than that leave the
+    // GPU (the tests' walks fit llvmpipe's loop limit); a budget of 60 cuts most walks.
+    const bool longSums = w.TriangleCount() >= gl.InvocationLoopBudget();
+    Check(budget > 0 || b.CPUSamples <= (longSums ? a.Exact : 0),
+      "samples left to the CPU at the context's budget (%.17g)",
+      static_cast<double>(b.CPUSamples));
+    Check(budget == 0 || budget > 100 || b.CPUSamples > n / 2,
+      "a budget of %d left few samples to the CPU (%.17g)",
+      budget,
+      static_cast<double>(b.CPUSamples));
+    toCPU += b.CPUSamples;
   }
+  return toCPU;
 }
 
 Mesh OpenSphere(const Mesh& sphere)
@@ -589,6 +611,38 @@ int main(int argc, char* argv[])
       sheet.Points = { -1.1, -1.1, 0.001, 1.1, -1.1, 0.001, 1.1, 1.1, 0.001, -1.1, 1.1, 0.001 };
       sheet.Triangles = { 0, 1, 2, 0, 2, 3 };
       CheckGPU(*gl, "sheet", sheet, accuracy);
+    }
+    {
+      // The sheet in 70,688 triangles, more than llvmpipe's loop limit: the exact sums
+      // below it would be cut short there, and go to the CPU instead.
+      Mesh sheet;
+      const int m = 188;
+      for (int j = 0; j <= m; ++j)
+      {
+        for (int i = 0; i <= m; ++i)
+        {
+          sheet.Points.insert(
+            sheet.Points.end(), { -1.1 + 2.2 * i / m, -1.1 + 2.2 * j / m, 0.001 });
+        }
+      }
+      for (int j = 0; j < m; ++j)
+      {
+        for (int i = 0; i < m; ++i)
+        {
+          const int64_t c = int64_t(j) * (m + 1) + i;
+          sheet.Triangles.insert(
+            sheet.Triangles.end(), { c, c + 1, c + m + 2, c, c + m + 2, c + m + 1 });
+        }
+      }
+      const int64_t toCPU = CheckGPU(*gl, "sheet of 70,688", sheet, WindingNumber::DefaultAccuracy);
+      Check(!gl->IsSoftware() || toCPU > 0, "the large sheet's exact sums stayed on llvmpipe");
+    }
+    // Budgets that cut the walks (60) and the exact sums (700: the sphere's 512
+    // triangles fit after a short walk, not after a long one).
+    for (const int budget : { 60, 700 })
+    {
+      CheckGPU(*gl, "closed sphere", sphere, 1.01, budget);
+      CheckGPU(*gl, "open sphere", OpenSphere(sphere), WindingNumber::DefaultAccuracy, budget);
     }
     return Verdict();
   }

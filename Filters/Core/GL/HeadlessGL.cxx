@@ -7,6 +7,8 @@
 #include <epoxy/glx.h>
 
 #include <algorithm>
+#include <cctype>
+#include <climits>
 #include <cstdlib>
 #include <cstring>
 #include <dlfcn.h>
@@ -251,6 +253,29 @@ bool HeadlessGL::IsSoftware() const
     software = software || renderer.find(name) != std::string::npos;
   }
   return software;
+}
+
+int HeadlessGL::InvocationLoopBudget() const
+{
+  if (!this->IsSoftware())
+  {
+    return INT32_MAX;
+  }
+  int lanes = 16;
+  const size_t at = this->RendererName.find(" bits)");
+  if (at != std::string::npos)
+  {
+    size_t from = at;
+    while (from > 0 && std::isdigit(static_cast<unsigned char>(this->RendererName[from - 1])))
+    {
+      --from;
+    }
+    if (from < at)
+    {
+      lanes = std::max(1, std::atoi(this->RendererName.substr(from, at - from).c_str()) / 32);
+    }
+  }
+  return 65535 / lanes - 16;
 }
 
 bool HeadlessGL::HasHardwareDevice()

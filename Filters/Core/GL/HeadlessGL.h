@@ -40,6 +40,12 @@ public:
   const std::string& Platform() const { return this->PlatformName; }
   /// Whether the renderer is a software one (Mesa's llvmpipe, softpipe, OSMesa...).
   bool IsSoftware() const;
+  /// How many loop iterations and loop entries one shader invocation may run in all:
+  /// Mesa's llvmpipe silently ends a shader's loops (all of them together) after 65,535
+  /// iterations of a SIMD vector, whose lanes' loops add up in the worst case, so a
+  /// software renderer gets 65,535 over its lanes (its "N bits" over 32; 16 when it does
+  /// not say), less a few for the loops a shader enters once; hardware has no limit.
+  int InvocationLoopBudget() const;
 
   /// Makes the context current on this thread for the lifetime of the scope, after
   /// saving and releasing whatever GLX or EGL context was current (VTK's render window,

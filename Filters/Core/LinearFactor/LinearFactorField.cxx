@@ -61,6 +61,7 @@ bool WindingSign(const MeshInput& mesh,
   report.WindingLineSamples = stats.LineSamples;
   report.WindingOnGPU = stats.GPU;
   report.WindingExactSamples = stats.Exact;
+  report.WindingCPUSamples = stats.CPUSamples;
   float* d = arrays.Distance;
   if (d && sign == SignMode::WindingNumber)
   {

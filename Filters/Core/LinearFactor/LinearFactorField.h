@@ -134,6 +134,8 @@ struct LinearFactorReport
   int64_t WindingLineSamples = 0;
   bool WindingOnGPU = false; // where the sign ran
   int64_t WindingExactSamples = 0;
+  /// Of the GPU's samples, those a software renderer's loop limit left to the CPU.
+  int64_t WindingCPUSamples = 0;
   /// The route that ran: SiteScan or SampleQueries (whose Evaluations count
   /// point-triangle distances).
   FieldRoute Route = FieldRoute::SiteScan;

@@ -104,10 +104,8 @@ int IterationBudget(const HeadlessGL& context, const UnionGPUSettings& settings)
   {
     return settings.IterationBudget;
   }
-  // llvmpipe ends a shader's loops after 65535 iterations of a SIMD vector of up to 16
-  // invocations; each invocation's iterations plus its loop entries (no more than its
-  // iterations) stay within 2000 each.
-  return context.IsSoftware() ? 2000 : INT32_MAX;
+  // The pass counts iterations; its loop entries are no more than those.
+  return context.IsSoftware() ? context.InvocationLoopBudget() / 2 : INT32_MAX;
 }
 
 /// U for every query (HUGE_VAL where the pass found no face point certainly on the

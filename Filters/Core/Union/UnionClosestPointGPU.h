@@ -52,9 +52,9 @@ struct UnionGPUSettings
   /// Faces an invocation tests (a query's faces are split among its invocations).
   int BlockFaces = 16;
   /// The loop iterations an invocation may run; one that runs out keeps the points it
-  /// finished testing (a larger U, the same answers). 0: as the context allows (2000 on a
-  /// software renderer, as Mesa's llvmpipe silently ends a shader's loops after 65535
-  /// iterations of a SIMD vector; no limit on a hardware GPU).
+  /// finished testing (a larger U, the same answers). 0: as the context allows (half of
+  /// HeadlessGL::InvocationLoopBudget, as the pass counts iterations and not the loop
+  /// entries, no more than those).
   int IterationBudget = 0;
   /// A parallel loop for the certification, over the queries (serial when empty).
   ParallelFor For;

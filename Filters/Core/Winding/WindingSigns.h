@@ -41,6 +41,9 @@ struct WindingSignStatistics
   int64_t Evaluated = 0;    // samples decided alone
   int64_t Exact = 0;        // of those, decided by the exact sum
   bool GPU = false;         // decided on the GPU (WindingSignsGPU)
+  // Of those, the samples a software renderer could not finish within its loop limit
+  // (HeadlessGL::InvocationLoopBudget), decided on the CPU by the same function.
+  int64_t CPUSamples = 0;
 };
 
 /// What WindingSigns writes besides the signs, and what it may use.
@@ -59,6 +62,9 @@ struct WindingSignOptions
   /// crossings decide them (CrossingsDecide: closed, or closed by cones), in less time
   /// than any winding pass (Backend Auto's choice).
   bool CrossingsOnCPU = false;
+  /// WindingSignsGPU: the loop iterations a sample may run on the GPU (0: as the context
+  /// allows, HeadlessGL::InvocationLoopBudget); the rest go to the CPU. For tests.
+  int IterationBudget = 0;
 };
 
 /// Writes inside[v] (1 or 0) for every sample v of `extent` on `grid` (x fastest, from

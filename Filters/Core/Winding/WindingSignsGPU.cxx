@@ -26,6 +26,36 @@ struct Buffers
   }
   ~Buffers() { this->GL.DeleteBuffers(5, this->Id); }
 };
+/// The samples whose loops the context could not run to the end (a software renderer's
+/// loop limit): WindingNumber::Inside, whose bits the shader's are.
+void FinishOnCPU(const WindingNumber& winding,
+  const SampleGrid& grid,
+  const IndexBox& extent,
+  const std::vector<int64_t>& samples,
+  uint8_t* inside,
+  const WindingSignOptions& options,
+  WindingSignStatistics& stats)
+{
+  const int64_t nx = extent.Size(0), ny = extent.Size(1);
+  for (const int64_t s : samples)
+  {
+    const int ijk[3] = { static_cast<int>(extent.Lo[0] + s % nx),
+      static_cast<int>(extent.Lo[1] + (s / nx) % ny),
+      static_cast<int>(extent.Lo[2] + s / (nx * ny)) };
+    const double q[3] = {
+      grid.Coordinate(0, ijk[0]), grid.Coordinate(1, ijk[1]), grid.Coordinate(2, ijk[2])
+    };
+    double w = 0;
+    bool exact = false;
+    inside[s] = winding.Inside(q, options.Value ? &w : nullptr, &exact) ? 1 : 0;
+    if (options.Value)
+    {
+      options.Value[s] = static_cast<float>(w);
+    }
+    stats.Exact += exact;
+  }
+  stats.CPUSamples = static_cast<int64_t>(samples.size());
+}
 } // namespace
 
 bool WindingSignsGPU(HeadlessGL& context,
@@ -111,7 +141,10 @@ bool WindingSignsGPU(HeadlessGL& context,
   gl.Uniform1d(uniform("FourPi"), 4 * M_PI);
   SetArcTangentUniforms(gl, program);
   gl.Uniform1i(uniform("WantValues"), options.Value ? 1 : 0);
+  gl.Uniform1i(uniform("IterationBudget"),
+    options.IterationBudget > 0 ? options.IterationBudget : context.InvocationLoopBudget());
   std::vector<uint32_t> answers(chunk);
+  std::vector<int64_t> unfinished;
   stats = WindingSignStatistics();
   for (int64_t first = 0; first < samples; first += chunk)
   {
@@ -126,6 +159,10 @@ bool WindingSignsGPU(HeadlessGL& context,
     {
       inside[first + s] = answers[s] & 1u;
       stats.Exact += (answers[s] >> 1) & 1u;
+      if (answers[s] & 4u)
+      {
+        unfinished.push_back(first + s);
+      }
     }
     if (options.Value)
     {
@@ -135,7 +172,12 @@ bool WindingSignsGPU(HeadlessGL& context,
   }
   stats.Evaluated = samples;
   gl.DeleteProgram(program);
-  return NoGLError(gl, "in the winding-number pass", error);
+  if (!NoGLError(gl, "in the winding-number pass", error))
+  {
+    return false;
+  }
+  FinishOnCPU(winding, grid, extent, unfinished, inside, options, stats);
+  return true;
 }
 
 } // namespace vtkdf

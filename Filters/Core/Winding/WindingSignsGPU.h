@@ -2,7 +2,9 @@
 // (Shaders/WindingNumber.comp.glsl) that decides every sample alone by WindingNumber's
 // rule: the order-1 approximation where its error bound decides, the exact sum
 // elsewhere. So it gives WindingSigns' signs, but for samples whose exact |w| lies within
-// rounding (about 1e-12) of 1/2.
+// rounding (about 1e-12) of 1/2. A sample whose loops would run past the context's limit
+// (HeadlessGL::InvocationLoopBudget: a software renderer's) is decided on the CPU by
+// WindingNumber::Inside, whose bits the shader's are (WindingSignStatistics::CPUSamples).
 #ifndef vtkdf_WindingSignsGPU_h
 #define vtkdf_WindingSignsGPU_h
 
