@@ -21,4 +21,4 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release \
   -DDF_PARAVIEW_PYTHON_ROOT="$unpacked" -DDF_SYSTEM_BUILD_DIR="$root/build" >/dev/null
 cmake --build "$build" -j "$(nproc)"
 cd "$build"
-xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure
+xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j "$(nproc)"
