@@ -105,6 +105,7 @@ struct Triangles
   std::vector<std::array<double, 6>> Boxes;
   std::vector<std::array<double, 3>> Vertices; // the points the triangles use
   double Bounds[6];
+  double Volume = 0; // six times the signed volume, summed in triangle order
 };
 
 Triangles Gather(vtkPolyData* mesh)
@@ -131,6 +132,8 @@ Triangles Gather(vtkPolyData* mesh)
     }
     t.T.push_back(p);
     t.Boxes.push_back(box);
+    t.Volume += p[0] * (p[4] * p[8] - p[5] * p[7]) - p[1] * (p[3] * p[8] - p[5] * p[6]) +
+      p[2] * (p[3] * p[7] - p[4] * p[6]);
   }
   for (int k = 0; k < 3; ++k)
   {
@@ -280,10 +283,15 @@ std::array<double, 3> UnitNormal(const double* t)
 /// Whether x is inside by the angle-weighted pseudonormal (Baerentzen and Aanaes) of its
 /// closest feature on the mesh: the feature from the closest point's barycentric
 /// coordinates, its normal summed over every triangle with a corner (or two) at the
-/// feature's coordinates, turned outward by the sign of the mesh's volume.
-bool PseudoNormalInside(const Triangles& mesh, const double* x)
+/// feature's coordinates, turned outward by the sign of the mesh's volume. With
+/// `distance2` and `c`, Nearest2's answer as well.
+bool PseudoNormalInside(const Triangles& mesh,
+  const double* x,
+  double* distance2 = nullptr,
+  double* closest = nullptr)
 {
-  double c[3];
+  double own[3];
+  double* c = closest ? closest : own;
   double best = HUGE_VAL;
   size_t nearest = 0;
   for (size_t t = 0; t < mesh.T.size(); ++t)
@@ -297,6 +305,10 @@ bool PseudoNormalInside(const Triangles& mesh, const double* x)
       nearest = t;
       std::copy(on, on + 3, c);
     }
+  }
+  if (distance2)
+  {
+    *distance2 = best;
   }
   if (!(best > 0))
   {
@@ -333,19 +345,16 @@ bool PseudoNormalInside(const Triangles& mesh, const double* x)
   auto same = [](const double* u, const double* v)
   { return u[0] == v[0] && u[1] == v[1] && u[2] == v[2]; };
   std::array<double, 3> normal{ { 0, 0, 0 } };
-  double volume = 0;
   for (const auto& t : mesh.T)
   {
     const double* p = t.data();
-    volume += p[0] * (p[4] * p[8] - p[5] * p[7]) - p[1] * (p[3] * p[8] - p[5] * p[6]) +
-      p[2] * (p[3] * p[7] - p[4] * p[6]);
-    const auto n = UnitNormal(p);
     if (on.size() == 1)
     {
       for (int k = 0; k < 3; ++k)
       {
         if (same(p + 3 * k, q + 3 * on[0]))
         {
+          const auto n = UnitNormal(p);
           const double* here = p + 3 * k;
           const double* next = p + 3 * ((k + 1) % 3);
           const double* previous = p + 3 * ((k + 2) % 3);
@@ -374,6 +383,7 @@ bool PseudoNormalInside(const Triangles& mesh, const double* x)
       }
       if (corners >= 2)
       {
+        const auto n = UnitNormal(p);
         for (int j = 0; j < 3; ++j)
         {
           normal[j] += n[j];
@@ -386,7 +396,7 @@ bool PseudoNormalInside(const Triangles& mesh, const double* x)
     normal = UnitNormal(q);
   }
   const double away[3] = { x[0] - c[0], x[1] - c[1], x[2] - c[2] };
-  return (volume < 0 ? -1 : 1) * dot(away, normal.data()) < 0;
+  return (mesh.Volume < 0 ? -1 : 1) * dot(away, normal.data()) < 0;
 }
 
 /// Inside by the rule under test.
@@ -454,9 +464,13 @@ void Penetration(const Triangles& self,
     {
       for (vtkIdType i = begin; i < end; ++i)
       {
-        if (Inside(other, samples[i].data()))
+        // The pseudonormal's test finds the nearest point on its way.
+        double d2;
+        if (PseudoNormal ? PseudoNormalInside(other, samples[i].data(), &d2, closest[i].data())
+                         : Inside(other, samples[i].data()))
         {
-          depths[i] = std::sqrt(Nearest2(other, samples[i].data(), closest[i].data()));
+          depths[i] =
+            std::sqrt(PseudoNormal ? d2 : Nearest2(other, samples[i].data(), closest[i].data()));
         }
       }
     });
