@@ -30,10 +30,14 @@ double ArcTangent2(double y, double x)
   precise double z = DivRN(t - c, 1.0lf + t * c);
   precise double z2 = z * z;
   precise double series = packDouble2x32(AtanCoefficient[7]);
-  for (int n = 6; n >= 0; --n)
-  {
-    series = series * z2 + packDouble2x32(AtanCoefficient[n]);
-  }
+  // Horner's rule, written out (no loop in a helper: CorrectlyRounded.glsl's SqrtRN).
+  series = series * z2 + packDouble2x32(AtanCoefficient[6]);
+  series = series * z2 + packDouble2x32(AtanCoefficient[5]);
+  series = series * z2 + packDouble2x32(AtanCoefficient[4]);
+  series = series * z2 + packDouble2x32(AtanCoefficient[3]);
+  series = series * z2 + packDouble2x32(AtanCoefficient[2]);
+  series = series * z2 + packDouble2x32(AtanCoefficient[1]);
+  series = series * z2 + packDouble2x32(AtanCoefficient[0]);
   precise double angle = packDouble2x32(AtanAtPoint[k]) + z * series;
   if (steep)
   {

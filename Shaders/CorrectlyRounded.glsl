@@ -68,12 +68,14 @@ double SqrtRN(double x)
   precise double r = Residual(x, s, s);
   if (!(abs(r) < 1.99lf * s * (s - down)))
   {
-    for (int step = 0; step < 2; ++step)
-    {
-      precise double correction = r * DF_SEED_DIV(0.5lf, s);
-      s = s + correction;
-      r = Residual(x, s, s);
-    }
+    // Two Newton steps, written out: no loop in a helper, so that a caller's count of
+    // its loop iterations (Mesa's llvmpipe ends a shader's loops after 65,535) is whole.
+    precise double correction = r * DF_SEED_DIV(0.5lf, s);
+    s = s + correction;
+    r = Residual(x, s, s);
+    correction = r * DF_SEED_DIV(0.5lf, s);
+    s = s + correction;
+    r = Residual(x, s, s);
     down = NextDown(s);
   }
   precise double up = NextUp(s);
@@ -109,12 +111,13 @@ double DivRN(double a, double b)
   if (!(abs(r) < 0.99lf * (t - down) * y))
   {
     precise double inverse = DF_SEED_DIV(1.0lf, y);
-    for (int step = 0; step < 2; ++step)
-    {
-      precise double correction = r * inverse;
-      t = t + correction;
-      r = Residual(x, t, y);
-    }
+    // Two Newton steps, written out (as SqrtRN's).
+    precise double correction = r * inverse;
+    t = t + correction;
+    r = Residual(x, t, y);
+    correction = r * inverse;
+    t = t + correction;
+    r = Residual(x, t, y);
     down = NextDown(t);
   }
   precise double up = NextUp(t);
