@@ -282,7 +282,7 @@ int64_t CheckGPU(HeadlessGL& gl,
       WindingSigns(w, grid, grid.Whole, cpu.data(), single, ThreadFor);
     WindingSignStatistics b;
     std::string error;
-    if (!WindingSignsGPU(gl, w, grid, grid.Whole, gpu.data(), gpuOptions, b, error))
+    if (!WindingSignsGPU(gl, w, grid, grid.Whole, gpu.data(), gpuOptions, ThreadFor, b, error))
     {
       Check(false, "%s", std::string(("the GPU pass failed: " + error).c_str()).c_str());
       return toCPU;

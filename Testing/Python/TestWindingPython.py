@@ -1,11 +1,15 @@
 """SignMode = WindingNumber from Python: an open box (its top face missing), on both
 backends. The winding number, in numpy from every triangle's solid angle, decides the
 sign where it is far from 1/2; the WindingNumber array follows it within 0.01; the
-magnitudes equal the unsigned field's; and the medial filter takes the same SignMode."""
+magnitudes equal the unsigned field's; and the medial filter takes the same SignMode.
+Then a sheet of 9,800 triangles with a layer of samples just below it, where |w| is near
+1/2 and the exact sum over every triangle decides: on llvmpipe that sum runs past the
+context's loop limit, so the GPU backend finishes those samples on the CPU and says how
+many (GetLastWindingCPUSamples), and both backends' arrays are the same bits."""
 import sys
 
 import numpy as np
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 
@@ -74,6 +78,45 @@ for backend in ("SetBackendToCPU", "SetBackendToGPU"):
     count = medial.GetMedialPoints().GetNumberOfPoints()
     print(f"{backend}: medial axis of the open box with the winding sign: {count} voxels")
     failures += count == 0
+
+m = 70
+ticks = np.linspace(-1.1, 1.1, m + 1)
+sheet_points = np.array([(x, y, 0.001) for y in ticks for x in ticks])
+corner = np.array([i + j * (m + 1) for j in range(m) for i in range(m)])
+sheet_triangles = np.concatenate([np.stack([corner, corner + 1, corner + m + 2], 1),
+                                  np.stack([corner, corner + m + 2, corner + m + 1], 1)])
+points = vtkPoints()
+points.SetData(numpy_to_vtk(sheet_points, deep=1))
+polys = vtkCellArray()
+polys.SetData(3, numpy_to_vtkIdTypeArray(sheet_triangles.ravel().astype(np.int64), deep=1))
+sheet = vtkPolyData()
+sheet.SetPoints(points)
+sheet.SetPolys(polys)
+arrays = {}
+for backend in ("SetBackendToCPU", "SetBackendToGPU"):
+    f = vtkLinearFactorDistanceField()
+    f.SetInputData(sheet)
+    f.ExplicitGridOn()
+    f.SetGridOrigin(-1, -1, -0.2)
+    f.SetGridSpacing(0.1, 0.1, 0.1)
+    f.SetGridDimensions(21, 21, 5)  # the layer z = 0 just below the sheet
+    getattr(f, backend)()
+    f.SetSignModeToWindingNumber()
+    f.ComputeWindingNumberOn()
+    f.Update()
+    data = f.GetOutput().GetPointData()
+    arrays[backend] = [vtk_to_numpy(data.GetArray(a)).copy() for a in ("Distance", "WindingNumber")]
+    to_cpu = f.GetLastWindingCPUSamples()
+    software = "llvmpipe" in f.GetLastRenderer()
+    print(f"{backend} on {f.GetLastRenderer()}: {to_cpu} samples finished on the CPU")
+    if backend == "SetBackendToCPU" or not software:
+        failures += to_cpu != 0
+    else:
+        failures += not 0 < to_cpu <= 21 * 21
+same = all(np.array_equal(a.view(np.uint32), b.view(np.uint32))
+           for a, b in zip(arrays["SetBackendToCPU"], arrays["SetBackendToGPU"]))
+print(f"sheet: Distance and WindingNumber the same bits on both backends: {same}")
+failures += not same
 
 print(f"{failures} failures")
 sys.exit(1 if failures else 0)

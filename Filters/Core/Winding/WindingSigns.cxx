@@ -450,7 +450,8 @@ bool ComputeWindingSigns(const LargeVector<double>& points,
   }
   if (gl)
   {
-    const bool ok = WindingSignsGPU(*gl, winding, grid, extent, inside, options, stats, error);
+    const bool ok =
+      WindingSignsGPU(*gl, winding, grid, extent, inside, options, parallelFor, stats, error);
     stats.GPU = true;
     return ok;
   }

@@ -6,6 +6,7 @@
 #include "WindingNumber_comp.h"
 
 #include <algorithm>
+#include <atomic>
 #include <climits>
 #include <cmath>
 
@@ -34,27 +35,45 @@ void FinishOnCPU(const WindingNumber& winding,
   const std::vector<int64_t>& samples,
   uint8_t* inside,
   const WindingSignOptions& options,
+  const ParallelFor& parallelFor,
   WindingSignStatistics& stats)
 {
   const int64_t nx = extent.Size(0), ny = extent.Size(1);
-  for (const int64_t s : samples)
+  std::atomic<int64_t> exactSums(0);
+  auto decide = [&](int64_t begin, int64_t end)
   {
-    const int ijk[3] = { static_cast<int>(extent.Lo[0] + s % nx),
-      static_cast<int>(extent.Lo[1] + (s / nx) % ny),
-      static_cast<int>(extent.Lo[2] + s / (nx * ny)) };
-    const double q[3] = {
-      grid.Coordinate(0, ijk[0]), grid.Coordinate(1, ijk[1]), grid.Coordinate(2, ijk[2])
-    };
-    double w = 0;
-    bool exact = false;
-    inside[s] = winding.Inside(q, options.Value ? &w : nullptr, &exact) ? 1 : 0;
-    if (options.Value)
+    int64_t exactHere = 0;
+    for (int64_t n = begin; n < end; ++n)
     {
-      options.Value[s] = static_cast<float>(w);
+      const int64_t s = samples[n];
+      const int ijk[3] = { static_cast<int>(extent.Lo[0] + s % nx),
+        static_cast<int>(extent.Lo[1] + (s / nx) % ny),
+        static_cast<int>(extent.Lo[2] + s / (nx * ny)) };
+      const double q[3] = {
+        grid.Coordinate(0, ijk[0]), grid.Coordinate(1, ijk[1]), grid.Coordinate(2, ijk[2])
+      };
+      double w = 0;
+      bool exact = false;
+      inside[s] = winding.Inside(q, options.Value ? &w : nullptr, &exact) ? 1 : 0;
+      if (options.Value)
+      {
+        options.Value[s] = static_cast<float>(w);
+      }
+      exactHere += exact;
     }
-    stats.Exact += exact;
+    exactSums += exactHere;
+  };
+  const int64_t count = static_cast<int64_t>(samples.size());
+  if (parallelFor)
+  {
+    parallelFor(count, 64, decide);
   }
-  stats.CPUSamples = static_cast<int64_t>(samples.size());
+  else
+  {
+    decide(0, count);
+  }
+  stats.Exact += exactSums.load();
+  stats.CPUSamples = count;
 }
 } // namespace
 
@@ -64,6 +83,7 @@ bool WindingSignsGPU(HeadlessGL& context,
   const IndexBox& extent,
   uint8_t* inside,
   const WindingSignOptions& options,
+  const ParallelFor& parallelFor,
   WindingSignStatistics& stats,
   std::string& error)
 {
@@ -176,7 +196,7 @@ bool WindingSignsGPU(HeadlessGL& context,
   {
     return false;
   }
-  FinishOnCPU(winding, grid, extent, unfinished, inside, options, stats);
+  FinishOnCPU(winding, grid, extent, unfinished, inside, options, parallelFor, stats);
   return true;
 }
 

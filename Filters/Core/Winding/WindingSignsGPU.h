@@ -17,13 +17,15 @@ namespace vtkdf
 {
 
 /// As WindingSigns (options.Value honoured; Distance and Blocks not used: every sample is
-/// decided alone); false and `error` when the GPU cannot run it.
+/// decided alone); false and `error` when the GPU cannot run it. `parallelFor` (optional)
+/// runs the samples the CPU finishes.
 bool WindingSignsGPU(HeadlessGL& context,
   const WindingNumber& winding,
   const SampleGrid& grid,
   const IndexBox& extent,
   uint8_t* inside,
   const WindingSignOptions& options,
+  const ParallelFor& parallelFor,
   WindingSignStatistics& stats,
   std::string& error);
 
