@@ -44,7 +44,8 @@ public:
   /// Mesa's llvmpipe silently ends a shader's loops (all of them together) after 65,535
   /// iterations of a SIMD vector, whose lanes' loops add up in the worst case, so a
   /// software renderer gets 65,535 over its lanes (its "N bits" over 32; 16 when it does
-  /// not say), less a few for the loops a shader enters once; hardware has no limit.
+  /// not say), less a few for the loops a shader enters once; hardware has no limit
+  /// (INT32_MAX).
   int InvocationLoopBudget() const;
 
   /// Makes the context current on this thread for the lifetime of the scope, after

@@ -104,8 +104,10 @@ int IterationBudget(const HeadlessGL& context, const UnionGPUSettings& settings)
   {
     return settings.IterationBudget;
   }
-  // The pass counts iterations; its loop entries are no more than those.
-  return context.IsSoftware() ? context.InvocationLoopBudget() / 2 : INT32_MAX;
+  // The pass counts iterations; its loop entries are no more than those, so half the
+  // context's budget covers both (INT32_MAX, no limit, stays as it is).
+  const int budget = context.InvocationLoopBudget();
+  return budget == INT32_MAX ? budget : budget / 2;
 }
 
 /// U for every query (HUGE_VAL where the pass found no face point certainly on the
