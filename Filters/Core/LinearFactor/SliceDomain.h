@@ -266,13 +266,16 @@ private:
     // With neither, the constraint is 0 <= d: all or nothing.
     this->Empty = this->Empty || (!(scale > 0) && !(d >= 0));
     const double inv = -1.0 / (bound ? v : 1.0);
-    const double cInv = 1.0 / (condition ? scale : 1.0);
     lower[lowerCount] = upper[upperCount] = { c * inv, d * inv };
     lowerCount += bound && v > 0;
     upperCount += bound && v < 0;
-    const int slot = std::min(this->ConditionCount, 2 * MaxBounds - 1);
-    this->Conditions[slot] = { c * cInv, d * cInv };
-    this->ConditionCount += condition && this->ConditionCount < 2 * MaxBounds;
+    // A condition is rare (a pair of planes whose combination loses the kept variable):
+    // a branch the CPU predicts, and no second division on every bound.
+    if (condition && this->ConditionCount < 2 * MaxBounds)
+    {
+      const double cInv = 1.0 / scale;
+      this->Conditions[this->ConditionCount++] = { c * cInv, d * cInv };
+    }
   }
 
   static double Lower(const SliceBound* b, int count, double k, double start)
