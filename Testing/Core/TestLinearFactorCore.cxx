@@ -1,6 +1,8 @@
 // Unit test of the VTK-free core: procedural meshes, every culling mode, the CPU scan
 // against an exact brute-force reference on every sample; the per-sample query route
-// against the brute force and against the scan.
+// against the brute force and against the scan. And the sites' boxes' rounding to float
+// (Common/FloatBounds.h) against std::nextafter.
+#include "Common/FloatBounds.h"
 #include "CoreTest.h"
 #include "ExactDistance.h"
 #include "LinearFactor/LinearFactorField.h"
@@ -462,6 +464,60 @@ void RunQueryCase(const std::string& name, const MeshInput& input, int resolutio
   CheckPieces(name + " queries", mesh, pieces);
 }
 
+/// FloatBelow and FloatAbove (the float on either side of a double, by the bits) give
+/// what the rounding and std::nextafter give: at zero, subnormals, the float range's
+/// ends, infinities, and random doubles of every exponent and sign.
+void CheckFloatBounds()
+{
+  std::vector<double> values = { 0.0,
+    -0.0,
+    1e-320,
+    -1e-320,
+    1e-46,
+    -1e-46,
+    1e-45,
+    -1e-45,
+    1.17e-38,
+    -1.17e-38,
+    3.4028234663852886e38,
+    -3.4028234663852886e38,
+    3.5e38,
+    -3.5e38,
+    1e300,
+    -1e300,
+    HUGE_VAL,
+    -HUGE_VAL,
+    1.0,
+    -1.0,
+    0.1,
+    -0.1 };
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-160, 140);
+  for (int i = 0; i < 200000; ++i)
+  {
+    values.push_back(std::ldexp(mantissa(random), exponent(random)));
+    uint64_t bits = random();
+    double any;
+    std::memcpy(&any, &bits, sizeof(any));
+    if (!std::isnan(any))
+    {
+      values.push_back(any);
+    }
+  }
+  int wrong = 0;
+  for (const double x : values)
+  {
+    const float f = static_cast<float>(x);
+    const float below = f > x ? std::nextafter(f, -HUGE_VALF) : f;
+    const float above = f < x ? std::nextafter(f, HUGE_VALF) : f;
+    const float gotBelow = FloatBelow(x), gotAbove = FloatAbove(x);
+    wrong += std::memcmp(&gotBelow, &below, sizeof(float)) != 0;
+    wrong += std::memcmp(&gotAbove, &above, sizeof(float)) != 0;
+  }
+  Check(wrong == 0, "FloatBelow or FloatAbove differ from std::nextafter %d times", wrong);
+}
+
 /// Auto takes the queries where the mesh has 2.5 times more cells than the grid has
 /// samples (with a cap, samples within the band), the scan elsewhere.
 void CheckRouteChoice()
@@ -504,6 +560,7 @@ int main()
 {
   CheckDomainSpans();
   CheckRouteChoice();
+  CheckFloatBounds();
   RunQueryCase("bumpy sphere", Sphere(9, 12, 0.15, 7), 24, true);
   RunQueryCase("fine sphere", Sphere(30, 40, 0.1, 5), 20, true);
   {

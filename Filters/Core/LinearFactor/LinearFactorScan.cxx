@@ -142,7 +142,6 @@ public:
     stride[2] = stride[1] * ext.Size(1);
     this->Base = -(ext.Lo[0] * stride[0] + ext.Lo[1] * stride[1] + ext.Lo[2] * stride[2]);
     this->StrideU = stride[u], this->StrideV = stride[v], this->StrideW = stride[w];
-    std::fill(this->CacheKey, this->CacheKey + CacheSize, int64_t(-1));
   }
 
   /// Scans the domain's slices, calling visit(*this, dk, j, k, i0, i1, at) for every
@@ -244,8 +243,10 @@ private:
   {
     const int64_t key = block[0] + (int64_t(block[1]) << 21) + (int64_t(block[2]) << 42);
     const int slot = (block[0] + 3 * block[1] + 5 * block[2]) & (CacheSize - 1);
-    if (this->CacheKey[slot] != key)
+    const uint64_t bit = uint64_t(1) << slot;
+    if (!(this->CacheFilled & bit) || this->CacheKey[slot] != key)
     {
+      this->CacheFilled |= bit;
       this->CacheKey[slot] = key;
       this->CacheValue[slot] =
         this->Culling.MayWin(block, this->TheSite.BoundsMin, this->TheSite.BoundsMax);
@@ -371,6 +372,7 @@ private:
   double D0[3], Du[3], Dv[3], Dw[3];
   int64_t Base, StrideU, StrideV, StrideW;
   int64_t Evaluations = 0;
+  uint64_t CacheFilled = 0; // a bit a slot: a new site's cache empties in one store
   int64_t CacheKey[CacheSize];
   bool CacheValue[CacheSize];
 };

@@ -228,11 +228,14 @@ bool GroupReach(const Blocks& blocks,
     reachLo[a] = INT32_MAX;
     reachHi[a] = -1;
   }
-  std::vector<Node> stack{ { static_cast<int>(pyramid.Dims.size()) - 1, 0, 0, 0 } };
-  while (!stack.empty())
+  // Depth first: each step pops a node and pushes at most its 8 children, one level
+  // down, so the stack holds at most 7 a level (the pyramid has at most 32) and the root.
+  Node stack[7 * 32 + 1];
+  int depth = 0;
+  stack[depth++] = { static_cast<int>(pyramid.Dims.size()) - 1, 0, 0, 0 };
+  while (depth > 0)
   {
-    const Node node = stack.back();
-    stack.pop_back();
+    const Node node = stack[--depth];
     const int span = 1 << node.Level;
     const int lo[3] = { node.I * span, node.J * span, node.K * span };
     int hi[3];
@@ -272,7 +275,7 @@ bool GroupReach(const Blocks& blocks,
           const Node child{ node.Level - 1, 2 * node.I + di, 2 * node.J + dj, 2 * node.K + dk };
           if (child.I < cd[0] && child.J < cd[1] && child.K < cd[2])
           {
-            stack.push_back(child);
+            stack[depth++] = child;
           }
         }
       }
@@ -338,11 +341,16 @@ void BoundBlocks(RangeCulling& culling,
 
 /// Order: the sites grouped by the block of their anchor (GroupStart: where each block's
 /// group starts, one more than the blocks). Counted, then placed: the blocks are found
-/// twice rather than stored.
+/// twice rather than stored. Chunks of consecutive sites are counted and placed in
+/// parallel, a block's sites chunk after chunk, so each group lists its sites in
+/// ascending order, as one pass would. A chunk counts every block: chunks are at most
+/// sites / blocks (the counts take at most 4 bytes a site), and one when blocks
+/// outnumber sites.
 void GroupSites(RangeCulling& culling,
   const MeshSites& sites,
   const Blocks& blocks,
-  const std::vector<uint32_t>& subset)
+  const std::vector<uint32_t>& subset,
+  const ParallelFor& parallelFor)
 {
   const bool all = subset.empty();
   const int64_t numSites = all ? sites.Count() : static_cast<int64_t>(subset.size());
@@ -363,22 +371,44 @@ void GroupSites(RangeCulling& culling,
     }
     return id;
   };
+  const int64_t total = blocks.Total;
+  const int64_t numChunks = std::max<int64_t>(1, std::min<int64_t>(8, numSites / total));
+  // counts[c * total + b]: the sites of chunk c in block b, then where they go.
+  std::vector<uint32_t> counts(static_cast<size_t>(numChunks * total), 0);
+  auto forChunks = [&](const auto& visit)
+  {
+    parallelFor(numChunks,
+      1,
+      [&](int64_t begin, int64_t end)
+      {
+        for (int64_t c = begin; c < end; ++c)
+        {
+          uint32_t* chunkCounts = &counts[c * total];
+          for (int64_t s = numSites * c / numChunks; s < numSites * (c + 1) / numChunks; ++s)
+          {
+            const int64_t site = all ? s : subset[s];
+            visit(chunkCounts, site, blockOf(site));
+          }
+        }
+      });
+  };
+  forChunks([](uint32_t* chunkCounts, int64_t, int64_t block) { ++chunkCounts[block]; });
   std::vector<int64_t>& offsets = culling.GroupStart;
-  offsets.assign(blocks.Total + 1, 0);
-  for (int64_t s = 0; s < numSites; ++s)
+  offsets.assign(total + 1, 0);
+  uint32_t next = 0; // fewer than 2^32 - 1 sites (MeshSites checks): positions fit
+  for (int64_t b = 0; b < total; ++b)
   {
-    ++offsets[blockOf(all ? s : subset[s]) + 1];
+    offsets[b] = next;
+    for (int64_t c = 0; c < numChunks; ++c)
+    {
+      const uint32_t n = counts[c * total + b];
+      counts[c * total + b] = next;
+      next += n;
+    }
   }
-  for (int64_t c = 0; c < blocks.Total; ++c)
-  {
-    offsets[c + 1] += offsets[c];
-  }
-  std::vector<int64_t> fill(offsets.begin(), offsets.end() - 1);
-  for (int64_t s = 0; s < numSites; ++s)
-  {
-    const int64_t site = all ? s : subset[s];
-    culling.Order[fill[blockOf(site)]++] = static_cast<uint32_t>(site);
-  }
+  offsets[total] = next;
+  forChunks([&culling](uint32_t* chunkCounts, int64_t site, int64_t block)
+    { culling.Order[chunkCounts[block]++] = static_cast<uint32_t>(site); });
 }
 
 } // namespace
@@ -434,7 +464,7 @@ void RangeCulling::Build(const MeshSites& sites,
     BoundBlocks(*this, blocks, sites.SitePoints, maximumDistance, pyramid);
   }
   BuildPyramid(pyramid);
-  GroupSites(*this, sites, blocks, only);
+  GroupSites(*this, sites, blocks, only, parallelFor);
 
   // The reach of each group.
   this->Reach.assign(blocks.Total, IndexBox());
