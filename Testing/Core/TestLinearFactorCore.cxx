@@ -1,8 +1,10 @@
 // Unit test of the VTK-free core: procedural meshes, every culling mode, the CPU scan
 // against an exact brute-force reference on every sample; the per-sample query route
 // against the brute force and against the scan. And the sites' boxes' rounding to float
-// (Common/FloatBounds.h) against std::nextafter.
+// (Common/FloatBounds.h) against std::nextafter, the scan's branch-free Max and Min
+// (Common/MinMax.h) against std::max and std::min.
 #include "Common/FloatBounds.h"
+#include "Common/MinMax.h"
 #include "CoreTest.h"
 #include "ExactDistance.h"
 #include "LinearFactor/LinearFactorField.h"
@@ -15,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
 #include <thread>
@@ -518,6 +521,36 @@ void CheckFloatBounds()
   Check(wrong == 0, "FloatBelow or FloatAbove differ from std::nextafter %d times", wrong);
 }
 
+/// Max and Min select what std::max and std::min select, bit for bit: NaNs of either
+/// sign, signed zeros, infinities, subnormals, ordinary values.
+void CheckMinMax()
+{
+  const double values[] = { 0.0,
+    -0.0,
+    1.0,
+    -1.0,
+    2.5,
+    NAN,
+    -NAN,
+    HUGE_VAL,
+    -HUGE_VAL,
+    1e-310,
+    -1e-310,
+    std::numeric_limits<double>::max() };
+  int wrong = 0;
+  for (const double a : values)
+  {
+    for (const double b : values)
+    {
+      const double max = Max(a, b), min = Min(a, b);
+      const double stdMax = std::max(a, b), stdMin = std::min(a, b);
+      wrong += std::memcmp(&max, &stdMax, sizeof(double)) != 0;
+      wrong += std::memcmp(&min, &stdMin, sizeof(double)) != 0;
+    }
+  }
+  Check(wrong == 0, "Max or Min differ from std::max or std::min %d times", wrong);
+}
+
 /// Auto takes the queries where the mesh has 2.5 times more cells than the grid has
 /// samples (with a cap, samples within the band), the scan elsewhere.
 void CheckRouteChoice()
@@ -561,6 +594,7 @@ int main()
   CheckDomainSpans();
   CheckRouteChoice();
   CheckFloatBounds();
+  CheckMinMax();
   RunQueryCase("bumpy sphere", Sphere(9, 12, 0.15, 7), 24, true);
   RunQueryCase("fine sphere", Sphere(30, 40, 0.1, 5), 20, true);
   {

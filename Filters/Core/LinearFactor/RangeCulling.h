@@ -11,6 +11,7 @@
 #ifndef vtkdf_RangeCulling_h
 #define vtkdf_RangeCulling_h
 
+#include "Common/MinMax.h"
 #include "Common/Parallel.h"
 #include "Common/SampleGrid.h"
 #include "LinearFactor/MeshSites.h"
@@ -116,7 +117,7 @@ public:
     {
       cellLo[a] = this->CellOrigin[a] + block[a] * this->CellSize[a];
       cellHi[a] = cellLo[a] + this->CellSize[a];
-      const double gap = std::max(std::max(lo[a] - cellHi[a], cellLo[a] - hi[a]), 0.0);
+      const double gap = Max(Max(lo[a] - cellHi[a], cellLo[a] - hi[a]), 0.0);
       d2 += gap * gap;
     }
     if (!(d2 <= bound * bound))
@@ -130,11 +131,11 @@ public:
       // Distances along the axis from the box [lo, hi] to the cell's corner coordinates
       // cellLo and cellHi (lo <= hi, so at most one difference is positive).
       const double boxLo = lo[a], boxHi = hi[a];
-      const double gLo = std::max(std::max(boxLo - cellLo[a], cellLo[a] - boxHi), 0.0);
-      const double gHi = std::max(std::max(boxLo - cellHi[a], cellHi[a] - boxHi), 0.0);
+      const double gLo = Max(Max(boxLo - cellLo[a], cellLo[a] - boxHi), 0.0);
+      const double gHi = Max(Max(boxLo - cellHi[a], cellHi[a] - boxHi), 0.0);
       const double pLo = cellLo[a] - p[a], pHi = cellHi[a] - p[a];
-      bisector += std::min(gLo * gLo - pLo * pLo, gHi * gHi - pHi * pHi);
-      scale += std::max(pLo * pLo, pHi * pHi) + this->CellSize[a] * this->CellSize[a];
+      bisector += Min(gLo * gLo - pLo * pLo, gHi * gHi - pHi * pHi);
+      scale += Max(pLo * pLo, pHi * pHi) + this->CellSize[a] * this->CellSize[a];
     }
     // The relative margin covers rounding (a site through p itself ties at 0).
     return !(bisector > 1e-9 * scale);
@@ -146,9 +147,8 @@ public:
   {
     // floor without a library call: the argument may be negative.
     // Clamped first, so that an index far outside the extent converts to int safely.
-    const double x =
-      std::min(std::max((index - this->BlockExtent.Lo[a] + 0.5) * (1.0 / BlockSize), -1.0),
-        double(this->BlockCounts[a]));
+    const double x = Min(Max((index - this->BlockExtent.Lo[a] + 0.5) * (1.0 / BlockSize), -1.0),
+      double(this->BlockCounts[a]));
     int blk = static_cast<int>(x);
     blk -= blk > x;
     return blk < 0 ? 0 : (blk >= this->BlockCounts[a] ? this->BlockCounts[a] - 1 : blk);

@@ -12,6 +12,8 @@
 #ifndef vtkdf_SliceDomain_h
 #define vtkdf_SliceDomain_h
 
+#include "Common/MinMax.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -122,11 +124,11 @@ public:
     int r = 0;
     for (; r < this->RowLoEnd; ++r)
     {
-      lo = std::max(lo, this->Rows[r].Y * y + this->RowOffset[r]);
+      lo = Max(lo, this->Rows[r].Y * y + this->RowOffset[r]);
     }
     for (; r < this->RowHiEnd; ++r)
     {
-      hi = std::min(hi, this->Rows[r].Y * y + this->RowOffset[r]);
+      hi = Min(hi, this->Rows[r].Y * y + this->RowOffset[r]);
     }
     for (; r < this->RowCount; ++r)
     {
@@ -282,7 +284,7 @@ private:
   {
     for (int i = 0; i < count; ++i)
     {
-      start = std::max(start, b[i].K * k + b[i].C);
+      start = Max(start, b[i].K * k + b[i].C);
     }
     return start;
   }
@@ -290,7 +292,7 @@ private:
   {
     for (int i = 0; i < count; ++i)
     {
-      start = std::min(start, b[i].K * k + b[i].C);
+      start = Min(start, b[i].K * k + b[i].C);
     }
     return start;
   }
