@@ -2,6 +2,7 @@
 
 #include "Common/FloatBounds.h"
 #include "Common/LargeVector.h"
+#include "Common/MinMax.h"
 #include "Common/Vector3.h"
 #include <algorithm>
 #include <array>
@@ -760,7 +761,7 @@ double QueryTree::LeafDistance2(const Leaf& leaf, const double p[3]) const
     {
       along += (p[a] - double(leaf.Centre[a])) * double(leaf.Axes[k][a]);
     }
-    const double gap = std::max(0.0, std::fabs(along) - double(leaf.Extent[k]));
+    const double gap = Max(0.0, std::fabs(along) - double(leaf.Extent[k]));
     d2 += gap * gap;
   }
   // The float axes are orthonormal within 1e-6 (so a sum of squared projections exceeds
