@@ -258,11 +258,14 @@ private:
   /// may win. The site's Voronoi region is star-shaped about the site, so the slices that
   /// hold a part of it form one run around the anchor's. Where the slice's box spans
   /// more than RowTestBlocks blocks, each row is also narrowed to its blocks where the
-  /// site may win (TrimToLiveBlocks). A polygon with no whole row or column inside the
-  /// region holds no sample: the walk goes on past it without the block tests (a fine
-  /// mesh on a coarse grid has mostly such slivers: 8 % less scan time for the dragon of
-  /// 871k triangles at 64 samples). Going on where a dead sliver would have stopped the
-  /// walk only adds slices where the site may win, so the nearest sites are the same.
+  /// site may win (TrimToLiveBlocks). A sliver, a polygon without a sample inside the
+  /// region (its box has no whole row or column, or a thin polygon across its box misses
+  /// the box's samples), is passed without the block tests: a fine mesh on a coarse grid
+  /// has mostly such slices (8 % less scan time for the dragon of 871k triangles at 64
+  /// samples; finding the first row with a sample before the block tests, another 1.5-2 %
+  /// for the bunny and the armadillo at 128). Going on where a dead sliver would have
+  /// stopped the walk only adds slices where the site may win, so the nearest sites are
+  /// the same.
   template<class RowVisitor>
   bool Slice(int k, RowVisitor& visit)
   {
@@ -279,6 +282,27 @@ private:
     const int firstColumn = std::max(region.Lo[u], CeilToInt(box[0]));
     const int lastColumn = std::min(region.Hi[u], FloorToInt(box[1]));
     if (j1 < j0 || lastColumn < firstColumn)
+    {
+      return true;
+    }
+    // The first row with a sample: a thin polygon's box may hold samples that it does not.
+    this->Domain.BeginSlice(k);
+    int jStart = j0;
+    double xl, xr;
+    int i0 = 0, i1 = -1;
+    for (; jStart <= j1; ++jStart)
+    {
+      if (this->Domain.RowSpan(jStart, xl, xr))
+      {
+        i0 = std::max(region.Lo[u], CeilToInt(xl));
+        i1 = std::min(region.Hi[u], FloorToInt(xr));
+        if (i0 <= i1)
+        {
+          break;
+        }
+      }
+    }
+    if (jStart > j1)
     {
       return true;
     }
@@ -300,20 +324,21 @@ private:
       return false;
     }
     const bool testRows = int64_t(bu1 - bu0 + 1) * (bv1 - bv0 + 1) > RowTestBlocks;
-    this->Domain.BeginSlice(k);
     const double dk[3] = {
       this->D0[0] + k * this->Dw[0], this->D0[1] + k * this->Dw[1], this->D0[2] + k * this->Dw[2]
     };
     const int64_t sliceStart = this->Base + k * this->StrideW;
-    for (int j = j0; j <= j1; ++j)
+    for (int j = jStart; j <= j1; ++j)
     {
-      double xl, xr;
-      if (!this->Domain.RowSpan(j, xl, xr))
+      if (j > jStart)
       {
-        continue;
+        if (!this->Domain.RowSpan(j, xl, xr))
+        {
+          continue;
+        }
+        i0 = std::max(region.Lo[u], CeilToInt(xl));
+        i1 = std::min(region.Hi[u], FloorToInt(xr));
       }
-      int i0 = std::max(region.Lo[u], CeilToInt(xl));
-      int i1 = std::min(region.Hi[u], FloorToInt(xr));
       if (i1 < i0 || (testRows && !this->TrimToLiveBlocks(block, j, i0, i1)))
       {
         continue;
