@@ -287,20 +287,10 @@ private:
     }
     // The first row with a sample: a thin polygon's box may hold samples that it does not.
     this->Domain.BeginSlice(k);
-    int jStart = j0;
-    double xl, xr;
-    int i0 = 0, i1 = -1;
-    for (; jStart <= j1; ++jStart)
+    int jStart = j0, i0 = 0, i1 = -1;
+    while (jStart <= j1 && !this->RowSamples(jStart, i0, i1))
     {
-      if (this->Domain.RowSpan(jStart, xl, xr))
-      {
-        i0 = std::max(region.Lo[u], CeilToInt(xl));
-        i1 = std::min(region.Hi[u], FloorToInt(xr));
-        if (i0 <= i1)
-        {
-          break;
-        }
-      }
+      ++jStart;
     }
     if (jStart > j1)
     {
@@ -330,16 +320,8 @@ private:
     const int64_t sliceStart = this->Base + k * this->StrideW;
     for (int j = jStart; j <= j1; ++j)
     {
-      if (j > jStart)
-      {
-        if (!this->Domain.RowSpan(j, xl, xr))
-        {
-          continue;
-        }
-        i0 = std::max(region.Lo[u], CeilToInt(xl));
-        i1 = std::min(region.Hi[u], FloorToInt(xr));
-      }
-      if (i1 < i0 || (testRows && !this->TrimToLiveBlocks(block, j, i0, i1)))
+      if ((j > jStart && !this->RowSamples(j, i0, i1)) ||
+        (testRows && !this->TrimToLiveBlocks(block, j, i0, i1)))
       {
         continue;
       }
@@ -347,6 +329,20 @@ private:
       this->Evaluations += i1 - i0 + 1;
     }
     return true;
+  }
+
+  /// Samples i0..i1 of row j of the slice of the last BeginSlice, within the region;
+  /// false when the row has none.
+  bool RowSamples(int j, int& i0, int& i1) const
+  {
+    double xl, xr;
+    if (!this->Domain.RowSpan(j, xl, xr))
+    {
+      return false;
+    }
+    i0 = std::max(this->Region.Lo[this->U], CeilToInt(xl));
+    i1 = std::min(this->Region.Hi[this->U], FloorToInt(xr));
+    return i0 <= i1;
   }
 
   /// Narrows samples i0..i1 of row j (block[w]: its slice's layer) to the blocks from
