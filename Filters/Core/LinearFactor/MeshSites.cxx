@@ -174,7 +174,7 @@ uint32_t ThirdCorner(const std::array<uint32_t, 3>& corners, uint32_t a, uint32_
 }
 } // namespace
 
-void MeshSites::BoxOf(int64_t s, float lo[3], float hi[3]) const
+void MeshSites::CornerBounds(int64_t s, double lo[3], double hi[3]) const
 {
   const int64_t faces = this->NumFaces(), edges = this->NumEdges();
   uint32_t points[3] = { 0, 0, 0 };
@@ -193,18 +193,27 @@ void MeshSites::BoxOf(int64_t s, float lo[3], float hi[3]) const
   {
     points[0] = static_cast<uint32_t>(s - faces - edges);
   }
-  // The corners' bounds in double, rounded once: the rounding is monotonic, so this is
-  // the box of the rounded corners.
   for (int a = 0; a < 3; ++a)
   {
-    double dlo = this->X(points[0])[a], dhi = dlo;
+    lo[a] = hi[a] = this->X(points[0])[a];
     for (int k = 1; k < count; ++k)
     {
-      dlo = std::min(dlo, this->X(points[k])[a]);
-      dhi = std::max(dhi, this->X(points[k])[a]);
+      lo[a] = std::min(lo[a], this->X(points[k])[a]);
+      hi[a] = std::max(hi[a], this->X(points[k])[a]);
     }
-    lo[a] = FloatBelow(dlo);
-    hi[a] = FloatAbove(dhi);
+  }
+}
+
+void MeshSites::BoxOf(int64_t s, float lo[3], float hi[3]) const
+{
+  // The corners' bounds in double, rounded once: the rounding is monotonic, so this is
+  // the box of the rounded corners.
+  double dlo[3], dhi[3];
+  this->CornerBounds(s, dlo, dhi);
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = FloatBelow(dlo[a]);
+    hi[a] = FloatAbove(dhi[a]);
   }
 }
 

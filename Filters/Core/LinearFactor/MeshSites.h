@@ -123,6 +123,8 @@ public:
   const double* AnchorOf(int64_t s) const;
   /// The box of site `s`, rounded outward to float (Site::BoundsMin, BoundsMax).
   void BoxOf(int64_t s, float lo[3], float hi[3]) const;
+  /// The box of site `s`'s corners in double (BoxOf before its rounding).
+  void CornerBounds(int64_t s, double lo[3], double hi[3]) const;
   /// The site `s` without its planes; without its box (`box` false: Site's bounds left
   /// 0) or an edge's pseudonormal (`normal` false: left 0) where the caller needs only
   /// its distance.

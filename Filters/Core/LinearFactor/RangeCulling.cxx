@@ -1,5 +1,7 @@
 #include "LinearFactor/RangeCulling.h"
 
+#include "Common/FloatBounds.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -478,16 +480,23 @@ void RangeCulling::Build(const MeshSites& sites,
         {
           continue;
         }
+        // The union of the sites' boxes (BoxOf): their corners' bounds, rounded outward
+        // to float once (the rounding is monotonic, so it commutes with min and max).
         Box group{ { HUGE_VAL, HUGE_VAL, HUGE_VAL }, { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL } };
         for (int64_t o = this->GroupStart[cluster]; o < this->GroupStart[cluster + 1]; ++o)
         {
-          float lo[3], hi[3];
-          sites.BoxOf(this->Order[o], lo, hi);
+          double lo[3], hi[3];
+          sites.CornerBounds(this->Order[o], lo, hi);
           for (int a = 0; a < 3; ++a)
           {
-            group.Lo[a] = std::min<double>(group.Lo[a], lo[a]);
-            group.Hi[a] = std::max<double>(group.Hi[a], hi[a]);
+            group.Lo[a] = std::min(group.Lo[a], lo[a]);
+            group.Hi[a] = std::max(group.Hi[a], hi[a]);
           }
+        }
+        for (int a = 0; a < 3; ++a)
+        {
+          group.Lo[a] = FloatBelow(group.Lo[a]);
+          group.Hi[a] = FloatAbove(group.Hi[a]);
         }
         int reachLo[3], reachHi[3];
         if (!GroupReach(blocks, pyramid, group, this->ReachLevel, reachLo, reachHi))
