@@ -225,7 +225,8 @@ void MeshSites::BoxOf(int64_t s, float lo[3], float hi[3]) const
 // 1's pyramid (Pyramid), or none.
 void MeshSites::Describe(int64_t s, Site& site, bool box, bool normal) const
 {
-  site = Site();
+  // Every field set once, in its branch (no zeroing of the whole site first: samples
+  // describe their sites millions of times).
   const int64_t faces = this->NumFaces(), edges = this->NumEdges();
   if (s < faces)
   {
@@ -270,6 +271,8 @@ void MeshSites::Describe(int64_t s, Site& site, bool box, bool normal) const
     site.Type = VertexSite;
     site.CellId = this->VertexCells[v];
     std::copy(this->X(v), this->X(v) + 3, site.Anchor);
+    std::fill(site.Axis, site.Axis + 3, 0.0);
+    site.Required = 0;
     std::copy(this->VertexNormals[v].begin(), this->VertexNormals[v].end(), site.Normal);
     site.PlaneCount = this->VertexDomains[v] == sites::Polar
       ? static_cast<int>(this->VertexEdgeStart[v + 1] - this->VertexEdgeStart[v])
@@ -278,6 +281,11 @@ void MeshSites::Describe(int64_t s, Site& site, bool box, bool normal) const
   if (box)
   {
     this->BoxOf(s, site.BoundsMin, site.BoundsMax);
+  }
+  else
+  {
+    std::fill(site.BoundsMin, site.BoundsMin + 3, 0.0f);
+    std::fill(site.BoundsMax, site.BoundsMax + 3, 0.0f);
   }
 }
 
