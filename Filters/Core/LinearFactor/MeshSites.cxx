@@ -99,14 +99,6 @@ int64_t MeshSites::CellOf(int64_t s) const
     : (s < faces + edges ? this->EdgeCells[s - faces] : this->VertexCells[s - faces - edges]);
 }
 
-const double* MeshSites::AnchorOf(int64_t s) const
-{
-  const int64_t faces = this->NumFaces(), edges = this->NumEdges();
-  return s < faces
-    ? this->X(this->FaceCorners[s][0])
-    : (s < faces + edges ? this->X(this->EdgeEnds[s - faces][0]) : this->X(s - faces - edges));
-}
-
 /// The unit normal of face f, as the build computed it.
 void MeshSites::FaceNormal(int64_t f, double normal[3]) const
 {

@@ -120,7 +120,14 @@ public:
   /// The input cell a site reports as its ClosestCellId.
   int64_t CellOf(int64_t s) const;
   /// The point a site's planes are relative to (a corner of the site).
-  const double* AnchorOf(int64_t s) const;
+  const double* AnchorOf(int64_t s) const { return this->X(this->AnchorPointOf(s)); }
+  /// That point's index in SitePoints (xyz at 3 times it).
+  int64_t AnchorPointOf(int64_t s) const
+  {
+    const int64_t faces = this->NumFaces(), edges = this->NumEdges();
+    return s < faces ? this->FaceCorners[s][0]
+                     : (s < faces + edges ? this->EdgeEnds[s - faces][0] : s - faces - edges);
+  }
   /// The box of site `s`, rounded outward to float (Site::BoundsMin, BoundsMax).
   void BoxOf(int64_t s, float lo[3], float hi[3]) const;
   /// The box of site `s`'s corners in double (BoxOf before its rounding).

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace vtkdf
@@ -143,32 +144,59 @@ std::vector<int64_t> NearBlockPoints(const Blocks& blocks, const std::vector<dou
       nearestPoint[id] = p;
     }
   }
+  // The neighbours' id offsets, in the order the sweeps visit them.
+  int64_t offsets[27];
+  for (int dk = -1, n = 0; dk <= 1; ++dk)
+  {
+    for (int dj = -1; dj <= 1; ++dj)
+    {
+      for (int di = -1; di <= 1; ++di, ++n)
+      {
+        offsets[n] = di + int64_t(nb[0]) * (dj + int64_t(nb[1]) * dk);
+      }
+    }
+  }
+  auto pass = [&](int64_t id, int64_t other)
+  {
+    const int64_t p = nearestPoint[other];
+    if (p >= 0 && p != nearestPoint[id])
+    {
+      const double d2 = distance2(p, id);
+      if (d2 < nearest2[id])
+      {
+        nearest2[id] = d2;
+        nearestPoint[id] = p;
+      }
+    }
+  };
+  // Blocks in id order (x fastest), forwards or backwards; an interior block's
+  // neighbours need no bounds test.
   auto sweep = [&](int direction)
   {
-    const int64_t first = direction > 0 ? 0 : numBlocks - 1;
-    for (int64_t n = 0, id = first; n < numBlocks; ++n, id += direction)
+    for (int n2 = 0; n2 < nb[2]; ++n2)
     {
-      const std::array<int, 3> ids = blocks.Indices(id);
-      for (int dk = -1; dk <= 1; ++dk)
+      const int k = direction > 0 ? n2 : nb[2] - 1 - n2;
+      for (int n1 = 0; n1 < nb[1]; ++n1)
       {
-        for (int dj = -1; dj <= 1; ++dj)
+        const int j = direction > 0 ? n1 : nb[1] - 1 - n1;
+        for (int n0 = 0; n0 < nb[0]; ++n0)
         {
-          for (int di = -1; di <= 1; ++di)
+          const int i = direction > 0 ? n0 : nb[0] - 1 - n0;
+          const int64_t id = i + int64_t(nb[0]) * (j + int64_t(nb[1]) * k);
+          const bool interior =
+            i > 0 && j > 0 && k > 0 && i < nb[0] - 1 && j < nb[1] - 1 && k < nb[2] - 1;
+          for (int dk = -1, n = 0; dk <= 1; ++dk)
           {
-            const int o[3] = { ids[0] + di, ids[1] + dj, ids[2] + dk };
-            if (o[0] < 0 || o[1] < 0 || o[2] < 0 || o[0] >= nb[0] || o[1] >= nb[1] || o[2] >= nb[2])
+            for (int dj = -1; dj <= 1; ++dj)
             {
-              continue;
-            }
-            const int64_t other = o[0] + int64_t(nb[0]) * (o[1] + int64_t(nb[1]) * o[2]);
-            const int64_t p = nearestPoint[other];
-            if (p >= 0 && p != nearestPoint[id])
-            {
-              const double d2 = distance2(p, id);
-              if (d2 < nearest2[id])
+              for (int di = -1; di <= 1; ++di, ++n)
               {
-                nearest2[id] = d2;
-                nearestPoint[id] = p;
+                if (interior ||
+                  (i + di >= 0 && j + dj >= 0 && k + dk >= 0 && i + di < nb[0] && j + dj < nb[1] &&
+                    k + dk < nb[2]))
+                {
+                  pass(id, id + offsets[n]);
+                }
               }
             }
           }
@@ -357,9 +385,8 @@ void GroupSites(RangeCulling& culling,
   const bool all = subset.empty();
   const int64_t numSites = all ? sites.Count() : static_cast<int64_t>(subset.size());
   const SampleGrid& grid = blocks.Grid;
-  auto blockOf = [&](int64_t s)
+  auto blockOfPoint = [&](const double* anchor)
   {
-    const double* anchor = sites.AnchorOf(s);
     int64_t id = 0, stride = 1;
     for (int a = 0; a < 3; ++a)
     {
@@ -374,6 +401,27 @@ void GroupSites(RangeCulling& culling,
     return id;
   };
   const int64_t total = blocks.Total;
+  // A site's block is its anchor's: with every site, each point's block is found once
+  // (a point anchors about six sites, and each site is placed twice).
+  std::vector<uint32_t> pointBlocks;
+  const bool byPoint = all && total <= int64_t(UINT32_MAX);
+  if (byPoint)
+  {
+    pointBlocks.resize(sites.SitePoints.size() / 3);
+    parallelFor(static_cast<int64_t>(pointBlocks.size()),
+      4096,
+      [&](int64_t begin, int64_t end)
+      {
+        for (int64_t p = begin; p < end; ++p)
+        {
+          pointBlocks[p] = static_cast<uint32_t>(blockOfPoint(&sites.SitePoints[3 * p]));
+        }
+      });
+  }
+  auto blockOf = [&](int64_t s)
+  {
+    return byPoint ? int64_t(pointBlocks[sites.AnchorPointOf(s)]) : blockOfPoint(sites.AnchorOf(s));
+  };
   const int64_t numChunks = std::max<int64_t>(1, std::min<int64_t>(8, numSites / total));
   // counts[c * total + b]: the sites of chunk c in block b, then where they go.
   std::vector<uint32_t> counts(static_cast<size_t>(numChunks * total), 0);
